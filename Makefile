@@ -1,0 +1,32 @@
+# The two commands of the README, and a few more for development.
+#   make run    install what is missing, build, and run the main job
+#   make test   install what is missing, build, and run every test
+PRESET ?= release
+BUILD := build/$(PRESET)
+
+.PHONY: run test deps configure build bench asan clean
+
+deps:
+	@scripts/install-deps.sh
+
+configure: deps
+	@if [ ! -f $(BUILD)/build.ninja ]; then cmake --preset $(PRESET); fi
+
+build: configure
+	cmake --build --preset $(PRESET)
+
+run: build
+	scripts/run.sh $(BUILD)
+
+test: build
+	ctest --preset $(PRESET)
+
+# Benchmarks write their numbers to docs/BENCHMARKS.md by hand: see that file.
+bench: build
+	scripts/bench-generator.sh $(BUILD)
+
+asan:
+	$(MAKE) test PRESET=asan
+
+clean:
+	rm -rf build

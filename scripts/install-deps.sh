@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Installs every Debian package umf builds, tests or runs with.
+# Idempotent and non-interactive: packages already present are skipped, so a
+# second run costs only a dpkg query.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build pkg-config git ca-certificates
+  # shared/ (the core library)
+  libeigen3-dev nlohmann-json3-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev poppler-utils
+  # provider/: Qt 6, Beast server, TLS, pairing QR codes, X11 window lookup
+  qt6-base-dev qt6-base-dev-tools libgl-dev libx11-dev libxcb1-dev
+  libboost-dev libboost-system-dev libssl-dev openssl libqrencode-dev
+  # requester/ and the camera simulator
+  libopencv-dev libopencv-contrib-dev libapriltag-dev
+  # web/: WebAssembly build and browser tests
+  emscripten chromium
+  # headless desktop for overlay and window tests
+  xvfb xauth x11-utils xdotool openbox
+)
+
+# node and npm may come from another repository whose nodejs bundles npm
+# (and conflicts with Debian's npm): add Debian's only when there is no node.
+if ! command -v node >/dev/null 2>&1; then packages+=(nodejs); fi
+if ! command -v npm >/dev/null 2>&1; then packages+=(npm); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "install-deps: done"
