@@ -2,6 +2,7 @@
 # Generator benchmark: time to a verified binary 4-orientable field with 4 x 4
 # windows at several sizes, and k-ary fields at screen sizes. Prints a Markdown
 # table for docs/BENCHMARKS.md. Usage: scripts/bench-generator.sh [BUILD_DIR] [LIMIT_S]
+# UMF_BENCH_LARGE=1 adds 93 x 93, 94 x 94 and 110 x 110 (each up to LIMIT_S).
 set -euo pipefail
 build=${1:-build/release}
 limit=${2:-1800}
@@ -26,10 +27,17 @@ run() {  # width height window colors seed
     if [ $status -ne 0 ]; then result="not reached in ${limit} s"; else "$tool" verify "$tmp/f.json" >/dev/null; fi
     printf "| %s x %s | %s | %s | %s | %s | %.2f |\n" "$1" "$2" "$3" "$4" "$5" "$result" "$(awk -v a="$start" -v b="$end" 'BEGIN { print (b - a) / 1e9 }')"
 }
-for size in "64 36" "92 92" "96 54"; do
+# The 4 x 4 binary sizes of the method's Table 3 (its largest fields) and the
+# screen sizes, three seeds each.
+for size in "64 36" "92 92" "110 78" "122 61" "159 53" "120 68"; do
     for seed in 1 2 3; do run $size 4 2 $seed; done
 done
-for size in "64 36 4 3" "64 36 3 4" "128 72 4 3"; do
+# k-ary candidates at screen sizes.
+for size in "64 36 4 3" "128 72 4 3" "64 36 3 5"; do
     set -- $size
     run "$1" "$2" "$3" "$4" 1
 done
+# Beyond: squares past 92 x 92, each with the time limit.
+if [ "${UMF_BENCH_LARGE:-0}" = 1 ]; then
+    for side in 93 94 110; do run $side $side 4 2 1; done
+fi

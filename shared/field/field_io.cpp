@@ -1,10 +1,11 @@
 #include "field/field_io.hpp"
 
-#include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "io/atomic_file.hpp"
 
 namespace umf {
 
@@ -142,20 +143,10 @@ std::string field_to_json(const Field& f) {
 
 void save_field(const Field& f, const std::string& path) {
     std::string text = field_to_json(f);
-    std::string tmp = path + ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw FieldFileError(path + ": cannot write (" + tmp + " cannot be created)");
-        out.write(text.data(), static_cast<std::streamsize>(text.size()));
-        out.flush();
-        if (!out) {
-            std::remove(tmp.c_str());
-            throw FieldFileError(path + ": writing failed");
-        }
-    }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw FieldFileError(path + ": cannot replace the file");
+    try {
+        write_file_atomically(path, text);
+    } catch (const FileWriteError& e) {
+        throw FieldFileError(e.what());
     }
 }
 

@@ -5,7 +5,6 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -18,6 +17,7 @@
 #include "field/generator.hpp"
 #include "field/render.hpp"
 #include "field/verifier.hpp"
+#include "io/atomic_file.hpp"
 
 namespace {
 
@@ -191,8 +191,23 @@ int cmd_generate(const Args& a) {
     const bool tty = isatty(STDERR_FILENO);
 
     double last_line = -1;
+    long deepest = -1;
+    double deepest_at = 0;
+    bool hinted = false;
     auto progress = [&](const umf::GeneratorProgress& p) {
+        if (p.windows_placed > deepest) {
+            deepest = p.windows_placed;
+            deepest_at = p.elapsed_s;
+        }
         if (quiet) return;
+        if (!hinted && p.elapsed_s - deepest_at > 60) {
+            hinted = true;
+            std::fprintf(stderr,
+                         "%sumf-field: no progress for a minute: this size may be beyond what the generator "
+                         "reaches (binary 4 x 4 fields stall near half the counting bound). Ctrl-C keeps the "
+                         "partial field.\n",
+                         tty ? "\n" : "");
+        }
         if (!tty && p.elapsed_s - last_line < 10) return;  // a log file gets a line every 10 s
         last_line = p.elapsed_s;
         std::fprintf(stderr, "%s%7.1f s  windows %ld/%ld  left %ld  %.2f M tries/s  restarts %llu%s",
@@ -274,18 +289,10 @@ int cmd_render(const Args& a) {
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
-    std::string tmp = *out + ".tmp";
-    {
-        std::ofstream file(tmp, std::ios::binary | std::ios::trunc);
-        file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        if (!file) {
-            std::remove(tmp.c_str());
-            throw umf::FieldFileError(*out + ": cannot write");
-        }
-    }
-    if (std::rename(tmp.c_str(), out->c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw umf::FieldFileError(*out + ": cannot write");
+    try {
+        umf::write_file_atomically(*out, bytes);
+    } catch (const umf::FileWriteError& e) {
+        throw umf::FieldFileError(e.what());
     }
     std::printf("%s: %zu bytes\n", out->c_str(), bytes.size());
     return kOk;
