@@ -1,0 +1,139 @@
+#include "detect/placement_vote.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace umf {
+
+void GridPlacement::field_module(int i, int j, int& row, int& col) const {
+    switch (quarter_turns & 3) {
+        case 0: row = i, col = j; break;
+        case 1: row = -j, col = i; break;
+        case 2: row = -i, col = -j; break;
+        default: row = j, col = -i; break;
+    }
+    row += row_offset;
+    col += col_offset;
+}
+
+void GridPlacement::field_point(double x, double y, double& u, double& v) const {
+    // The cell-index map above, extended to the cell's corners: a turned cell's
+    // far edge becomes its near one, hence the "+ 1 -" terms.
+    switch (quarter_turns & 3) {
+        case 0: u = x, v = y; break;
+        case 1: u = y, v = 1 - x; break;
+        case 2: u = 1 - x, v = 1 - y; break;
+        default: u = 1 - y, v = x; break;
+    }
+    u += col_offset;
+    v += row_offset;
+}
+
+namespace {
+
+// A placement as one sortable number; offsets are far inside +-2^20.
+std::uint64_t pack(const GridPlacement& p) {
+    return (static_cast<std::uint64_t>(p.quarter_turns & 3) << 42) |
+           (static_cast<std::uint64_t>(p.row_offset + (1 << 20)) << 21) |
+           static_cast<std::uint64_t>(p.col_offset + (1 << 20));
+}
+
+GridPlacement unpack(std::uint64_t k) {
+    return {static_cast<int>(k >> 42), static_cast<int>((k >> 21) & 0x1fffff) - (1 << 20),
+            static_cast<int>(k & 0x1fffff) - (1 << 20)};
+}
+
+// The placement under which the grid window at (i0, j0) is the field window m.
+GridPlacement placement_of(const WindowMatch& m, int n, int i0, int j0) {
+    switch (m.quarter_turns) {
+        case 0: return {0, m.row - i0, m.col - j0};
+        case 1: return {1, m.row + n - 1 + j0, m.col - i0};
+        case 2: return {2, m.row + n - 1 + i0, m.col + n - 1 + j0};
+        default: return {3, m.row - j0, m.col + n - 1 + i0};
+    }
+}
+
+struct Agreement {
+    long compared = 0;
+    long matched = 0;
+};
+
+Agreement agreement(const ModuleGrid& g, const Field& f, const GridPlacement& p) {
+    long compared = 0, matched = 0;
+    auto inside = [&](int r, int c) { return r >= 0 && c >= 0 && r < f.height && c < f.width; };
+    auto sign = [](int d) { return (d > 0) - (d < 0); };
+    for (int i = 0; i < g.rows; ++i)
+        for (int j = 0; j < g.cols; ++j) {
+            int r, c;
+            p.field_module(i, j, r, c);
+            if (!inside(r, c)) continue;  // the view may reach past the field's edge
+            if (f.key == WindowKey::modules) {
+                if (g.at(i, j) == ModuleGrid::kUnknown) continue;
+                ++compared;
+                matched += g.at(i, j) == f.at(r, c);
+                continue;
+            }
+            for (int e = 0; e < 2; ++e) {
+                const int i2 = i + e, j2 = j + 1 - e;
+                const std::int8_t s = e == 0 ? g.right_of(i, j) : g.below(i, j);
+                if (i2 >= g.rows || j2 >= g.cols || s == ModuleGrid::kUnknown) continue;
+                int r2, c2;
+                p.field_module(i2, j2, r2, c2);
+                if (!inside(r2, c2)) continue;
+                ++compared;
+                matched += s == sign(f.at(r2, c2) - f.at(r, c));
+            }
+        }
+    return {compared, matched};
+}
+
+}  // namespace
+
+VoteResult vote_placement(const ModuleGrid& grid, const WindowIndex& index, const VoteOptions& options) {
+    VoteResult out;
+    const int n = index.codec().window();
+    std::vector<std::uint64_t> ballots;
+    for (int i = 0; i + n <= grid.rows; ++i)
+        for (int j = 0; j + n <= grid.cols; ++j) {
+            auto code = observed_code(grid, index.codec(), i, j);
+            if (!code) continue;
+            ++out.windows_read;
+            auto match = index.find(*code);
+            if (!match) continue;
+            ++out.windows_known;
+            ballots.push_back(pack(placement_of(*match, n, i, j)));
+        }
+    if (ballots.empty()) return out;
+    std::sort(ballots.begin(), ballots.end());
+    std::uint64_t best = 0;
+    for (std::size_t a = 0; a < ballots.size();) {
+        std::size_t b = a;
+        while (b < ballots.size() && ballots[b] == ballots[a]) ++b;
+        const int count = static_cast<int>(b - a);
+        if (count > out.votes) {
+            out.runner_up = out.votes;
+            out.votes = count;
+            best = ballots[a];
+        } else if (count > out.runner_up) {
+            out.runner_up = count;
+        }
+        a = b;
+    }
+    out.placement = unpack(best);
+    const Field& f = index.field();
+    const Agreement a = agreement(grid, f, out.placement);
+    out.agreement = a.compared ? static_cast<double>(a.matched) / a.compared : 0.0;
+    // Log-likelihood ratio of "this placement" against "chance", less the
+    // bits needed to single out one of the placements.
+    const double chance = f.key == WindowKey::modules ? 1.0 / f.colors : 1.0 / 3.0;
+    const double eps = options.misread_rate;
+    const double per_match = std::log2((1 - eps) / chance), per_miss = std::log2(eps / (1 - chance));
+    out.evidence_bits = a.matched * per_match + (a.compared - a.matched) * per_miss -
+                        std::log2(4.0 * static_cast<double>(f.window_count()));
+    out.found = out.votes >= options.min_votes && out.votes > 2 * out.runner_up &&
+                out.agreement >= options.min_agreement && out.evidence_bits >= options.min_evidence_bits;
+    return out;
+}
+
+}  // namespace umf
