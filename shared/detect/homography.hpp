@@ -1,0 +1,35 @@
+// Plane-to-plane homographies from point correspondences: the normalised
+// direct linear transform, and a robust fit that ignores wrong matches.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace umf {
+
+using Point2 = Eigen::Vector2d;
+
+// H maps `from` to `to` in homogeneous coordinates, scaled so H(2,2) = 1 where
+// possible. Nothing when there are fewer than four points or they are
+// degenerate (three or more on one line among four, all coincident...).
+std::optional<Eigen::Matrix3d> fit_homography(const std::vector<Point2>& from, const std::vector<Point2>& to);
+
+// Nothing when the point maps to infinity.
+std::optional<Point2> apply_homography(const Eigen::Matrix3d& h, const Point2& p);
+
+struct RobustHomography {
+    Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
+    std::vector<bool> inlier;
+    int inliers = 0;
+};
+
+// RANSAC over four-point samples, then a refit to all inliers (points whose
+// transfer error is at most `tolerance`, in the units of `to`). Deterministic
+// for a given seed.
+std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>& from, const std::vector<Point2>& to,
+                                                      double tolerance, int iterations = 200,
+                                                      std::uint64_t seed = 1);
+
+}  // namespace umf

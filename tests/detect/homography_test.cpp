@@ -1,0 +1,91 @@
+#include "detect/homography.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <random>
+
+using namespace umf;
+
+namespace {
+
+Eigen::Matrix3d some_perspective() {
+    Eigen::Matrix3d h;
+    h << 0.9, -0.3, 120, 0.25, 1.1, 40, 0.0004, -0.0007, 1;
+    return h;
+}
+
+std::vector<Point2> grid_points(int n, double spacing) {
+    std::vector<Point2> pts;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) pts.emplace_back(j * spacing, i * spacing);
+    return pts;
+}
+
+TEST(Homography, RecoversAnExactMapping) {
+    const Eigen::Matrix3d truth = some_perspective();
+    auto from = grid_points(5, 37.0);
+    std::vector<Point2> to;
+    for (const auto& p : from) to.push_back(*apply_homography(truth, p));
+    auto h = fit_homography(from, to);
+    ASSERT_TRUE(h);
+    EXPECT_LT((*h - truth).norm(), 1e-6 * truth.norm());
+    // Four points are enough.
+    std::vector<Point2> f4{from[0], from[4], from[20], from[24]}, t4{to[0], to[4], to[20], to[24]};
+    auto h4 = fit_homography(f4, t4);
+    ASSERT_TRUE(h4);
+    EXPECT_LT((*apply_homography(*h4, from[12]) - to[12]).norm(), 1e-6);
+}
+
+TEST(Homography, RefusesTooFewOrDegeneratePoints) {
+    std::vector<Point2> three{{0, 0}, {1, 0}, {0, 1}};
+    EXPECT_FALSE(fit_homography(three, three));
+    std::vector<Point2> line{{0, 0}, {1, 1}, {2, 2}, {3, 3}, {4, 4}};
+    EXPECT_FALSE(fit_homography(line, line));
+    std::vector<Point2> same(6, Point2(2, 3));
+    EXPECT_FALSE(fit_homography(same, same));
+    std::vector<Point2> four{{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    EXPECT_FALSE(fit_homography(four, three));  // sizes differ
+}
+
+TEST(Homography, AveragesNoise) {
+    const Eigen::Matrix3d truth = some_perspective();
+    auto from = grid_points(10, 20.0);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 0.3);
+    std::vector<Point2> to;
+    for (const auto& p : from) to.push_back(*apply_homography(truth, p) + Point2(noise(rng), noise(rng)));
+    auto h = fit_homography(from, to);
+    ASSERT_TRUE(h);
+    Point2 centre(90, 90);
+    EXPECT_LT((*apply_homography(*h, centre) - *apply_homography(truth, centre)).norm(), 0.2);
+}
+
+TEST(Homography, RobustFitIgnoresWrongMatches) {
+    const Eigen::Matrix3d truth = some_perspective();
+    auto from = grid_points(8, 25.0);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> anywhere(0, 400);
+    std::vector<Point2> to;
+    int wrong = 0;
+    for (std::size_t i = 0; i < from.size(); ++i) {
+        if (i % 3 == 1) {  // a third of the matches are wrong
+            to.emplace_back(anywhere(rng), anywhere(rng));
+            ++wrong;
+        } else {
+            to.push_back(*apply_homography(truth, from[i]));
+        }
+    }
+    EXPECT_FALSE(fit_homography(from, to) &&
+                 (*apply_homography(*fit_homography(from, to), from[0]) - to[0]).norm() < 0.5);
+    auto r = fit_homography_robust(from, to, 1.0);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->inliers, static_cast<int>(from.size()) - wrong);
+    for (std::size_t i = 0; i < from.size(); ++i) EXPECT_EQ(r->inlier[i], i % 3 != 1) << i;
+    EXPECT_LT((*apply_homography(r->h, Point2(77, 99)) - *apply_homography(truth, Point2(77, 99))).norm(), 1e-6);
+    // Deterministic for a seed.
+    auto again = fit_homography_robust(from, to, 1.0);
+    EXPECT_EQ(again->h, r->h);
+}
+
+}  // namespace
