@@ -1,0 +1,83 @@
+#include "detect/edgels.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+namespace umf {
+
+namespace {
+
+// Sobel gradient at an interior pixel.
+void sobel(const GreyView& im, int x, int y, float& gx, float& gy) {
+    const std::uint8_t* a = im.row(y - 1) + x;
+    const std::uint8_t* b = im.row(y) + x;
+    const std::uint8_t* c = im.row(y + 1) + x;
+    gx = static_cast<float>((a[1] + 2 * b[1] + c[1]) - (a[-1] + 2 * b[-1] + c[-1]));
+    gy = static_cast<float>((c[-1] + 2 * c[0] + c[1]) - (a[-1] + 2 * a[0] + a[1]));
+}
+
+// Edges along one line of samples s[0..n): peaks of the smoothed derivative
+// d[i] = s[i+1] + s[i+2] - s[i-1] - s[i-2] that stand out of the line's noise
+// (a robust estimate from the median of |d|; most of a line is flat) and reach
+// the contrast floor. Calls found(position) with a sub-pixel position.
+template <typename Sample, typename Found>
+void scan_line(int n, Sample s, int floor, std::vector<int>& d, std::vector<int>& scratch, Found found) {
+    if (n < 7) return;
+    d.assign(n, 0);
+    for (int i = 2; i + 2 < n; ++i) d[i] = (s(i + 1) + s(i + 2)) - (s(i - 1) + s(i - 2));
+    scratch.resize(n - 4);
+    for (int i = 2; i + 2 < n; ++i) scratch[i - 2] = std::abs(d[i]);
+    auto mid = scratch.begin() + scratch.size() / 2;
+    std::nth_element(scratch.begin(), mid, scratch.end());
+    // 1.4826 * median |d| estimates the noise's standard deviation; 4.5 of
+    // them keeps false peaks rare.
+    const double threshold = std::max(2.0 * floor, 4.5 * 1.4826 * *mid);
+    int prev = std::abs(d[2]), cur = std::abs(d[3]);
+    for (int i = 3; i + 3 < n; ++i) {
+        const int next = std::abs(d[i + 1]);
+        if (cur >= threshold && cur >= prev && cur > next) {
+            // A parabola through the three magnitudes places the peak.
+            const double den = prev - 2.0 * cur + next;
+            const double off = den != 0 ? 0.5 * (prev - next) / den : 0.0;
+            found(i + std::clamp(off, -0.5, 0.5));
+        }
+        prev = cur;
+        cur = next;
+    }
+}
+
+}  // namespace
+
+EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
+    EdgelScan out;
+    if (!describe_invalid(im).empty() || im.width < 8 || im.height < 8) return out;
+    out.step = o.step > 0 ? o.step : std::max(4, std::max(im.width, im.height) / 40);
+    const int thr = std::max(1, o.min_contrast);
+    std::vector<int> d, scratch;
+    auto keep = [&](float x, float y) {
+        const int xi = std::clamp(static_cast<int>(std::lround(x)), 1, im.width - 2);
+        const int yi = std::clamp(static_cast<int>(std::lround(y)), 1, im.height - 2);
+        Edgel e;
+        e.x = x + 0.5f;  // pixel i covers [i, i+1): its centre is i + 0.5
+        e.y = y + 0.5f;
+        sobel(im, xi, yi, e.gx, e.gy);
+        out.pixels_visited += 9;
+        out.edgels.push_back(e);
+    };
+    for (int y = out.step / 2; y < im.height; y += out.step) {
+        const std::uint8_t* row = im.row(y);
+        out.pixels_visited += im.width;
+        scan_line(im.width, [row](int i) { return static_cast<int>(row[i]); }, thr, d, scratch,
+                  [&](double x) { keep(static_cast<float>(x), static_cast<float>(y)); });
+    }
+    for (int x = out.step / 2; x < im.width; x += out.step) {
+        out.pixels_visited += im.height;
+        scan_line(im.height, [&im, x](int i) { return static_cast<int>(im.at(x, i)); }, thr, d, scratch,
+                  [&](double y) { keep(static_cast<float>(x), static_cast<float>(y)); });
+    }
+    return out;
+}
+
+}  // namespace umf

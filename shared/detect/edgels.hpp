@@ -1,0 +1,33 @@
+// Stage 1 of detection: edge points ("edgels") on sparse scanlines. Only
+// every step-th row and column is read, so the detector touches a few per
+// cent of the pixels; grid edges cross every scanline, text and pictures
+// add outliers that later stages reject.
+#pragma once
+
+#include <vector>
+
+#include "detect/image.hpp"
+
+namespace umf {
+
+struct Edgel {
+    float x = 0, y = 0;    // sub-pixel position on its scanline; pixel (i, j) covers [i, i+1) x [j, j+1)
+    float gx = 0, gy = 0;  // Sobel gradient there, pointing from dark to bright
+};
+
+struct EdgelOptions {
+    int step = 0;           // pixels between scanlines; 0: a 40th of the larger side, at least 4
+    // Smallest step in grey levels across an edge (the smoothed difference
+    // over two pixels each side). Low, because the field may be faint.
+    int min_contrast = 5;
+};
+
+struct EdgelScan {
+    std::vector<Edgel> edgels;
+    long pixels_visited = 0;
+    int step = 0;
+};
+
+EdgelScan find_edgels(const GreyView& image, const EdgelOptions& options = {});
+
+}  // namespace umf

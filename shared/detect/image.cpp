@@ -1,0 +1,35 @@
+#include "detect/image.hpp"
+
+#include <stdexcept>
+
+namespace umf {
+
+std::string describe_invalid(const GreyView& im) {
+    if (!im.data) return "no pixel data";
+    if (im.width <= 0 || im.height <= 0) return "empty image";
+    if (im.width > kMaxImageSideForDetection || im.height > kMaxImageSideForDetection)
+        return "image of " + std::to_string(im.width) + " x " + std::to_string(im.height) +
+               " is larger than the limit of " + std::to_string(kMaxImageSideForDetection) + " a side";
+    if (im.stride < im.width) return "stride " + std::to_string(im.stride) + " is smaller than the width";
+    return {};
+}
+
+GreyView to_luma(const ColourView& im, std::vector<std::uint8_t>& out) {
+    const int channels = (im.order == PixelOrder::rgb || im.order == PixelOrder::bgr) ? 3 : 4;
+    if (!im.data || im.width <= 0 || im.height <= 0 || im.width > kMaxImageSideForDetection ||
+        im.height > kMaxImageSideForDetection || im.stride < static_cast<std::ptrdiff_t>(im.width) * channels)
+        throw std::invalid_argument("to_luma: invalid colour image");
+    const bool red_first = im.order == PixelOrder::rgb || im.order == PixelOrder::rgba;
+    out.resize(static_cast<std::size_t>(im.width) * im.height);
+    for (int y = 0; y < im.height; ++y) {
+        const std::uint8_t* p = im.data + y * im.stride;
+        std::uint8_t* q = out.data() + static_cast<std::size_t>(y) * im.width;
+        for (int x = 0; x < im.width; ++x, p += channels) {
+            const int r = red_first ? p[0] : p[2], g = p[1], b = red_first ? p[2] : p[0];
+            q[x] = static_cast<std::uint8_t>((77 * r + 150 * g + 29 * b + 128) >> 8);
+        }
+    }
+    return {out.data(), im.width, im.height, im.width};
+}
+
+}  // namespace umf

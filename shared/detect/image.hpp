@@ -1,0 +1,42 @@
+// Image views the detector reads: it never owns or copies the caller's
+// pixels, except to turn colour into one grey channel.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace umf {
+
+struct GreyView {
+    const std::uint8_t* data = nullptr;
+    int width = 0;
+    int height = 0;
+    std::ptrdiff_t stride = 0;  // bytes from one row to the next; may exceed width
+
+    std::uint8_t at(int x, int y) const { return data[y * stride + x]; }
+    const std::uint8_t* row(int y) const { return data + y * stride; }
+};
+
+// Limits on what the detector accepts: 16384 pixels a side is beyond any camera.
+inline constexpr int kMaxImageSideForDetection = 16384;
+
+// Empty when the view can be read; otherwise what is wrong with it.
+std::string describe_invalid(const GreyView& image);
+
+enum class PixelOrder { rgb, bgr, rgba, bgra };
+
+struct ColourView {
+    const std::uint8_t* data = nullptr;
+    int width = 0;
+    int height = 0;
+    std::ptrdiff_t stride = 0;
+    PixelOrder order = PixelOrder::rgba;
+};
+
+// Luma (BT.601 weights in integers) of a colour image into `out`, reused
+// between frames; returns a view of it.
+GreyView to_luma(const ColourView& image, std::vector<std::uint8_t>& out);
+
+}  // namespace umf

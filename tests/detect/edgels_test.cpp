@@ -1,0 +1,128 @@
+#include "detect/edgels.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "field/field_io.hpp"
+
+using namespace umf;
+
+namespace {
+
+// A field drawn with modules of `module_px` pixels, turned by `angle` about the
+// image centre, at `contrast` grey levels around mid grey: a faint field on a
+// blank screen, seen straight on.
+struct Drawn {
+    std::vector<std::uint8_t> pixels;
+    int width, height;
+    double module_px, angle;
+};
+
+Drawn draw_field(const Field& f, int width, int height, double module_px, double angle_deg, int contrast,
+                 std::uint32_t noise_seed = 0, double noise_sigma = 0) {
+    Drawn d{std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height), width, height, module_px,
+            angle_deg * M_PI / 180};
+    std::mt19937 rng(noise_seed);
+    std::normal_distribution<double> noise(0, noise_sigma);
+    const double c = std::cos(d.angle), s = std::sin(d.angle);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+            // 4 x 4 supersampling, as a camera integrates over a pixel.
+            double acc = 0;
+            for (int sy = 0; sy < 4; ++sy)
+                for (int sx = 0; sx < 4; ++sx) {
+                    const double px = x + (sx + 0.5) / 4 - width / 2.0, py = y + (sy + 0.5) / 4 - height / 2.0;
+                    const double u = (c * px + s * py) / module_px + f.width / 2.0;
+                    const double v = (-s * px + c * py) / module_px + f.height / 2.0;
+                    const int col = static_cast<int>(std::floor(u)), row = static_cast<int>(std::floor(v));
+                    double value = 128;
+                    if (col >= 0 && row >= 0 && col < f.width && row < f.height)
+                        value += contrast * (f.at(row, col) / double(f.colors - 1) - 0.5);
+                    acc += value;
+                }
+            const double v = acc / 16 + (noise_sigma > 0 ? noise(rng) : 0);
+            d.pixels[static_cast<std::size_t>(y) * width + x] = static_cast<std::uint8_t>(std::clamp(v, 0.0, 255.0));
+        }
+    return d;
+}
+
+// Distance in pixels from an image point to the nearest module boundary, and
+// the angle between the edgel's gradient and that boundary's normal.
+void boundary_fit(const Drawn& d, const Field& f, const Edgel& e, double& distance, double& angle_err_deg) {
+    const double c = std::cos(d.angle), s = std::sin(d.angle);
+    const double px = e.x - d.width / 2.0, py = e.y - d.height / 2.0;
+    const double u = (c * px + s * py) / d.module_px + f.width / 2.0;
+    const double v = (-s * px + c * py) / d.module_px + f.height / 2.0;
+    const double du = std::abs(u - std::round(u)), dv = std::abs(v - std::round(v));
+    // Gradient in field axes.
+    const double gu = c * e.gx + s * e.gy, gv = -s * e.gx + c * e.gy;
+    const double g = std::hypot(gu, gv);
+    if (du < dv) {
+        distance = du * d.module_px;
+        angle_err_deg = std::acos(std::min(1.0, std::abs(gu) / g)) * 180 / M_PI;
+    } else {
+        distance = dv * d.module_px;
+        angle_err_deg = std::acos(std::min(1.0, std::abs(gv) / g)) * 180 / M_PI;
+    }
+}
+
+class EdgelsOnAField : public ::testing::TestWithParam<double> {};
+
+TEST_P(EdgelsOnAField, LieOnModuleBoundariesAcrossThem) {
+    Field f = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
+    Drawn d = draw_field(f, 640, 480, 28.0, GetParam(), 60, 1, 2.0);
+    GreyView view{d.pixels.data(), d.width, d.height, d.width};
+    EdgelScan scan = find_edgels(view);
+    ASSERT_GT(scan.edgels.size(), 200u);
+    int near = 0, across = 0;
+    for (const auto& e : scan.edgels) {
+        double dist, ang;
+        boundary_fit(d, f, e, dist, ang);
+        near += dist < 1.0;
+        across += dist < 1.0 && ang < 15;
+    }
+    std::printf("angle %.0f: %zu edgels, %.1f %% within 1 px, %.1f %% also across\n", GetParam(), scan.edgels.size(),
+                100.0 * near / scan.edgels.size(), 100.0 * across / scan.edgels.size());
+    EXPECT_GT(near, static_cast<int>(0.95 * scan.edgels.size())) << "angle " << GetParam();
+    EXPECT_GT(across, static_cast<int>(0.85 * scan.edgels.size())) << "angle " << GetParam();
+    // Sparse: only the scanlines and a Sobel per edgel are read.
+    EXPECT_LT(scan.pixels_visited, 0.2 * d.width * d.height);
+}
+
+INSTANTIATE_TEST_SUITE_P(Angles, EdgelsOnAField, ::testing::Values(0.0, 17.0, 45.0, 71.0, 133.0));
+
+TEST(Edgels, FlatAndTinyImagesGiveNone) {
+    std::vector<std::uint8_t> flat(100 * 80, 90);
+    EXPECT_TRUE(find_edgels(GreyView{flat.data(), 100, 80, 100}).edgels.empty());
+    EXPECT_TRUE(find_edgels(GreyView{flat.data(), 1, 1, 1}).edgels.empty());
+    EXPECT_TRUE(find_edgels(GreyView{nullptr, 100, 80, 100}).edgels.empty());
+    EXPECT_TRUE(find_edgels(GreyView{flat.data(), 100, 80, 50}).edgels.empty());  // stride below width
+}
+
+TEST(Edgels, HonourTheStride) {
+    Field f = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
+    Drawn d = draw_field(f, 160, 120, 10.0, 20.0, 80);
+    std::vector<std::uint8_t> padded(static_cast<std::size_t>(200) * 120, 0);
+    for (int y = 0; y < 120; ++y)
+        std::copy(d.pixels.begin() + y * 160, d.pixels.begin() + (y + 1) * 160, padded.begin() + y * 200);
+    auto a = find_edgels(GreyView{d.pixels.data(), 160, 120, 160});
+    auto b = find_edgels(GreyView{padded.data(), 160, 120, 200});
+    ASSERT_EQ(a.edgels.size(), b.edgels.size());
+    for (std::size_t i = 0; i < a.edgels.size(); ++i) EXPECT_EQ(a.edgels[i].x, b.edgels[i].x);
+}
+
+TEST(Luma, WeighsChannelsInEveryOrder) {
+    const std::uint8_t rgb[3] = {200, 100, 50}, bgr[3] = {50, 100, 200}, rgba[4] = {200, 100, 50, 255},
+                       bgra[4] = {50, 100, 200, 0};
+    std::vector<std::uint8_t> out;
+    const int expected = (77 * 200 + 150 * 100 + 29 * 50 + 128) >> 8;
+    EXPECT_EQ(to_luma({rgb, 1, 1, 3, PixelOrder::rgb}, out).at(0, 0), expected);
+    EXPECT_EQ(to_luma({bgr, 1, 1, 3, PixelOrder::bgr}, out).at(0, 0), expected);
+    EXPECT_EQ(to_luma({rgba, 1, 1, 4, PixelOrder::rgba}, out).at(0, 0), expected);
+    EXPECT_EQ(to_luma({bgra, 1, 1, 4, PixelOrder::bgra}, out).at(0, 0), expected);
+    EXPECT_THROW(to_luma({rgb, 1, 1, 2, PixelOrder::rgb}, out), std::invalid_argument);
+}
+
+}  // namespace
