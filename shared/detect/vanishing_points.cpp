@@ -1,0 +1,170 @@
+#include "detect/vanishing_points.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace umf {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Edgels in coordinates centred on the image and scaled to about [-1, 1], so
+// homogeneous vectors stay well conditioned; lines as unit normals and offsets.
+struct EdgelLine {
+    Eigen::Vector2d p;   // position, normalised coordinates
+    Eigen::Vector2d d;   // unit direction of the edge (perpendicular to the gradient)
+    Eigen::Vector3d l;   // the line through p along d
+    double angle;        // of d, in [0, pi)
+    double weight;       // gradient magnitude
+};
+
+double angle_between_mod_pi(double a, double b) {
+    double d = std::fmod(std::abs(a - b), kPi);
+    return std::min(d, kPi - d);
+}
+
+// Cosine of the angle between an edgel's direction and the direction from it
+// to the vanishing point v (homogeneous, normalised coordinates).
+double alignment(const EdgelLine& e, const Eigen::Vector3d& v) {
+    const Eigen::Vector2d w = v.head<2>() - v.z() * e.p;
+    const double n = w.norm();
+    if (n < 1e-12) return 1.0;  // the vanishing point lies on the edgel itself
+    return std::abs(w.dot(e.d)) / n;
+}
+
+// The point minimising the weighted squared distances to the lines: the
+// eigenvector of the smallest eigenvalue of sum w l l^T. The algebraic
+// distance l.v grows with the edgel's distance to the point, so a few rounds
+// reweight it into the angle each edgel makes, which is what is measured.
+Eigen::Vector3d fit_point(const std::vector<EdgelLine>& lines, const std::vector<int>& members) {
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    for (int round = 0; round < 4; ++round) {
+        Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+        for (int i : members) {
+            double w = lines[i].weight;
+            if (round > 0) {
+                const double reach = (v.head<2>() - v.z() * lines[i].p).squaredNorm();
+                w /= std::max(reach, 1e-6);
+            }
+            m += w * lines[i].l * lines[i].l.transpose();
+        }
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(m);
+        v = eig.eigenvectors().col(0).normalized();
+    }
+    return v;
+}
+
+// Strongest direction in a weighted histogram of edge angles, optionally
+// away from another one.
+double dominant_angle(const std::vector<EdgelLine>& lines, double avoid, double min_separation) {
+    constexpr int kBins = 90;
+    double hist[kBins] = {};
+    for (const auto& e : lines) {
+        if (avoid >= 0 && angle_between_mod_pi(e.angle, avoid) < min_separation) continue;
+        hist[static_cast<int>(e.angle / kPi * kBins) % kBins] += e.weight;
+    }
+    int best = -1;
+    double best_value = 0;
+    for (int b = 0; b < kBins; ++b) {
+        const double v = hist[(b + kBins - 1) % kBins] + 2 * hist[b] + hist[(b + 1) % kBins];
+        if (v > best_value) {
+            best_value = v;
+            best = b;
+        }
+    }
+    return best < 0 ? -1 : (best + 0.5) * kPi / kBins;
+}
+
+}  // namespace
+
+Eigen::Vector2d direction_to(const Eigen::Vector3d& v, const Eigen::Vector2d& from) {
+    Eigen::Vector2d w = v.head<2>() - v.z() * from;
+    const double n = w.norm();
+    return n > 0 ? Eigen::Vector2d(w / n) : Eigen::Vector2d(1, 0);
+}
+
+VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int width, int height,
+                                      const VanishingOptions& o) {
+    VanishingPoints out;
+    const double cx = width / 2.0, cy = height / 2.0, scale = std::max(width, height) / 2.0;
+    std::vector<EdgelLine> lines;
+    lines.reserve(edgels.size());
+    for (const auto& e : edgels) {
+        const double g = std::hypot(e.gx, e.gy);
+        if (g <= 0) continue;
+        EdgelLine l;
+        l.p = {(e.x - cx) / scale, (e.y - cy) / scale};
+        l.d = {-e.gy / g, e.gx / g};
+        l.l = Eigen::Vector3d(e.gx / g, e.gy / g, -(e.gx * l.p.x() + e.gy * l.p.y()) / g);
+        l.angle = std::fmod(std::atan2(l.d.y(), l.d.x()) + 2 * kPi, kPi);
+        l.weight = g;
+        lines.push_back(l);
+    }
+    if (static_cast<int>(lines.size()) < 2 * o.min_edgels) return out;
+
+    const double separation = o.min_separation_deg * kPi / 180;
+    const double cos_tol = std::cos(o.inlier_deg * kPi / 180);
+    std::mt19937_64 rng(o.seed);
+    std::vector<bool> taken(lines.size(), false);
+    double first = -1;
+    for (int f = 0; f < 2; ++f) {
+        const double main = dominant_angle(lines, f == 0 ? -1 : first, separation);
+        if (main < 0) return out;
+        if (f == 0) first = main;
+        // Candidates: edgels not taken whose direction is nearer this family's
+        // main direction than the other's (perspective fans a family out).
+        std::vector<int> candidates;
+        for (int i = 0; i < static_cast<int>(lines.size()); ++i) {
+            if (taken[i]) continue;
+            const double to_main = angle_between_mod_pi(lines[i].angle, main);
+            if (to_main < std::max(separation, 35 * kPi / 180) &&
+                (f == 1 || to_main < angle_between_mod_pi(lines[i].angle, main + kPi / 2) + 1e-9))
+                candidates.push_back(i);
+        }
+        if (static_cast<int>(candidates.size()) < o.min_edgels) return out;
+
+        auto inliers_of = [&](const Eigen::Vector3d& v) {
+            std::vector<int> in;
+            for (int i : candidates)
+                if (alignment(lines[i], v) >= cos_tol) in.push_back(i);
+            return in;
+        };
+        std::vector<int> best;
+        for (int it = 0; it < o.ransac_iterations; ++it) {
+            const int a = candidates[rng() % candidates.size()], b = candidates[rng() % candidates.size()];
+            if (a == b || angle_between_mod_pi(lines[a].angle, lines[b].angle) < 1e-4) {
+                // Nearly parallel pair: their common direction is a candidate at infinity.
+                Eigen::Vector3d v(lines[a].d.x(), lines[a].d.y(), 0);
+                auto in = inliers_of(v);
+                if (in.size() > best.size()) best = std::move(in);
+                continue;
+            }
+            Eigen::Vector3d v = lines[a].l.cross(lines[b].l);
+            if (v.norm() < 1e-12) continue;
+            auto in = inliers_of(v.normalized());
+            if (in.size() > best.size()) best = std::move(in);
+        }
+        if (static_cast<int>(best.size()) < o.min_edgels) return out;
+        Eigen::Vector3d v = fit_point(lines, best);
+        for (int round = 0; round < 2; ++round) {
+            auto in = inliers_of(v);
+            if (in.size() < best.size()) break;
+            best = std::move(in);
+            v = fit_point(lines, best);
+        }
+        for (int i : best) taken[i] = true;
+        // Back to pixel coordinates: x_pixel = scale * x + c.
+        Eigen::Matrix3d denorm;
+        denorm << scale, 0, cx, 0, scale, cy, 0, 0, 1;
+        out.family[f].vanishing_point = (denorm * v).normalized();
+        out.family[f].edgels = std::move(best);
+    }
+    out.found = true;
+    return out;
+}
+
+}  // namespace umf

@@ -1,0 +1,91 @@
+#include "detect/vanishing_points.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "field/field_io.hpp"
+#include "sim/camera.hpp"
+#include "sim/field_mix.hpp"
+#include "sim/screen_content.hpp"
+
+using namespace umf;
+
+namespace {
+
+struct Case {
+    const char* name;
+    sim::ScreenKind screen;
+    double opacity, pitch, yaw, roll, distance;
+};
+
+class VanishingPointsOnPhotos : public ::testing::TestWithParam<Case> {};
+
+// Largest angle, over a few image points, between the direction towards the
+// found vanishing point and towards the true one.
+double worst_angle_deg(const Eigen::Vector3d& found, const Eigen::Vector3d& truth, int w, int h) {
+    double worst = 0;
+    for (Eigen::Vector2d p : {Eigen::Vector2d(w / 2.0, h / 2.0), Eigen::Vector2d(w * 0.2, h * 0.2),
+                              Eigen::Vector2d(w * 0.8, h * 0.7)}) {
+        const double c = std::abs(direction_to(found, p).dot(direction_to(truth, p)));
+        worst = std::max(worst, std::acos(std::min(1.0, c)) * 180 / M_PI);
+    }
+    return worst;
+}
+
+TEST_P(VanishingPointsOnPhotos, MatchTheGridsDirections) {
+    const Case c = GetParam();
+    Field f = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
+    cv::Mat screen = sim::make_screen(c.screen, {1920, 1080}, 5);
+    sim::FieldPlacement placement{{0, 0}, 30};
+    cv::Mat mixed = sim::mix_field(screen, f, placement, c.opacity);
+    sim::ScreenGeometry geometry;
+    sim::CameraModel camera;
+    camera.resolution = {640, 480};
+    sim::CameraPose pose;
+    pose.distance_mm = c.distance;
+    pose.pitch_deg = c.pitch;
+    pose.yaw_deg = c.yaw;
+    pose.roll_deg = c.roll;
+    pose.aim_screen_px = {950, 520};
+    sim::Degradation degradation;
+    degradation.noise_sigma = 2;
+    sim::Shot shot = sim::photograph(mixed, geometry, camera, pose, degradation);
+
+    GreyView view{shot.grey.data, shot.grey.cols, shot.grey.rows, static_cast<std::ptrdiff_t>(shot.grey.step)};
+    auto scan = find_edgels(view);
+    auto vp = find_vanishing_points(scan.edgels, view.width, view.height);
+    ASSERT_TRUE(vp.found) << c.name;
+
+    // The screen's axes, seen by the camera, are the columns of the screen-to-image homography.
+    const cv::Matx33d h = sim::screen_to_image(geometry, camera, pose);
+    const Eigen::Vector3d along_u(h(0, 0), h(1, 0), h(2, 0)), along_v(h(0, 1), h(1, 1), h(2, 1));
+    const auto& a = vp.family[0].vanishing_point;
+    const auto& b = vp.family[1].vanishing_point;
+    const double straight = std::max(worst_angle_deg(a, along_u, view.width, view.height),
+                                     worst_angle_deg(b, along_v, view.width, view.height));
+    const double crossed = std::max(worst_angle_deg(a, along_v, view.width, view.height),
+                                    worst_angle_deg(b, along_u, view.width, view.height));
+    // Sobel directions on a few hundred edgels pin the directions to about
+    // two degrees; the grid-line stage refines them from edgel positions.
+    EXPECT_LT(std::min(straight, crossed), 2.5) << c.name;
+    EXPECT_GT(vp.family[0].edgels.size(), 30u);
+    EXPECT_GT(vp.family[1].edgels.size(), 30u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Poses, VanishingPointsOnPhotos,
+    ::testing::Values(Case{"straight", sim::ScreenKind::blank, 0.5, 0, 0, 0, 300},
+                      Case{"rolled", sim::ScreenKind::blank, 0.5, 0, 0, 33, 300},
+                      Case{"tilted", sim::ScreenKind::blank, 0.5, 40, -25, 20, 250},
+                      Case{"document", sim::ScreenKind::document, 0.4, 20, 15, 70, 300},
+                      Case{"web_page", sim::ScreenKind::web_page, 0.4, -30, 10, 140, 280}),
+    [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+
+TEST(VanishingPoints, TooFewEdgelsAreNotFound) {
+    std::vector<Edgel> few(5, Edgel{10, 10, 1, 0});
+    EXPECT_FALSE(find_vanishing_points(few, 100, 100).found);
+    EXPECT_FALSE(find_vanishing_points({}, 100, 100).found);
+}
+
+}  // namespace
