@@ -56,12 +56,13 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
     out.step = o.step > 0 ? o.step : std::max(4, std::max(im.width, im.height) / 40);
     const int thr = std::max(1, o.min_contrast);
     std::vector<int> d, scratch;
-    auto keep = [&](float x, float y) {
+    auto keep = [&](float x, float y, bool on_row) {
         const int xi = std::clamp(static_cast<int>(std::lround(x)), 1, im.width - 2);
         const int yi = std::clamp(static_cast<int>(std::lround(y)), 1, im.height - 2);
         Edgel e;
         e.x = x + 0.5f;  // pixel i covers [i, i+1): its centre is i + 0.5
         e.y = y + 0.5f;
+        e.on_row = on_row;
         sobel(im, xi, yi, e.gx, e.gy);
         out.pixels_visited += 9;
         out.edgels.push_back(e);
@@ -70,12 +71,12 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
         const std::uint8_t* row = im.row(y);
         out.pixels_visited += im.width;
         scan_line(im.width, [row](int i) { return static_cast<int>(row[i]); }, thr, d, scratch,
-                  [&](double x) { keep(static_cast<float>(x), static_cast<float>(y)); });
+                  [&](double x) { keep(static_cast<float>(x), static_cast<float>(y), true); });
     }
     for (int x = out.step / 2; x < im.width; x += out.step) {
         out.pixels_visited += im.height;
         scan_line(im.height, [&im, x](int i) { return static_cast<int>(im.at(x, i)); }, thr, d, scratch,
-                  [&](double y) { keep(static_cast<float>(x), static_cast<float>(y)); });
+                  [&](double y) { keep(static_cast<float>(x), static_cast<float>(y), false); });
     }
     return out;
 }

@@ -13,6 +13,7 @@ namespace umf {
 struct Edgel {
     float x = 0, y = 0;    // sub-pixel position on its scanline; pixel (i, j) covers [i, i+1) x [j, j+1)
     float gx = 0, gy = 0;  // Sobel gradient there, pointing from dark to bright
+    bool on_row = true;    // found on a row (horizontal) scanline, else on a column
 };
 
 struct EdgelOptions {

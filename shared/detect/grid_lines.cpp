@@ -1,0 +1,279 @@
+#include "detect/grid_lines.hpp"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+
+namespace umf {
+
+namespace {
+
+struct Chain {
+    std::vector<int> members;  // edgel indices, one per scanline
+    Eigen::Vector3d line;      // total-least-squares fit, unit normal
+    double t = 0;              // where it crosses the reference line
+};
+
+// Total least squares: the line through the centroid along the principal axis.
+Eigen::Vector3d fit_line(const std::vector<Edgel>& edgels, const std::vector<int>& members) {
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+    for (int i : members) mean += Eigen::Vector2d(edgels[i].x, edgels[i].y);
+    mean /= static_cast<double>(members.size());
+    Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+    for (int i : members) {
+        const Eigen::Vector2d d = Eigen::Vector2d(edgels[i].x, edgels[i].y) - mean;
+        cov += d * d.transpose();
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
+    const Eigen::Vector2d normal = eig.eigenvectors().col(0);
+    return {normal.x(), normal.y(), -normal.dot(mean)};
+}
+
+// Where a line crosses the reference line c + t u; NaN when it runs along it.
+double crossing(const Eigen::Vector3d& l, const Eigen::Vector2d& c, const Eigen::Vector2d& u) {
+    const double along = l.head<2>().dot(u);
+    if (std::abs(along) < 1e-6) return std::nan("");
+    return -(l.head<2>().dot(c) + l.z()) / along;
+}
+
+// t(k) = (a k + b) / (c k + 1), fitted to labelled crossings in the linear
+// form a k + b - c k t = t.
+bool fit_projective_1d(const std::vector<std::pair<int, double>>& kt, const std::vector<double>& w, double& a,
+                       double& b, double& c) {
+    if (kt.size() < 3) return false;
+    Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d atb = Eigen::Vector3d::Zero();
+    for (std::size_t i = 0; i < kt.size(); ++i) {
+        const double k = kt[i].first, t = kt[i].second;
+        const Eigen::Vector3d row(k, 1.0, -k * t);
+        ata += w[i] * row * row.transpose();
+        atb += w[i] * row * t;
+    }
+    Eigen::Vector3d x = ata.ldlt().solve(atb);
+    if (!x.allFinite()) return false;
+    a = x(0);
+    b = x(1);
+    c = x(2);
+    return true;
+}
+
+}  // namespace
+
+GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamily& family,
+                               const Eigen::Vector3d& across, int width, int height, int scan_step,
+                               const GridLineOptions& o) {
+    GridLineFamily out;
+    if (family.edgels.size() < 3 || scan_step <= 0) return out;
+    const Eigen::Vector3d& vp = family.vanishing_point;
+
+    // Step 1: chain edgels from scanline to scanline along the direction to
+    // the vanishing point. Each edgel is chained through the scanlines that
+    // cross its line most steeply.
+    std::map<std::pair<int, int>, std::vector<int>> by_scanline;  // (on_row, scanline) -> edgels by position
+    for (int i : family.edgels) {
+        const Edgel& e = edgels[i];
+        const Eigen::Vector2d dir = direction_to(vp, {e.x, e.y});
+        const bool steep = std::abs(dir.y()) >= std::abs(dir.x());
+        if (steep != e.on_row) continue;
+        const int line = static_cast<int>(std::lround(e.on_row ? e.y : e.x));
+        by_scanline[{e.on_row ? 1 : 0, line}].push_back(i);
+    }
+    for (auto& [key, list] : by_scanline) {
+        const bool row = key.first == 1;
+        std::sort(list.begin(), list.end(), [&edgels, row](int a, int b) {
+            return row ? edgels[a].x < edgels[b].x : edgels[a].y < edgels[b].y;
+        });
+    }
+    std::vector<int> next(edgels.size(), -1), has_prev(edgels.size(), 0);
+    // Module edges come and go along a grid line (neighbouring modules are
+    // often equal), so a chain may skip a few scanlines.
+    constexpr int kMaxSkip = 4;
+    for (auto& [key, list] : by_scanline) {
+        const bool row = key.first == 1;
+        for (int i : list) {
+            const Edgel& e = edgels[i];
+            const Eigen::Vector2d dir = direction_to(vp, {e.x, e.y});
+            for (int skip = 1; skip <= kMaxSkip && next[i] < 0; ++skip) {
+                auto it = by_scanline.find({key.first, key.second + skip * scan_step});
+                if (it == by_scanline.end()) continue;
+                // Move along the line to that scanline.
+                const double s = row ? skip * scan_step / dir.y() : skip * scan_step / dir.x();
+                const double predicted = row ? e.x + s * dir.x() : e.y + s * dir.y();
+                int best = -1;
+                double best_d = o.chain_tolerance_px * (1 + 0.25 * (skip - 1));
+                for (int j : it->second) {
+                    const double d = std::abs((row ? edgels[j].x : edgels[j].y) - predicted);
+                    if (d < best_d && !has_prev[j]) {
+                        best_d = d;
+                        best = j;
+                    }
+                }
+                if (best >= 0) {
+                    next[i] = best;
+                    has_prev[best] = 1;
+                }
+            }
+        }
+    }
+    const Eigen::Vector2d centre(width / 2.0, height / 2.0);
+    const Eigen::Vector2d u = direction_to(across, centre);
+    std::vector<Chain> chains;
+    for (auto& [key, list] : by_scanline)
+        for (int i : list) {
+            if (has_prev[i]) continue;
+            Chain ch;
+            for (int j = i; j >= 0; j = next[j]) ch.members.push_back(j);
+            if (static_cast<int>(ch.members.size()) < o.min_chain) continue;
+            ch.line = fit_line(edgels, ch.members);
+            ch.t = crossing(ch.line, centre, u);
+            if (std::isfinite(ch.t)) chains.push_back(std::move(ch));
+        }
+    if (static_cast<int>(chains.size()) < o.min_lines) return out;
+
+    // Step 2: label the chains. Chains that cross the reference line close
+    // together are pieces of one line.
+    std::sort(chains.begin(), chains.end(), [](const Chain& a, const Chain& b) { return a.t < b.t; });
+    struct Candidate {
+        double t;
+        double weight;
+        std::vector<int> chains;
+    };
+    std::vector<Candidate> cand;
+    for (int i = 0; i < static_cast<int>(chains.size()); ++i) {
+        const double w = static_cast<double>(chains[i].members.size());
+        if (!cand.empty() && chains[i].t - cand.back().t < 1.5) {
+            auto& c = cand.back();
+            c.t = (c.t * c.weight + chains[i].t * w) / (c.weight + w);
+            c.weight += w;
+            c.chains.push_back(i);
+        } else {
+            cand.push_back({chains[i].t, w, {i}});
+        }
+    }
+    if (static_cast<int>(cand.size()) < o.min_lines) return out;
+
+    double mean_weight = 0;
+    for (const auto& c : cand) mean_weight += c.weight;
+    mean_weight /= static_cast<double>(cand.size());
+    std::mt19937_64 rng(o.seed);
+    double best_score = 0;
+    std::vector<std::pair<int, int>> best_labels;  // (candidate, k)
+    double ba = 0, bb = 0, bc = 0;
+    // Labels every candidate that lies on a predicted line, at most one per
+    // line (the nearest), and scores the labelling by the edgels it explains.
+    auto label = [&](double a, double b, double c, std::vector<std::pair<int, int>>& labels) {
+        std::map<int, std::pair<int, double>> nearest;  // k -> (candidate, |t - t(k)|)
+        for (int i = 0; i < static_cast<int>(cand.size()); ++i) {
+            // Invert t(k): k = (t - b) / (a - c t).
+            const double t = cand[i].t, den = a - c * t;
+            if (std::abs(den) < 1e-9) continue;
+            const double kf = (t - b) / den;
+            if (!(std::abs(kf) < 1e4)) continue;
+            const int k = static_cast<int>(std::lround(kf));
+            // Both ends of the step must lie on the same branch of the map.
+            if ((c * k + 1) <= 0 || (c * (k + 1) + 1) <= 0) continue;
+            const double tk = (a * k + b) / (c * k + 1), tk1 = (a * (k + 1) + b) / (c * (k + 1) + 1);
+            const double spacing = std::abs(tk1 - tk), miss = std::abs(t - tk);
+            if (!(spacing > 3.0) || miss > o.label_tolerance * spacing) continue;
+            auto it = nearest.find(k);
+            if (it == nearest.end() || miss < it->second.second) nearest[k] = {i, miss};
+        }
+        labels.clear();
+        double score = 0;
+        for (auto& [k, hit] : nearest) {
+            labels.emplace_back(hit.first, k);
+            score += cand[hit.first].weight;
+        }
+        // A grid of half the true spacing explains every line and every stray
+        // edge between them; lines it predicts but nothing supports cost it.
+        if (!nearest.empty()) {
+            const int span = nearest.rbegin()->first - nearest.begin()->first + 1;
+            score -= mean_weight * (span - static_cast<int>(nearest.size()));
+        }
+        return score;
+    };
+    std::vector<std::pair<int, int>> labels;
+    const int m = static_cast<int>(cand.size());
+    for (int it = 0; it < o.ransac_iterations; ++it) {
+        // Three neighbouring candidates, taken as lines 0, 1, 2 (or 0, 1, 3
+        // and 0, 2, 3 when one line between them was missed).
+        const int i = static_cast<int>(rng() % std::max(1, m - 2));
+        if (i + 2 >= m) break;
+        static const int patterns[3][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}};
+        const int* p = patterns[it % 3];
+        const int j = i + 1, l = i + 2 + (it % 3 != 0 && i + 3 < m && (rng() & 1) ? 1 : 0);
+        if (l >= m) continue;
+        std::vector<std::pair<int, double>> kt{{p[0], cand[i].t}, {p[1], cand[j].t}, {p[2], cand[l].t}};
+        double a, b, c;
+        if (!fit_projective_1d(kt, {1, 1, 1}, a, b, c)) continue;
+        const double score = label(a, b, c, labels);
+        if (score > best_score) {
+            best_score = score;
+            best_labels = labels;
+            ba = a, bb = b, bc = c;
+        }
+    }
+    if (static_cast<int>(best_labels.size()) < o.min_lines) return out;
+    // Refit to every labelled candidate, then label again with the refit.
+    for (int round = 0; round < 2; ++round) {
+        std::vector<std::pair<int, double>> kt;
+        std::vector<double> w;
+        for (auto [i, k] : best_labels) {
+            kt.emplace_back(k, cand[i].t);
+            w.push_back(cand[i].weight);
+        }
+        double a, b, c;
+        if (!fit_projective_1d(kt, w, a, b, c)) break;
+        if (label(a, b, c, labels) < best_score) break;
+        best_labels = labels;
+        ba = a, bb = b, bc = c;
+    }
+
+    // Step 3: one line per label, fitted to all its edgels. The vanishing
+    // point is refined where the well-supported lines meet; a line with few
+    // edgels is better placed by the model: through that point and its
+    // predicted crossing t(k).
+    constexpr int kWellSupported = 6;
+    std::map<int, std::vector<int>> members_of;
+    for (auto [i, k] : best_labels)
+        for (int ch : cand[i].chains)
+            members_of[k].insert(members_of[k].end(), chains[ch].members.begin(), chains[ch].members.end());
+    const int k_min = members_of.begin()->first;
+    Eigen::Matrix3d mm = Eigen::Matrix3d::Zero();
+    int strong = 0;
+    for (auto& [k, members] : members_of) {
+        GridLine gl;
+        gl.index = k - k_min;
+        gl.line = fit_line(edgels, members);
+        gl.support = static_cast<int>(members.size());
+        if (gl.support >= kWellSupported) {
+            mm += gl.support * gl.line * gl.line.transpose();
+            ++strong;
+        }
+        out.lines.push_back(gl);
+    }
+    if (static_cast<int>(out.lines.size()) < o.min_lines) return out;
+    if (strong >= 2) {
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(mm);
+        out.vanishing_point = eig.eigenvectors().col(0).normalized();
+    } else {
+        out.vanishing_point = vp;
+    }
+    for (auto& gl : out.lines) {
+        if (gl.support >= kWellSupported) continue;
+        const int k = gl.index + k_min;
+        const double t = (ba * k + bb) / (bc * k + 1);
+        const Eigen::Vector2d p = centre + t * u;
+        Eigen::Vector3d l = Eigen::Vector3d(p.x(), p.y(), 1.0).cross(out.vanishing_point);
+        const double n = l.head<2>().norm();
+        if (n > 1e-12) gl.line = l / n;
+    }
+    const double t0 = bb, t1 = (ba + bb) / (bc + 1);
+    out.spacing_px = std::abs(t1 - t0);
+    out.found = true;
+    return out;
+}
+
+}  // namespace umf

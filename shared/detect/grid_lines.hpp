@@ -1,0 +1,47 @@
+// Stage 3 of detection: the grid lines of one family. Edgels of the family
+// are chained scanline to scanline into line segments; each segment is fitted
+// on its own, so the lines are as precise as the edgels. Where the segments
+// cross a reference line they form a projective image of equally spaced
+// points, t(k) = (a k + b) / (c k + 1); fitting that labels every segment
+// with its line number k.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "detect/edgels.hpp"
+#include "detect/vanishing_points.hpp"
+
+namespace umf {
+
+struct GridLine {
+    int index = 0;             // k: consecutive grid lines have consecutive indices
+    Eigen::Vector3d line;      // homogeneous image line, normal of unit length
+    int support = 0;           // edgels on it
+};
+
+struct GridLineFamily {
+    bool found = false;
+    std::vector<GridLine> lines;            // sorted by index
+    Eigen::Vector3d vanishing_point;        // refined from the fitted lines
+    double spacing_px = 0;                  // between neighbouring lines near the image centre
+};
+
+struct GridLineOptions {
+    double chain_tolerance_px = 2.0;  // an edgel continues a chain if it lies this close to the prediction
+    int min_chain = 3;                // edgels in a chain to count as a segment
+    double label_tolerance = 0.2;     // of the local spacing, for a segment to belong to line k
+    int min_lines = 3;
+    int ransac_iterations = 200;
+    std::uint64_t seed = 1;
+};
+
+// `family` is one family from find_vanishing_points; `across` is the other
+// family's vanishing point, which gives the direction along which this
+// family's lines follow one another.
+GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamily& family,
+                               const Eigen::Vector3d& across, int width, int height, int scan_step,
+                               const GridLineOptions& options = {});
+
+}  // namespace umf

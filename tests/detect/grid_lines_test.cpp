@@ -1,0 +1,102 @@
+#include "detect/grid_lines.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "field/field_io.hpp"
+#include "sim/camera.hpp"
+#include "sim/field_mix.hpp"
+#include "sim/screen_content.hpp"
+
+using namespace umf;
+
+namespace {
+
+struct Case {
+    const char* name;
+    sim::ScreenKind screen;
+    double opacity, pitch, yaw, roll, distance;
+};
+
+// Blank screens for now: over text the document's own lines, parallel to the
+// field's, can win the labelling; the next step keeps several labellings and
+// lets the window vote choose.
+class GridLinesOnPhotos : public ::testing::TestWithParam<Case> {};
+
+TEST_P(GridLinesOnPhotos, LieOnTheFieldsModuleBoundariesInOrder) {
+    const Case c = GetParam();
+    Field f = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
+    cv::Mat screen = sim::make_screen(c.screen, {1920, 1080}, 5);
+    sim::FieldPlacement placement{{0, 0}, 30};
+    cv::Mat mixed = sim::mix_field(screen, f, placement, c.opacity);
+    sim::ScreenGeometry geometry;
+    sim::CameraModel camera;
+    camera.resolution = {640, 480};
+    sim::CameraPose pose;
+    pose.distance_mm = c.distance;
+    pose.pitch_deg = c.pitch;
+    pose.yaw_deg = c.yaw;
+    pose.roll_deg = c.roll;
+    pose.aim_screen_px = {950, 520};
+    sim::Degradation degradation;
+    degradation.noise_sigma = 2;
+    sim::Shot shot = sim::photograph(mixed, geometry, camera, pose, degradation);
+
+    GreyView view{shot.grey.data, shot.grey.cols, shot.grey.rows, static_cast<std::ptrdiff_t>(shot.grey.step)};
+    auto scan = find_edgels(view);
+    auto vp = find_vanishing_points(scan.edgels, view.width, view.height);
+    ASSERT_TRUE(vp.found);
+    for (int fam = 0; fam < 2; ++fam) {
+        auto lines = find_grid_lines(scan.edgels, vp.family[fam], vp.family[1 - fam].vanishing_point, view.width,
+                                     view.height, scan.step);
+        ASSERT_TRUE(lines.found) << c.name << " family " << fam;
+        EXPECT_GE(lines.lines.size(), 6u) << c.name;
+        int checked = 0, good = 0;
+        bool consistent = true;
+        for (const auto& gl : lines.lines) {
+            // Two points on the line near the image centre, in field coordinates.
+            const Eigen::Vector2d n = gl.line.head<2>(), d(-n.y(), n.x());
+            const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
+            const Eigen::Vector2d p0 = centre - (n.dot(centre) + gl.line.z()) * n;
+            if ((p0 - centre).norm() > 200) continue;
+            cv::Point2d a = sim::image_to_field(shot, placement, {p0.x() - 30 * d.x(), p0.y() - 30 * d.y()});
+            cv::Point2d b = sim::image_to_field(shot, placement, {p0.x() + 30 * d.x(), p0.y() + 30 * d.y()});
+            const bool const_u = std::abs(a.x - b.x) < std::abs(a.y - b.y);
+            const double va = const_u ? a.x : a.y, vb = const_u ? b.x : b.y;
+            ++checked;
+            const long integer = std::lround((va + vb) / 2);
+            if (std::abs(va - integer) < 0.1 && std::abs(vb - integer) < 0.1) ++good;
+        }
+        EXPECT_GE(checked, 4) << c.name;
+        EXPECT_EQ(good, checked) << c.name << " family " << fam;
+        // Consecutive indices are neighbouring field lines.
+        std::vector<std::pair<int, long>> index_value;
+        for (const auto& gl : lines.lines) {
+            const Eigen::Vector2d n = gl.line.head<2>();
+            const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
+            const Eigen::Vector2d p0 = centre - (n.dot(centre) + gl.line.z()) * n;
+            if ((p0 - centre).norm() > 200) continue;
+            cv::Point2d a = sim::image_to_field(shot, placement, {p0.x(), p0.y()});
+            const Eigen::Vector2d d(-n.y(), n.x());
+            cv::Point2d b = sim::image_to_field(shot, placement, {p0.x() + 30 * d.x(), p0.y() + 30 * d.y()});
+            const bool const_u = std::abs(a.x - b.x) < std::abs(a.y - b.y);
+            index_value.emplace_back(gl.index, std::lround(const_u ? a.x : a.y));
+        }
+        for (std::size_t i = 1; i < index_value.size(); ++i) {
+            const long dv = index_value[i].second - index_value[0].second;
+            const int dk = index_value[i].first - index_value[0].first;
+            consistent &= std::abs(dv) == std::abs(dk);
+        }
+        EXPECT_TRUE(consistent) << c.name << " family " << fam;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Poses, GridLinesOnPhotos,
+    ::testing::Values(Case{"straight", sim::ScreenKind::blank, 0.5, 0, 0, 0, 300},
+                      Case{"rolled", sim::ScreenKind::blank, 0.5, 0, 0, 33, 300},
+                      Case{"tilted", sim::ScreenKind::blank, 0.5, 40, -25, 20, 250}),
+    [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+
+}  // namespace
