@@ -1,0 +1,90 @@
+#include "detect/classify.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace umf {
+
+namespace {
+
+// Mean of a 3 x 3 patch around an image point; NaN outside the image.
+double sample(const GreyView& im, double x, double y, long& visited) {
+    const int cx = static_cast<int>(std::floor(x)), cy = static_cast<int>(std::floor(y));
+    if (cx < 1 || cy < 1 || cx >= im.width - 1 || cy >= im.height - 1) return std::nan("");
+    int sum = 0;
+    for (int dy = -1; dy <= 1; ++dy) {
+        const std::uint8_t* r = im.row(cy + dy) + cx;
+        sum += r[-1] + r[0] + r[1];
+    }
+    visited += 9;
+    return sum / 9.0;
+}
+
+// Otsu's threshold over the sampled values.
+double otsu(std::vector<double> v, double& low_mean, double& high_mean) {
+    std::sort(v.begin(), v.end());
+    const int n = static_cast<int>(v.size());
+    std::vector<double> prefix(n + 1, 0);
+    for (int i = 0; i < n; ++i) prefix[i + 1] = prefix[i] + v[i];
+    double best = -1, threshold = v[n / 2];
+    for (int i = 1; i < n; ++i) {
+        const double m0 = prefix[i] / i, m1 = (prefix[n] - prefix[i]) / (n - i);
+        const double between = static_cast<double>(i) * (n - i) * (m1 - m0) * (m1 - m0);
+        if (between > best) {
+            best = between;
+            threshold = (v[i - 1] + v[i]) / 2;
+            low_mean = m0;
+            high_mean = m1;
+        }
+    }
+    return threshold;
+}
+
+}  // namespace
+
+ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int rows, int cols, int colors,
+                            bool edge_key, const ClassifyOptions& o, long& visited) {
+    ModuleGrid g(rows, cols);
+    std::vector<double> value(static_cast<std::size_t>(rows) * cols, std::nan(""));
+    std::vector<double> seen;
+    for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < cols; ++j) {
+            const Eigen::Vector3d p = h * Eigen::Vector3d(j + 0.5, i + 0.5, 1.0);
+            if (p.z() <= 0) continue;
+            const double v = sample(im, p.x() / p.z(), p.y() / p.z(), visited);
+            value[static_cast<std::size_t>(i) * cols + j] = v;
+            if (std::isfinite(v)) seen.push_back(v);
+        }
+    if (seen.size() < 4) return g;
+    double low = 0, high = 0;
+    const double threshold = otsu(seen, low, high);
+    const double gap = high - low;
+    if (!edge_key && colors == 2) {
+        for (std::size_t k = 0; k < value.size(); ++k) {
+            const double v = value[k];
+            if (!std::isfinite(v) || std::abs(v - threshold) < o.doubt * gap) continue;
+            g.value[k] = v > threshold ? 1 : 0;
+        }
+        g.derive_edges();
+        return g;
+    }
+    // Edge signs from neighbouring centres; a step of a small fraction of the
+    // brightness range counts as flat.
+    const double flat = o.flat_step * gap / std::max(1, colors - 1);
+    auto sign_of = [&](double a, double b) -> std::int8_t {
+        if (!std::isfinite(a) || !std::isfinite(b)) return ModuleGrid::kUnknown;
+        const double d = b - a;
+        if (std::abs(d) < flat) return 0;
+        return d > 0 ? 1 : -1;
+    };
+    for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < cols; ++j) {
+            const double v = value[static_cast<std::size_t>(i) * cols + j];
+            if (j + 1 < cols) g.right_of(i, j) = sign_of(v, value[static_cast<std::size_t>(i) * cols + j + 1]);
+            if (i + 1 < rows) g.below(i, j) = sign_of(v, value[static_cast<std::size_t>(i + 1) * cols + j]);
+        }
+    return g;
+}
+
+}  // namespace umf

@@ -1,0 +1,130 @@
+#include "detect/detector.hpp"
+
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <chrono>
+
+#include "detect/homography.hpp"
+
+namespace umf {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point& t) {
+    const auto now = Clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - t).count();
+    t = now;
+    return ms;
+}
+
+// Grid point -> field point of a placement, as a matrix.
+Eigen::Matrix3d placement_matrix(const GridPlacement& p) {
+    double u0, v0, ux, vx, uy, vy;
+    p.field_point(0, 0, u0, v0);
+    p.field_point(1, 0, ux, vx);
+    p.field_point(0, 1, uy, vy);
+    Eigen::Matrix3d a;
+    a << ux - u0, uy - u0, u0, vx - v0, vy - v0, v0, 0, 0, 1;
+    return a;
+}
+
+}  // namespace
+
+Detector::Detector(const Field& field, DetectorOptions options) : index_(field), options_(std::move(options)) {}
+
+Detection Detector::detect(const GreyView& image) const {
+    return detect(image, Eigen::Vector2d(image.width / 2.0, image.height / 2.0));
+}
+
+Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const {
+    Detection out;
+    out.aim_image = aim;
+    const auto start = Clock::now();
+    auto t = start;
+    auto finish = [&](const char* failure) {
+        out.failure = failure ? failure : "";
+        out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        return out;
+    };
+    if (auto problem = describe_invalid(im); !problem.empty()) {
+        out.failure = "invalid image: " + problem;
+        return out;
+    }
+
+    // Step 1. Edgels on sparse scanlines.
+    const EdgelScan scan = find_edgels(im, options_.edgels);
+    out.pixels_visited += scan.pixels_visited;
+    out.times.edgels_ms = ms_since(t);
+
+    // Step 2. The two vanishing points.
+    const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, options_.vanishing);
+    out.times.vanishing_ms = ms_since(t);
+    if (!vp.found) return finish("no grid directions");
+
+    // Step 3. Grid lines of both families.
+    GridLineFamily lines[2];
+    for (int f = 0; f < 2; ++f) {
+        lines[f] = find_grid_lines(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point, im.width, im.height,
+                                   scan.step, options_.grid);
+        if (!lines[f].found) {
+            out.times.grid_ms = ms_since(t);
+            return finish("no grid lines");
+        }
+    }
+
+    // Step 4. The grid homography from the crossings of the lines. Family 1
+    // lines are x = const, family 0 lines y = const, unless that mirrors the
+    // image: the field is never seen from behind.
+    std::vector<Point2> grid_pts, image_pts;
+    for (const auto& a : lines[0].lines)
+        for (const auto& b : lines[1].lines) {
+            const Eigen::Vector3d p = a.line.cross(b.line);
+            if (std::abs(p.z()) < 1e-12) continue;
+            const Point2 q(p.x() / p.z(), p.y() / p.z());
+            if (q.x() < 0 || q.y() < 0 || q.x() > im.width || q.y() > im.height) continue;
+            grid_pts.emplace_back(b.index, a.index);
+            image_pts.push_back(q);
+        }
+    auto fit = fit_homography_robust(grid_pts, image_pts, options_.corner_tolerance_px, 100, 1);
+    out.times.grid_ms = ms_since(t);
+    if (!fit || fit->inliers < 8) return finish("no grid homography");
+    Eigen::Matrix3d g2i = fit->h;
+    int rows = lines[0].lines.back().index, cols = lines[1].lines.back().index;
+    {
+        const Point2 c(cols / 2.0, rows / 2.0);
+        auto p0 = apply_homography(g2i, c), px = apply_homography(g2i, c + Point2(1, 0)),
+             py = apply_homography(g2i, c + Point2(0, 1));
+        if (!p0 || !px || !py) return finish("no grid homography");
+        const Point2 ex = *px - *p0, ey = *py - *p0;
+        if (ex.x() * ey.y() - ex.y() * ey.x() < 0) {
+            Eigen::Matrix3d swap;
+            swap << 0, 1, 0, 1, 0, 0, 0, 0, 1;
+            g2i = g2i * swap;
+            std::swap(rows, cols);
+        }
+    }
+
+    // Step 5. Module values or edge signs.
+    const Field& f = index_.field();
+    const ModuleGrid grid = classify_modules(im, g2i, rows, cols, f.colors, f.key == WindowKey::edges,
+                                             options_.classify, out.pixels_visited);
+    out.times.classify_ms = ms_since(t);
+
+    // Step 6. Window lookup and the placement vote.
+    const VoteResult vote = vote_placement(grid, index_, options_.vote);
+    out.times.vote_ms = ms_since(t);
+    out.windows = vote.votes;
+    out.confidence = vote.agreement;
+    if (!vote.found) return finish("no agreeing windows");
+
+    out.image_to_field = placement_matrix(vote.placement) * g2i.inverse();
+    auto aim_field = apply_homography(out.image_to_field, aim);
+    if (!aim_field) return finish("aim point at infinity");
+    out.aim_field = *aim_field;
+    out.found = true;
+    return finish(nullptr);
+}
+
+}  // namespace umf

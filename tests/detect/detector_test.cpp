@@ -1,0 +1,106 @@
+#include "detect/detector.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "field/field_io.hpp"
+#include "sim/camera.hpp"
+#include "sim/field_mix.hpp"
+#include "sim/screen_content.hpp"
+
+using namespace umf;
+
+namespace {
+
+Field shipped(const char* name) { return load_field(std::string(UMF_DATA_DIR) + "/fields/" + name); }
+
+struct Photo {
+    sim::Shot shot;
+    sim::FieldPlacement placement{{0, 0}, 30};
+    GreyView view() const {
+        return {shot.grey.data, shot.grey.cols, shot.grey.rows, static_cast<std::ptrdiff_t>(shot.grey.step)};
+    }
+};
+
+Photo photograph(const Field& shown, double opacity, double pitch, double yaw, double roll, double distance,
+                 sim::ScreenKind kind = sim::ScreenKind::blank) {
+    Photo p;
+    cv::Mat screen = sim::make_screen(kind, {1920, 1080}, 5);
+    cv::Mat mixed = opacity > 0 ? sim::mix_field(screen, shown, p.placement, opacity) : screen;
+    sim::CameraModel camera;
+    camera.resolution = {640, 480};
+    sim::CameraPose pose;
+    pose.distance_mm = distance;
+    pose.pitch_deg = pitch;
+    pose.yaw_deg = yaw;
+    pose.roll_deg = roll;
+    pose.aim_screen_px = {950, 520};
+    sim::Degradation degradation;
+    degradation.noise_sigma = 2;
+    p.shot = sim::photograph(mixed, sim::ScreenGeometry{}, camera, pose, degradation);
+    return p;
+}
+
+struct Case {
+    const char* name;
+    double pitch, yaw, roll, distance;
+};
+
+class DetectorOnBlankScreens : public ::testing::TestWithParam<Case> {};
+
+TEST_P(DetectorOnBlankScreens, FindsTheAimPoint) {
+    const Case c = GetParam();
+    Field f = shipped("b4-64x36.json");
+    Detector detector(f);
+    Photo p = photograph(f, 0.5, c.pitch, c.yaw, c.roll, c.distance);
+    Detection d = detector.detect(p.view());
+    ASSERT_TRUE(d.found) << c.name << ": " << d.failure;
+    const cv::Point2d truth = sim::image_to_field(p.shot, p.placement, {p.view().width / 2.0, p.view().height / 2.0});
+    const double error = std::hypot(d.aim_field.x() - truth.x, d.aim_field.y() - truth.y);
+    EXPECT_LT(error, 0.05) << c.name << ": found (" << d.aim_field.x() << ", " << d.aim_field.y() << "), truth ("
+                           << truth.x << ", " << truth.y << ")";
+    EXPECT_GE(d.windows, 10);
+    EXPECT_GT(d.confidence, 0.95);
+    EXPECT_GT(d.pixels_visited, 0);
+    EXPECT_LT(d.pixels_visited, 640 * 480 / 4);
+    // Another aim point: a corner of the image.
+    Detection corner = detector.detect(p.view(), Eigen::Vector2d(100, 80));
+    ASSERT_TRUE(corner.found);
+    const cv::Point2d truth2 = sim::image_to_field(p.shot, p.placement, {100, 80});
+    EXPECT_LT(std::hypot(corner.aim_field.x() - truth2.x, corner.aim_field.y() - truth2.y), 0.1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Poses, DetectorOnBlankScreens,
+                         ::testing::Values(Case{"straight", 0, 0, 0, 300}, Case{"rolled", 0, 0, 33, 300},
+                                           Case{"upside_down", 0, 0, 190, 300},
+                                           Case{"tilted", 40, -25, 20, 250}, Case{"near", 10, 10, 100, 180}),
+                         [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+
+TEST(Detector, NeverPlacesAScreenWithoutTheField) {
+    Field f = shipped("b4-64x36.json");
+    Detector detector(f);
+    for (auto kind : sim::kAllScreenKinds) {
+        Photo p = photograph(f, 0, 10, 5, 20, 300, kind);
+        EXPECT_FALSE(detector.detect(p.view()).found);
+    }
+    // Another field on the screen.
+    Field other = shipped("b4-96x54.json");
+    Photo p = photograph(other, 0.5, 0, 0, 15, 300);
+    Detection d = detector.detect(p.view());
+    EXPECT_FALSE(d.found) << "windows " << d.windows;
+}
+
+TEST(Detector, BadImagesAreNotFoundNeverACrash) {
+    Detector detector(shipped("b4-64x36.json"));
+    std::vector<std::uint8_t> px(64, 128);
+    EXPECT_FALSE(detector.detect(GreyView{nullptr, 10, 10, 10}).found);
+    EXPECT_FALSE(detector.detect(GreyView{px.data(), 1, 1, 1}).found);
+    EXPECT_FALSE(detector.detect(GreyView{px.data(), 8, 8, 4}).found);  // stride below width
+    EXPECT_FALSE(detector.detect(GreyView{px.data(), 0, 8, 8}).found);
+    Detection huge = detector.detect(GreyView{px.data(), 100000, 1, 100000});
+    EXPECT_FALSE(huge.found);
+    EXPECT_NE(huge.failure.find("invalid image"), std::string::npos);
+}
+
+}  // namespace
