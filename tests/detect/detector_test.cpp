@@ -4,43 +4,13 @@
 
 #include <cmath>
 
-#include "field/field_io.hpp"
-#include "sim/camera.hpp"
-#include "sim/field_mix.hpp"
-#include "sim/screen_content.hpp"
+#include "photo.hpp"
 
 using namespace umf;
 
 namespace {
 
-Field shipped(const char* name) { return load_field(std::string(UMF_DATA_DIR) + "/fields/" + name); }
-
-struct Photo {
-    sim::Shot shot;
-    sim::FieldPlacement placement{{0, 0}, 30};
-    GreyView view() const {
-        return {shot.grey.data, shot.grey.cols, shot.grey.rows, static_cast<std::ptrdiff_t>(shot.grey.step)};
-    }
-};
-
-Photo photograph(const Field& shown, double opacity, double pitch, double yaw, double roll, double distance,
-                 sim::ScreenKind kind = sim::ScreenKind::blank) {
-    Photo p;
-    cv::Mat screen = sim::make_screen(kind, {1920, 1080}, 5);
-    cv::Mat mixed = opacity > 0 ? sim::mix_field(screen, shown, p.placement, opacity) : screen;
-    sim::CameraModel camera;
-    camera.resolution = {640, 480};
-    sim::CameraPose pose;
-    pose.distance_mm = distance;
-    pose.pitch_deg = pitch;
-    pose.yaw_deg = yaw;
-    pose.roll_deg = roll;
-    pose.aim_screen_px = {950, 520};
-    sim::Degradation degradation;
-    degradation.noise_sigma = 2;
-    p.shot = sim::photograph(mixed, sim::ScreenGeometry{}, camera, pose, degradation);
-    return p;
-}
+using test::Photo;
 
 struct Case {
     const char* name;
@@ -51,9 +21,9 @@ class DetectorOnBlankScreens : public ::testing::TestWithParam<Case> {};
 
 TEST_P(DetectorOnBlankScreens, FindsTheAimPoint) {
     const Case c = GetParam();
-    Field f = shipped("b4-64x36.json");
+    Field f = test::shipped_field("b4-64x36.json");
     Detector detector(f);
-    Photo p = photograph(f, 0.5, c.pitch, c.yaw, c.roll, c.distance);
+    Photo p = test::photograph_field(f, 0.5, c.pitch, c.yaw, c.roll, c.distance);
     Detection d = detector.detect(p.view());
     ASSERT_TRUE(d.found) << c.name << ": " << d.failure;
     const cv::Point2d truth = sim::image_to_field(p.shot, p.placement, {p.view().width / 2.0, p.view().height / 2.0});
@@ -78,21 +48,21 @@ INSTANTIATE_TEST_SUITE_P(Poses, DetectorOnBlankScreens,
                          [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(Detector, NeverPlacesAScreenWithoutTheField) {
-    Field f = shipped("b4-64x36.json");
+    Field f = test::shipped_field("b4-64x36.json");
     Detector detector(f);
     for (auto kind : sim::kAllScreenKinds) {
-        Photo p = photograph(f, 0, 10, 5, 20, 300, kind);
+        Photo p = test::photograph_field(f, 0, 10, 5, 20, 300, kind);
         EXPECT_FALSE(detector.detect(p.view()).found);
     }
     // Another field on the screen.
-    Field other = shipped("b4-96x54.json");
-    Photo p = photograph(other, 0.5, 0, 0, 15, 300);
+    Field other = test::shipped_field("b4-96x54.json");
+    Photo p = test::photograph_field(other, 0.5, 0, 0, 15, 300);
     Detection d = detector.detect(p.view());
     EXPECT_FALSE(d.found) << "windows " << d.windows;
 }
 
 TEST(Detector, BadImagesAreNotFoundNeverACrash) {
-    Detector detector(shipped("b4-64x36.json"));
+    Detector detector(test::shipped_field("b4-64x36.json"));
     std::vector<std::uint8_t> px(64, 128);
     EXPECT_FALSE(detector.detect(GreyView{nullptr, 10, 10, 10}).found);
     EXPECT_FALSE(detector.detect(GreyView{px.data(), 1, 1, 1}).found);

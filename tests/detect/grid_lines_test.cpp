@@ -4,10 +4,7 @@
 
 #include <cmath>
 
-#include "field/field_io.hpp"
-#include "sim/camera.hpp"
-#include "sim/field_mix.hpp"
-#include "sim/screen_content.hpp"
+#include "photo.hpp"
 
 using namespace umf;
 
@@ -26,24 +23,9 @@ class GridLinesOnPhotos : public ::testing::TestWithParam<Case> {};
 
 TEST_P(GridLinesOnPhotos, LieOnTheFieldsModuleBoundariesInOrder) {
     const Case c = GetParam();
-    Field f = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
-    cv::Mat screen = sim::make_screen(c.screen, {1920, 1080}, 5);
-    sim::FieldPlacement placement{{0, 0}, 30};
-    cv::Mat mixed = sim::mix_field(screen, f, placement, c.opacity);
-    sim::ScreenGeometry geometry;
-    sim::CameraModel camera;
-    camera.resolution = {640, 480};
-    sim::CameraPose pose;
-    pose.distance_mm = c.distance;
-    pose.pitch_deg = c.pitch;
-    pose.yaw_deg = c.yaw;
-    pose.roll_deg = c.roll;
-    pose.aim_screen_px = {950, 520};
-    sim::Degradation degradation;
-    degradation.noise_sigma = 2;
-    sim::Shot shot = sim::photograph(mixed, geometry, camera, pose, degradation);
-
-    GreyView view{shot.grey.data, shot.grey.cols, shot.grey.rows, static_cast<std::ptrdiff_t>(shot.grey.step)};
+    Field f = test::shipped_field("b4-64x36.json");
+    test::Photo photo = test::photograph_field(f, c.opacity, c.pitch, c.yaw, c.roll, c.distance, c.screen);
+    GreyView view = photo.view();
     auto scan = find_edgels(view);
     auto vp = find_vanishing_points(scan.edgels, view.width, view.height);
     ASSERT_TRUE(vp.found);
@@ -60,8 +42,8 @@ TEST_P(GridLinesOnPhotos, LieOnTheFieldsModuleBoundariesInOrder) {
             const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
             const Eigen::Vector2d p0 = centre - (n.dot(centre) + gl.line.z()) * n;
             if ((p0 - centre).norm() > 200) continue;
-            cv::Point2d a = sim::image_to_field(shot, placement, {p0.x() - 30 * d.x(), p0.y() - 30 * d.y()});
-            cv::Point2d b = sim::image_to_field(shot, placement, {p0.x() + 30 * d.x(), p0.y() + 30 * d.y()});
+            cv::Point2d a = sim::image_to_field(photo.shot, photo.placement, {p0.x() - 30 * d.x(), p0.y() - 30 * d.y()});
+            cv::Point2d b = sim::image_to_field(photo.shot, photo.placement, {p0.x() + 30 * d.x(), p0.y() + 30 * d.y()});
             const bool const_u = std::abs(a.x - b.x) < std::abs(a.y - b.y);
             const double va = const_u ? a.x : a.y, vb = const_u ? b.x : b.y;
             ++checked;
@@ -77,9 +59,9 @@ TEST_P(GridLinesOnPhotos, LieOnTheFieldsModuleBoundariesInOrder) {
             const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
             const Eigen::Vector2d p0 = centre - (n.dot(centre) + gl.line.z()) * n;
             if ((p0 - centre).norm() > 200) continue;
-            cv::Point2d a = sim::image_to_field(shot, placement, {p0.x(), p0.y()});
+            cv::Point2d a = sim::image_to_field(photo.shot, photo.placement, {p0.x(), p0.y()});
             const Eigen::Vector2d d(-n.y(), n.x());
-            cv::Point2d b = sim::image_to_field(shot, placement, {p0.x() + 30 * d.x(), p0.y() + 30 * d.y()});
+            cv::Point2d b = sim::image_to_field(photo.shot, photo.placement, {p0.x() + 30 * d.x(), p0.y() + 30 * d.y()});
             const bool const_u = std::abs(a.x - b.x) < std::abs(a.y - b.y);
             index_value.emplace_back(gl.index, std::lround(const_u ? a.x : a.y));
         }

@@ -4,10 +4,7 @@
 
 #include <cmath>
 
-#include "field/field_io.hpp"
-#include "sim/camera.hpp"
-#include "sim/field_mix.hpp"
-#include "sim/screen_content.hpp"
+#include "photo.hpp"
 
 using namespace umf;
 
@@ -35,30 +32,15 @@ double worst_angle_deg(const Eigen::Vector3d& found, const Eigen::Vector3d& trut
 
 TEST_P(VanishingPointsOnPhotos, MatchTheGridsDirections) {
     const Case c = GetParam();
-    Field f = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
-    cv::Mat screen = sim::make_screen(c.screen, {1920, 1080}, 5);
-    sim::FieldPlacement placement{{0, 0}, 30};
-    cv::Mat mixed = sim::mix_field(screen, f, placement, c.opacity);
-    sim::ScreenGeometry geometry;
-    sim::CameraModel camera;
-    camera.resolution = {640, 480};
-    sim::CameraPose pose;
-    pose.distance_mm = c.distance;
-    pose.pitch_deg = c.pitch;
-    pose.yaw_deg = c.yaw;
-    pose.roll_deg = c.roll;
-    pose.aim_screen_px = {950, 520};
-    sim::Degradation degradation;
-    degradation.noise_sigma = 2;
-    sim::Shot shot = sim::photograph(mixed, geometry, camera, pose, degradation);
-
-    GreyView view{shot.grey.data, shot.grey.cols, shot.grey.rows, static_cast<std::ptrdiff_t>(shot.grey.step)};
+    Field f = test::shipped_field("b4-64x36.json");
+    test::Photo photo = test::photograph_field(f, c.opacity, c.pitch, c.yaw, c.roll, c.distance, c.screen);
+    GreyView view = photo.view();
     auto scan = find_edgels(view);
     auto vp = find_vanishing_points(scan.edgels, view.width, view.height);
     ASSERT_TRUE(vp.found) << c.name;
 
     // The screen's axes, seen by the camera, are the columns of the screen-to-image homography.
-    const cv::Matx33d h = sim::screen_to_image(geometry, camera, pose);
+    const cv::Matx33d h = sim::screen_to_image(photo.geometry, photo.camera, photo.pose);
     const Eigen::Vector3d along_u(h(0, 0), h(1, 0), h(2, 0)), along_v(h(0, 1), h(1, 1), h(2, 1));
     const auto& a = vp.family[0].vanishing_point;
     const auto& b = vp.family[1].vanishing_point;
