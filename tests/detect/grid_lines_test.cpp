@@ -10,11 +10,7 @@ using namespace umf;
 
 namespace {
 
-struct Case {
-    const char* name;
-    sim::ScreenKind screen;
-    double opacity, pitch, yaw, roll, distance;
-};
+using Case = test::PhotoCase;
 
 // Blank screens for now: over text the document's own lines, parallel to the
 // field's, can win the labelling; the next step keeps several labellings and

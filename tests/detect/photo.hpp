@@ -27,6 +27,13 @@ struct Photo {
     }
 };
 
+// A named photo setup for parameterised tests.
+struct PhotoCase {
+    const char* name;
+    sim::ScreenKind screen;
+    double opacity, pitch, yaw, roll, distance;
+};
+
 // opacity 0 shows the screen without the field.
 inline Photo photograph_field(const Field& shown, double opacity, double pitch, double yaw, double roll,
                               double distance, sim::ScreenKind kind = sim::ScreenKind::blank) {

@@ -10,11 +10,7 @@ using namespace umf;
 
 namespace {
 
-struct Case {
-    const char* name;
-    sim::ScreenKind screen;
-    double opacity, pitch, yaw, roll, distance;
-};
+using Case = test::PhotoCase;
 
 class VanishingPointsOnPhotos : public ::testing::TestWithParam<Case> {};
 
