@@ -63,23 +63,67 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const
     out.times.vanishing_ms = ms_since(t);
     if (!vp.found) return finish("no grid directions");
 
-    // Step 3. Grid lines of both families.
-    GridLineFamily lines[2];
+    // Step 3. Grid lines of both families: a few labellings of each, best first.
+    std::vector<GridLineFamily> hypotheses[2];
     for (int f = 0; f < 2; ++f) {
-        lines[f] = find_grid_lines(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point, im.width, im.height,
-                                   scan.step, options_.grid);
-        if (!lines[f].found) {
+        hypotheses[f] = find_grid_line_hypotheses(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point,
+                                                  im.width, im.height, scan.step, options_.grid);
+        if (hypotheses[f].empty()) {
             out.times.grid_ms = ms_since(t);
             return finish("no grid lines");
         }
     }
+    out.times.grid_ms = ms_since(t);
 
+    // Steps 4 to 6 for each pair of labellings, the likeliest first, until
+    // the window vote accepts one.
+    const char* failure = "no grid homography";
+    const int n0 = static_cast<int>(hypotheses[0].size()), n1 = static_cast<int>(hypotheses[1].size());
+    for (int sum = 0; sum <= n0 + n1 - 2; ++sum)
+        for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0) {
+            const GridLineFamily* lines[2] = {&hypotheses[0][h0], &hypotheses[1][sum - h0]};
+            Eigen::Matrix3d g2i;
+            int rows = 0, cols = 0;
+            if (!grid_homography(*lines[0], *lines[1], im, g2i, rows, cols)) continue;
+            out.times.grid_ms += ms_since(t);
+
+            // Step 5. Module values or edge signs.
+            const Field& f = index_.field();
+            const ModuleGrid grid = classify_modules(im, g2i, rows, cols, f.colors, f.key == WindowKey::edges,
+                                                     options_.classify, out.pixels_visited);
+            out.times.classify_ms += ms_since(t);
+
+            // Step 6. Window lookup and the placement vote.
+            const VoteResult vote = vote_placement(grid, index_, options_.vote);
+            out.times.vote_ms += ms_since(t);
+            if (vote.votes > out.windows) {
+                out.windows = vote.votes;
+                out.confidence = vote.agreement;
+            }
+            if (!vote.found) {
+                failure = "no agreeing windows";
+                continue;
+            }
+            out.windows = vote.votes;
+            out.confidence = vote.agreement;
+            out.image_to_field = placement_matrix(vote.placement) * g2i.inverse();
+            auto aim_field = apply_homography(out.image_to_field, aim);
+            if (!aim_field) return finish("aim point at infinity");
+            out.aim_field = *aim_field;
+            out.found = true;
+            return finish(nullptr);
+        }
+    return finish(failure);
+}
+
+bool Detector::grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family,
+                               const GreyView& im, Eigen::Matrix3d& g2i, int& rows, int& cols) const {
     // Step 4. The grid homography from the crossings of the lines. Family 1
     // lines are x = const, family 0 lines y = const, unless that mirrors the
     // image: the field is never seen from behind.
     std::vector<Point2> grid_pts, image_pts;
-    for (const auto& a : lines[0].lines)
-        for (const auto& b : lines[1].lines) {
+    for (const auto& a : rows_family.lines)
+        for (const auto& b : cols_family.lines) {
             const Eigen::Vector3d p = a.line.cross(b.line);
             if (std::abs(p.z()) < 1e-12) continue;
             const Point2 q(p.x() / p.z(), p.y() / p.z());
@@ -88,43 +132,22 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const
             image_pts.push_back(q);
         }
     auto fit = fit_homography_robust(grid_pts, image_pts, options_.corner_tolerance_px, 100, 1);
-    out.times.grid_ms = ms_since(t);
-    if (!fit || fit->inliers < 8) return finish("no grid homography");
-    Eigen::Matrix3d g2i = fit->h;
-    int rows = lines[0].lines.back().index, cols = lines[1].lines.back().index;
-    {
-        const Point2 c(cols / 2.0, rows / 2.0);
-        auto p0 = apply_homography(g2i, c), px = apply_homography(g2i, c + Point2(1, 0)),
-             py = apply_homography(g2i, c + Point2(0, 1));
-        if (!p0 || !px || !py) return finish("no grid homography");
-        const Point2 ex = *px - *p0, ey = *py - *p0;
-        if (ex.x() * ey.y() - ex.y() * ey.x() < 0) {
-            Eigen::Matrix3d swap;
-            swap << 0, 1, 0, 1, 0, 0, 0, 0, 1;
-            g2i = g2i * swap;
-            std::swap(rows, cols);
-        }
+    if (!fit || fit->inliers < 8) return false;
+    g2i = fit->h;
+    rows = rows_family.lines.back().index;
+    cols = cols_family.lines.back().index;
+    const Point2 c(cols / 2.0, rows / 2.0);
+    auto p0 = apply_homography(g2i, c), px = apply_homography(g2i, c + Point2(1, 0)),
+         py = apply_homography(g2i, c + Point2(0, 1));
+    if (!p0 || !px || !py) return false;
+    const Point2 ex = *px - *p0, ey = *py - *p0;
+    if (ex.x() * ey.y() - ex.y() * ey.x() < 0) {
+        Eigen::Matrix3d swap;
+        swap << 0, 1, 0, 1, 0, 0, 0, 0, 1;
+        g2i = g2i * swap;
+        std::swap(rows, cols);
     }
-
-    // Step 5. Module values or edge signs.
-    const Field& f = index_.field();
-    const ModuleGrid grid = classify_modules(im, g2i, rows, cols, f.colors, f.key == WindowKey::edges,
-                                             options_.classify, out.pixels_visited);
-    out.times.classify_ms = ms_since(t);
-
-    // Step 6. Window lookup and the placement vote.
-    const VoteResult vote = vote_placement(grid, index_, options_.vote);
-    out.times.vote_ms = ms_since(t);
-    out.windows = vote.votes;
-    out.confidence = vote.agreement;
-    if (!vote.found) return finish("no agreeing windows");
-
-    out.image_to_field = placement_matrix(vote.placement) * g2i.inverse();
-    auto aim_field = apply_homography(out.image_to_field, aim);
-    if (!aim_field) return finish("aim point at infinity");
-    out.aim_field = *aim_field;
-    out.found = true;
-    return finish(nullptr);
+    return true;
 }
 
 }  // namespace umf

@@ -60,6 +60,9 @@ public:
     const Field& field() const { return index_.field(); }
 
 private:
+    bool grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family, const GreyView& image,
+                         Eigen::Matrix3d& grid_to_image, int& rows, int& cols) const;
+
     WindowIndex index_;
     DetectorOptions options_;
 };

@@ -59,13 +59,63 @@ bool fit_projective_1d(const std::vector<std::pair<int, double>>& kt, const std:
     return true;
 }
 
+// Step 3: one line per label, fitted to all its edgels. The vanishing point
+// is refined where the well-supported lines meet; a line with few edgels is
+// better placed by the model: through that point and its predicted crossing t(k).
+template <typename Chains, typename Candidates>
+GridLineFamily build_family(const std::vector<Edgel>& edgels, const Chains& chains, const Candidates& cand,
+                            const std::vector<std::pair<int, int>>& labels, double ba, double bb, double bc,
+                            const Eigen::Vector3d& vp, const Eigen::Vector2d& centre, const Eigen::Vector2d& u,
+                            int min_lines) {
+    GridLineFamily out;
+    constexpr int kWellSupported = 6;
+    std::map<int, std::vector<int>> members_of;
+    for (auto [i, k] : labels)
+        for (int ch : cand[i].chains)
+            members_of[k].insert(members_of[k].end(), chains[ch].members.begin(), chains[ch].members.end());
+    if (members_of.empty()) return out;
+    const int k_min = members_of.begin()->first;
+    Eigen::Matrix3d mm = Eigen::Matrix3d::Zero();
+    int strong = 0;
+    for (auto& [k, members] : members_of) {
+        GridLine gl;
+        gl.index = k - k_min;
+        gl.line = fit_line(edgels, members);
+        gl.support = static_cast<int>(members.size());
+        if (gl.support >= kWellSupported) {
+            mm += gl.support * gl.line * gl.line.transpose();
+            ++strong;
+        }
+        out.lines.push_back(gl);
+    }
+    if (static_cast<int>(out.lines.size()) < min_lines) return out;
+    if (strong >= 2) {
+        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(mm);
+        out.vanishing_point = eig.eigenvectors().col(0).normalized();
+    } else {
+        out.vanishing_point = vp;
+    }
+    for (auto& gl : out.lines) {
+        if (gl.support >= kWellSupported) continue;
+        const int k = gl.index + k_min;
+        const double t = (ba * k + bb) / (bc * k + 1);
+        const Eigen::Vector2d p = centre + t * u;
+        Eigen::Vector3d l = Eigen::Vector3d(p.x(), p.y(), 1.0).cross(out.vanishing_point);
+        const double n = l.head<2>().norm();
+        if (n > 1e-12) gl.line = l / n;
+    }
+    const double t0 = bb, t1 = (ba + bb) / (bc + 1);
+    out.spacing_px = std::abs(t1 - t0);
+    out.found = true;
+    return out;
+}
+
 }  // namespace
 
-GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamily& family,
+std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& edgels, const LineFamily& family,
                                const Eigen::Vector3d& across, int width, int height, int scan_step,
                                const GridLineOptions& o) {
-    GridLineFamily out;
-    if (family.edgels.size() < 3 || scan_step <= 0) return out;
+    if (family.edgels.size() < 3 || scan_step <= 0) return {};
     const Eigen::Vector3d& vp = family.vanishing_point;
 
     // Step 1: chain edgels from scanline to scanline along the direction to
@@ -130,7 +180,7 @@ GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamil
             ch.t = crossing(ch.line, centre, u);
             if (std::isfinite(ch.t)) chains.push_back(std::move(ch));
         }
-    if (static_cast<int>(chains.size()) < o.min_lines) return out;
+    if (static_cast<int>(chains.size()) < o.min_lines) return {};
 
     // Step 2: label the chains. Chains that cross the reference line close
     // together are pieces of one line.
@@ -152,15 +202,12 @@ GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamil
             cand.push_back({chains[i].t, w, {i}});
         }
     }
-    if (static_cast<int>(cand.size()) < o.min_lines) return out;
+    if (static_cast<int>(cand.size()) < o.min_lines) return {};
 
     double mean_weight = 0;
     for (const auto& c : cand) mean_weight += c.weight;
     mean_weight /= static_cast<double>(cand.size());
     std::mt19937_64 rng(o.seed);
-    double best_score = 0;
-    std::vector<std::pair<int, int>> best_labels;  // (candidate, k)
-    double ba = 0, bb = 0, bc = 0;
     // Labels every candidate that lies on a predicted line, at most one per
     // line (the nearest), and scores the labelling by the edgels it explains.
     auto label = [&](double a, double b, double c, std::vector<std::pair<int, int>>& labels) {
@@ -194,6 +241,12 @@ GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamil
         }
         return score;
     };
+    struct Hypothesis {
+        double score = 0;
+        std::vector<std::pair<int, int>> labels;  // (candidate, k)
+        double a = 0, b = 0, c = 0;
+    };
+    std::vector<Hypothesis> tried;
     std::vector<std::pair<int, int>> labels;
     const int m = static_cast<int>(cand.size());
     for (int it = 0; it < o.ransac_iterations; ++it) {
@@ -209,71 +262,54 @@ GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamil
         double a, b, c;
         if (!fit_projective_1d(kt, {1, 1, 1}, a, b, c)) continue;
         const double score = label(a, b, c, labels);
-        if (score > best_score) {
-            best_score = score;
-            best_labels = labels;
-            ba = a, bb = b, bc = c;
-        }
+        if (score > 0 && static_cast<int>(labels.size()) >= o.min_lines) tried.push_back({score, labels, a, b, c});
     }
-    if (static_cast<int>(best_labels.size()) < o.min_lines) return out;
-    // Refit to every labelled candidate, then label again with the refit.
-    for (int round = 0; round < 2; ++round) {
-        std::vector<std::pair<int, double>> kt;
-        std::vector<double> w;
-        for (auto [i, k] : best_labels) {
-            kt.emplace_back(k, cand[i].t);
-            w.push_back(cand[i].weight);
+    std::stable_sort(tried.begin(), tried.end(), [](const Hypothesis& x, const Hypothesis& y) { return x.score > y.score; });
+
+    // The best labellings that explain different candidates: over text, the
+    // document's own lines run parallel to the field's and may score higher,
+    // so the caller tries each until the window vote accepts one.
+    std::vector<Hypothesis> chosen;
+    for (const auto& h : tried) {
+        if (static_cast<int>(chosen.size()) >= o.max_hypotheses) break;
+        bool distinct = true;
+        for (const auto& c : chosen) {
+            int shared = 0;
+            for (auto [i, k] : h.labels)
+                for (auto [i2, k2] : c.labels) shared += i == i2;
+            distinct &= shared < 0.7 * std::min(h.labels.size(), c.labels.size());
         }
-        double a, b, c;
-        if (!fit_projective_1d(kt, w, a, b, c)) break;
-        if (label(a, b, c, labels) < best_score) break;
-        best_labels = labels;
-        ba = a, bb = b, bc = c;
+        if (distinct) chosen.push_back(h);
     }
 
-    // Step 3: one line per label, fitted to all its edgels. The vanishing
-    // point is refined where the well-supported lines meet; a line with few
-    // edgels is better placed by the model: through that point and its
-    // predicted crossing t(k).
-    constexpr int kWellSupported = 6;
-    std::map<int, std::vector<int>> members_of;
-    for (auto [i, k] : best_labels)
-        for (int ch : cand[i].chains)
-            members_of[k].insert(members_of[k].end(), chains[ch].members.begin(), chains[ch].members.end());
-    const int k_min = members_of.begin()->first;
-    Eigen::Matrix3d mm = Eigen::Matrix3d::Zero();
-    int strong = 0;
-    for (auto& [k, members] : members_of) {
-        GridLine gl;
-        gl.index = k - k_min;
-        gl.line = fit_line(edgels, members);
-        gl.support = static_cast<int>(members.size());
-        if (gl.support >= kWellSupported) {
-            mm += gl.support * gl.line * gl.line.transpose();
-            ++strong;
+    std::vector<GridLineFamily> result;
+    for (auto best : chosen) {
+        // Refit to every labelled candidate, then label again with the refit.
+        for (int round = 0; round < 2; ++round) {
+            std::vector<std::pair<int, double>> kt;
+            std::vector<double> w;
+            for (auto [i, k] : best.labels) {
+                kt.emplace_back(k, cand[i].t);
+                w.push_back(cand[i].weight);
+            }
+            double a, b, c;
+            if (!fit_projective_1d(kt, w, a, b, c)) break;
+            const double score = label(a, b, c, labels);
+            if (score < best.score) break;
+            best = {score, labels, a, b, c};
         }
-        out.lines.push_back(gl);
+        GridLineFamily fam = build_family(edgels, chains, cand, best.labels, best.a, best.b, best.c, vp, centre, u,
+                                          o.min_lines);
+        if (fam.found) result.push_back(std::move(fam));
     }
-    if (static_cast<int>(out.lines.size()) < o.min_lines) return out;
-    if (strong >= 2) {
-        Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(mm);
-        out.vanishing_point = eig.eigenvectors().col(0).normalized();
-    } else {
-        out.vanishing_point = vp;
-    }
-    for (auto& gl : out.lines) {
-        if (gl.support >= kWellSupported) continue;
-        const int k = gl.index + k_min;
-        const double t = (ba * k + bb) / (bc * k + 1);
-        const Eigen::Vector2d p = centre + t * u;
-        Eigen::Vector3d l = Eigen::Vector3d(p.x(), p.y(), 1.0).cross(out.vanishing_point);
-        const double n = l.head<2>().norm();
-        if (n > 1e-12) gl.line = l / n;
-    }
-    const double t0 = bb, t1 = (ba + bb) / (bc + 1);
-    out.spacing_px = std::abs(t1 - t0);
-    out.found = true;
-    return out;
+    return result;
+}
+
+GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamily& family,
+                               const Eigen::Vector3d& across, int width, int height, int scan_step,
+                               const GridLineOptions& options) {
+    auto all = find_grid_line_hypotheses(edgels, family, across, width, height, scan_step, options);
+    return all.empty() ? GridLineFamily{} : std::move(all.front());
 }
 
 }  // namespace umf

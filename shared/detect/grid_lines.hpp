@@ -34,6 +34,7 @@ struct GridLineOptions {
     double label_tolerance = 0.2;     // of the local spacing, for a segment to belong to line k
     int min_lines = 3;
     int ransac_iterations = 200;
+    int max_hypotheses = 3;           // distinct labellings returned, best first
     std::uint64_t seed = 1;
 };
 
@@ -43,5 +44,12 @@ struct GridLineOptions {
 GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamily& family,
                                const Eigen::Vector3d& across, int width, int height, int scan_step,
                                const GridLineOptions& options = {});
+
+// Up to options.max_hypotheses distinct labellings, best first. Over text a
+// document's own lines, parallel to the field's, may win the labelling; the
+// detector tries each until the window vote accepts one.
+std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& edgels, const LineFamily& family,
+                                                      const Eigen::Vector3d& across, int width, int height,
+                                                      int scan_step, const GridLineOptions& options = {});
 
 }  // namespace umf

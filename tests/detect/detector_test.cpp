@@ -74,3 +74,29 @@ TEST(Detector, BadImagesAreNotFoundNeverACrash) {
 }
 
 }  // namespace
+
+namespace {
+
+// Text, code, pictures under the field: found from most poses, and when found, right.
+TEST(Detector, FindsTheFieldOverBusyScreens) {
+    Field f = test::shipped_field("b4-64x36.json");
+    Detector detector(f);
+    const double poses[][4] = {{0, 0, 0, 300}, {20, 15, 70, 300}, {-30, 10, 140, 280}, {40, -25, 20, 250},
+                               {10, 10, 100, 180}};
+    for (auto kind : {sim::ScreenKind::document, sim::ScreenKind::code_dark, sim::ScreenKind::web_page,
+                      sim::ScreenKind::photo}) {
+        int found = 0;
+        for (const auto& pose : poses) {
+            test::Photo p = test::photograph_field(f, 0.5, pose[0], pose[1], pose[2], pose[3], kind);
+            Detection d = detector.detect(p.view());
+            if (!d.found) continue;
+            ++found;
+            const cv::Point2d truth = sim::image_to_field(p.shot, p.placement, {320, 240});
+            EXPECT_LT(std::hypot(d.aim_field.x() - truth.x, d.aim_field.y() - truth.y), 0.1)
+                << "screen " << static_cast<int>(kind) << " pose " << pose[2];
+        }
+        EXPECT_GE(found, 4) << "screen " << static_cast<int>(kind);
+    }
+}
+
+}  // namespace

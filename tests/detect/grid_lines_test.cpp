@@ -12,9 +12,9 @@ namespace {
 
 using Case = test::PhotoCase;
 
-// Blank screens for now: over text the document's own lines, parallel to the
-// field's, can win the labelling; the next step keeps several labellings and
-// lets the window vote choose.
+// Blank screens: over text the document's own lines, parallel to the field's,
+// can win the first labelling; the detector's tests cover busy screens, where
+// the window vote chooses among the labellings.
 class GridLinesOnPhotos : public ::testing::TestWithParam<Case> {};
 
 TEST_P(GridLinesOnPhotos, LieOnTheFieldsModuleBoundariesInOrder) {
