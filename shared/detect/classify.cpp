@@ -61,11 +61,37 @@ ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int ro
     const double threshold = otsu(seen, low, high);
     const double gap = high - low;
     if (!edge_key && colors == 2) {
-        for (std::size_t k = 0; k < value.size(); ++k) {
-            const double v = value[k];
-            if (!std::isfinite(v) || std::abs(v - threshold) < o.doubt * gap) continue;
-            g.value[k] = v > threshold ? 1 : 0;
-        }
+        // Pictures and text change the brightness under the field, so each
+        // module is judged against the modules around it: in a binary field
+        // about half of any 5 x 5 block is dark. The global threshold is the
+        // fallback where few neighbours were seen.
+        constexpr int kRadius = 2;
+        for (int i = 0; i < rows; ++i)
+            for (int j = 0; j < cols; ++j) {
+                const std::size_t k = static_cast<std::size_t>(i) * cols + j;
+                const double v = value[k];
+                if (!std::isfinite(v)) continue;
+                double sum = 0, spread = 0;
+                int n = 0;
+                for (int a = std::max(0, i - kRadius); a <= std::min(rows - 1, i + kRadius); ++a)
+                    for (int b = std::max(0, j - kRadius); b <= std::min(cols - 1, j + kRadius); ++b) {
+                        const double w = value[static_cast<std::size_t>(a) * cols + b];
+                        if (std::isfinite(w)) sum += w, ++n;
+                    }
+                double local = threshold, local_gap = gap;
+                if (n >= 12) {
+                    local = sum / n;
+                    for (int a = std::max(0, i - kRadius); a <= std::min(rows - 1, i + kRadius); ++a)
+                        for (int b = std::max(0, j - kRadius); b <= std::min(cols - 1, j + kRadius); ++b) {
+                            const double w = value[static_cast<std::size_t>(a) * cols + b];
+                            if (std::isfinite(w)) spread += std::abs(w - local);
+                        }
+                    // Two equal clusters sit one mean absolute deviation from their middle.
+                    local_gap = 2 * spread / n;
+                }
+                if (std::abs(v - local) < o.doubt * local_gap) continue;
+                g.value[k] = v > local ? 1 : 0;
+            }
         g.derive_edges();
         return g;
     }
