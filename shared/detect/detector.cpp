@@ -84,8 +84,9 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const
             const GridLineFamily* lines[2] = {&hypotheses[0][h0], &hypotheses[1][sum - h0]};
             Eigen::Matrix3d g2i;
             int rows = 0, cols = 0;
-            if (!grid_homography(*lines[0], *lines[1], im, g2i, rows, cols)) continue;
+            const bool fitted = grid_homography(*lines[0], *lines[1], im, g2i, rows, cols);
             out.times.grid_ms += ms_since(t);
+            if (!fitted) continue;
 
             // Step 5. Module values or edge signs.
             const Field& f = index_.field();
@@ -96,7 +97,8 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const
             // Step 6. Window lookup and the placement vote.
             const VoteResult vote = vote_placement(grid, index_, options_.vote);
             out.times.vote_ms += ms_since(t);
-            if (vote.votes > out.windows) {
+            // Report the accepted vote, or else the strongest one seen.
+            if (vote.found || vote.votes > out.windows) {
                 out.windows = vote.votes;
                 out.confidence = vote.agreement;
             }
@@ -104,8 +106,6 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const
                 failure = "no agreeing windows";
                 continue;
             }
-            out.windows = vote.votes;
-            out.confidence = vote.agreement;
             out.image_to_field = placement_matrix(vote.placement) * g2i.inverse();
             auto aim_field = apply_homography(out.image_to_field, aim);
             if (!aim_field) return finish("aim point at infinity");

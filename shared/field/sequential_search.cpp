@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <limits>
 
-#include "field/contrast.hpp"
-
 namespace umf {
 
 namespace {

@@ -31,7 +31,6 @@ public:
     // The deepest state reached, with the modules not yet set filled at random:
     // a complete field when complete(), otherwise a field with conflicts.
     Field best_field() const;
-    const std::vector<std::uint8_t>& modules() const { return grid_; }
 
 private:
     void choose_order(int cell);

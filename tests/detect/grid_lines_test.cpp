@@ -31,7 +31,7 @@ TEST_P(GridLinesOnPhotos, LieOnTheFieldsModuleBoundariesInOrder) {
         ASSERT_TRUE(lines.found) << c.name << " family " << fam;
         EXPECT_GE(lines.lines.size(), 6u) << c.name;
         int checked = 0, good = 0;
-        bool consistent = true;
+        std::vector<std::pair<int, long>> index_value;  // line index, field line number
         for (const auto& gl : lines.lines) {
             // Two points on the line near the image centre, in field coordinates.
             const Eigen::Vector2d n = gl.line.head<2>(), d(-n.y(), n.x());
@@ -45,22 +45,12 @@ TEST_P(GridLinesOnPhotos, LieOnTheFieldsModuleBoundariesInOrder) {
             ++checked;
             const long integer = std::lround((va + vb) / 2);
             if (std::abs(va - integer) < 0.1 && std::abs(vb - integer) < 0.1) ++good;
+            index_value.emplace_back(gl.index, integer);
         }
         EXPECT_GE(checked, 4) << c.name;
         EXPECT_EQ(good, checked) << c.name << " family " << fam;
         // Consecutive indices are neighbouring field lines.
-        std::vector<std::pair<int, long>> index_value;
-        for (const auto& gl : lines.lines) {
-            const Eigen::Vector2d n = gl.line.head<2>();
-            const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
-            const Eigen::Vector2d p0 = centre - (n.dot(centre) + gl.line.z()) * n;
-            if ((p0 - centre).norm() > 200) continue;
-            cv::Point2d a = sim::image_to_field(photo.shot, photo.placement, {p0.x(), p0.y()});
-            const Eigen::Vector2d d(-n.y(), n.x());
-            cv::Point2d b = sim::image_to_field(photo.shot, photo.placement, {p0.x() + 30 * d.x(), p0.y() + 30 * d.y()});
-            const bool const_u = std::abs(a.x - b.x) < std::abs(a.y - b.y);
-            index_value.emplace_back(gl.index, std::lround(const_u ? a.x : a.y));
-        }
+        bool consistent = true;
         for (std::size_t i = 1; i < index_value.size(); ++i) {
             const long dv = index_value[i].second - index_value[0].second;
             const int dk = index_value[i].first - index_value[0].first;
