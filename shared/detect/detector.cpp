@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <chrono>
+#include <cmath>
+#include <optional>
 
 #include "detect/homography.hpp"
 
@@ -30,6 +32,28 @@ Eigen::Matrix3d placement_matrix(const GridPlacement& p) {
     return a;
 }
 
+// The placement a prior predicts for a grid: the turn from where the grid's
+// x axis points in the field, the offsets from where the grid's centre lands.
+std::optional<GridPlacement> predict_placement(const Eigen::Matrix3d& image_to_field, const Eigen::Matrix3d& g2i,
+                                               int rows, int cols) {
+    const Eigen::Matrix3d m = image_to_field * g2i;
+    const Point2 c(cols / 2.0, rows / 2.0);
+    auto p0 = apply_homography(m, c), px = apply_homography(m, c + Point2(1, 0));
+    if (!p0 || !px) return std::nullopt;
+    const Point2 d = *px - *p0;
+    GridPlacement p;
+    // x axis to +u, -v, -u, +v for quarter turns 0..3 (GridPlacement::field_point).
+    if (std::abs(d.x()) >= std::abs(d.y()))
+        p.quarter_turns = d.x() > 0 ? 0 : 2;
+    else
+        p.quarter_turns = d.y() < 0 ? 1 : 3;
+    double u0, v0;
+    p.field_point(c.x(), c.y(), u0, v0);
+    p.col_offset = static_cast<int>(std::lround(p0->x() - u0));
+    p.row_offset = static_cast<int>(std::lround(p0->y() - v0));
+    return p;
+}
+
 }  // namespace
 
 Detector::Detector(const Field& field, DetectorOptions options) : index_(field), options_(std::move(options)) {}
@@ -38,7 +62,9 @@ Detection Detector::detect(const GreyView& image) const {
     return detect(image, Eigen::Vector2d(image.width / 2.0, image.height / 2.0));
 }
 
-Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const {
+Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const { return detect(im, aim, nullptr); }
+
+Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior) const {
     Detection out;
     out.aim_image = aim;
     const auto start = Clock::now();
@@ -94,8 +120,16 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const
                                                      options_.classify, out.pixels_visited);
             out.times.classify_ms += ms_since(t);
 
-            // Step 6. Window lookup and the placement vote.
-            const VoteResult vote = vote_placement(grid, index_, options_.vote);
+            // Step 6. Window lookup and the placement vote: near the
+            // predicted place first, when there is a prior.
+            VoteResult vote;
+            if (prior) {
+                if (auto predicted = predict_placement(prior->image_to_field, g2i, rows, cols)) {
+                    vote = vote_near(grid, index_, *predicted, prior->radius_modules, options_.vote);
+                    out.from_prior = vote.found;
+                }
+            }
+            if (!vote.found) vote = vote_placement(grid, index_, options_.vote);
             out.times.vote_ms += ms_since(t);
             // Report the accepted vote, or else the strongest one seen.
             if (vote.found || vote.votes > out.windows) {
@@ -106,7 +140,21 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const
                 failure = "no agreeing windows";
                 continue;
             }
-            out.image_to_field = placement_matrix(vote.placement) * g2i.inverse();
+            const Eigen::Matrix3d placement = placement_matrix(vote.placement);
+            out.image_to_field = placement * g2i.inverse();
+            // Step 7. Module edges around the voting windows, then outwards.
+            if (options_.refine_enabled) {
+                double su, sv;
+                vote.placement.field_point(vote.centre_x, vote.centre_y, su, sv);
+                const Refinement r = refine_homography(im, f, g2i * placement.inverse(), Point2(su, sv),
+                                                       options_.refine, out.pixels_visited);
+                if (r.refined) {
+                    out.image_to_field = r.field_to_image.inverse();
+                    out.image_to_field /= out.image_to_field(2, 2);
+                    out.edges_fitted = r.edges_fitted;
+                }
+                out.times.refine_ms += ms_since(t);
+            }
             auto aim_field = apply_homography(out.image_to_field, aim);
             if (!aim_field) return finish("aim point at infinity");
             out.aim_field = *aim_field;
@@ -148,6 +196,68 @@ bool Detector::grid_homography(const GridLineFamily& rows_family, const GridLine
         std::swap(rows, cols);
     }
     return true;
+}
+
+}  // namespace umf
+
+namespace umf {
+
+Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
+                           const Eigen::Matrix3d& predicted_image_to_field) const {
+    Detection out;
+    out.aim_image = aim;
+    const auto start = Clock::now();
+    auto t = start;
+    auto finish = [&](const char* failure) {
+        out.failure = failure ? failure : "";
+        out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        return out;
+    };
+    if (auto problem = describe_invalid(im); !problem.empty()) return finish("invalid image");
+    const Field& f = index_.field();
+    const Eigen::Matrix3d predicted_f2i = predicted_image_to_field.inverse();
+    auto seed = apply_homography(predicted_image_to_field, aim);
+    if (!seed || !predicted_f2i.allFinite()) return finish("prediction unusable");
+    const Refinement r = refine_homography(im, f, predicted_f2i, *seed, options_.refine, out.pixels_visited);
+    out.times.refine_ms = ms_since(t);
+    if (!r.refined) return finish("too few module edges near the prediction");
+
+    // The modules of the field's visible box, read under the fit: the grid
+    // is the field itself, so the predicted placement is a plain offset.
+    const Eigen::Matrix3d i2f = r.field_to_image.inverse();
+    double u0 = f.width, v0 = f.height, u1 = 0, v1 = 0;
+    const double front = (i2f * Eigen::Vector3d(aim.x(), aim.y(), 1.0)).z();  // sign of points on the screen
+    for (const Point2& corner : {Point2(0, 0), Point2(im.width, 0), Point2(0, im.height), Point2(im.width, im.height)}) {
+        auto q = apply_homography(i2f, corner);
+        if (!q || (i2f * Eigen::Vector3d(corner.x(), corner.y(), 1.0)).z() * front <= 0) {
+            u0 = v0 = 0, u1 = f.width, v1 = f.height;
+            break;
+        }
+        u0 = std::min(u0, q->x()), u1 = std::max(u1, q->x());
+        v0 = std::min(v0, q->y()), v1 = std::max(v1, q->y());
+    }
+    const int c0 = std::max(0, static_cast<int>(std::floor(u0))), r0 = std::max(0, static_cast<int>(std::floor(v0)));
+    const int c1 = std::min(f.width, static_cast<int>(std::ceil(u1))), r1 = std::min(f.height, static_cast<int>(std::ceil(v1)));
+    if (c1 - c0 < 2 || r1 - r0 < 2) return finish("field out of view");
+    Eigen::Matrix3d shift;
+    shift << 1, 0, c0, 0, 1, r0, 0, 0, 1;
+    const ModuleGrid grid = classify_modules(im, r.field_to_image * shift, r1 - r0, c1 - c0, f.colors,
+                                             f.key == WindowKey::edges, options_.classify, out.pixels_visited);
+    out.times.classify_ms = ms_since(t);
+    const VoteResult vote = vote_near(grid, index_, GridPlacement{0, r0, c0}, 1, options_.vote);
+    out.times.vote_ms = ms_since(t);
+    out.windows = vote.votes;
+    out.confidence = vote.agreement;
+    if (!vote.found || vote.placement.row_offset != r0 || vote.placement.col_offset != c0)
+        return finish("prediction not confirmed");
+    out.image_to_field = i2f / i2f(2, 2);
+    auto aim_field = apply_homography(out.image_to_field, aim);
+    if (!aim_field) return finish("aim point at infinity");
+    out.aim_field = *aim_field;
+    out.edges_fitted = r.edges_fitted;
+    out.from_prior = true;
+    out.found = true;
+    return finish(nullptr);
 }
 
 }  // namespace umf

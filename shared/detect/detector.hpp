@@ -19,6 +19,7 @@
 #include "detect/grid_lines.hpp"
 #include "detect/image.hpp"
 #include "detect/placement_vote.hpp"
+#include "detect/refine.hpp"
 #include "detect/vanishing_points.hpp"
 #include "detect/window_index.hpp"
 
@@ -30,11 +31,13 @@ struct DetectorOptions {
     GridLineOptions grid;
     ClassifyOptions classify;
     VoteOptions vote;
+    RefineOptions refine;
+    bool refine_enabled = true;
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
 
 struct StageTimes {
-    double edgels_ms = 0, vanishing_ms = 0, grid_ms = 0, classify_ms = 0, vote_ms = 0, total_ms = 0;
+    double edgels_ms = 0, vanishing_ms = 0, grid_ms = 0, classify_ms = 0, vote_ms = 0, refine_ms = 0, total_ms = 0;
 };
 
 struct Detection {
@@ -43,10 +46,20 @@ struct Detection {
     Eigen::Vector2d aim_image = Eigen::Vector2d::Zero();
     Eigen::Vector2d aim_field = Eigen::Vector2d::Zero();  // (u, v) in modules
     int windows = 0;          // windows that agreed on the place
+    bool from_prior = false;  // confirmed near the predicted place rather than found anew
+    int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
     double confidence = 0;    // fraction of the read modules or edges the place explains
     StageTimes times;
     long pixels_visited = 0;
     std::string failure;      // the stage that ended the search, when not found
+};
+
+// Where the field was: the image-to-field homography of a recent frame, and
+// how far (modules) the place may have moved since. Lets the detector confirm
+// a place near it on much less evidence than a search of the whole field.
+struct DetectionPrior {
+    Eigen::Matrix3d image_to_field = Eigen::Matrix3d::Identity();
+    int radius_modules = 3;
 };
 
 class Detector {
@@ -56,6 +69,16 @@ public:
 
     Detection detect(const GreyView& image) const;
     Detection detect(const GreyView& image, const Eigen::Vector2d& aim) const;
+    Detection detect(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior) const;
+
+    // Video: confirms the field near where it is predicted to be, without
+    // searching for it. The module edges the prediction expects are searched
+    // and fitted (they must lie within about 0.4 module of the prediction),
+    // then the modules are read under the fit and must single out the
+    // predicted placement among its neighbours. Much cheaper than detect()
+    // and works on fainter fields; "not found" when the prediction was off.
+    Detection follow(const GreyView& image, const Eigen::Vector2d& aim,
+                     const Eigen::Matrix3d& predicted_image_to_field) const;
 
     const Field& field() const { return index_.field(); }
 

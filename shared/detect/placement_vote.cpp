@@ -88,12 +88,22 @@ Agreement agreement(const ModuleGrid& g, const Field& f, const GridPlacement& p)
     return {compared, matched};
 }
 
+// Bits by which the read grid favours placement p over chance, before the
+// cost of choosing p among `hypotheses`.
+double evidence_bits(const Agreement& a, const Field& f, const VoteOptions& options) {
+    const double chance = f.key == WindowKey::modules ? 1.0 / f.colors : 1.0 / 3.0;
+    const double eps = options.misread_rate;
+    const double per_match = std::log2((1 - eps) / chance), per_miss = std::log2(eps / (1 - chance));
+    return a.matched * per_match + (a.compared - a.matched) * per_miss;
+}
+
 }  // namespace
 
 VoteResult vote_placement(const ModuleGrid& grid, const WindowIndex& index, const VoteOptions& options) {
     VoteResult out;
     const int n = index.codec().window();
     std::vector<std::uint64_t> ballots;
+    std::vector<std::pair<int, int>> where;  // window corner of each ballot, before sorting
     for (int i = 0; i + n <= grid.rows; ++i)
         for (int j = 0; j + n <= grid.cols; ++j) {
             auto code = observed_code(grid, index.codec(), i, j);
@@ -103,7 +113,9 @@ VoteResult vote_placement(const ModuleGrid& grid, const WindowIndex& index, cons
             if (!match) continue;
             ++out.windows_known;
             ballots.push_back(pack(placement_of(*match, n, i, j)));
+            where.emplace_back(i, j);
         }
+    const std::vector<std::uint64_t> unsorted = ballots;
     if (ballots.empty()) return out;
     std::sort(ballots.begin(), ballots.end());
     std::uint64_t best = 0;
@@ -121,18 +133,75 @@ VoteResult vote_placement(const ModuleGrid& grid, const WindowIndex& index, cons
         a = b;
     }
     out.placement = unpack(best);
+    for (std::size_t k = 0; k < unsorted.size(); ++k)
+        if (unsorted[k] == best) {
+            out.centre_x += where[k].second + n / 2.0;
+            out.centre_y += where[k].first + n / 2.0;
+        }
+    out.centre_x /= out.votes;
+    out.centre_y /= out.votes;
     const Field& f = index.field();
     const Agreement a = agreement(grid, f, out.placement);
     out.agreement = a.compared ? static_cast<double>(a.matched) / a.compared : 0.0;
     // Log-likelihood ratio of "this placement" against "chance", less the
     // bits needed to single out one of the placements.
-    const double chance = f.key == WindowKey::modules ? 1.0 / f.colors : 1.0 / 3.0;
-    const double eps = options.misread_rate;
-    const double per_match = std::log2((1 - eps) / chance), per_miss = std::log2(eps / (1 - chance));
-    out.evidence_bits = a.matched * per_match + (a.compared - a.matched) * per_miss -
-                        std::log2(4.0 * static_cast<double>(f.window_count()));
+    out.evidence_bits = evidence_bits(a, f, options) - std::log2(4.0 * static_cast<double>(f.window_count()));
     out.found = out.votes >= options.min_votes && out.votes > 2 * out.runner_up &&
                 out.agreement >= options.min_agreement && out.evidence_bits >= options.min_evidence_bits;
+    return out;
+}
+
+VoteResult vote_near(const ModuleGrid& grid, const WindowIndex& index, const GridPlacement& predicted, int radius,
+                     const VoteOptions& options) {
+    VoteResult out;
+    const Field& f = index.field();
+    const int side = 2 * radius + 1;
+    const double choice_bits = std::log2(static_cast<double>(side) * side);
+    double best_bits = -1e300, second_bits = -1e300;
+    Agreement best_agreement;
+    for (int dr = -radius; dr <= radius; ++dr)
+        for (int dc = -radius; dc <= radius; ++dc) {
+            const GridPlacement p{predicted.quarter_turns, predicted.row_offset + dr, predicted.col_offset + dc};
+            const Agreement a = agreement(grid, f, p);
+            const double bits = evidence_bits(a, f, options);
+            if (bits > best_bits) {
+                second_bits = best_bits;
+                best_bits = bits;
+                best_agreement = a;
+                out.placement = p;
+            } else if (bits > second_bits) {
+                second_bits = bits;
+            }
+        }
+    out.agreement = best_agreement.compared ? static_cast<double>(best_agreement.matched) / best_agreement.compared : 0.0;
+    out.evidence_bits = best_bits - choice_bits;
+    // Complete windows that agree: the same count the global vote reports.
+    const int n = index.codec().window();
+    for (int i = 0; i + n <= grid.rows; ++i)
+        for (int j = 0; j + n <= grid.cols; ++j) {
+            auto code = observed_code(grid, index.codec(), i, j);
+            if (!code) continue;
+            ++out.windows_read;
+            auto match = index.find(*code);
+            if (!match) continue;
+            ++out.windows_known;
+            const GridPlacement q = placement_of(*match, n, i, j);
+            if (q.quarter_turns == out.placement.quarter_turns && q.row_offset == out.placement.row_offset &&
+                q.col_offset == out.placement.col_offset) {
+                ++out.votes;
+                out.centre_x += j + n / 2.0;
+                out.centre_y += i + n / 2.0;
+            }
+        }
+    if (out.votes > 0) {
+        out.centre_x /= out.votes;
+        out.centre_y /= out.votes;
+    } else {
+        out.centre_x = grid.cols / 2.0;
+        out.centre_y = grid.rows / 2.0;
+    }
+    out.found = out.agreement >= options.min_agreement && out.evidence_bits >= options.min_evidence_bits &&
+                best_bits - second_bits >= options.min_evidence_bits;
     return out;
 }
 

@@ -43,8 +43,20 @@ struct VoteResult {
     int windows_known = 0;  // of those, found in the field
     double agreement = 0;   // fraction of read modules or edges that match the field at the winner
     double evidence_bits = 0;
+    // Grid point (x along columns, y along rows) at the mean centre of the
+    // windows that voted for the winner: where the grid is surely right.
+    double centre_x = 0, centre_y = 0;
 };
 
 VoteResult vote_placement(const ModuleGrid& grid, const WindowIndex& index, const VoteOptions& options = {});
+
+// The placement of a grid whose place is roughly known (from the previous
+// video frame): every placement with the predicted turn and an offset within
+// `radius` of the predicted one is scored on all modules read, not only on
+// complete windows, and the best wins when its evidence against these few
+// hypotheses reaches the threshold and beats the runner-up's by as much
+// again. `votes` counts the complete windows that agree with the winner.
+VoteResult vote_near(const ModuleGrid& grid, const WindowIndex& index, const GridPlacement& predicted, int radius,
+                     const VoteOptions& options = {});
 
 }  // namespace umf

@@ -1,0 +1,200 @@
+#include "locate_command.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+#include "detect/detector.hpp"
+#include "detect/image.hpp"
+#include "detect/tracker.hpp"
+#include "field/field_io.hpp"
+#include "frame_source.hpp"
+
+namespace umf::requester {
+
+const char* const kLocateUsage = R"(umf-requester locate: which field point a camera image is aimed at
+
+usage:
+  umf-requester locate --field F.json [--sequence] [--aim X,Y] IMAGE...
+  umf-requester locate --field F.json [--sequence] [--aim X,Y] --video FILE
+
+Finds the field of F.json in each IMAGE (any format OpenCV decodes) or in every
+frame of the video FILE, and prints one JSON object per line and frame, each line
+flushed as soon as its frame is done:
+  {"frame": i, "found": true, "point": [u, v], "H": [9 numbers], "windows": n,
+   "ms": t, "confidence": c}
+  {"frame": i, "found": false, "ms": t, "reason": "why the detector gave up"}
+  {"frame": i, "found": false, "error": "cannot decode IMAGE: why"}
+
+  frame       counts the frames read, from 0; an unreadable image takes its number too
+  point       the field point (u, v), in modules, under the aim point
+  H           image pixels -> field modules, 3 x 3 row-major, scaled to H[8] = 1
+              where possible
+  windows     how many field windows agreed on the place
+  ms          the detection time in milliseconds (decoding not included)
+  confidence  the fraction of the modules read that the place explains
+
+options:
+  --field F.json  the field shown on the screen (umf-field/1)
+  --aim X,Y       the aim point in image pixels, continuous coordinates: the centre
+                  of pixel (0, 0) is 0.5,0.5; default the image centre
+  --video FILE    read the frames of a video (anything cv::VideoCapture opens)
+                  instead of image files
+  --sequence      the frames are consecutive frames of one camera: track the field
+                  from frame to frame, which holds it at lower opacity and through
+                  blur. Adds "state": "locked" | "lost" | "searching", "prior"
+                  (the lock came from the previous place) and "raw_point" (this
+                  frame's own point); "point" is then the smoothed aim point and
+                  "found" is true exactly when locked. Without --sequence every
+                  frame, a video's too, is detected on its own.
+
+exit codes: 0 the frames were read (frames without the field and unreadable images
+            are reported in their lines); 2 wrong usage; 3 the field file or the
+            video could not be read, or the output could not be written.
+)";
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+// Three decimals: microseconds are noise in a timing.
+double round_ms(double ms) { return std::round(ms * 1000) / 1000; }
+
+Json point_json(const Eigen::Vector2d& p) { return Json::array({p.x(), p.y()}); }
+
+// Row-major, divided by H[8] when that is not (nearly) zero; otherwise scaled
+// to unit norm so the numbers stay readable.
+Json homography_json(const Eigen::Matrix3d& h) {
+    const double norm = h.norm();
+    double scale = std::abs(h(2, 2)) > 1e-12 * norm ? h(2, 2) : norm;
+    if (!(scale != 0 && std::isfinite(scale))) scale = 1;
+    Json out = Json::array();
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) out.push_back(h(r, c) / scale);
+    return out;
+}
+
+// The grey image the detector reads, through libumf's own luma so that the
+// requester sees the same grey as the web client. Empty `why` when fine.
+GreyView grey_view(const cv::Mat& px, std::vector<std::uint8_t>& luma, std::string& why) {
+    if (px.depth() != CV_8U || (px.channels() != 1 && px.channels() != 3 && px.channels() != 4)) {
+        why = "pixels of OpenCV type " + std::to_string(px.type()) + " are not 8-bit grey, BGR or BGRA";
+        return {};
+    }
+    const auto stride = static_cast<std::ptrdiff_t>(px.step);
+    // An image beyond the detector's limit is not converted (that could take
+    // gigabytes): a view of its raw bytes, which are all in bounds, lets the
+    // detector reject it with its own "invalid image" reason.
+    if (px.channels() == 1 || px.cols > kMaxImageSideForDetection || px.rows > kMaxImageSideForDetection)
+        return {px.data, px.cols, px.rows, stride};
+    return to_luma({px.data, px.cols, px.rows, stride, px.channels() == 3 ? PixelOrder::bgr : PixelOrder::bgra},
+                   luma);
+}
+
+Json detection_json(int frame, const Detection& d, const Eigen::Vector2d& point) {
+    Json j;
+    j["frame"] = frame;
+    j["found"] = d.found;
+    if (d.found) {
+        j["point"] = point_json(point);
+        j["H"] = homography_json(d.image_to_field);
+        j["windows"] = d.windows;
+        j["ms"] = round_ms(d.times.total_ms);
+        j["confidence"] = d.confidence;
+    } else {
+        j["ms"] = round_ms(d.times.total_ms);
+        j["reason"] = d.failure;
+    }
+    return j;
+}
+
+Json tracked_json(int frame, const TrackResult& t) {
+    const bool locked = t.state == TrackState::locked;
+    Json j = detection_json(frame, t.detection, locked ? t.aim_field : t.detection.aim_field);
+    j["found"] = locked;  // a detection the tracker did not lock on is no place
+    j["state"] = to_string(t.state);
+    j["prior"] = t.used_prior;
+    if (locked) j["raw_point"] = point_json(t.detection.aim_field);
+    return j;
+}
+
+void write_line(std::FILE* out, const Json& j) {
+    const std::string line = j.dump() + "\n";
+    if (std::fwrite(line.data(), 1, line.size(), out) != line.size() || std::fflush(out) != 0)
+        throw InputError(std::string("cannot write the output: ") + std::strerror(errno));
+}
+
+}  // namespace
+
+LocateOptions parse_locate_args(int argc, char** argv, int first) {
+    const Args a = parse_args(argc, argv, first, {"field", "aim", "video"}, {"sequence"});
+    LocateOptions o;
+    auto field = a.get("field");
+    if (!field) throw UsageError("locate needs --field F.json");
+    o.field_path = *field;
+    o.sequence = a.has_flag("sequence");
+    if (auto aim = a.get("aim")) {
+        auto [x, y] = parse_point("aim", *aim);
+        o.aim = Eigen::Vector2d(x, y);
+    }
+    o.video = a.get("video");
+    o.images = a.positional;
+    if (o.video && !o.images.empty()) throw UsageError("locate reads either image files or --video FILE, not both");
+    if (!o.video && o.images.empty()) throw UsageError("locate needs image files or --video FILE");
+    return o;
+}
+
+int run_locate(const LocateOptions& o, std::FILE* out) {
+    const Field field = load_field(o.field_path);
+    std::unique_ptr<Detector> detector;
+    try {
+        detector = std::make_unique<Detector>(field);
+    } catch (const std::invalid_argument& e) {
+        throw FieldFileError(o.field_path + ": " + e.what());
+    }
+    std::unique_ptr<FrameSource> source = o.video ? video_file(*o.video) : image_files(o.images);
+    std::optional<Tracker> tracker;
+    if (o.sequence) tracker.emplace(*detector);
+
+    std::vector<std::uint8_t> luma;  // reused between frames
+    int frames = 0, found = 0, unreadable = 0;
+    while (auto frame = source->next()) {
+        ++frames;
+        std::string why = frame->error;
+        GreyView view;
+        if (why.empty()) {
+            view = grey_view(frame->pixels, luma, why);
+            if (!why.empty()) why = "cannot decode " + frame->name + ": " + why;
+        }
+        if (!why.empty()) {
+            ++unreadable;
+            Json j;
+            j["frame"] = frame->index;
+            j["found"] = false;
+            j["error"] = why;
+            write_line(out, j);
+            continue;
+        }
+        const Eigen::Vector2d aim = o.aim.value_or(Eigen::Vector2d(view.width / 2.0, view.height / 2.0));
+        Json j;
+        if (tracker) {
+            j = tracked_json(frame->index, tracker->update(view, aim));
+        } else {
+            const Detection d = detector->detect(view, aim);
+            j = detection_json(frame->index, d, d.aim_field);
+        }
+        found += j["found"].get<bool>() ? 1 : 0;
+        write_line(out, j);
+    }
+    if (isatty(STDERR_FILENO))
+        std::fprintf(stderr, "umf-requester: %d frames, the field found in %d, %d unreadable\n", frames, found,
+                     unreadable);
+    return kOk;
+}
+
+}  // namespace umf::requester

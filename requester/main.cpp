@@ -1,0 +1,116 @@
+// umf-requester: the webcam client's command line. A small dispatcher: each
+// command lives in its own file with its own usage text.
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <new>
+#include <string>
+
+#include <opencv2/core.hpp>
+#include <opencv2/core/utils/logger.hpp>
+
+#include "cli.hpp"
+#include "field/field_io.hpp"
+#include "locate_command.hpp"
+
+namespace {
+
+using namespace umf::requester;
+
+const char* kUsageText = R"(umf-requester: find the marker field in camera frames and tell which field point is aimed at
+
+usage:
+  umf-requester locate --field F.json [--sequence] [--aim X,Y] IMAGE... | --video FILE
+  umf-requester help [COMMAND]
+  umf-requester COMMAND --help
+
+locate    finds the field in image files or the frames of a video and prints one JSON
+          line per frame: the field point under the image centre (or --aim), the
+          image -> field homography, and how sure the detector is.
+
+exit codes: 0 the command ran (frames without the field are reported, not failed);
+            2 wrong usage; 3 the field file or the video could not be read, or the
+            output could not be written.
+)";
+
+struct Command {
+    const char* name;
+    const char* usage;
+    int (*run)(int argc, char** argv);  // argv[2..] are the command's arguments
+};
+
+int locate(int argc, char** argv) { return run_locate(parse_locate_args(argc, argv, 2), stdout); }
+
+const Command kCommands[] = {
+    {"locate", kLocateUsage, locate},
+};
+
+const Command* find_command(const std::string& name) {
+    for (const auto& c : kCommands)
+        if (name == c.name) return &c;
+    return nullptr;
+}
+
+bool asks_for_help(int argc, char** argv) {
+    for (int i = 2; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--") == 0) return false;
+        if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fputs(kUsageText, stderr);
+        return kUsage;
+    }
+    // Our own messages say what went wrong; OpenCV's backend chatter
+    // ("[ WARN:0@...] global cap_gstreamer ...") only confuses.
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
+    const std::string cmd = argv[1];
+    try {
+        if (cmd == "help" || cmd == "--help" || cmd == "-h") {
+            if (argc > 3) throw UsageError("help takes at most one command");
+            if (argc == 3) {
+                const Command* c = find_command(argv[2]);
+                if (!c) throw UsageError("unknown command '" + std::string(argv[2]) + "'");
+                std::fputs(c->usage, stdout);
+            } else {
+                std::fputs(kUsageText, stdout);
+            }
+            return kOk;
+        }
+        if (cmd == "--version") {
+            std::puts("umf-requester " UMF_VERSION);
+            return kOk;
+        }
+        const Command* c = find_command(cmd);
+        if (!c) {
+            std::fprintf(stderr, "umf-requester: unknown command '%s'\n\n", cmd.c_str());
+            std::fputs(kUsageText, stderr);
+            return kUsage;
+        }
+        if (asks_for_help(argc, argv)) {
+            std::fputs(c->usage, stdout);
+            return kOk;
+        }
+        return c->run(argc, argv);
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "umf-requester: %s\n(umf-requester --help lists the commands and options)\n", e.what());
+        return kUsage;
+    } catch (const umf::FieldFileError& e) {
+        std::fprintf(stderr, "umf-requester: %s\n", e.what());
+        return kInputError;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "umf-requester: %s\n", e.what());
+        return kInputError;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "umf-requester: out of memory\n");
+        return kInputError;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "umf-requester: error: %s\n", e.what());
+        return kInputError;
+    }
+}

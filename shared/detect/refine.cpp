@@ -1,0 +1,179 @@
+#include "detect/refine.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <vector>
+
+namespace umf {
+
+namespace {
+
+// A module edge the field predicts: its midpoint in field coordinates, the
+// field direction across it (towards the brighter side when polarity > 0).
+struct ExpectedEdge {
+    Point2 mid;
+    Point2 across;
+    double polarity;  // +1: brighter on the +across side, -1: darker
+};
+
+double bilinear(const GreyView& im, double x, double y, long& visited) {
+    x -= 0.5;  // pixel centres are at +0.5
+    y -= 0.5;
+    const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+    if (x0 < 0 || y0 < 0 || x0 + 1 >= im.width || y0 + 1 >= im.height) return std::nan("");
+    const double fx = x - x0, fy = y - y0;
+    const std::uint8_t* r0 = im.row(y0) + x0;
+    const std::uint8_t* r1 = im.row(y0 + 1) + x0;
+    // Neighbouring samples of a profile one pixel apart share half their
+    // four pixels: two new pixels per sample.
+    visited += 2;
+    return (r0[0] * (1 - fx) + r0[1] * fx) * (1 - fy) + (r1[0] * (1 - fx) + r1[1] * fx) * fy;
+}
+
+// Searches one edge; the image point where it lies, or nothing.
+std::optional<Point2> find_edge(const GreyView& im, const Eigen::Matrix3d& h, const ExpectedEdge& e,
+                                const RefineOptions& o, long& visited) {
+    auto p = apply_homography(h, e.mid);
+    auto a = apply_homography(h, e.mid + 0.5 * e.across);
+    auto b = apply_homography(h, e.mid - 0.5 * e.across);
+    if (!p || !a || !b) return std::nullopt;
+    Point2 dir = *a - *b;  // one module across, in the image
+    const double module_px = dir.norm();
+    if (module_px < o.min_module_px) return std::nullopt;
+    dir /= module_px;
+    const int reach = std::max(2, static_cast<int>(std::ceil(o.search_modules * module_px)));
+    // The profile one pixel apart across the edge, and its derivative
+    // towards the expected brighter side.
+    double profile[2 * 64 + 3];
+    if (reach > 64) return std::nullopt;
+    for (int t = -reach - 1; t <= reach + 1; ++t) {
+        const Point2 q = *p + t * dir;
+        const double v = bilinear(im, q.x(), q.y(), visited);
+        if (!std::isfinite(v)) return std::nullopt;
+        profile[t + reach + 1] = v;
+    }
+    int best = 0;
+    double best_g = 0;
+    double g[2 * 64 + 1];
+    for (int t = -reach; t <= reach; ++t) {
+        g[t + reach] = e.polarity * (profile[t + reach + 2] - profile[t + reach]) / 2;
+        if (g[t + reach] > best_g) best_g = g[t + reach], best = t;
+    }
+    if (best_g < o.min_gradient || best == -reach || best == reach) return std::nullopt;
+    // Sub-pixel: the vertex of the parabola through the peak and its neighbours.
+    const double gm = g[best + reach - 1], g0 = g[best + reach], gp = g[best + reach + 1];
+    const double denom = gm - 2 * g0 + gp;
+    const double offset = denom < 0 ? std::clamp(0.5 * (gm - gp) / denom, -0.5, 0.5) : 0.0;
+    return *p + (best + offset) * dir;
+}
+
+// The field's edges between differing modules whose midpoints lie within
+// `radius` (modules, Chebyshev) of the seed and inside the field's visible box.
+std::vector<ExpectedEdge> edges_near(const Field& f, const std::vector<double>& brightness, const Point2& seed,
+                                     double radius, double u0, double v0, double u1, double v1) {
+    std::vector<ExpectedEdge> out;
+    const int c_lo = std::max(0, static_cast<int>(std::floor(std::max(u0, seed.x() - radius))));
+    const int c_hi = std::min(f.width - 1, static_cast<int>(std::ceil(std::min(u1, seed.x() + radius))));
+    const int r_lo = std::max(0, static_cast<int>(std::floor(std::max(v0, seed.y() - radius))));
+    const int r_hi = std::min(f.height - 1, static_cast<int>(std::ceil(std::min(v1, seed.y() + radius))));
+    for (int r = r_lo; r <= r_hi; ++r)
+        for (int c = c_lo; c <= c_hi; ++c) {
+            const double here = brightness[f.at(r, c)];
+            if (c > 0) {  // the edge on the module's left
+                const double d = here - brightness[f.at(r, c - 1)];
+                if (d != 0) out.push_back({Point2(c, r + 0.5), Point2(1, 0), d > 0 ? 1.0 : -1.0});
+            }
+            if (r > 0) {  // the edge above it
+                const double d = here - brightness[f.at(r - 1, c)];
+                if (d != 0) out.push_back({Point2(c + 0.5, r), Point2(0, 1), d > 0 ? 1.0 : -1.0});
+            }
+        }
+    return out;
+}
+
+}  // namespace
+
+std::vector<double> module_brightness(const Field& f) {
+    std::vector<double> out(static_cast<std::size_t>(f.colors));
+    for (int k = 0; k < f.colors; ++k) {
+        out[k] = k;
+        if (k < static_cast<int>(f.palette.size()) && f.palette[k].size() == 7 && f.palette[k][0] == '#') {
+            const long rgb = std::strtol(f.palette[k].c_str() + 1, nullptr, 16);
+            out[k] = 0.299 * ((rgb >> 16) & 255) + 0.587 * ((rgb >> 8) & 255) + 0.114 * (rgb & 255);
+        }
+    }
+    return out;
+}
+
+Refinement refine_homography(const GreyView& im, const Field& f, const Eigen::Matrix3d& field_to_image,
+                             const Point2& seed, const RefineOptions& o, long& visited) {
+    Refinement out;
+    out.field_to_image = field_to_image;
+    const std::vector<double> brightness = module_brightness(f);
+    // The field's box seen in the image, from the image's corners.
+    const Eigen::Matrix3d to_field = field_to_image.inverse();
+    double u0 = f.width, v0 = f.height, u1 = 0, v1 = 0;
+    for (const Point2& corner : {Point2(0, 0), Point2(im.width, 0), Point2(0, im.height), Point2(im.width, im.height)}) {
+        const Eigen::Vector3d q = to_field * Eigen::Vector3d(corner.x(), corner.y(), 1.0);
+        if (q.z() <= 0) {  // the horizon is in view: the whole field may be
+            u0 = v0 = 0;
+            u1 = f.width, v1 = f.height;
+            break;
+        }
+        u0 = std::min(u0, q.x() / q.z()), u1 = std::max(u1, q.x() / q.z());
+        v0 = std::min(v0, q.y() / q.z()), v1 = std::max(v1, q.y() / q.z());
+    }
+    const double span = std::max({u1 - u0, v1 - v0, 1.0});
+    Eigen::Matrix3d h = field_to_image;
+    // Rings of radius 4, 8, 16... modules, then once more over everything
+    // with the edges the whole view predicts.
+    bool last = false;
+    for (double radius = 4;; radius = std::min(radius * 2, span)) {
+        std::vector<ExpectedEdge> edges = edges_near(f, brightness, seed, radius, u0, v0, u1, v1);
+        // Spread the searched edges evenly when there are too many.
+        const std::size_t stride = std::max<std::size_t>(1, (edges.size() + o.max_edges - 1) / o.max_edges);
+        std::vector<Point2> from, to;
+        for (std::size_t i = 0; i < edges.size(); i += stride) {
+            ++out.edges_searched;
+            if (auto q = find_edge(im, h, edges[i], o, visited)) {
+                from.push_back(edges[i].mid);
+                to.push_back(*q);
+            }
+        }
+        out.edges_found += static_cast<int>(from.size());
+        if (static_cast<int>(from.size()) >= o.min_edges) {
+            // Least squares, then again without the edges it places too far.
+            auto fit = fit_homography(from, to);
+            for (int round = 0; fit && round < 2; ++round) {
+                const auto here = apply_homography(*fit, seed), next = apply_homography(*fit, seed + Point2(1, 0));
+                if (!here || !next) break;
+                const double tol = std::max(1.0, o.tolerance_modules * (*next - *here).norm());
+                std::vector<Point2> kf, kt;
+                double sq = 0;
+                for (std::size_t i = 0; i < from.size(); ++i) {
+                    auto q = apply_homography(*fit, from[i]);
+                    if (!q || (*q - to[i]).norm() > tol) continue;
+                    kf.push_back(from[i]);
+                    kt.push_back(to[i]);
+                    sq += (*q - to[i]).squaredNorm();
+                }
+                if (static_cast<int>(kf.size()) < o.min_edges) break;
+                out.edges_fitted = static_cast<int>(kf.size());
+                out.rms_px = std::sqrt(sq / kf.size());
+                fit = fit_homography(kf, kt);
+                if (fit) {
+                    h = *fit;
+                    out.refined = true;
+                }
+            }
+        }
+        if (last) break;
+        last = radius >= span;
+    }
+    out.field_to_image = h;
+    return out;
+}
+
+}  // namespace umf

@@ -1,0 +1,44 @@
+// Step 7 of detection: once the place is known, the field itself says where
+// every module edge must be and which side is brighter. Searching those edges
+// in the image and refitting the homography to them makes the aim point as
+// precise as the edges, and repairs a grid homography that was only right
+// near the windows that voted: the fit starts around them and grows outwards,
+// each round predicting the next ring of edges from the last fit.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "detect/homography.hpp"
+#include "detect/image.hpp"
+#include "field/field.hpp"
+
+namespace umf {
+
+struct RefineOptions {
+    double search_modules = 0.4;  // how far across its predicted place an edge is looked for
+    double min_gradient = 1.5;    // grey levels per pixel for an edge to count
+    double min_module_px = 2.5;   // smaller modules are not searched
+    int max_edges = 120;          // edges searched per round, spread over the region
+    int min_edges = 16;           // fewer found edges leave the homography as it was
+    double tolerance_modules = 0.2;  // an edge further than this from the fit is an outlier
+};
+
+struct Refinement {
+    bool refined = false;
+    Eigen::Matrix3d field_to_image = Eigen::Matrix3d::Identity();
+    int edges_searched = 0;
+    int edges_found = 0;
+    int edges_fitted = 0;  // inliers of the last round
+    double rms_px = 0;     // of the inliers of the last round
+};
+
+// Brightness of each module value as the image shows it: the luma of the
+// field's palette, or the value itself for the grey default.
+std::vector<double> module_brightness(const Field& field);
+
+// `field_to_image` is the homography from the vote; `seed` the field point
+// (u, v) where it is known to be right.
+Refinement refine_homography(const GreyView& image, const Field& field, const Eigen::Matrix3d& field_to_image,
+                             const Point2& seed, const RefineOptions& options, long& pixels_visited);
+
+}  // namespace umf

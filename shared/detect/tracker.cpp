@@ -1,0 +1,82 @@
+#include "detect/tracker.hpp"
+
+#include <Eigen/LU>
+
+namespace umf {
+
+const char* to_string(TrackState state) {
+    switch (state) {
+        case TrackState::searching: return "searching";
+        case TrackState::locked: return "locked";
+        case TrackState::lost: return "lost";
+    }
+    return "?";
+}
+
+Tracker::Tracker(const Detector& detector, TrackerOptions options) : detector_(&detector), options_(options) {}
+
+void Tracker::reset() {
+    has_prior_ = false;
+    frames_since_lock_ = 0;
+    locks_in_a_row_ = 0;
+}
+
+TrackResult Tracker::update(const GreyView& image) {
+    return update(image, Eigen::Vector2d(image.width / 2.0, image.height / 2.0));
+}
+
+TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
+    TrackResult out;
+    const bool use_prior = has_prior_ && frames_since_lock_ <= options_.prior_frames;
+    DetectionPrior prior;
+    if (use_prior) {
+        prior.image_to_field = last_image_to_field_;
+        // The place may drift further the longer it has not been seen.
+        prior.radius_modules = options_.search_radius_modules + frames_since_lock_ / 2;
+    }
+    if (has_prior_ && frames_since_lock_ == 0) {
+        // The image moved as much as between the last two frames: A_t =
+        // A_{t-1} A_{t-2}^-1 A_{t-1} for image-to-field maps A.
+        const Eigen::Matrix3d predicted = locks_in_a_row_ >= 2
+                                              ? Eigen::Matrix3d(last_image_to_field_ * before_last_image_to_field_.inverse() *
+                                                                last_image_to_field_)
+                                              : last_image_to_field_;
+        out.detection = detector_->follow(image, aim, predicted);
+    }
+    if (!out.detection.found) {
+        const double followed_ms = out.detection.times.total_ms;
+        out.detection = detector_->detect(image, aim, use_prior ? &prior : nullptr);
+        out.detection.times.total_ms += followed_ms;
+    }
+    const Detection& d = out.detection;
+    if (!d.found) {
+        ++frames_since_lock_;
+        locks_in_a_row_ = 0;
+        out.frames_since_lock = frames_since_lock_;
+        out.state = has_prior_ && frames_since_lock_ <= options_.prior_frames ? TrackState::lost : TrackState::searching;
+        return out;
+    }
+    out.used_prior = d.from_prior;
+    out.state = TrackState::locked;
+    // Smooth only a resting aim, and only across consecutive frames: a moving
+    // aim or a gap would make the smoothed point one nobody pointed at.
+    const bool continuous = has_prior_ && frames_since_lock_ == 0;
+    const double moved = (d.aim_field - last_raw_aim_).norm();
+    if (continuous && moved < options_.still_modules) {
+        smoothed_ = options_.smoothing * d.aim_field + (1 - options_.smoothing) * smoothed_;
+        const Eigen::Vector2d lag = smoothed_ - d.aim_field;
+        if (lag.norm() > options_.max_lag_modules) smoothed_ = d.aim_field + lag.normalized() * options_.max_lag_modules;
+    } else {
+        smoothed_ = d.aim_field;
+    }
+    out.aim_field = smoothed_;
+    last_raw_aim_ = d.aim_field;
+    before_last_image_to_field_ = last_image_to_field_;
+    last_image_to_field_ = d.image_to_field;
+    ++locks_in_a_row_;
+    has_prior_ = true;
+    frames_since_lock_ = 0;
+    return out;
+}
+
+}  // namespace umf

@@ -1,0 +1,70 @@
+// Detection over a video: the last verified places predict where the field
+// is (at constant image velocity), so the next frame only has to confirm it
+// there (Detector::follow: no search, the field's own edges refit, a handful
+// of hypotheses instead of every window of the field in four turns), which
+// needs far less evidence and so survives lower opacity, blur and the faint
+// half of a pulse. When that fails, full detection, with the prior. The aim point is smoothed while it holds still and
+// follows at once when it moves. A frame that cannot be verified reports no
+// place ("lost"), never an extrapolated one: a wrong document is worse than
+// a moment without one.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "detect/detector.hpp"
+
+namespace umf {
+
+struct TrackerOptions {
+    // Frames after the last lock during which the prior is still used.
+    int prior_frames = 12;
+    // How far (in modules, at the aim point) the field may have moved
+    // between the prior's frame and this one.
+    int search_radius_modules = 3;
+    // Smoothing of the reported aim point: the new point's weight while the
+    // aim moves less than `still_modules` per frame; above that the aim
+    // follows unsmoothed.
+    double smoothing = 0.4;
+    double still_modules = 0.25;
+    // The smoothed point never trails the measured one by more than this.
+    double max_lag_modules = 0.05;
+};
+
+enum class TrackState {
+    searching,  // no lock yet (or not for a long time): full detection
+    locked,     // this frame verified a place
+    lost,       // there was a lock recently, this frame verified none
+};
+
+const char* to_string(TrackState state);
+
+struct TrackResult {
+    TrackState state = TrackState::searching;
+    Detection detection;                             // this frame's own result
+    Eigen::Vector2d aim_field = Eigen::Vector2d::Zero();  // smoothed, valid when locked
+    bool used_prior = false;                         // the lock came from the prediction
+    int frames_since_lock = 0;                       // 0 when locked
+};
+
+class Tracker {
+public:
+    // The detector must outlive the tracker.
+    explicit Tracker(const Detector& detector, TrackerOptions options = {});
+
+    TrackResult update(const GreyView& image);
+    TrackResult update(const GreyView& image, const Eigen::Vector2d& aim);
+    void reset();
+
+private:
+    const Detector* detector_;
+    TrackerOptions options_;
+    bool has_prior_ = false;
+    Eigen::Matrix3d last_image_to_field_ = Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d before_last_image_to_field_ = Eigen::Matrix3d::Identity();
+    int locks_in_a_row_ = 0;
+    Eigen::Vector2d last_raw_aim_ = Eigen::Vector2d::Zero();
+    Eigen::Vector2d smoothed_ = Eigen::Vector2d::Zero();
+    int frames_since_lock_ = 0;
+};
+
+}  // namespace umf

@@ -1,0 +1,443 @@
+#include "bench/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+namespace umf::bench {
+namespace {
+
+double pct(int part, int whole) { return whole > 0 ? 100.0 * part / whole : kNaN; }
+
+// Fixed-point text for tables; a dash where there is no number (nothing
+// found, not measured) rather than "nan".
+std::string num(double v, int decimals) {
+    if (!std::isfinite(v)) return "–";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+    return buf;
+}
+
+nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json to_json(const Summary& s) {
+    nlohmann::json j;
+    j["frames"] = s.frames;
+    j["skipped"] = s.skipped;
+    j["evaluated"] = s.evaluated;
+    j["found"] = s.found;
+    j["success"] = s.success;
+    j["false_location"] = s.false_location;
+    j["success_pct"] = json_number(s.success_pct);
+    j["false_location_pct"] = json_number(s.false_pct);
+    j["aim_error_modules"] = {{"median", json_number(s.err_median)}, {"p95", json_number(s.err_p95)}};
+    j["ms_per_frame"] = {{"median", json_number(s.ms_median)}, {"mean", json_number(s.ms_mean)}};
+    j["pixels_visited_pct_median"] = json_number(s.pixels_median_pct);
+    if (std::isfinite(s.stage_median_ms[0])) {
+        nlohmann::json stages;
+        for (std::size_t k = 0; k < kStageNames.size(); ++k) stages[kStageNames[k]] = json_number(s.stage_median_ms[k]);
+        j["stage_ms_median"] = stages;
+    }
+    j["reasons"] = s.reasons;
+    return j;
+}
+
+nlohmann::json to_json(const PulseSummary& p) {
+    std::map<int, int> histogram;
+    for (int g : p.gaps) ++histogram[g];
+    nlohmann::json hist = nlohmann::json::object();
+    for (const auto& [gap, count] : histogram) hist[std::to_string(gap)] = count;
+    return {{"method", p.method},
+            {"resolution", p.resolution},
+            {"sequences", p.sequences},
+            {"frames", p.frames},
+            {"skipped", p.skipped},
+            {"successes", p.successes},
+            {"success_pct", json_number(p.success_pct)},
+            {"gaps", p.gaps.size()},
+            {"gaps_le3_pct", json_number(p.gaps_le3_pct)},
+            {"gaps_le5_pct", json_number(p.gaps_le5_pct)},
+            {"gap_median", json_number(p.gap_median)},
+            {"gap_max", p.gap_max},
+            {"longest_miss", p.longest_miss},
+            {"gap_histogram", hist},
+            {"success_pct_by_screen", p.success_pct_by_screen}};
+}
+
+// Opacity of table (a): 0.3, or the nearest one that was run.
+double headline_opacity(const Report& r) {
+    double best = kNaN;
+    for (const auto& c : r.configs)
+        if (!std::isfinite(best) || std::abs(c.opacity - 0.3) < std::abs(best - 0.3)) best = c.opacity;
+    return best;
+}
+
+template <class T>
+std::vector<T> unique_in_order(const std::vector<ConfigResult>& configs, T ConfigResult::*member) {
+    std::vector<T> out;
+    for (const auto& c : configs)
+        if (std::find(out.begin(), out.end(), c.*member) == out.end()) out.push_back(c.*member);
+    return out;
+}
+
+const ConfigResult* find_config(const Report& r, const std::string& category, double opacity,
+                                const std::string& resolution) {
+    for (const auto& c : r.configs)
+        if (c.category == category && std::abs(c.opacity - opacity) < 1e-9 && c.resolution == resolution) return &c;
+    return nullptr;
+}
+
+const Summary* method(const ConfigResult* c, const std::string& name) {
+    if (!c) return nullptr;
+    auto it = c->methods.find(name);
+    return it == c->methods.end() ? nullptr : &it->second;
+}
+
+bool has_method(const Report& r, const std::string& name) {
+    return std::any_of(r.configs.begin(), r.configs.end(), [&](const ConfigResult& c) { return c.methods.count(name); });
+}
+
+// Reason counts per category, over every opacity and resolution.
+std::map<std::string, std::pair<int, std::map<std::string, int>>> reasons_by_category(const Report& r,
+                                                                                         const std::string& name) {
+    std::map<std::string, std::pair<int, std::map<std::string, int>>> out;
+    for (const auto& c : r.configs)
+        if (const Summary* s = method(&c, name)) {
+            auto& [evaluated, reasons] = out[c.category];
+            evaluated += s->evaluated;
+            for (const auto& [why, n] : s->reasons) reasons[why] += n;
+        }
+    return out;
+}
+
+void reasons_table(std::ostringstream& md, const Report& r, const std::string& name,
+                   const std::vector<std::string>& categories) {
+    const auto by_category = reasons_by_category(r, name);
+    std::map<std::string, int> totals;
+    for (const auto& [cat, entry] : by_category)
+        for (const auto& [why, n] : entry.second) totals[why] += n;
+    std::vector<std::string> columns;
+    for (const auto& [why, n] : totals) columns.push_back(why);
+    std::stable_sort(columns.begin(), columns.end(), [&](const auto& a, const auto& b) { return totals[a] > totals[b]; });
+    if (columns.empty()) {
+        md << "No failures.\n\n";
+        return;
+    }
+    md << "| category | evaluated |";
+    for (const auto& c : columns) md << " " << c << " |";
+    md << "\n|---|---|";
+    for (std::size_t i = 0; i < columns.size(); ++i) md << "---|";
+    md << "\n";
+    for (const auto& cat : categories) {
+        auto it = by_category.find(cat);
+        if (it == by_category.end()) continue;
+        const auto& [evaluated, reasons] = it->second;
+        md << "| " << cat << " | " << evaluated << " |";
+        for (const auto& c : columns) {
+            auto n = reasons.find(c);
+            const int count = n == reasons.end() ? 0 : n->second;
+            md << " " << count << " (" << num(pct(count, evaluated), 0) << " %) |";
+        }
+        md << "\n";
+    }
+    md << "\n";
+}
+
+}  // namespace
+
+double percentile(std::vector<double> values, double p) {
+    values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
+                 values.end());
+    if (values.empty()) return kNaN;
+    std::sort(values.begin(), values.end());
+    const double at = std::clamp(p, 0.0, 100.0) / 100 * static_cast<double>(values.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(at));
+    const std::size_t hi = std::min(lo + 1, values.size() - 1);
+    return values[lo] + (at - static_cast<double>(lo)) * (values[hi] - values[lo]);
+}
+
+Summary summarise(const std::vector<Outcome>& outcomes) {
+    Summary s;
+    s.frames = static_cast<int>(outcomes.size());
+    std::vector<double> errors, ms, pixels;
+    std::array<std::vector<double>, 5> stages;
+    for (const auto& o : outcomes) {
+        if (o.skipped) {
+            ++s.skipped;
+            continue;
+        }
+        ++s.evaluated;
+        ms.push_back(o.ms);
+        pixels.push_back(o.pixels_pct);
+        for (std::size_t k = 0; k < stages.size(); ++k) stages[k].push_back(o.stage_ms[k]);
+        if (o.found) {
+            ++s.found;
+            errors.push_back(o.error_modules);
+        }
+        if (o.success()) ++s.success;
+        if (o.false_location()) {
+            ++s.false_location;
+            ++s.reasons[kWrongPlace];
+        }
+        if (!o.found) ++s.reasons[o.failure.empty() ? "(no reason given)" : o.failure];
+    }
+    s.success_pct = pct(s.success, s.evaluated);
+    s.false_pct = pct(s.false_location, s.evaluated);
+    s.err_median = percentile(errors, 50);
+    s.err_p95 = percentile(errors, 95);
+    s.ms_median = percentile(ms, 50);
+    s.ms_mean = ms.empty() ? kNaN : std::accumulate(ms.begin(), ms.end(), 0.0) / static_cast<double>(ms.size());
+    s.pixels_median_pct = percentile(pixels, 50);
+    for (std::size_t k = 0; k < stages.size(); ++k) s.stage_median_ms[k] = percentile(stages[k], 50);
+    return s;
+}
+
+PulseSummary summarise_pulse(const std::string& method, const std::string& resolution,
+                             const std::vector<std::string>& screens, const std::vector<std::vector<bool>>& success,
+                             int skipped) {
+    PulseSummary p;
+    p.method = method;
+    p.resolution = resolution;
+    p.sequences = static_cast<int>(success.size());
+    p.skipped = skipped;
+    for (std::size_t s = 0; s < success.size(); ++s) {
+        const auto& seq = success[s];
+        int last = -1, hits = 0;
+        for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
+            if (!seq[static_cast<std::size_t>(i)]) continue;
+            ++hits;
+            if (last >= 0) p.gaps.push_back(i - last);
+            p.longest_miss = std::max(p.longest_miss, i - last - 1);
+            last = i;
+        }
+        p.longest_miss = std::max(p.longest_miss, static_cast<int>(seq.size()) - last - 1);
+        p.frames += static_cast<int>(seq.size());
+        p.successes += hits;
+        if (s < screens.size()) p.success_pct_by_screen[screens[s]] = pct(hits, static_cast<int>(seq.size()));
+    }
+    p.success_pct = pct(p.successes, p.frames);
+    const auto share = [&](int limit) {
+        const auto n = std::count_if(p.gaps.begin(), p.gaps.end(), [&](int g) { return g <= limit; });
+        return pct(static_cast<int>(n), static_cast<int>(p.gaps.size()));
+    };
+    p.gaps_le3_pct = share(3);
+    p.gaps_le5_pct = share(5);
+    p.gap_median = percentile(std::vector<double>(p.gaps.begin(), p.gaps.end()), 50);
+    p.gap_max = p.gaps.empty() ? 0 : *std::max_element(p.gaps.begin(), p.gaps.end());
+    return p;
+}
+
+nlohmann::json to_json(const Report& r) {
+    nlohmann::json j;
+    j["command"] = r.command;
+    j["started"] = r.started;
+    j["wall_time_s"] = r.wall_s;
+    j["settings"] = r.settings;
+    j["success_radius_modules"] = kSuccessRadiusModules;
+    nlohmann::json configs = nlohmann::json::array();
+    for (const auto& c : r.configs) {
+        nlohmann::json e = {{"category", c.category}, {"opacity", c.opacity}, {"resolution", c.resolution}};
+        e["module_px_in_image"] = {{"min", json_number(c.module_px[0])},
+                                   {"median", json_number(c.module_px[1])},
+                                   {"max", json_number(c.module_px[2])}};
+        // Both methods see the same frames, so any method's counts do.
+        if (!c.methods.empty()) {
+            e["frames"] = c.methods.begin()->second.frames;
+            e["skipped"] = c.methods.begin()->second.skipped;
+        }
+        for (const auto& [name, s] : c.methods) e["methods"][name] = to_json(s);
+        configs.push_back(e);
+    }
+    j["configurations"] = configs;
+    nlohmann::json reasons = nlohmann::json::object();
+    for (const std::string name : {"umf", "aruco"})
+        for (const auto& [cat, entry] : reasons_by_category(r, name))
+            reasons[cat][name] = {{"evaluated", entry.first}, {"reasons", entry.second}};
+    j["failure_reasons_by_category"] = reasons;
+    nlohmann::json pulsing = nlohmann::json::array();
+    for (const auto& p : r.pulsing) pulsing.push_back(to_json(p));
+    j["pulsing"] = pulsing;
+    nlohmann::json timing = nlohmann::json::object();
+    for (const auto& [name, by_res] : r.all_ms)
+        for (const auto& [res, ms] : by_res)
+            timing[name][res] = {{"frames", ms.size()},
+                                 {"median", json_number(percentile(ms, 50))},
+                                 {"mean", json_number(ms.empty() ? kNaN
+                                                                 : std::accumulate(ms.begin(), ms.end(), 0.0) /
+                                                                       static_cast<double>(ms.size()))},
+                                 {"p95", json_number(percentile(ms, 95))}};
+    j["ms_per_frame_by_resolution"] = timing;
+    return j;
+}
+
+std::string to_markdown(const Report& r) {
+    std::ostringstream md;
+    const auto categories = unique_in_order(r.configs, &ConfigResult::category);
+    const auto resolutions = unique_in_order(r.configs, &ConfigResult::resolution);
+    auto opacities = unique_in_order(r.configs, &ConfigResult::opacity);
+    std::sort(opacities.begin(), opacities.end());
+    const bool aruco = has_method(r, "aruco");
+    const double op = headline_opacity(r);
+
+    md << "# Detector benchmark: umf against ArUco on simulated phone photos\n\n";
+    md << "Command: `" << r.command << "`, started " << r.started << ", wall time " << num(r.wall_s / 60, 1)
+       << " min. Written by `tests/bench/umf_benchmark.cpp`; every number below is also in `detector.json`.";
+    if (r.settings.contains("load_average_at_start") && r.settings.contains("load_average_at_end"))
+        md << " Load average (1, 5, 15 min) at the start " << r.settings["load_average_at_start"].get<std::string>()
+           << ", at the end " << r.settings["load_average_at_end"].get<std::string>()
+           << " on " << r.settings.value("hardware_threads", 0) << " hardware threads: other work on the machine "
+           << "inflates the times.";
+    md << "\n\n";
+    md << "Setup: a 1920 x 1080 screen, 527 mm wide, showing one of five contents (document, code_dark, web_page, "
+          "photo, blank; frame i shows kind i mod 5). umf: the field `b4-64x36` (30 px modules, covering the whole "
+          "screen) blended in at the given opacity. ArUco: an 8 x 4 board of DICT_4X4_250 markers (180 px = 6 cells "
+          "of 30 px, 60 px gaps, white background over the whole screen) blended in the same way; located by "
+          "`cv::aruco::detectMarkers` (default parameters) and a homography from the markers' corners. Both methods "
+          "see the very same poses, contents, degradations and occluders. A phone camera (65 degree horizontal field "
+          "of view) at 200..600 mm films at 25 fps; every frame has defocus (sigma 0.5..1.5 px), noise (sigma 2..3), "
+          "JPEG 80, and some frames motion blur (1..4 px, 30 %), RGB subpixel stripes (moire, 15 %) or a lamp's "
+          "glare (10 %). occlusion: general motion plus a hand or mug over 15..35 % of the frame (never the centre); "
+          "low_light: general motion at exposure 0.35, gamma 1.2, noise sigma 6.\n\n";
+    md << "Success: located within " << num(kSuccessRadiusModules, 0)
+       << " module (30 screen px) of the true screen point under the image centre; false: located farther away. "
+          "Percentages are of the evaluated frames (frames whose centre falls off the screen are skipped for both "
+          "methods; the skipped count is in the JSON). Errors are in modules over the located frames; ms per frame "
+          "is the median of one detector call on one thread (OpenCV limited to one thread); px % is the median "
+          "share of the image's pixels the umf detector read; module px is the range of image pixels per module at "
+          "the image centre.\n\n";
+
+    md << "## (a) Per category at opacity " << num(op, 2) << "\n\n";
+    for (const auto& res : resolutions) {
+        md << "### " << res << "\n\n";
+        md << "| category | frames (skipped) | module px | umf ok % | umf false % | umf err med | umf err p95 | umf ms | umf px % |";
+        if (aruco) md << " ArUco ok % | ArUco false % | ArUco err med | ArUco err p95 | ArUco ms |";
+        md << "\n|---|---|---|---|---|---|---|---|---|" << (aruco ? "---|---|---|---|---|" : "") << "\n";
+        for (const auto& cat : categories) {
+            const ConfigResult* c = find_config(r, cat, op, res);
+            const Summary* u = method(c, "umf");
+            if (!u) continue;
+            md << "| " << cat << " | " << u->frames << " (" << u->skipped << ") | " << num(c->module_px[0], 0) << "–"
+               << num(c->module_px[2], 0) << " | " << num(u->success_pct, 1) << " | "
+               << num(u->false_pct, 1) << " | " << num(u->err_median, 2) << " | " << num(u->err_p95, 2) << " | "
+               << num(u->ms_median, 1) << " | " << num(u->pixels_median_pct, 1) << " |";
+            if (aruco) {
+                if (const Summary* a = method(c, "aruco"))
+                    md << " " << num(a->success_pct, 1) << " | " << num(a->false_pct, 1) << " | "
+                       << num(a->err_median, 2) << " | " << num(a->err_p95, 2) << " | " << num(a->ms_median, 1) << " |";
+                else
+                    md << " – | – | – | – | – |";
+            }
+            md << "\n";
+        }
+        md << "\n";
+    }
+
+    const std::string sweep = std::find(categories.begin(), categories.end(), "general") != categories.end()
+                                  ? "general"
+                                  : (categories.empty() ? "" : categories.front());
+    md << "## (b) Success % against opacity, " << sweep << " category\n\n| opacity |";
+    for (const auto& res : resolutions) md << " umf " << res << " |" << (aruco ? " ArUco " + res + " |" : "");
+    md << "\n|---|";
+    for (std::size_t i = 0; i < resolutions.size(); ++i) md << (aruco ? "---|---|" : "---|");
+    md << "\n";
+    for (double o : opacities) {
+        md << "| " << num(o, 2) << " |";
+        for (const auto& res : resolutions) {
+            const ConfigResult* c = find_config(r, sweep, o, res);
+            const Summary* u = method(c, "umf");
+            md << " " << (u ? num(u->success_pct, 1) : "–") << " |";
+            if (aruco) {
+                const Summary* a = method(c, "aruco");
+                md << " " << (a ? num(a->success_pct, 1) : "–") << " |";
+            }
+        }
+        md << "\n";
+    }
+    md << "\nFalse locations in the same runs (%):\n\n| opacity |";
+    for (const auto& res : resolutions) md << " umf " << res << " |" << (aruco ? " ArUco " + res + " |" : "");
+    md << "\n|---|";
+    for (std::size_t i = 0; i < resolutions.size(); ++i) md << (aruco ? "---|---|" : "---|");
+    md << "\n";
+    for (double o : opacities) {
+        md << "| " << num(o, 2) << " |";
+        for (const auto& res : resolutions) {
+            const ConfigResult* c = find_config(r, sweep, o, res);
+            const Summary* u = method(c, "umf");
+            md << " " << (u ? num(u->false_pct, 1) : "–") << " |";
+            if (aruco) {
+                const Summary* a = method(c, "aruco");
+                md << " " << (a ? num(a->false_pct, 1) : "–") << " |";
+            }
+        }
+        md << "\n";
+    }
+    md << "\n";
+
+    md << "## (c) Pulsing opacity: gaps between successful locations\n\n";
+    if (r.pulsing.empty()) {
+        md << "Not run.\n\n";
+    } else {
+        md << "25 fps, opacity 0.1..0.4 with a 1.5 s period, pitch swinging over about -20..+60 degrees, distance "
+              "100..400 mm, aim wandering around the screen centre; one video per screen content. A gap is the number "
+              "of frames from one success to the next (1 = consecutive frames); the longest miss also counts the "
+              "frames before the first and after the last success of a video.\n\n";
+        md << "| method | resolution | frames | success % | gaps | gaps <= 3 | gaps <= 5 | gap median | gap max | "
+              "longest miss |";
+        md << " document | code_dark | web_page | photo | blank |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        for (const auto& p : r.pulsing) {
+            md << "| " << p.method << " | " << p.resolution << " | " << p.frames << " | " << num(p.success_pct, 1)
+               << " | " << p.gaps.size() << " | " << num(p.gaps_le3_pct, 1) << " % | " << num(p.gaps_le5_pct, 1)
+               << " % | " << num(p.gap_median, 0) << " | " << p.gap_max << " | " << p.longest_miss << " |";
+            for (const char* kind : {"document", "code_dark", "web_page", "photo", "blank"}) {
+                auto it = p.success_pct_by_screen.find(kind);
+                md << " " << (it == p.success_pct_by_screen.end() ? "–" : num(it->second, 0)) << " |";
+            }
+            md << "\n";
+        }
+        md << "\nThe last five columns: success % per screen content.\n\n";
+    }
+
+    const std::string stage_res = std::find(resolutions.begin(), resolutions.end(), "640x480") != resolutions.end()
+                                      ? "640x480"
+                                      : (resolutions.empty() ? "" : resolutions.front());
+    md << "## (d) umf stage times, " << stage_res << ", opacity " << num(op, 2)
+       << " (median ms per frame over the evaluated frames)\n\n";
+    md << "| category | edgels | vanishing | grid | classify | vote | total |\n|---|---|---|---|---|---|---|\n";
+    for (const auto& cat : categories)
+        if (const Summary* u = method(find_config(r, cat, op, stage_res), "umf")) {
+            md << "| " << cat << " |";
+            for (double v : u->stage_median_ms) md << " " << num(v, 2) << " |";
+            md << " " << num(u->ms_median, 2) << " |\n";
+        }
+    md << "\nMedians of each stage separately, so they need not add up to the total. A stage that did not run (the "
+          "search ended before it) counts as 0 ms.\n\n";
+
+    md << "## Time per frame over all categories and opacities\n\n| method | resolution | frames | median ms | "
+          "mean ms | p95 ms |\n|---|---|---|---|---|---|\n";
+    for (const auto& [name, by_res] : r.all_ms)
+        for (const auto& res : resolutions) {
+            auto it = by_res.find(res);
+            if (it == by_res.end()) continue;
+            const auto& ms = it->second;
+            const double mean =
+                ms.empty() ? kNaN : std::accumulate(ms.begin(), ms.end(), 0.0) / static_cast<double>(ms.size());
+            md << "| " << name << " | " << res << " | " << ms.size() << " | " << num(percentile(ms, 50), 1) << " | "
+               << num(mean, 1) << " | " << num(percentile(ms, 95), 1) << " |\n";
+        }
+    md << "\n";
+
+    md << "## (e) Why frames were not successes, per category (all opacities and resolutions)\n\n";
+    md << "umf: `Detection::failure` of the frames not found, and \"" << kWrongPlace
+       << "\"; share of the evaluated frames.\n\n";
+    reasons_table(md, r, "umf", categories);
+    if (aruco) {
+        md << "ArUco:\n\n";
+        reasons_table(md, r, "aruco", categories);
+    }
+    return md.str();
+}
+
+}  // namespace umf::bench

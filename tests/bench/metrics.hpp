@@ -1,0 +1,106 @@
+// What the detector benchmark counts and how it reports it: per-frame
+// outcomes of a method, their aggregate over one configuration (category x
+// opacity x resolution), the gaps between successes in the pulsing video,
+// and the JSON and Markdown reports. No OpenCV here: numbers in, text out.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace umf::bench {
+
+inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A located point counts as right within one module (30 screen px) of the
+// truth: the aim then lies on the right module or its neighbour.
+inline constexpr double kSuccessRadiusModules = 1.0;
+inline constexpr const char* kWrongPlace = "wrong place (found, error > 1 module)";
+
+inline constexpr std::array<const char*, 5> kStageNames = {"edgels", "vanishing", "grid", "classify", "vote"};
+
+// One method on one frame.
+struct Outcome {
+    bool skipped = false;  // the image centre is off the screen: there is no right answer
+    bool found = false;
+    double error_modules = kNaN;  // distance of the located aim point from the truth, when found
+    double ms = 0;                // the method's call on one thread
+    double pixels_pct = kNaN;     // share of the image's pixels read; NaN when the method does not say
+    std::string failure;          // why not found; empty when found
+    std::array<double, 5> stage_ms{kNaN, kNaN, kNaN, kNaN, kNaN};  // see kStageNames; umf only
+
+    bool success() const { return found && error_modules <= kSuccessRadiusModules; }
+    bool false_location() const { return found && !(error_modules <= kSuccessRadiusModules); }
+};
+
+// One method over one configuration. Percentages are of the evaluated
+// (not skipped) frames; errors are over the found frames; times over the
+// evaluated frames.
+struct Summary {
+    int frames = 0, skipped = 0, evaluated = 0, found = 0, success = 0, false_location = 0;
+    double success_pct = kNaN, false_pct = kNaN;
+    double err_median = kNaN, err_p95 = kNaN;
+    double ms_median = kNaN, ms_mean = kNaN;
+    double pixels_median_pct = kNaN;
+    std::array<double, 5> stage_median_ms{kNaN, kNaN, kNaN, kNaN, kNaN};
+    // Why frames were not successes: the method's failure strings, and
+    // kWrongPlace for false locations.
+    std::map<std::string, int> reasons;
+};
+
+Summary summarise(const std::vector<Outcome>& outcomes);
+
+// Linear interpolation between order statistics; NaN for no values.
+double percentile(std::vector<double> values, double p);
+
+struct ConfigResult {
+    std::string category;
+    double opacity = 0;
+    std::string resolution;                  // "640x480"
+    std::map<std::string, Summary> methods;  // "umf", "aruco"
+    // Image px per 30 px module at the image centre over the evaluated
+    // frames: min, median, max (how near the camera was).
+    std::array<double, 3> module_px{kNaN, kNaN, kNaN};
+};
+
+// The pulsing video: which frames each method located correctly, one
+// sequence per screen kind.
+struct PulseSummary {
+    std::string method, resolution;
+    int sequences = 0, frames = 0, skipped = 0, successes = 0;
+    double success_pct = kNaN;
+    std::vector<int> gaps;  // frames from one success to the next, within each sequence
+    double gaps_le3_pct = kNaN, gaps_le5_pct = kNaN, gap_median = kNaN;
+    int gap_max = 0;
+    // The longest run of frames without a success, counting the runs before
+    // the first and after the last one, which gaps leave out.
+    int longest_miss = 0;
+    std::map<std::string, double> success_pct_by_screen;
+};
+
+// `success[s][i]`: sequence s, frame i was located within a module. Skipped
+// frames (centre off the screen) count as misses for the gaps: the user
+// sees no position there either.
+PulseSummary summarise_pulse(const std::string& method, const std::string& resolution,
+                             const std::vector<std::string>& screens, const std::vector<std::vector<bool>>& success,
+                             int skipped);
+
+struct Report {
+    std::string command;
+    std::string started;  // local date and time
+    double wall_s = 0;
+    nlohmann::json settings;
+    std::vector<ConfigResult> configs;
+    std::vector<PulseSummary> pulsing;
+    // Every evaluated frame of a method at one resolution, over all
+    // categories and opacities: method -> resolution -> ms per frame.
+    std::map<std::string, std::map<std::string, std::vector<double>>> all_ms;
+};
+
+nlohmann::json to_json(const Report& report);
+std::string to_markdown(const Report& report);
+
+}  // namespace umf::bench

@@ -1,0 +1,528 @@
+// The detector benchmark of record: the umf detector against OpenCV's ArUco
+// markers on simulated phone frames of a screen, per test category, field
+// opacity and camera resolution, plus a pulsing-opacity video. Writes
+// detector.json, detector.md and two PNG charts (see --help).
+//
+// Frames are made on all cores; the detectors are then timed one after the
+// other on one thread each, so that frame making never competes with a
+// timed call.
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/aruco_baseline.hpp"
+#include "bench/metrics.hpp"
+#include "bench/plot.hpp"
+#include "bench/scenario.hpp"
+#include "detect/detector.hpp"
+#include "field/field_io.hpp"
+#include "sim/field_mix.hpp"
+#include "sim/screen_content.hpp"
+
+namespace {
+
+using namespace umf;
+using namespace umf::bench;
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kFieldFile = "b4-64x36.json";
+constexpr std::uint64_t kScreenSeed = 7;
+
+const char* const kUsage = R"(umf_benchmark: the umf detector against ArUco on simulated phone frames.
+
+Usage: umf_benchmark [options]
+  --frames N             frames per category x opacity x resolution (default 40)
+  --quick                10 frames, 640x480 only, a short pulsing run (explicit options win)
+  --out DIR              where detector.json, detector.md and the PNGs go (default docs/benchmarks)
+  --categories a,b       of near_far, horizontal, rotation, perspective, general, occlusion, low_light
+                         (default all)
+  --resolutions WxH,...  camera resolutions (default 640x480,1280x720,1920x1080)
+  --opacities a,b        field and board opacities (default 0.1,0.15,0.2,0.3,0.5)
+  --no-aruco             the umf detector only
+  --pulse-frames N       frames per screen content in the pulsing video (default 150, quick 50; 0 = skip)
+  --seed N               scenario seed (default 1)
+  --threads N            threads making frames (default: all cores)
+  --dump DIR             also save every frame as PNG there (for looking at them; use with few frames)
+  --help                 this text
+
+Progress goes to stderr. The detectors are timed on one thread each.
+)";
+
+struct Options {
+    int frames = 40;
+    std::string out = "docs/benchmarks";
+    std::vector<Category> categories{kAllCategories.begin(), kAllCategories.end()};
+    std::vector<cv::Size> resolutions{{640, 480}, {1280, 720}, {1920, 1080}};
+    std::vector<double> opacities{0.1, 0.15, 0.2, 0.3, 0.5};
+    bool aruco = true;
+    int pulse_frames = 150;
+    std::uint64_t seed = 1;
+    int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    std::string dump;
+};
+
+std::vector<std::string> split(const std::string& list) {
+    std::vector<std::string> out;
+    std::stringstream in(list);
+    for (std::string item; std::getline(in, item, ',');)
+        if (!item.empty()) out.push_back(item);
+    return out;
+}
+
+std::string resolution_name(cv::Size s) { return std::to_string(s.width) + "x" + std::to_string(s.height); }
+
+int positive_int(const std::string& text, const std::string& what, int min = 1) {
+    std::size_t used = 0;
+    int v = 0;
+    try {
+        v = std::stoi(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != text.size() || v < min) throw std::invalid_argument(what + ": not a number >= " + std::to_string(min));
+    return v;
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    bool quick = false, frames_given = false, res_given = false, pulse_given = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--help" || a == "-h") {
+            std::cout << kUsage;
+            std::exit(0);
+        } else if (a == "--frames") {
+            o.frames = positive_int(value(), a);
+            frames_given = true;
+        } else if (a == "--quick") {
+            quick = true;
+        } else if (a == "--out") {
+            o.out = value();
+        } else if (a == "--categories") {
+            o.categories.clear();
+            for (const auto& name : split(value())) {
+                const auto c = category_from_string(name);
+                if (!c) throw std::invalid_argument("unknown category '" + name + "'");
+                o.categories.push_back(*c);
+            }
+        } else if (a == "--resolutions") {
+            o.resolutions.clear();
+            for (const auto& r : split(value())) {
+                const auto x = r.find('x');
+                if (x == std::string::npos) throw std::invalid_argument("resolution '" + r + "' is not WxH");
+                o.resolutions.emplace_back(positive_int(r.substr(0, x), r, 16), positive_int(r.substr(x + 1), r, 16));
+            }
+            res_given = true;
+        } else if (a == "--opacities") {
+            o.opacities.clear();
+            for (const auto& v : split(value())) {
+                const double op = std::stod(v);
+                if (!(op > 0 && op <= 1)) throw std::invalid_argument("opacity " + v + " is not in (0, 1]");
+                o.opacities.push_back(op);
+            }
+        } else if (a == "--no-aruco") {
+            o.aruco = false;
+        } else if (a == "--pulse-frames") {
+            o.pulse_frames = positive_int(value(), a, 0);
+            pulse_given = true;
+        } else if (a == "--seed") {
+            o.seed = static_cast<std::uint64_t>(positive_int(value(), a, 0));
+        } else if (a == "--threads") {
+            o.threads = positive_int(value(), a);
+        } else if (a == "--dump") {
+            o.dump = value();
+        } else {
+            throw std::invalid_argument("unknown option '" + a + "' (see --help)");
+        }
+    }
+    if (quick) {
+        if (!frames_given) o.frames = 10;
+        if (!res_given) o.resolutions = {{640, 480}};
+        if (!pulse_given) o.pulse_frames = 50;
+    }
+    if (o.categories.empty() || o.resolutions.empty() || o.opacities.empty())
+        throw std::invalid_argument("nothing to run: empty category, resolution or opacity list");
+    return o;
+}
+
+// Runs job(i) for i in [0, n) on `threads` threads; the first exception is
+// rethrown here.
+template <class Job>
+void parallel_for(int n, int threads, const Job& job) {
+    std::atomic<int> next{0};
+    std::exception_ptr error;
+    std::mutex error_mutex;
+    std::vector<std::thread> pool;
+    for (int t = 0; t < std::min(threads, n); ++t)
+        pool.emplace_back([&] {
+            try {
+                for (int i; (i = next++) < n;) job(i);
+            } catch (...) {
+                std::lock_guard<std::mutex> lock(error_mutex);
+                if (!error) error = std::current_exception();
+                next = n;
+            }
+        });
+    for (auto& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
+}
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// The methods under test, each turning a frame into an Outcome with its
+// call timed and nothing else.
+class Methods {
+public:
+    Methods(const Scene& scene, const Field& field) : scene_(scene), detector_(field), aruco_(scene.screen.pixels) {}
+
+    Outcome umf(const Frame& frame) const {
+        Outcome o;
+        if (!frame.centre_on_screen) {
+            o.skipped = true;
+            return o;
+        }
+        const GreyView view{frame.grey.data, frame.grey.cols, frame.grey.rows,
+                            static_cast<std::ptrdiff_t>(frame.grey.step)};
+        Detection d;
+        const auto t0 = Clock::now();
+        try {
+            d = detector_.detect(view);
+        } catch (const std::exception& e) {
+            // The detector is work in progress: one bad frame should cost
+            // that frame, not the whole run.
+            d.found = false;
+            d.failure = std::string("exception: ") + e.what();
+        }
+        const auto t1 = Clock::now();
+        o.ms = ms_between(t0, t1);
+        o.found = d.found;
+        o.failure = d.failure;
+        o.pixels_pct = 100.0 * static_cast<double>(d.pixels_visited) / (frame.grey.total());
+        o.stage_ms = {d.times.edgels_ms, d.times.vanishing_ms, d.times.grid_ms, d.times.classify_ms, d.times.vote_ms};
+        if (d.found) {
+            // The field's placement is at the screen's origin, so field
+            // (u, v) in modules is screen px / module_px.
+            const cv::Point2d aim(d.aim_field.x() * scene_.module_px, d.aim_field.y() * scene_.module_px);
+            o.error_modules = cv::norm(aim - frame.centre_screen_px) / scene_.module_px;
+        }
+        return o;
+    }
+
+    Outcome aruco(const Frame& frame) const {
+        Outcome o;
+        if (!frame.centre_on_screen) {
+            o.skipped = true;
+            return o;
+        }
+        ArucoLocation a;
+        const auto t0 = Clock::now();
+        try {
+            a = aruco_.locate(frame.grey);
+        } catch (const std::exception& e) {
+            a.found = false;
+            a.failure = std::string("exception: ") + e.what();
+        }
+        const auto t1 = Clock::now();
+        o.ms = ms_between(t0, t1);
+        o.found = a.found;
+        o.failure = a.failure;
+        if (a.found) o.error_modules = cv::norm(a.aim_screen_px - frame.centre_screen_px) / scene_.module_px;
+        return o;
+    }
+
+    const ArucoBaseline& board() const { return aruco_; }
+    const Field& field() const { return detector_.field(); }
+
+private:
+    const Scene& scene_;
+    Detector detector_;
+    ArucoBaseline aruco_;
+};
+
+// Other processes on the machine slow the timed calls down; the load
+// average before and after the run says how much there was.
+std::string load_average() {
+    std::ifstream in("/proc/loadavg");
+    std::string one, five, fifteen;
+    in >> one >> five >> fifteen;
+    return in ? one + " " + five + " " + fifteen : "unknown";
+}
+
+std::string now_text() {
+    const std::time_t t = std::time(nullptr);
+    char buf[64];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M", std::localtime(&t));
+    return buf;
+}
+
+std::string short_result(const Summary& s) {
+    std::ostringstream o;
+    o.precision(3);
+    o << s.success_pct << "% ok, " << s.false_pct << "% false, " << s.ms_median << " ms";
+    return o.str();
+}
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+    if (!out) throw std::runtime_error("cannot write " + path.string());
+}
+
+void write_png(const std::filesystem::path& path, const cv::Mat& image) {
+    if (!cv::imwrite(path.string(), image)) throw std::runtime_error("cannot write " + path.string());
+}
+
+void write_plots(const Report& report, const std::filesystem::path& dir) {
+    std::vector<std::string> methods;
+    for (const char* name : {"umf", "aruco"})
+        if (report.all_ms.count(name)) methods.emplace_back(name);
+    std::vector<std::string> resolutions, categories;
+    std::vector<double> opacities;
+    for (const auto& c : report.configs) {
+        if (std::find(resolutions.begin(), resolutions.end(), c.resolution) == resolutions.end())
+            resolutions.push_back(c.resolution);
+        if (std::find(categories.begin(), categories.end(), c.category) == categories.end())
+            categories.push_back(c.category);
+        if (std::find(opacities.begin(), opacities.end(), c.opacity) == opacities.end()) opacities.push_back(c.opacity);
+    }
+    std::sort(opacities.begin(), opacities.end());
+    const std::string sweep =
+        std::find(categories.begin(), categories.end(), "general") != categories.end() ? "general" : categories.front();
+
+    // One colour per resolution; ArUco dashed with squares.
+    std::vector<plot::Series> lines;
+    for (std::size_t r = 0; r < resolutions.size(); ++r)
+        for (const auto& m : methods) {
+            plot::Series s;
+            s.label = (m == "umf" ? "umf " : "ArUco ") + resolutions[r];
+            s.colour = plot::colour(static_cast<int>(r));
+            s.dashed = s.square_markers = m != "umf";
+            for (double op : opacities)
+                for (const auto& c : report.configs)
+                    if (c.category == sweep && c.resolution == resolutions[r] && c.opacity == op &&
+                        c.methods.count(m)) {
+                        s.x.push_back(op);
+                        s.y.push_back(c.methods.at(m).success_pct);
+                    }
+            lines.push_back(s);
+        }
+    plot::Axes axes{"Success against opacity (" + sweep + " category)", "opacity", "success % (within 1 module)",
+                    std::make_pair(0.0, 100.0)};
+    write_png(dir / "success_vs_opacity.png", plot::line_chart(axes, lines));
+
+    plot::Bars bars;
+    bars.groups = resolutions;
+    for (std::size_t m = 0; m < methods.size(); ++m) {
+        bars.series.push_back(methods[m] == "umf" ? "umf" : "ArUco");
+        bars.colours.push_back(plot::colour(methods[m] == "umf" ? 0 : 3));
+        std::vector<double> row;
+        for (const auto& res : resolutions) {
+            const auto& by_res = report.all_ms.at(methods[m]);
+            auto it = by_res.find(res);
+            row.push_back(it == by_res.end() ? kNaN : percentile(it->second, 50));
+        }
+        bars.values.push_back(row);
+    }
+    write_png(dir / "ms_per_frame.png",
+              plot::bar_chart({"Median ms per frame (one thread, all categories and opacities)", "camera resolution",
+                               "ms per frame", std::nullopt},
+                              bars));
+}
+
+int run(const Options& opt, const std::string& command) {
+    const auto start = Clock::now();
+    // OpenCV's own threads would compete with the frame-making threads and
+    // would let ArUco use both cores where umf uses one.
+    cv::setNumThreads(1);
+    std::filesystem::create_directories(opt.out);
+
+    const Scene scene;
+    const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/" + kFieldFile);
+    const Methods methods(scene, field);
+    const sim::FieldPlacement placement{{0, 0}, scene.module_px};
+
+    Report report;
+    report.command = command;
+    report.started = now_text();
+    {
+        nlohmann::json s;
+        s["frames_per_configuration"] = opt.frames;
+        for (Category c : opt.categories) s["categories"].push_back(to_string(c));
+        for (cv::Size r : opt.resolutions) s["resolutions"].push_back(resolution_name(r));
+        s["opacities"] = opt.opacities;
+        s["aruco"] = opt.aruco;
+        s["pulse_frames_per_screen"] = opt.pulse_frames;
+        s["seed"] = opt.seed;
+        s["frame_threads"] = opt.threads;
+        s["hardware_threads"] = std::thread::hardware_concurrency();
+        s["load_average_at_start"] = load_average();
+        s["field"] = kFieldFile;
+        s["screen"] = {{"pixels", "1920x1080"}, {"width_mm", scene.screen.width_mm}, {"module_px", scene.module_px}};
+        s["camera_hfov_deg"] = scene.hfov_deg;
+        s["distance_mm"] = {{"rest", scene.range.distance_mm}, {"near", scene.range.near_mm}, {"far", scene.range.far_mm}};
+        s["aruco_board"] = {{"dictionary", "DICT_4X4_250"}, {"markers", methods.board().marker_count()},
+                            {"marker_px", 180}, {"gap_px", 60}};
+        s["success_radius_modules"] = kSuccessRadiusModules;
+        report.settings = s;
+    }
+
+    // Screens once per kind (the photo kind takes a while); both methods'
+    // screens are mixed from the same content.
+    std::vector<cv::Mat> screens(sim::kAllScreenKinds.size());
+    parallel_for(static_cast<int>(screens.size()), opt.threads, [&](int k) {
+        screens[static_cast<std::size_t>(k)] =
+            sim::make_screen(sim::kAllScreenKinds[static_cast<std::size_t>(k)], scene.screen.pixels, kScreenSeed);
+    });
+    std::vector<std::vector<FrameRecipe>> recipes;
+    for (Category c : opt.categories) recipes.push_back(category_recipes(scene, c, opt.frames, opt.seed));
+
+    const int total = static_cast<int>(opt.opacities.size() * opt.resolutions.size() * opt.categories.size());
+    int done = 0;
+    for (double opacity : opt.opacities) {
+        std::vector<cv::Mat> with_field(screens.size()), with_board(screens.size());
+        parallel_for(static_cast<int>(screens.size()), opt.threads, [&](int k) {
+            const auto i = static_cast<std::size_t>(k);
+            with_field[i] = sim::mix_field(screens[i], field, placement, opacity);
+            if (opt.aruco) with_board[i] = methods.board().mix(screens[i], opacity);
+        });
+        for (cv::Size res : opt.resolutions)
+            for (std::size_t ci = 0; ci < opt.categories.size(); ++ci) {
+                const auto& rs = recipes[ci];
+                const auto t0 = Clock::now();
+                std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
+                parallel_for(static_cast<int>(rs.size()), opt.threads, [&](int i) {
+                    const auto& r = rs[static_cast<std::size_t>(i)];
+                    const auto kind = static_cast<std::size_t>(r.screen);
+                    field_frames[static_cast<std::size_t>(i)] = shoot(scene, r, with_field[kind], res);
+                    if (opt.aruco) board_frames[static_cast<std::size_t>(i)] = shoot(scene, r, with_board[kind], res);
+                });
+                const auto t1 = Clock::now();
+                if (!opt.dump.empty()) {
+                    std::filesystem::create_directories(opt.dump);
+                    for (std::size_t i = 0; i < rs.size(); ++i) {
+                        const std::string stem = opt.dump + "/" + to_string(opt.categories[ci]) + "_" +
+                                                 std::to_string(static_cast<int>(std::lround(opacity * 100))) + "_" +
+                                                 resolution_name(res) + "_" + std::to_string(i);
+                        write_png(stem + "_umf.png", field_frames[i].grey);
+                        if (opt.aruco) write_png(stem + "_aruco.png", board_frames[i].grey);
+                    }
+                }
+                std::vector<Outcome> umf_out, aruco_out;
+                for (std::size_t i = 0; i < rs.size(); ++i) {
+                    umf_out.push_back(methods.umf(field_frames[i]));
+                    if (opt.aruco) aruco_out.push_back(methods.aruco(board_frames[i]));
+                }
+                ConfigResult cr;
+                cr.category = to_string(opt.categories[ci]);
+                cr.opacity = opacity;
+                cr.resolution = resolution_name(res);
+                cr.methods["umf"] = summarise(umf_out);
+                {
+                    std::vector<double> module_px;
+                    for (const auto& f : field_frames)
+                        if (f.centre_on_screen) module_px.push_back(f.module_px_in_image);
+                    if (!module_px.empty())
+                        cr.module_px = {*std::min_element(module_px.begin(), module_px.end()),
+                                        percentile(module_px, 50),
+                                        *std::max_element(module_px.begin(), module_px.end())};
+                }
+                for (const auto& o : umf_out)
+                    if (!o.skipped) report.all_ms["umf"][cr.resolution].push_back(o.ms);
+                if (opt.aruco) {
+                    cr.methods["aruco"] = summarise(aruco_out);
+                    for (const auto& o : aruco_out)
+                        if (!o.skipped) report.all_ms["aruco"][cr.resolution].push_back(o.ms);
+                }
+                std::cerr << "[" << ++done << "/" << total << "] " << cr.category << " opacity " << opacity << " "
+                          << cr.resolution << ": umf " << short_result(cr.methods["umf"]);
+                if (opt.aruco) std::cerr << " | ArUco " << short_result(cr.methods["aruco"]);
+                std::cerr << " (frames " << ms_between(t0, t1) / 1000 << " s, detect "
+                          << ms_between(t1, Clock::now()) / 1000 << " s, elapsed "
+                          << ms_between(start, Clock::now()) / 60000 << " min)\n";
+                report.configs.push_back(std::move(cr));
+            }
+    }
+
+    // The pulsing video: the opacity changes every frame, so both screens
+    // are mixed per frame, on the frame-making threads.
+    if (opt.pulse_frames > 0)
+        for (cv::Size res : opt.resolutions) {
+            std::vector<std::string> kinds;
+            std::vector<std::vector<bool>> umf_ok, aruco_ok;
+            int umf_skipped = 0;
+            for (std::size_t k = 0; k < screens.size(); ++k) {
+                const sim::ScreenKind kind = sim::kAllScreenKinds[k];
+                kinds.push_back(sim::to_string(kind));
+                const auto rs = pulsing_recipes(scene, kind, opt.pulse_frames, opt.seed);
+                std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
+                parallel_for(static_cast<int>(rs.size()), opt.threads, [&](int i) {
+                    const auto& r = rs[static_cast<std::size_t>(i)];
+                    const double op = pulsing_opacity(r.index);
+                    field_frames[static_cast<std::size_t>(i)] =
+                        shoot(scene, r, sim::mix_field(screens[k], field, placement, op), res);
+                    if (opt.aruco)
+                        board_frames[static_cast<std::size_t>(i)] = shoot(scene, r, methods.board().mix(screens[k], op), res);
+                });
+                std::vector<bool> u, a;
+                for (std::size_t i = 0; i < rs.size(); ++i) {
+                    const Outcome o = methods.umf(field_frames[i]);
+                    umf_skipped += o.skipped;
+                    u.push_back(o.success());
+                    if (opt.aruco) a.push_back(methods.aruco(board_frames[i]).success());
+                }
+                umf_ok.push_back(u);
+                aruco_ok.push_back(a);
+                std::cerr << "[pulsing " << resolution_name(res) << " " << kinds.back() << "] umf "
+                          << std::count(u.begin(), u.end(), true) << "/" << u.size();
+                if (opt.aruco) std::cerr << ", ArUco " << std::count(a.begin(), a.end(), true) << "/" << a.size();
+                std::cerr << " (elapsed " << ms_between(start, Clock::now()) / 60000 << " min)\n";
+            }
+            report.pulsing.push_back(summarise_pulse("umf", resolution_name(res), kinds, umf_ok, umf_skipped));
+            if (opt.aruco)
+                report.pulsing.push_back(summarise_pulse("aruco", resolution_name(res), kinds, aruco_ok, umf_skipped));
+        }
+
+    report.wall_s = ms_between(start, Clock::now()) / 1000;
+    report.settings["load_average_at_end"] = load_average();
+    const std::filesystem::path dir(opt.out);
+    write_text(dir / "detector.json", to_json(report).dump(2) + "\n");
+    write_text(dir / "detector.md", to_markdown(report));
+    write_plots(report, dir);
+    std::cerr << "wrote " << (dir / "detector.md").string() << ", detector.json, success_vs_opacity.png, ms_per_frame.png"
+              << "; total wall time " << report.wall_s / 60 << " min (" << report.wall_s << " s)\n";
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string command = argv[0];
+    for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
+    try {
+        return run(parse(argc, argv), command);
+    } catch (const std::exception& e) {
+        std::cerr << "umf_benchmark: " << e.what() << "\n";
+        return 1;
+    }
+}
