@@ -124,11 +124,10 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
             // predicted place first, when there is a prior.
             VoteResult vote;
             if (prior) {
-                if (auto predicted = predict_placement(prior->image_to_field, g2i, rows, cols)) {
+                if (auto predicted = predict_placement(prior->image_to_field, g2i, rows, cols))
                     vote = vote_near(grid, index_, *predicted, prior->radius_modules, options_.vote);
-                    out.from_prior = vote.found;
-                }
             }
+            const bool near_prior = vote.found;
             if (!vote.found) vote = vote_placement(grid, index_, options_.vote);
             out.times.vote_ms += ms_since(t);
             // Report the accepted vote, or else the strongest one seen.
@@ -148,16 +147,25 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
                 vote.placement.field_point(vote.centre_x, vote.centre_y, su, sv);
                 const Refinement r = refine_homography(im, f, g2i * placement.inverse(), Point2(su, sv),
                                                        options_.refine, out.pixels_visited);
+                out.times.refine_ms += ms_since(t);
                 if (r.refined) {
+                    // The refit reaches beyond the windows that voted: the
+                    // modules it predicts must still read as the field.
+                    if (!confirm_place(im, r.field_to_image, aim, out).found) {
+                        failure = "refined place not confirmed";
+                        t = Clock::now();
+                        continue;
+                    }
                     out.image_to_field = r.field_to_image.inverse();
                     out.image_to_field /= out.image_to_field(2, 2);
                     out.edges_fitted = r.edges_fitted;
                 }
-                out.times.refine_ms += ms_since(t);
+                t = Clock::now();
             }
             auto aim_field = apply_homography(out.image_to_field, aim);
             if (!aim_field) return finish("aim point at infinity");
             out.aim_field = *aim_field;
+            out.from_prior = near_prior;
             out.found = true;
             return finish(nullptr);
         }
@@ -202,6 +210,41 @@ bool Detector::grid_homography(const GridLineFamily& rows_family, const GridLine
 
 namespace umf {
 
+VoteResult Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
+                                   Detection& out) const {
+    // The modules of the field's visible box, read under the homography: the
+    // grid is the field itself, so the expected placement is a plain offset,
+    // and it must beat its neighbours one module away.
+    auto t = Clock::now();
+    const Field& f = index_.field();
+    const Eigen::Matrix3d i2f = field_to_image.inverse();
+    double u0 = f.width, v0 = f.height, u1 = 0, v1 = 0;
+    const double front = (i2f * Eigen::Vector3d(aim.x(), aim.y(), 1.0)).z();  // sign of points on the screen
+    for (const Point2& corner : {Point2(0, 0), Point2(im.width, 0), Point2(0, im.height), Point2(im.width, im.height)}) {
+        auto q = apply_homography(i2f, corner);
+        if (!q || (i2f * Eigen::Vector3d(corner.x(), corner.y(), 1.0)).z() * front <= 0) {
+            u0 = v0 = 0, u1 = f.width, v1 = f.height;
+            break;
+        }
+        u0 = std::min(u0, q->x()), u1 = std::max(u1, q->x());
+        v0 = std::min(v0, q->y()), v1 = std::max(v1, q->y());
+    }
+    const int c0 = std::max(0, static_cast<int>(std::floor(u0))), r0 = std::max(0, static_cast<int>(std::floor(v0)));
+    const int c1 = std::min(f.width, static_cast<int>(std::ceil(u1))), r1 = std::min(f.height, static_cast<int>(std::ceil(v1)));
+    if (c1 - c0 < 2 || r1 - r0 < 2) return {};
+    Eigen::Matrix3d shift;
+    shift << 1, 0, c0, 0, 1, r0, 0, 0, 1;
+    const ModuleGrid grid = classify_modules(im, field_to_image * shift, r1 - r0, c1 - c0, f.colors,
+                                             f.key == WindowKey::edges, options_.classify, out.pixels_visited);
+    out.times.classify_ms += ms_since(t);
+    VoteResult vote = vote_near(grid, index_, GridPlacement{0, r0, c0}, 1, options_.vote);
+    out.times.vote_ms += ms_since(t);
+    out.windows = vote.votes;
+    out.confidence = vote.agreement;
+    vote.found = vote.found && vote.placement.row_offset == r0 && vote.placement.col_offset == c0;
+    return vote;
+}
+
 Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
                            const Eigen::Matrix3d& predicted_image_to_field) const {
     Detection out;
@@ -222,34 +265,9 @@ Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
     out.times.refine_ms = ms_since(t);
     if (!r.refined) return finish("too few module edges near the prediction");
 
-    // The modules of the field's visible box, read under the fit: the grid
-    // is the field itself, so the predicted placement is a plain offset.
+    const VoteResult vote = confirm_place(im, r.field_to_image, aim, out);
+    if (!vote.found) return finish("prediction not confirmed");
     const Eigen::Matrix3d i2f = r.field_to_image.inverse();
-    double u0 = f.width, v0 = f.height, u1 = 0, v1 = 0;
-    const double front = (i2f * Eigen::Vector3d(aim.x(), aim.y(), 1.0)).z();  // sign of points on the screen
-    for (const Point2& corner : {Point2(0, 0), Point2(im.width, 0), Point2(0, im.height), Point2(im.width, im.height)}) {
-        auto q = apply_homography(i2f, corner);
-        if (!q || (i2f * Eigen::Vector3d(corner.x(), corner.y(), 1.0)).z() * front <= 0) {
-            u0 = v0 = 0, u1 = f.width, v1 = f.height;
-            break;
-        }
-        u0 = std::min(u0, q->x()), u1 = std::max(u1, q->x());
-        v0 = std::min(v0, q->y()), v1 = std::max(v1, q->y());
-    }
-    const int c0 = std::max(0, static_cast<int>(std::floor(u0))), r0 = std::max(0, static_cast<int>(std::floor(v0)));
-    const int c1 = std::min(f.width, static_cast<int>(std::ceil(u1))), r1 = std::min(f.height, static_cast<int>(std::ceil(v1)));
-    if (c1 - c0 < 2 || r1 - r0 < 2) return finish("field out of view");
-    Eigen::Matrix3d shift;
-    shift << 1, 0, c0, 0, 1, r0, 0, 0, 1;
-    const ModuleGrid grid = classify_modules(im, r.field_to_image * shift, r1 - r0, c1 - c0, f.colors,
-                                             f.key == WindowKey::edges, options_.classify, out.pixels_visited);
-    out.times.classify_ms = ms_since(t);
-    const VoteResult vote = vote_near(grid, index_, GridPlacement{0, r0, c0}, 1, options_.vote);
-    out.times.vote_ms = ms_since(t);
-    out.windows = vote.votes;
-    out.confidence = vote.agreement;
-    if (!vote.found || vote.placement.row_offset != r0 || vote.placement.col_offset != c0)
-        return finish("prediction not confirmed");
     out.image_to_field = i2f / i2f(2, 2);
     auto aim_field = apply_homography(out.image_to_field, aim);
     if (!aim_field) return finish("aim point at infinity");

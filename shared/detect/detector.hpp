@@ -86,6 +86,11 @@ private:
     bool grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family, const GreyView& image,
                          Eigen::Matrix3d& grid_to_image, int& rows, int& cols) const;
 
+    // Reads the field's visible modules under `field_to_image` and checks that
+    // they single out exactly that placement; records windows and confidence.
+    VoteResult confirm_place(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
+                             Detection& out) const;
+
     WindowIndex index_;
     DetectorOptions options_;
 };

@@ -210,8 +210,13 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
     std::mt19937_64 rng(o.seed);
     // Labels every candidate that lies on a predicted line, at most one per
     // line (the nearest), and scores the labelling by the edgels it explains.
+    struct Hit {
+        int k, candidate;
+        double miss;
+    };
+    std::vector<Hit> hits;  // reused by every call of label()
     auto label = [&](double a, double b, double c, std::vector<std::pair<int, int>>& labels) {
-        std::map<int, std::pair<int, double>> nearest;  // k -> (candidate, |t - t(k)|)
+        hits.clear();
         for (int i = 0; i < static_cast<int>(cand.size()); ++i) {
             // Invert t(k): k = (t - b) / (a - c t).
             const double t = cand[i].t, den = a - c * t;
@@ -224,20 +229,23 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
             const double tk = (a * k + b) / (c * k + 1), tk1 = (a * (k + 1) + b) / (c * (k + 1) + 1);
             const double spacing = std::abs(tk1 - tk), miss = std::abs(t - tk);
             if (!(spacing > 3.0) || miss > o.label_tolerance * spacing) continue;
-            auto it = nearest.find(k);
-            if (it == nearest.end() || miss < it->second.second) nearest[k] = {i, miss};
+            hits.push_back({k, i, miss});
         }
+        // At most one candidate per line: the nearest.
+        std::sort(hits.begin(), hits.end(),
+                  [](const Hit& x, const Hit& y) { return x.k != y.k ? x.k < y.k : x.miss < y.miss; });
         labels.clear();
         double score = 0;
-        for (auto& [k, hit] : nearest) {
-            labels.emplace_back(hit.first, k);
-            score += cand[hit.first].weight;
+        for (std::size_t h = 0; h < hits.size(); ++h) {
+            if (h > 0 && hits[h].k == hits[h - 1].k) continue;
+            labels.emplace_back(hits[h].candidate, hits[h].k);
+            score += cand[hits[h].candidate].weight;
         }
         // A grid of half the true spacing explains every line and every stray
         // edge between them; lines it predicts but nothing supports cost it.
-        if (!nearest.empty()) {
-            const int span = nearest.rbegin()->first - nearest.begin()->first + 1;
-            score -= mean_weight * (span - static_cast<int>(nearest.size()));
+        if (!labels.empty()) {
+            const int span = labels.back().second - labels.front().second + 1;
+            score -= mean_weight * (span - static_cast<int>(labels.size()));
         }
         return score;
     };

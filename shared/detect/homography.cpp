@@ -24,6 +24,36 @@ Eigen::Matrix3d normaliser(const std::vector<Point2>& pts) {
     return t;
 }
 
+// The homography through exactly four correspondences, with h22 = 1: an
+// 8 x 8 linear system, far cheaper than the eigen-decomposition of the DLT for
+// the thousands of samples RANSAC draws. Points are centred on the first
+// sample pair so h22 = 0 (the first point mapped to infinity) cannot occur.
+std::optional<Eigen::Matrix3d> homography_from_4(const Point2* from, const Point2* to) {
+    const Point2 of = from[0], ot = to[0];
+    Eigen::Matrix<double, 8, 8> a;
+    Eigen::Matrix<double, 8, 1> b;
+    for (int i = 0; i < 4; ++i) {
+        const double x = from[i].x() - of.x(), y = from[i].y() - of.y();
+        const double u = to[i].x() - ot.x(), v = to[i].y() - ot.y();
+        a.row(2 * i) << x, y, 1, 0, 0, 0, -u * x, -u * y;
+        a.row(2 * i + 1) << 0, 0, 0, x, y, 1, -v * x, -v * y;
+        b(2 * i) = u;
+        b(2 * i + 1) = v;
+    }
+    const Eigen::FullPivLU<Eigen::Matrix<double, 8, 8>> lu(a);
+    if (!lu.isInvertible()) return std::nullopt;
+    const Eigen::Matrix<double, 8, 1> x = lu.solve(b);
+    if (!x.allFinite()) return std::nullopt;
+    Eigen::Matrix3d hc, tf, tt;
+    hc << x(0), x(1), x(2), x(3), x(4), x(5), x(6), x(7), 1;
+    tf << 1, 0, -of.x(), 0, 1, -of.y(), 0, 0, 1;
+    tt << 1, 0, ot.x(), 0, 1, ot.y(), 0, 0, 1;
+    Eigen::Matrix3d h = tt * hc * tf;
+    if (std::abs(h.determinant()) < 1e-15 * std::pow(h.norm(), 3)) return std::nullopt;
+    if (std::abs(h(2, 2)) > 1e-12) h /= h(2, 2);
+    return h;
+}
+
 }  // namespace
 
 std::optional<Point2> apply_homography(const Eigen::Matrix3d& h, const Point2& p) {
@@ -79,9 +109,23 @@ std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>&
         }
         return count;
     };
+    // Samples are judged on an evenly spread subset of at most kJudges
+    // points; only the winner is counted on all of them.
+    constexpr std::size_t kJudges = 120;
+    const std::size_t stride = std::max<std::size_t>(1, n / kJudges);
+    auto judge = [&](const Eigen::Matrix3d& h) {
+        int count = 0;
+        for (std::size_t i = 0; i < n; i += stride) {
+            auto q = apply_homography(h, from[i]);
+            count += q && (*q - to[i]).norm() <= tolerance;
+        }
+        return count;
+    };
     RobustHomography best;
     std::vector<bool> mask;
     std::vector<Point2> sf(4), st(4);
+    int best_judged = 0;
+    const int all_judges = static_cast<int>((n + stride - 1) / stride);
     for (int it = 0; it < iterations; ++it) {
         std::size_t idx[4];
         for (int k = 0; k < 4; ++k) {
@@ -94,16 +138,17 @@ std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>&
             sf[k] = from[idx[k]];
             st[k] = to[idx[k]];
         }
-        auto h = fit_homography(sf, st);
+        auto h = homography_from_4(sf.data(), st.data());
         if (!h) continue;
-        const int c = count_inliers(*h, mask);
-        if (c > best.inliers) {
+        const int c = judge(*h);
+        if (c > best_judged) {
+            best_judged = c;
             best.h = *h;
-            best.inliers = c;
-            best.inlier = mask;
-            if (static_cast<std::size_t>(c) == n) break;
+            if (c == all_judges) break;
         }
     }
+    if (best_judged == 0) return std::nullopt;
+    best.inliers = count_inliers(best.h, best.inlier);
     if (best.inliers < 4) return std::nullopt;
     // Refit to every inlier, then take the inliers of the refit.
     for (int round = 0; round < 2; ++round) {

@@ -27,7 +27,7 @@ struct TrackerOptions {
     double smoothing = 0.4;
     double still_modules = 0.25;
     // The smoothed point never trails the measured one by more than this.
-    double max_lag_modules = 0.05;
+    double max_lag_modules = 0.02;
 };
 
 enum class TrackState {
