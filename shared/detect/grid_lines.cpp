@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <random>
 
 namespace umf {
@@ -110,6 +111,65 @@ GridLineFamily build_family(const std::vector<Edgel>& edgels, const Chains& chai
     return out;
 }
 
+
+// The spacings s and phases at which the weighted candidates near the centre
+// (Gaussian window) are most periodic: the peaks of the Fourier magnitude
+// |sum w exp(2 pi i t / s)| within 60 % of the best, when the best stands
+// clearly above the noise. A half or a third of the true spacing is just as
+// periodic, and twice it may be when every other line is weak, so the caller
+// judges them all. For each, the candidates near the centre labelled
+// k = round((t - phase) / s).
+template <typename Candidates>
+std::vector<std::vector<std::pair<int, double>>> periodic_labellings(const Candidates& cand, int width, int height) {
+    std::vector<std::vector<std::pair<int, double>>> result;
+    const double sigma = std::max(width, height) / 6.0;
+    std::vector<double> t, w;
+    double total = 0;
+    for (const auto& c : cand) {
+        const double g = std::exp(-0.5 * c.t * c.t / (sigma * sigma));
+        if (g < 0.05) continue;
+        t.push_back(c.t);
+        w.push_back(g * std::sqrt(c.weight));
+        total += w.back();
+    }
+    if (t.size() < 6) return result;
+    constexpr double kTwoPi = 6.283185307179586;
+    struct Peak {
+        double s, magnitude, phase;
+    };
+    std::vector<Peak> spectrum;
+    for (double s = 3.5; s < sigma; s *= 1.02) {
+        double re = 0, im = 0;
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            re += w[i] * std::cos(kTwoPi * t[i] / s);
+            im += w[i] * std::sin(kTwoPi * t[i] / s);
+        }
+        spectrum.push_back({s, std::hypot(re, im), std::atan2(im, re)});
+    }
+    double best = 0;
+    for (const auto& p : spectrum) best = std::max(best, p.magnitude);
+    // Random phases add up to about the root of the summed squared weights.
+    double noise = 0;
+    for (double x : w) noise += x * x;
+    noise = std::sqrt(noise);
+    if (best < 2.5 * noise || best < 0.3 * total) return result;
+    for (std::size_t i = 1; i + 1 < spectrum.size(); ++i) {
+        const Peak& p = spectrum[i];
+        if (p.magnitude < 0.6 * best || p.magnitude < spectrum[i - 1].magnitude ||
+            p.magnitude < spectrum[i + 1].magnitude)
+            continue;
+        const double s = p.s, offset = p.phase / kTwoPi * s;  // t = offset + k s at the comb's teeth
+        std::vector<std::pair<int, double>> labels;
+        for (double x : t) {
+            const double kf = (x - offset) / s;
+            const double k = std::round(kf);
+            if (std::abs(kf - k) < 0.2) labels.emplace_back(static_cast<int>(k), x);
+        }
+        if (labels.size() >= 4) result.push_back(std::move(labels));
+    }
+    return result;
+}
+
 }  // namespace
 
 std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& edgels, const LineFamily& family,
@@ -178,7 +238,17 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
             if (static_cast<int>(ch.members.size()) < o.min_chain) continue;
             ch.line = fit_line(edgels, ch.members);
             ch.t = crossing(ch.line, centre, u);
-            if (std::isfinite(ch.t)) chains.push_back(std::move(ch));
+            if (!std::isfinite(ch.t)) continue;
+            // A short chain far from the reference line crosses it where its
+            // direction, fitted over a few scanlines, guesses: at small
+            // module sizes a fraction of a degree there is a whole module
+            // here. Such chains would only blur the labelling.
+            const Edgel& first = edgels[ch.members.front()];
+            const Edgel& last = edgels[ch.members.back()];
+            const Eigen::Vector2d mid((first.x + last.x) / 2, (first.y + last.y) / 2);
+            const double length = std::hypot(last.x - first.x, last.y - first.y);
+            if ((centre + ch.t * u - mid).norm() > o.max_reach * length) continue;
+            chains.push_back(std::move(ch));
         }
     if (static_cast<int>(chains.size()) < o.min_lines) return {};
 
@@ -243,9 +313,12 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
         }
         // A grid of half the true spacing explains every line and every stray
         // edge between them; lines it predicts but nothing supports cost it.
+        // Not a whole line's worth each: over text many true lines break into
+        // pieces too short to chain, and at full cost a grid of twice the
+        // spacing, skipping them, would win.
         if (!labels.empty()) {
             const int span = labels.back().second - labels.front().second + 1;
-            score -= mean_weight * (span - static_cast<int>(labels.size()));
+            score -= o.unsupported_line_cost * mean_weight * (span - static_cast<int>(labels.size()));
         }
         return score;
     };
@@ -273,6 +346,25 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
         if (score > 0 && static_cast<int>(labels.size()) >= o.min_lines) tried.push_back({score, labels, a, b, c});
     }
     std::stable_sort(tried.begin(), tried.end(), [](const Hypothesis& x, const Hypothesis& y) { return x.score > y.score; });
+
+    // One more labelling, from the spacing that makes the candidates near the
+    // centre most periodic. Text strokes fall anywhere, the field's lines
+    // fall on a comb, so their phases add up at the comb's spacing however
+    // many strokes lie between them; the triples above need three clean
+    // neighbours in a row, which a document rarely leaves.
+    std::optional<Hypothesis> best_comb;
+    for (const auto& comb : periodic_labellings(cand, width, height)) {
+        double a, b, c;
+        const std::vector<double> w(comb.size(), 1.0);
+        if (!fit_projective_1d(comb, w, a, b, c)) continue;
+        const double score = label(a, b, c, labels);
+        if (static_cast<int>(labels.size()) < o.min_lines) continue;
+        if (!best_comb || score > best_comb->score) best_comb = Hypothesis{score, labels, a, b, c};
+    }
+    if (best_comb) {
+        best_comb->score = std::max(best_comb->score, tried.empty() ? best_comb->score : tried.front().score);
+        tried.insert(tried.begin(), *best_comb);
+    }
 
     // The best labellings that explain different candidates: over text, the
     // document's own lines run parallel to the field's and may score higher,

@@ -31,7 +31,9 @@ struct GridLineFamily {
 struct GridLineOptions {
     double chain_tolerance_px = 2.0;  // an edgel continues a chain if it lies this close to the prediction
     int min_chain = 3;                // edgels in a chain to count as a segment
+    double max_reach = 3;             // a chain is used up to this many times its length from the reference line
     double label_tolerance = 0.2;     // of the local spacing, for a segment to belong to line k
+    double unsupported_line_cost = 0.5;  // a predicted line without a segment costs this much of an average one
     int min_lines = 3;
     int ransac_iterations = 200;
     int max_hypotheses = 3;           // distinct labellings returned, best first
