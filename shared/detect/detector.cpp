@@ -68,26 +68,45 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
     Detection out;
     out.aim_image = aim;
     const auto start = Clock::now();
-    auto t = start;
-    auto finish = [&](const char* failure) {
-        out.failure = failure ? failure : "";
-        out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-        return out;
-    };
     if (auto problem = describe_invalid(im); !problem.empty()) {
         out.failure = "invalid image: " + problem;
         return out;
     }
-
-    // Step 1. Edgels on sparse scanlines.
-    const EdgelScan scan = find_edgels(im, options_.edgels);
+    // Step 1. Edgels on sparse scanlines; when nothing is found on them,
+    // again on the scanlines half way between (small modules need closer
+    // scanlines for their grid lines to chain), keeping what was read, down
+    // to scanlines 4 pixels apart.
+    auto t = Clock::now();
+    EdgelScan scan = find_edgels(im, options_.edgels);
     out.pixels_visited += scan.pixels_visited;
-    out.times.edgels_ms = ms_since(t);
+    out.times.edgels_ms += ms_since(t);
+    const char* failure = search(im, aim, prior, scan, out);
+    int offset = options_.edgels.offset >= 0 ? options_.edgels.offset : scan.step / 2;  // of the scanlines so far
+    while (failure && options_.rescan && scan.step >= 8) {
+        EdgelOptions between = options_.edgels;
+        between.step = scan.step;
+        between.offset = (offset + scan.step / 2) % scan.step;
+        offset = std::min(offset, between.offset);
+        t = Clock::now();
+        const EdgelScan more = find_edgels(im, between);
+        scan.edgels.insert(scan.edgels.end(), more.edgels.begin(), more.edgels.end());
+        scan.step /= 2;
+        out.pixels_visited += more.pixels_visited;
+        out.times.edgels_ms += ms_since(t);
+        failure = search(im, aim, prior, scan, out);
+    }
+    out.failure = failure ? failure : "";
+    out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    return out;
+}
 
+const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                             const EdgelScan& scan, Detection& out) const {
+    auto t = Clock::now();
     // Step 2. The two vanishing points.
     const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, options_.vanishing);
-    out.times.vanishing_ms = ms_since(t);
-    if (!vp.found) return finish("no grid directions");
+    out.times.vanishing_ms += ms_since(t);
+    if (!vp.found) return "no grid directions";
 
     // Step 3. Grid lines of both families: a few labellings of each, best first.
     std::vector<GridLineFamily> hypotheses[2];
@@ -95,11 +114,11 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
         hypotheses[f] = find_grid_line_hypotheses(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point,
                                                   im.width, im.height, scan.step, options_.grid);
         if (hypotheses[f].empty()) {
-            out.times.grid_ms = ms_since(t);
-            return finish("no grid lines");
+            out.times.grid_ms += ms_since(t);
+            return "no grid lines";
         }
     }
-    out.times.grid_ms = ms_since(t);
+    out.times.grid_ms += ms_since(t);
 
     // Steps 4 to 6 for each pair of labellings, the likeliest first, until
     // the window vote accepts one.
@@ -163,13 +182,13 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
                 t = Clock::now();
             }
             auto aim_field = apply_homography(out.image_to_field, aim);
-            if (!aim_field) return finish("aim point at infinity");
+            if (!aim_field) return "aim point at infinity";
             out.aim_field = *aim_field;
             out.from_prior = near_prior;
             out.found = true;
-            return finish(nullptr);
+            return nullptr;
         }
-    return finish(failure);
+    return failure;
 }
 
 bool Detector::grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family,

@@ -33,6 +33,7 @@ struct DetectorOptions {
     VoteOptions vote;
     RefineOptions refine;
     bool refine_enabled = true;
+    bool rescan = true;  // a second, interleaved scan when the first finds nothing
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
 
@@ -83,6 +84,9 @@ public:
     const Field& field() const { return index_.field(); }
 
 private:
+    // Steps 2 to 7 on one scan's edgels; the failure, or null when found.
+    const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                       const EdgelScan& scan, Detection& out) const;
     bool grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family, const GreyView& image,
                          Eigen::Matrix3d& grid_to_image, int& rows, int& cols) const;
 

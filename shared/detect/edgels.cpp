@@ -67,13 +67,14 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
         out.pixels_visited += 9;
         out.edgels.push_back(e);
     };
-    for (int y = out.step / 2; y < im.height; y += out.step) {
+    const int first = o.offset >= 0 ? o.offset : out.step / 2;
+    for (int y = first; y < im.height; y += out.step) {
         const std::uint8_t* row = im.row(y);
         out.pixels_visited += im.width;
         scan_line(im.width, [row](int i) { return static_cast<int>(row[i]); }, thr, d, scratch,
                   [&](double x) { keep(static_cast<float>(x), static_cast<float>(y), true); });
     }
-    for (int x = out.step / 2; x < im.width; x += out.step) {
+    for (int x = first; x < im.width; x += out.step) {
         out.pixels_visited += im.height;
         scan_line(im.height, [&im, x](int i) { return static_cast<int>(im.at(x, i)); }, thr, d, scratch,
                   [&](double y) { keep(static_cast<float>(x), static_cast<float>(y), false); });

@@ -18,6 +18,7 @@ struct Edgel {
 
 struct EdgelOptions {
     int step = 0;           // pixels between scanlines; 0: a 40th of the larger side, at least 4
+    int offset = -1;        // first scanline; -1: half a step in
     // Smallest step in grey levels across an edge (the smoothed difference
     // over two pixels each side). Low, because the field may be faint.
     int min_contrast = 5;
