@@ -24,7 +24,7 @@ struct GridPlacement {
 
 struct VoteOptions {
     int min_votes = 2;            // windows that must agree
-    double min_agreement = 0.85;  // of the read modules (or edges) the winner must explain
+    double min_agreement = 0.75;  // of the read modules (or edges) the winner must explain
     // The winner must be this many bits more likely than chance, counting
     // every read module (edge) it explains or contradicts against the number
     // of placements there are to choose from: 20 bits is one false placement
