@@ -13,14 +13,22 @@ namespace {
 // the field darken or brighten a few of them, not the median. NaN when the
 // module is not wholly inside the image.
 double sample_module(const GreyView& im, const Eigen::Matrix3d& h, double cx, double cy, long& visited) {
+    // The module is small enough for the homography to be affine across it:
+    // project its centre and a quarter module along each axis, step from there.
+    const Eigen::Vector3d c = h * Eigen::Vector3d(cx, cy, 1.0);
+    if (c.z() <= 0) return std::nan("");
+    const Eigen::Vector3d ex = h * Eigen::Vector3d(cx + 0.25, cy, 1.0), ey = h * Eigen::Vector3d(cx, cy + 0.25, 1.0);
+    const double px = c.x() / c.z(), py = c.y() / c.z();
+    const double dxx = ex.x() / ex.z() - px, dxy = ex.y() / ex.z() - py;
+    const double dyx = ey.x() / ey.z() - px, dyy = ey.y() / ey.z() - py;
+    // The nine pixels lie within the centre's reach of |dx| + |dy|.
+    const double reach = std::abs(dxx) + std::abs(dyx) + std::abs(dxy) + std::abs(dyy);
+    if (px - reach < 0 || py - reach < 0 || px + reach >= im.width || py + reach >= im.height) return std::nan("");
     std::uint8_t v[9];
     int n = 0;
     for (int a = -1; a <= 1; ++a)
         for (int b = -1; b <= 1; ++b) {
-            const Eigen::Vector3d p = h * Eigen::Vector3d(cx + 0.25 * b, cy + 0.25 * a, 1.0);
-            if (p.z() <= 0) return std::nan("");
-            const int x = static_cast<int>(std::floor(p.x() / p.z())), y = static_cast<int>(std::floor(p.y() / p.z()));
-            if (x < 0 || y < 0 || x >= im.width || y >= im.height) return std::nan("");
+            const int x = static_cast<int>(px + b * dxx + a * dyx), y = static_cast<int>(py + b * dxy + a * dyy);
             v[n++] = im.row(y)[x];
         }
     visited += 9;
@@ -71,28 +79,38 @@ ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int ro
         // about half of any 5 x 5 block is dark. The global threshold is the
         // fallback where few neighbours were seen.
         constexpr int kRadius = 2;
+        // Sums over any block from summed-area tables of the values, their
+        // squares and how many were seen.
+        const int w1 = cols + 1;
+        std::vector<double> sum((rows + 1) * static_cast<std::size_t>(w1), 0.0), sq(sum.size(), 0.0);
+        std::vector<int> seen_n(sum.size(), 0);
+        for (int i = 0; i < rows; ++i)
+            for (int j = 0; j < cols; ++j) {
+                const double v = value[static_cast<std::size_t>(i) * cols + j];
+                const bool ok = std::isfinite(v);
+                const std::size_t k = static_cast<std::size_t>(i + 1) * w1 + j + 1;
+                sum[k] = (ok ? v : 0) + sum[k - 1] + sum[k - w1] - sum[k - w1 - 1];
+                sq[k] = (ok ? v * v : 0) + sq[k - 1] + sq[k - w1] - sq[k - w1 - 1];
+                seen_n[k] = ok + seen_n[k - 1] + seen_n[k - w1] - seen_n[k - w1 - 1];
+            }
+        auto block = [w1](const auto& t, int i0, int j0, int i1, int j1) {  // rows i0..i1-1, cols j0..j1-1
+            return t[static_cast<std::size_t>(i1) * w1 + j1] - t[static_cast<std::size_t>(i0) * w1 + j1] -
+                   t[static_cast<std::size_t>(i1) * w1 + j0] + t[static_cast<std::size_t>(i0) * w1 + j0];
+        };
         for (int i = 0; i < rows; ++i)
             for (int j = 0; j < cols; ++j) {
                 const std::size_t k = static_cast<std::size_t>(i) * cols + j;
                 const double v = value[k];
                 if (!std::isfinite(v)) continue;
-                double sum = 0, spread = 0;
-                int n = 0;
-                for (int a = std::max(0, i - kRadius); a <= std::min(rows - 1, i + kRadius); ++a)
-                    for (int b = std::max(0, j - kRadius); b <= std::min(cols - 1, j + kRadius); ++b) {
-                        const double w = value[static_cast<std::size_t>(a) * cols + b];
-                        if (std::isfinite(w)) sum += w, ++n;
-                    }
+                const int i0 = std::max(0, i - kRadius), i1 = std::min(rows, i + kRadius + 1);
+                const int j0 = std::max(0, j - kRadius), j1 = std::min(cols, j + kRadius + 1);
+                const int n = block(seen_n, i0, j0, i1, j1);
                 double local = threshold, local_gap = gap;
                 if (n >= 12) {
-                    local = sum / n;
-                    for (int a = std::max(0, i - kRadius); a <= std::min(rows - 1, i + kRadius); ++a)
-                        for (int b = std::max(0, j - kRadius); b <= std::min(cols - 1, j + kRadius); ++b) {
-                            const double w = value[static_cast<std::size_t>(a) * cols + b];
-                            if (std::isfinite(w)) spread += std::abs(w - local);
-                        }
-                    // Two equal clusters sit one mean absolute deviation from their middle.
-                    local_gap = 2 * spread / n;
+                    local = block(sum, i0, j0, i1, j1) / n;
+                    const double var = std::max(0.0, block(sq, i0, j0, i1, j1) / n - local * local);
+                    // Two equal clusters sit one standard deviation from their middle.
+                    local_gap = 2 * std::sqrt(var);
                 }
                 if (std::abs(v - local) < o.doubt * local_gap) continue;
                 g.value[k] = v > local ? 1 : 0;

@@ -138,7 +138,7 @@ std::vector<std::vector<std::pair<int, double>>> periodic_labellings(const Candi
         double s, magnitude, phase;
     };
     std::vector<Peak> spectrum;
-    for (double s = 3.5; s < sigma; s *= 1.02) {
+    for (double s = 3.5; s < sigma; s *= 1.03) {
         double re = 0, im = 0;
         for (std::size_t i = 0; i < t.size(); ++i) {
             re += w[i] * std::cos(kTwoPi * t[i] / s);
