@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <vector>
 
 namespace umf {
@@ -32,9 +33,16 @@ double bilinear(const GreyView& im, double x, double y, long& visited) {
     return (r0[0] * (1 - fx) + r0[1] * fx) * (1 - fy) + (r1[0] * (1 - fx) + r1[1] * fx) * fy;
 }
 
-// Searches one edge; the image point where it lies, or nothing.
-std::optional<Point2> find_edge(const GreyView& im, const Eigen::Matrix3d& h, const ExpectedEdge& e,
-                                const RefineOptions& o, long& visited) {
+struct FoundEdge {
+    Point2 at;
+    double gradient;
+};
+
+// Searches one edge; where it lies and how strong it is, or nothing.
+// Peaks stronger than max_gradient belong to something else (text, a
+// picture's edge) and are passed over for the strongest peak below it.
+std::optional<FoundEdge> find_edge(const GreyView& im, const Eigen::Matrix3d& h, const ExpectedEdge& e,
+                                   const RefineOptions& o, double max_gradient, long& visited) {
     auto p = apply_homography(h, e.mid);
     auto a = apply_homography(h, e.mid + 0.5 * e.across);
     auto b = apply_homography(h, e.mid - 0.5 * e.across);
@@ -57,16 +65,17 @@ std::optional<Point2> find_edge(const GreyView& im, const Eigen::Matrix3d& h, co
     int best = 0;
     double best_g = 0;
     double g[2 * 64 + 1];
-    for (int t = -reach; t <= reach; ++t) {
-        g[t + reach] = e.polarity * (profile[t + reach + 2] - profile[t + reach]) / 2;
-        if (g[t + reach] > best_g) best_g = g[t + reach], best = t;
+    for (int t = -reach; t <= reach; ++t) g[t + reach] = e.polarity * (profile[t + reach + 2] - profile[t + reach]) / 2;
+    for (int t = -reach + 1; t < reach; ++t) {
+        const double v = g[t + reach];
+        if (v > best_g && v <= max_gradient && v >= g[t + reach - 1] && v >= g[t + reach + 1]) best_g = v, best = t;
     }
-    if (best_g < o.min_gradient || best == -reach || best == reach) return std::nullopt;
+    if (best_g < o.min_gradient) return std::nullopt;
     // Sub-pixel: the vertex of the parabola through the peak and its neighbours.
     const double gm = g[best + reach - 1], g0 = g[best + reach], gp = g[best + reach + 1];
     const double denom = gm - 2 * g0 + gp;
     const double offset = denom < 0 ? std::clamp(0.5 * (gm - gp) / denom, -0.5, 0.5) : 0.0;
-    return *p + (best + offset) * dir;
+    return FoundEdge{*p + (best + offset) * dir, best_g};
 }
 
 // The field's edges between differing modules whose midpoints lie within
@@ -127,6 +136,7 @@ Refinement refine_homography(const GreyView& im, const Field& f, const Eigen::Ma
     }
     const double span = std::max({u1 - u0, v1 - v0, 1.0});
     Eigen::Matrix3d h = field_to_image;
+    double max_gradient = std::numeric_limits<double>::infinity();
     // Rings of radius 4, 8, 16... modules, then once more over everything
     // with the edges the whole view predicts.
     bool last = false;
@@ -135,12 +145,32 @@ Refinement refine_homography(const GreyView& im, const Field& f, const Eigen::Ma
         // Spread the searched edges evenly when there are too many.
         const std::size_t stride = std::max<std::size_t>(1, (edges.size() + o.max_edges - 1) / o.max_edges);
         std::vector<Point2> from, to;
+        std::vector<double> strength;
         for (std::size_t i = 0; i < edges.size(); i += stride) {
             ++out.edges_searched;
-            if (auto q = find_edge(im, h, edges[i], o, visited)) {
+            if (auto q = find_edge(im, h, edges[i], o, max_gradient, visited)) {
                 from.push_back(edges[i].mid);
-                to.push_back(*q);
+                to.push_back(q->at);
+                strength.push_back(q->gradient);
             }
+        }
+        // The field's edges are all about equally strong; text or a picture
+        // edge near a predicted one is usually far stronger than a faint
+        // field's, and would pull the fit towards itself.
+        if (strength.size() >= 8) {
+            std::vector<double> sorted = strength;
+            std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+            const double limit = o.max_strength_ratio * sorted[sorted.size() / 2];
+            max_gradient = limit;  // the next rounds look past stronger peaks
+            std::size_t kept = 0;
+            for (std::size_t i = 0; i < from.size(); ++i)
+                if (strength[i] <= limit) {
+                    from[kept] = from[i];
+                    to[kept] = to[i];
+                    ++kept;
+                }
+            from.resize(kept);
+            to.resize(kept);
         }
         out.edges_found += static_cast<int>(from.size());
         if (static_cast<int>(from.size()) >= o.min_edges) {

@@ -21,6 +21,7 @@ struct RefineOptions {
     int max_edges = 120;          // edges searched per round, spread over the region
     int min_edges = 16;           // fewer found edges leave the homography as it was
     double tolerance_modules = 0.2;  // an edge further than this from the fit is an outlier
+    double max_strength_ratio = 2.5; // edges stronger than this times the median are not the field's
 };
 
 struct Refinement {
