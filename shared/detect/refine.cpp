@@ -66,11 +66,17 @@ std::optional<FoundEdge> find_edge(const GreyView& im, const Eigen::Matrix3d& h,
     double best_g = 0;
     double g[2 * 64 + 1];
     for (int t = -reach; t <= reach; ++t) g[t + reach] = e.polarity * (profile[t + reach + 2] - profile[t + reach]) / 2;
+    // The peak that is strong and near the prediction: text strokes under
+    // the field make peaks of their own across the whole search range.
+    const double spread = 0.25 * module_px;
+    double best_score = 0;
     for (int t = -reach + 1; t < reach; ++t) {
         const double v = g[t + reach];
-        if (v > best_g && v <= max_gradient && v >= g[t + reach - 1] && v >= g[t + reach + 1]) best_g = v, best = t;
+        if (v < o.min_gradient || v > max_gradient || v < g[t + reach - 1] || v < g[t + reach + 1]) continue;
+        const double score = v * std::exp(-0.5 * t * t / (spread * spread));
+        if (score > best_score) best_score = score, best_g = v, best = t;
     }
-    if (best_g < o.min_gradient) return std::nullopt;
+    if (best_score <= 0) return std::nullopt;
     // Sub-pixel: the vertex of the parabola through the peak and its neighbours.
     const double gm = g[best + reach - 1], g0 = g[best + reach], gp = g[best + reach + 1];
     const double denom = gm - 2 * g0 + gp;
@@ -137,10 +143,11 @@ Refinement refine_homography(const GreyView& im, const Field& f, const Eigen::Ma
     const double span = std::max({u1 - u0, v1 - v0, 1.0});
     Eigen::Matrix3d h = field_to_image;
     double max_gradient = std::numeric_limits<double>::infinity();
-    // Rings of radius 4, 8, 16... modules, then once more over everything
+    // Rings of radius 4, 6, 9, 13... modules (each fit must predict the next
+    // ring within the search range), then once more over everything
     // with the edges the whole view predicts.
     bool last = false;
-    for (double radius = 4;; radius = std::min(radius * 2, span)) {
+    for (double radius = 4;; radius = std::min(radius * 1.5, span)) {
         std::vector<ExpectedEdge> edges = edges_near(f, brightness, seed, radius, u0, v0, u1, v1);
         // Spread the searched edges evenly when there are too many.
         const std::size_t stride = std::max<std::size_t>(1, (edges.size() + o.max_edges - 1) / o.max_edges);
@@ -174,8 +181,15 @@ Refinement refine_homography(const GreyView& im, const Field& f, const Eigen::Ma
         }
         out.edges_found += static_cast<int>(from.size());
         if (static_cast<int>(from.size()) >= o.min_edges) {
-            // Least squares, then again without the edges it places too far.
-            auto fit = fit_homography(from, to);
+            // A robust fit first (a whole stretch of edges may belong to a
+            // table's rules or a picture), then least squares without the
+            // edges it places too far.
+            std::optional<Eigen::Matrix3d> fit;
+            {
+                const auto here = apply_homography(h, seed), next = apply_homography(h, seed + Point2(1, 0));
+                const double tol = here && next ? std::max(1.0, o.tolerance_modules * (*next - *here).norm()) : 1.0;
+                if (auto robust = fit_homography_robust(from, to, tol, 60, 7)) fit = robust->h;
+            }
             for (int round = 0; fit && round < 2; ++round) {
                 const auto here = apply_homography(*fit, seed), next = apply_homography(*fit, seed + Point2(1, 0));
                 if (!here || !next) break;

@@ -18,7 +18,7 @@ struct RefineOptions {
     double search_modules = 0.4;  // how far across its predicted place an edge is looked for
     double min_gradient = 1.5;    // grey levels per pixel for an edge to count
     double min_module_px = 2.5;   // smaller modules are not searched
-    int max_edges = 120;          // edges searched per round, spread over the region
+    int max_edges = 80;           // edges searched per round, spread over the region
     int min_edges = 16;           // fewer found edges leave the homography as it was
     double tolerance_modules = 0.2;  // an edge further than this from the fit is an outlier
     double max_strength_ratio = 2.5; // edges stronger than this times the median are not the field's

@@ -159,6 +159,32 @@ double percentile(std::vector<double> values, double p) {
     return values[lo] + (at - static_cast<double>(lo)) * (values[hi] - values[lo]);
 }
 
+int module_px_bin(double module_px) {
+    int bin = 0;
+    while (bin + 2 < static_cast<int>(kModulePxBins.size()) &&
+           module_px >= kModulePxBins[static_cast<std::size_t>(bin) + 1])
+        ++bin;
+    return bin;
+}
+
+std::string module_px_bin_label(int bin) {
+    const auto lo = kModulePxBins[static_cast<std::size_t>(bin)], hi = kModulePxBins[static_cast<std::size_t>(bin) + 1];
+    if (bin == 0) return "< " + num(hi, 0);
+    if (bin + 2 == static_cast<int>(kModulePxBins.size())) return ">= " + num(lo, 0);
+    return num(lo, 0) + "–" + num(hi, 0);
+}
+
+void tally(Report& report, const std::string& method, double opacity, double module_px, const std::string& screen,
+           const Outcome& outcome) {
+    if (outcome.skipped) return;
+    for (Tally* t : {&report.by_module_px[method][opacity][module_px_bin(module_px)],
+                     &report.by_screen[method][opacity][screen]}) {
+        ++t->evaluated;
+        t->success += outcome.success();
+        t->false_location += outcome.false_location();
+    }
+}
+
 Summary summarise(const std::vector<Outcome>& outcomes) {
     Summary s;
     s.frames = static_cast<int>(outcomes.size());
@@ -270,6 +296,24 @@ nlohmann::json to_json(const Report& r) {
                                                                        static_cast<double>(ms.size()))},
                                  {"p95", json_number(percentile(ms, 95))}};
     j["ms_per_frame_by_resolution"] = timing;
+    const auto tally_json = [](const Tally& t) {
+        return nlohmann::json{{"evaluated", t.evaluated},
+                              {"success", t.success},
+                              {"false_location", t.false_location},
+                              {"success_pct", json_number(pct(t.success, t.evaluated))},
+                              {"false_location_pct", json_number(pct(t.false_location, t.evaluated))}};
+    };
+    nlohmann::json by_px = nlohmann::json::object(), by_screen = nlohmann::json::object();
+    for (const auto& [name, by_op] : r.by_module_px)
+        for (const auto& [op, bins] : by_op)
+            for (const auto& [bin, t] : bins) by_px[name][num(op, 2)][module_px_bin_label(bin)] = tally_json(t);
+    for (const auto& [name, by_op] : r.by_screen)
+        for (const auto& [op, kinds] : by_op)
+            for (const auto& [kind, t] : kinds) by_screen[name][num(op, 2)][kind] = tally_json(t);
+    j["success_by_module_px"] = {{"pooled_over", "near_far, horizontal, rotation, perspective, general; all resolutions"},
+                                 {"by_method_and_opacity", by_px}};
+    j["success_by_screen"] = {{"pooled_over", "near_far, horizontal, rotation, perspective, general; all resolutions"},
+                              {"by_method_and_opacity", by_screen}};
     return j;
 }
 
@@ -437,6 +481,48 @@ std::string to_markdown(const Report& r) {
         md << "ArUco:\n\n";
         reasons_table(md, r, "aruco", categories);
     }
+    if (!r.by_module_px.empty()) {
+        const auto row = [&](const std::string& label, const auto& lookup) {
+            md << "| " << label << " |";
+            bool first = true;
+            for (const char* name : {"umf", "aruco"}) {
+                if (name != std::string("umf") && !aruco) continue;
+                const Tally t = lookup(name);
+                if (first) md << " " << t.evaluated << " |";
+                first = false;
+                md << " " << num(pct(t.success, t.evaluated), 1) << " | " << num(pct(t.false_location, t.evaluated), 1)
+                   << " |";
+            }
+            md << "\n";
+        };
+        const std::string head = aruco ? " frames | umf ok % | umf false % | ArUco ok % | ArUco false % |\n|---|---|---|---|---|---|\n"
+                                       : " frames | umf ok % | umf false % |\n|---|---|---|---|\n";
+        md << "## (f) Success by module size in the image, opacity " << num(op, 2)
+           << "\n\nPooled over the five motion categories (near_far, horizontal, rotation, perspective, general) and "
+              "all resolutions; module px = image pixels per 30 px module (ArUco cell) at the image centre.\n\n"
+           << "| module px |" << head;
+        for (int bin = 0; bin + 1 < static_cast<int>(kModulePxBins.size()); ++bin)
+            row(module_px_bin_label(bin), [&](const std::string& name) {
+                const auto m = r.by_module_px.find(name);
+                if (m == r.by_module_px.end()) return Tally{};
+                const auto o = m->second.find(op);
+                if (o == m->second.end()) return Tally{};
+                const auto b = o->second.find(bin);
+                return b == o->second.end() ? Tally{} : b->second;
+            });
+        md << "\n## (g) Success by screen content, opacity " << num(op, 2) << "\n\nPooled as in (f).\n\n| screen |" << head;
+        for (const char* kind : {"document", "code_dark", "web_page", "photo", "blank"})
+            row(kind, [&](const std::string& name) {
+                const auto m = r.by_screen.find(name);
+                if (m == r.by_screen.end()) return Tally{};
+                const auto o = m->second.find(op);
+                if (o == m->second.end()) return Tally{};
+                const auto k = o->second.find(kind);
+                return k == o->second.end() ? Tally{} : k->second;
+            });
+        md << "\n";
+    }
+
     return md.str();
 }
 

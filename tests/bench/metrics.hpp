@@ -88,6 +88,18 @@ PulseSummary summarise_pulse(const std::string& method, const std::string& resol
                              const std::vector<std::string>& screens, const std::vector<std::vector<bool>>& success,
                              int skipped);
 
+// Success pooled over many configurations, split by one property of the
+// frame: the module's size in the image, or the screen content.
+struct Tally {
+    int evaluated = 0, success = 0, false_location = 0;
+};
+inline constexpr std::array<double, 8> kModulePxBins = {0, 8, 12, 16, 24, 32, 48, 1e9};
+int module_px_bin(double module_px);  // index into kModulePxBins, the bin's lower edge
+std::string module_px_bin_label(int bin);
+// method -> opacity -> bin or screen kind -> counts
+using ModuleBreakdown = std::map<std::string, std::map<double, std::map<int, Tally>>>;
+using ScreenBreakdown = std::map<std::string, std::map<double, std::map<std::string, Tally>>>;
+
 struct Report {
     std::string command;
     std::string started;  // local date and time
@@ -98,7 +110,15 @@ struct Report {
     // Every evaluated frame of a method at one resolution, over all
     // categories and opacities: method -> resolution -> ms per frame.
     std::map<std::string, std::map<std::string, std::vector<double>>> all_ms;
+    // Over the five motion categories (not occlusion and low_light, whose
+    // own effects would blur what size and content do), all resolutions.
+    ModuleBreakdown by_module_px;
+    ScreenBreakdown by_screen;
 };
+
+// Counts one evaluated frame of `method` into the report's breakdowns.
+void tally(Report& report, const std::string& method, double opacity, double module_px, const std::string& screen,
+           const Outcome& outcome);
 
 nlohmann::json to_json(const Report& report);
 std::string to_markdown(const Report& report);

@@ -350,167 +350,194 @@ void write_plots(const Report& report, const std::filesystem::path& dir) {
                               bars));
 }
 
-int run(const Options& opt, const std::string& command) {
-    const auto start = Clock::now();
-    // OpenCV's own threads would compete with the frame-making threads and
-    // would let ArUco use both cores where umf uses one.
-    cv::setNumThreads(1);
-    std::filesystem::create_directories(opt.out);
+nlohmann::json settings_json(const Options& opt, const Scene& scene, const Methods& methods) {
+    nlohmann::json s;
+    s["frames_per_configuration"] = opt.frames;
+    for (Category c : opt.categories) s["categories"].push_back(to_string(c));
+    for (cv::Size r : opt.resolutions) s["resolutions"].push_back(resolution_name(r));
+    s["opacities"] = opt.opacities;
+    s["aruco"] = opt.aruco;
+    s["pulse_frames_per_screen"] = opt.pulse_frames;
+    s["seed"] = opt.seed;
+    s["frame_threads"] = opt.threads;
+    s["hardware_threads"] = std::thread::hardware_concurrency();
+    s["load_average_at_start"] = load_average();
+    s["field"] = kFieldFile;
+    s["screen"] = {{"pixels", "1920x1080"}, {"width_mm", scene.screen.width_mm}, {"module_px", scene.module_px}};
+    s["camera_hfov_deg"] = scene.hfov_deg;
+    s["distance_mm"] = {{"rest", scene.range.distance_mm}, {"near", scene.range.near_mm}, {"far", scene.range.far_mm}};
+    s["aruco_board"] = {{"dictionary", "DICT_4X4_250"}, {"markers", methods.board().marker_count()},
+                        {"marker_px", 180}, {"gap_px", 60}};
+    s["success_radius_modules"] = kSuccessRadiusModules;
+    return s;
+}
 
-    const Scene scene;
-    const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/" + kFieldFile);
-    const Methods methods(scene, field);
-    const sim::FieldPlacement placement{{0, 0}, scene.module_px};
-
-    Report report;
-    report.command = command;
-    report.started = now_text();
-    {
-        nlohmann::json s;
-        s["frames_per_configuration"] = opt.frames;
-        for (Category c : opt.categories) s["categories"].push_back(to_string(c));
-        for (cv::Size r : opt.resolutions) s["resolutions"].push_back(resolution_name(r));
-        s["opacities"] = opt.opacities;
-        s["aruco"] = opt.aruco;
-        s["pulse_frames_per_screen"] = opt.pulse_frames;
-        s["seed"] = opt.seed;
-        s["frame_threads"] = opt.threads;
-        s["hardware_threads"] = std::thread::hardware_concurrency();
-        s["load_average_at_start"] = load_average();
-        s["field"] = kFieldFile;
-        s["screen"] = {{"pixels", "1920x1080"}, {"width_mm", scene.screen.width_mm}, {"module_px", scene.module_px}};
-        s["camera_hfov_deg"] = scene.hfov_deg;
-        s["distance_mm"] = {{"rest", scene.range.distance_mm}, {"near", scene.range.near_mm}, {"far", scene.range.far_mm}};
-        s["aruco_board"] = {{"dictionary", "DICT_4X4_250"}, {"markers", methods.board().marker_count()},
-                            {"marker_px", 180}, {"gap_px", 60}};
-        s["success_radius_modules"] = kSuccessRadiusModules;
-        report.settings = s;
+// One benchmark run: the fixed setup, and the report it fills.
+class Bench {
+public:
+    Bench(const Options& opt, const std::string& command)
+        : opt_(opt), field_(load_field(std::string(UMF_DATA_DIR) + "/fields/" + kFieldFile)), methods_(scene_, field_) {
+        report_.command = command;
+        report_.started = now_text();
+        report_.settings = settings_json(opt_, scene_, methods_);
+        // Screens once per kind (the photo kind takes a while); both
+        // methods' screens are mixed from the same content.
+        screens_.resize(sim::kAllScreenKinds.size());
+        parallel_for(static_cast<int>(screens_.size()), opt_.threads, [&](int k) {
+            screens_[static_cast<std::size_t>(k)] =
+                sim::make_screen(sim::kAllScreenKinds[static_cast<std::size_t>(k)], scene_.screen.pixels, kScreenSeed);
+        });
     }
 
-    // Screens once per kind (the photo kind takes a while); both methods'
-    // screens are mixed from the same content.
-    std::vector<cv::Mat> screens(sim::kAllScreenKinds.size());
-    parallel_for(static_cast<int>(screens.size()), opt.threads, [&](int k) {
-        screens[static_cast<std::size_t>(k)] =
-            sim::make_screen(sim::kAllScreenKinds[static_cast<std::size_t>(k)], scene.screen.pixels, kScreenSeed);
-    });
-    std::vector<std::vector<FrameRecipe>> recipes;
-    for (Category c : opt.categories) recipes.push_back(category_recipes(scene, c, opt.frames, opt.seed));
-
-    const int total = static_cast<int>(opt.opacities.size() * opt.resolutions.size() * opt.categories.size());
-    int done = 0;
-    for (double opacity : opt.opacities) {
-        std::vector<cv::Mat> with_field(screens.size()), with_board(screens.size());
-        parallel_for(static_cast<int>(screens.size()), opt.threads, [&](int k) {
-            const auto i = static_cast<std::size_t>(k);
-            with_field[i] = sim::mix_field(screens[i], field, placement, opacity);
-            if (opt.aruco) with_board[i] = methods.board().mix(screens[i], opacity);
-        });
-        for (cv::Size res : opt.resolutions)
-            for (std::size_t ci = 0; ci < opt.categories.size(); ++ci) {
-                const auto& rs = recipes[ci];
-                const auto t0 = Clock::now();
-                std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
-                parallel_for(static_cast<int>(rs.size()), opt.threads, [&](int i) {
-                    const auto& r = rs[static_cast<std::size_t>(i)];
-                    const auto kind = static_cast<std::size_t>(r.screen);
-                    field_frames[static_cast<std::size_t>(i)] = shoot(scene, r, with_field[kind], res);
-                    if (opt.aruco) board_frames[static_cast<std::size_t>(i)] = shoot(scene, r, with_board[kind], res);
-                });
-                const auto t1 = Clock::now();
-                if (!opt.dump.empty()) {
-                    std::filesystem::create_directories(opt.dump);
-                    for (std::size_t i = 0; i < rs.size(); ++i) {
-                        const std::string stem = opt.dump + "/" + to_string(opt.categories[ci]) + "_" +
-                                                 std::to_string(static_cast<int>(std::lround(opacity * 100))) + "_" +
-                                                 resolution_name(res) + "_" + std::to_string(i);
-                        write_png(stem + "_umf.png", field_frames[i].grey);
-                        if (opt.aruco) write_png(stem + "_aruco.png", board_frames[i].grey);
-                    }
+    void sweep() {
+        std::vector<std::vector<FrameRecipe>> recipes;
+        for (Category c : opt_.categories) recipes.push_back(category_recipes(scene_, c, opt_.frames, opt_.seed));
+        const auto total = opt_.opacities.size() * opt_.resolutions.size() * opt_.categories.size();
+        for (double opacity : opt_.opacities) {
+            std::vector<cv::Mat> with_field(screens_.size()), with_board(screens_.size());
+            parallel_for(static_cast<int>(screens_.size()), opt_.threads, [&](int k) {
+                const auto i = static_cast<std::size_t>(k);
+                with_field[i] = sim::mix_field(screens_[i], field_, placement_, opacity);
+                if (opt_.aruco) with_board[i] = methods_.board().mix(screens_[i], opacity);
+            });
+            for (cv::Size res : opt_.resolutions)
+                for (std::size_t ci = 0; ci < opt_.categories.size(); ++ci) {
+                    configuration(opt_.categories[ci], recipes[ci], opacity, res, with_field, with_board);
+                    std::cerr << "[" << report_.configs.size() << "/" << total << "] " << progress(report_.configs.back())
+                              << ", elapsed " << minutes() << " min\n";
                 }
-                std::vector<Outcome> umf_out, aruco_out;
-                for (std::size_t i = 0; i < rs.size(); ++i) {
-                    umf_out.push_back(methods.umf(field_frames[i]));
-                    if (opt.aruco) aruco_out.push_back(methods.aruco(board_frames[i]));
-                }
-                ConfigResult cr;
-                cr.category = to_string(opt.categories[ci]);
-                cr.opacity = opacity;
-                cr.resolution = resolution_name(res);
-                cr.methods["umf"] = summarise(umf_out);
-                {
-                    std::vector<double> module_px;
-                    for (const auto& f : field_frames)
-                        if (f.centre_on_screen) module_px.push_back(f.module_px_in_image);
-                    if (!module_px.empty())
-                        cr.module_px = {*std::min_element(module_px.begin(), module_px.end()),
-                                        percentile(module_px, 50),
-                                        *std::max_element(module_px.begin(), module_px.end())};
-                }
-                for (const auto& o : umf_out)
-                    if (!o.skipped) report.all_ms["umf"][cr.resolution].push_back(o.ms);
-                if (opt.aruco) {
-                    cr.methods["aruco"] = summarise(aruco_out);
-                    for (const auto& o : aruco_out)
-                        if (!o.skipped) report.all_ms["aruco"][cr.resolution].push_back(o.ms);
-                }
-                std::cerr << "[" << ++done << "/" << total << "] " << cr.category << " opacity " << opacity << " "
-                          << cr.resolution << ": umf " << short_result(cr.methods["umf"]);
-                if (opt.aruco) std::cerr << " | ArUco " << short_result(cr.methods["aruco"]);
-                std::cerr << " (frames " << ms_between(t0, t1) / 1000 << " s, detect "
-                          << ms_between(t1, Clock::now()) / 1000 << " s, elapsed "
-                          << ms_between(start, Clock::now()) / 60000 << " min)\n";
-                report.configs.push_back(std::move(cr));
-            }
+        }
     }
 
     // The pulsing video: the opacity changes every frame, so both screens
     // are mixed per frame, on the frame-making threads.
-    if (opt.pulse_frames > 0)
-        for (cv::Size res : opt.resolutions) {
-            std::vector<std::string> kinds;
-            std::vector<std::vector<bool>> umf_ok, aruco_ok;
-            int umf_skipped = 0;
-            for (std::size_t k = 0; k < screens.size(); ++k) {
-                const sim::ScreenKind kind = sim::kAllScreenKinds[k];
-                kinds.push_back(sim::to_string(kind));
-                const auto rs = pulsing_recipes(scene, kind, opt.pulse_frames, opt.seed);
-                std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
-                parallel_for(static_cast<int>(rs.size()), opt.threads, [&](int i) {
-                    const auto& r = rs[static_cast<std::size_t>(i)];
-                    const double op = pulsing_opacity(r.index);
-                    field_frames[static_cast<std::size_t>(i)] =
-                        shoot(scene, r, sim::mix_field(screens[k], field, placement, op), res);
-                    if (opt.aruco)
-                        board_frames[static_cast<std::size_t>(i)] = shoot(scene, r, methods.board().mix(screens[k], op), res);
-                });
-                std::vector<bool> u, a;
-                for (std::size_t i = 0; i < rs.size(); ++i) {
-                    const Outcome o = methods.umf(field_frames[i]);
-                    umf_skipped += o.skipped;
-                    u.push_back(o.success());
-                    if (opt.aruco) a.push_back(methods.aruco(board_frames[i]).success());
-                }
-                umf_ok.push_back(u);
-                aruco_ok.push_back(a);
-                std::cerr << "[pulsing " << resolution_name(res) << " " << kinds.back() << "] umf "
-                          << std::count(u.begin(), u.end(), true) << "/" << u.size();
-                if (opt.aruco) std::cerr << ", ArUco " << std::count(a.begin(), a.end(), true) << "/" << a.size();
-                std::cerr << " (elapsed " << ms_between(start, Clock::now()) / 60000 << " min)\n";
+    void pulsing(cv::Size res) {
+        std::vector<std::string> kinds;
+        std::vector<std::vector<bool>> umf_ok, aruco_ok;
+        int skipped = 0;
+        for (std::size_t k = 0; k < screens_.size(); ++k) {
+            kinds.push_back(sim::to_string(sim::kAllScreenKinds[k]));
+            const auto rs = pulsing_recipes(scene_, sim::kAllScreenKinds[k], opt_.pulse_frames, opt_.seed);
+            std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
+            parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
+                const auto at = static_cast<std::size_t>(i);
+                const double op = pulsing_opacity(rs[at].index);
+                field_frames[at] = shoot(scene_, rs[at], sim::mix_field(screens_[k], field_, placement_, op), res);
+                if (opt_.aruco) board_frames[at] = shoot(scene_, rs[at], methods_.board().mix(screens_[k], op), res);
+            });
+            std::vector<bool> u, a;
+            for (std::size_t i = 0; i < rs.size(); ++i) {
+                const Outcome o = methods_.umf(field_frames[i]);
+                skipped += o.skipped;
+                u.push_back(o.success());
+                if (opt_.aruco) a.push_back(methods_.aruco(board_frames[i]).success());
             }
-            report.pulsing.push_back(summarise_pulse("umf", resolution_name(res), kinds, umf_ok, umf_skipped));
-            if (opt.aruco)
-                report.pulsing.push_back(summarise_pulse("aruco", resolution_name(res), kinds, aruco_ok, umf_skipped));
+            std::cerr << "[pulsing " << resolution_name(res) << " " << kinds.back() << "] umf "
+                      << std::count(u.begin(), u.end(), true) << "/" << u.size();
+            if (opt_.aruco) std::cerr << ", ArUco " << std::count(a.begin(), a.end(), true) << "/" << a.size();
+            std::cerr << ", elapsed " << minutes() << " min\n";
+            umf_ok.push_back(std::move(u));
+            aruco_ok.push_back(std::move(a));
         }
+        report_.pulsing.push_back(summarise_pulse("umf", resolution_name(res), kinds, umf_ok, skipped));
+        if (opt_.aruco) report_.pulsing.push_back(summarise_pulse("aruco", resolution_name(res), kinds, aruco_ok, skipped));
+    }
 
-    report.wall_s = ms_between(start, Clock::now()) / 1000;
-    report.settings["load_average_at_end"] = load_average();
-    const std::filesystem::path dir(opt.out);
-    write_text(dir / "detector.json", to_json(report).dump(2) + "\n");
-    write_text(dir / "detector.md", to_markdown(report));
-    write_plots(report, dir);
-    std::cerr << "wrote " << (dir / "detector.md").string() << ", detector.json, success_vs_opacity.png, ms_per_frame.png"
-              << "; total wall time " << report.wall_s / 60 << " min (" << report.wall_s << " s)\n";
+    void write() {
+        report_.wall_s = minutes() * 60;
+        report_.settings["load_average_at_end"] = load_average();
+        const std::filesystem::path dir(opt_.out);
+        write_text(dir / "detector.json", to_json(report_).dump(2) + "\n");
+        write_text(dir / "detector.md", to_markdown(report_));
+        write_plots(report_, dir);
+        std::cerr << "wrote " << (dir / "detector.md").string()
+                  << ", detector.json, success_vs_opacity.png, ms_per_frame.png; total wall time " << report_.wall_s / 60
+                  << " min (" << report_.wall_s << " s)\n";
+    }
+
+private:
+    // Makes the frames on all threads, then runs the methods one frame at a
+    // time on this thread, so that no timed call shares the cores.
+    void configuration(Category category, const std::vector<FrameRecipe>& rs, double opacity, cv::Size res,
+                       const std::vector<cv::Mat>& with_field, const std::vector<cv::Mat>& with_board) {
+        std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
+        parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
+            const auto at = static_cast<std::size_t>(i);
+            const auto kind = static_cast<std::size_t>(rs[at].screen);
+            field_frames[at] = shoot(scene_, rs[at], with_field[kind], res);
+            if (opt_.aruco) board_frames[at] = shoot(scene_, rs[at], with_board[kind], res);
+        });
+        ConfigResult cr;
+        cr.category = to_string(category);
+        cr.opacity = opacity;
+        cr.resolution = resolution_name(res);
+        if (!opt_.dump.empty()) dump(cr, field_frames, board_frames);
+
+        std::vector<Outcome> umf_out, aruco_out;
+        for (std::size_t i = 0; i < rs.size(); ++i) {
+            umf_out.push_back(methods_.umf(field_frames[i]));
+            if (opt_.aruco) aruco_out.push_back(methods_.aruco(board_frames[i]));
+        }
+        cr.methods["umf"] = summarise(umf_out);
+        if (opt_.aruco) cr.methods["aruco"] = summarise(aruco_out);
+
+        std::vector<double> module_px;
+        for (const auto& f : field_frames)
+            if (f.centre_on_screen) module_px.push_back(f.module_px_in_image);
+        if (!module_px.empty())
+            cr.module_px = {*std::min_element(module_px.begin(), module_px.end()), percentile(module_px, 50),
+                            *std::max_element(module_px.begin(), module_px.end())};
+        for (std::size_t i = 0; i < rs.size(); ++i) {
+            if (!umf_out[i].skipped) report_.all_ms["umf"][cr.resolution].push_back(umf_out[i].ms);
+            if (opt_.aruco && !aruco_out[i].skipped) report_.all_ms["aruco"][cr.resolution].push_back(aruco_out[i].ms);
+            if (category == Category::occlusion || category == Category::low_light) continue;
+            const std::string kind = sim::to_string(rs[i].screen);
+            tally(report_, "umf", opacity, field_frames[i].module_px_in_image, kind, umf_out[i]);
+            if (opt_.aruco) tally(report_, "aruco", opacity, field_frames[i].module_px_in_image, kind, aruco_out[i]);
+        }
+        report_.configs.push_back(std::move(cr));
+    }
+
+    void dump(const ConfigResult& cr, const std::vector<Frame>& field_frames, const std::vector<Frame>& board_frames) const {
+        std::filesystem::create_directories(opt_.dump);
+        for (std::size_t i = 0; i < field_frames.size(); ++i) {
+            const std::string stem = opt_.dump + "/" + cr.category + "_" +
+                                     std::to_string(static_cast<int>(std::lround(cr.opacity * 100))) + "_" +
+                                     cr.resolution + "_" + std::to_string(i);
+            write_png(stem + "_umf.png", field_frames[i].grey);
+            if (opt_.aruco) write_png(stem + "_aruco.png", board_frames[i].grey);
+        }
+    }
+
+    std::string progress(const ConfigResult& cr) const {
+        std::ostringstream o;
+        o << cr.category << " opacity " << cr.opacity << " " << cr.resolution << ": umf " << short_result(cr.methods.at("umf"));
+        if (opt_.aruco) o << " | ArUco " << short_result(cr.methods.at("aruco"));
+        return o.str();
+    }
+
+    double minutes() const { return ms_between(start_, Clock::now()) / 60000; }
+
+    const Options& opt_;
+    const Clock::time_point start_ = Clock::now();
+    const Scene scene_;
+    const Field field_;
+    const Methods methods_;
+    const sim::FieldPlacement placement_{{0, 0}, scene_.module_px};
+    std::vector<cv::Mat> screens_;
+    Report report_;
+};
+
+int run(const Options& opt, const std::string& command) {
+    // OpenCV's own threads would compete with the frame-making threads and
+    // would let ArUco use both cores where umf uses one.
+    cv::setNumThreads(1);
+    std::filesystem::create_directories(opt.out);
+    Bench bench(opt, command);
+    bench.sweep();
+    if (opt.pulse_frames > 0)
+        for (cv::Size res : opt.resolutions) bench.pulsing(res);
+    bench.write();
     return 0;
 }
 
