@@ -104,7 +104,7 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
                              const EdgelScan& scan, Detection& out) const {
     auto t = Clock::now();
     // Step 2. The two vanishing points.
-    const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, options_.vanishing);
+    const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, options_.vanishing, scan.noise_sigma);
     out.times.vanishing_ms += ms_since(t);
     if (!vp.found) return "no grid directions";
 

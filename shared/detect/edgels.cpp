@@ -23,8 +23,8 @@ void sobel(const GreyView& im, int x, int y, float& gx, float& gy) {
 // (a robust estimate from the lower quartile of |d|) and reach
 // the contrast floor. Calls found(position) with a sub-pixel position.
 template <typename Sample, typename Found>
-void scan_line(int n, Sample s, int floor, std::vector<int>& d, std::vector<int>& scratch, Found found) {
-    if (n < 7) return;
+double scan_line(int n, Sample s, int floor, std::vector<int>& d, std::vector<int>& scratch, Found found) {
+    if (n < 7) return 0;
     d.assign(n, 0);
     for (int i = 2; i + 2 < n; ++i) d[i] = (s(i + 1) + s(i + 2)) - (s(i - 1) + s(i - 2));
     scratch.resize(n - 4);
@@ -35,7 +35,8 @@ void scan_line(int n, Sample s, int floor, std::vector<int>& d, std::vector<int>
     // (3.14 * quartile for Gaussian noise): where modules are small and
     // blurred, edges spread over most of a line and would inflate a median.
     // 4.5 deviations keep false peaks rare.
-    const double threshold = std::max(2.0 * floor, 4.5 * 3.14 * *quarter);
+    const double sigma_d = 3.14 * *quarter;
+    const double threshold = std::max(2.0 * floor, 4.5 * sigma_d);
     int prev = std::abs(d[2]), cur = std::abs(d[3]);
     for (int i = 3; i + 3 < n; ++i) {
         const int next = std::abs(d[i + 1]);
@@ -48,6 +49,7 @@ void scan_line(int n, Sample s, int floor, std::vector<int>& d, std::vector<int>
         prev = cur;
         cur = next;
     }
+    return sigma_d / 2;  // d sums four pixels: twice a pixel's deviation
 }
 
 }  // namespace
@@ -58,6 +60,7 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
     out.step = o.step > 0 ? o.step : std::max(4, std::max(im.width, im.height) / 40);
     const int thr = std::max(1, o.min_contrast);
     std::vector<int> d, scratch;
+    std::vector<double> noise;
     auto keep = [&](float x, float y, bool on_row) {
         const int xi = std::clamp(static_cast<int>(std::lround(x)), 1, im.width - 2);
         const int yi = std::clamp(static_cast<int>(std::lround(y)), 1, im.height - 2);
@@ -73,13 +76,17 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
     for (int y = first; y < im.height; y += out.step) {
         const std::uint8_t* row = im.row(y);
         out.pixels_visited += im.width;
-        scan_line(im.width, [row](int i) { return static_cast<int>(row[i]); }, thr, d, scratch,
-                  [&](double x) { keep(static_cast<float>(x), static_cast<float>(y), true); });
+        noise.push_back(scan_line(im.width, [row](int i) { return static_cast<int>(row[i]); }, thr, d, scratch,
+                                  [&](double x) { keep(static_cast<float>(x), static_cast<float>(y), true); }));
     }
     for (int x = first; x < im.width; x += out.step) {
         out.pixels_visited += im.height;
-        scan_line(im.height, [&im, x](int i) { return static_cast<int>(im.at(x, i)); }, thr, d, scratch,
-                  [&](double y) { keep(static_cast<float>(x), static_cast<float>(y), false); });
+        noise.push_back(scan_line(im.height, [&im, x](int i) { return static_cast<int>(im.at(x, i)); }, thr, d,
+                                  scratch, [&](double y) { keep(static_cast<float>(x), static_cast<float>(y), false); }));
+    }
+    if (!noise.empty()) {
+        std::nth_element(noise.begin(), noise.begin() + noise.size() / 2, noise.end());
+        out.noise_sigma = noise[noise.size() / 2];
     }
     return out;
 }

@@ -28,6 +28,7 @@ struct EdgelScan {
     std::vector<Edgel> edgels;
     long pixels_visited = 0;
     int step = 0;
+    double noise_sigma = 0;  // the image's noise in grey levels (median over the scanlines' estimates)
 };
 
 EdgelScan find_edgels(const GreyView& image, const EdgelOptions& options = {});

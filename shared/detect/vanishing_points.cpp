@@ -21,6 +21,7 @@ struct EdgelLine {
     Eigen::Vector3d l;   // the line through p along d
     double angle;        // of d, in [0, pi)
     double weight;       // gradient magnitude
+    double cos_tol;      // alignment needed to count as an inlier
 };
 
 double angle_between_mod_pi(double a, double b) {
@@ -89,7 +90,7 @@ Eigen::Vector2d direction_to(const Eigen::Vector3d& v, const Eigen::Vector2d& fr
 }
 
 VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int width, int height,
-                                      const VanishingOptions& o) {
+                                      const VanishingOptions& o, double noise_sigma) {
     VanishingPoints out;
     const double cx = width / 2.0, cy = height / 2.0, scale = std::max(width, height) / 2.0;
     std::vector<EdgelLine> lines;
@@ -103,12 +104,14 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         l.l = Eigen::Vector3d(e.gx / g, e.gy / g, -(e.gx * l.p.x() + e.gy * l.p.y()) / g);
         l.angle = std::fmod(std::atan2(l.d.y(), l.d.x()) + 2 * kPi, kPi);
         l.weight = g;
+        const double tol_deg = std::min(o.max_inlier_deg, std::max(o.inlier_deg, o.noise_deviations * 3.46 *
+                                                                                      noise_sigma / g * 180 / kPi));
+        l.cos_tol = std::cos(tol_deg * kPi / 180);
         lines.push_back(l);
     }
     if (static_cast<int>(lines.size()) < 2 * o.min_edgels) return out;
 
     const double separation = o.min_separation_deg * kPi / 180;
-    const double cos_tol = std::cos(o.inlier_deg * kPi / 180);
     std::mt19937_64 rng(o.seed);
     std::vector<bool> taken(lines.size(), false);
     double first = -1;
@@ -131,7 +134,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         auto inliers_of = [&](const Eigen::Vector3d& v) {
             std::vector<int> in;
             for (int i : candidates)
-                if (alignment(lines[i], v) >= cos_tol) in.push_back(i);
+                if (alignment(lines[i], v) >= lines[i].cos_tol) in.push_back(i);
             return in;
         };
         // Hypotheses are scored on an evenly spread subset of the candidates:
@@ -142,7 +145,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         for (std::size_t i = 0; i < candidates.size(); i += judge_stride) judges.push_back(candidates[i]);
         auto score = [&](const Eigen::Vector3d& v) {
             int n = 0;
-            for (int i : judges) n += alignment(lines[i], v) >= cos_tol;
+            for (int i : judges) n += alignment(lines[i], v) >= lines[i].cos_tol;
             return n;
         };
         Eigen::Vector3d best_v = Eigen::Vector3d::Zero();
