@@ -88,6 +88,24 @@ Agreement agreement(const ModuleGrid& g, const Field& f, const GridPlacement& p)
     return {compared, matched};
 }
 
+// Calls known(i, j, placement) for every complete window of the grid that is
+// a window of the field, with the placement it implies; counts the windows
+// read and known into `out`.
+template <typename Known>
+void read_windows(const ModuleGrid& grid, const WindowIndex& index, VoteResult& out, Known known) {
+    const int n = index.codec().window();
+    for (int i = 0; i + n <= grid.rows; ++i)
+        for (int j = 0; j + n <= grid.cols; ++j) {
+            auto code = observed_code(grid, index.codec(), i, j);
+            if (!code) continue;
+            ++out.windows_read;
+            auto match = index.find(*code);
+            if (!match) continue;
+            ++out.windows_known;
+            known(i, j, placement_of(*match, n, i, j));
+        }
+}
+
 // Bits by which the read grid favours placement p over chance, before the
 // cost of choosing p among `hypotheses`.
 double evidence_bits(const Agreement& a, const Field& f, const VoteOptions& options) {
@@ -104,17 +122,10 @@ VoteResult vote_placement(const ModuleGrid& grid, const WindowIndex& index, cons
     const int n = index.codec().window();
     std::vector<std::uint64_t> ballots;
     std::vector<std::pair<int, int>> where;  // window corner of each ballot, before sorting
-    for (int i = 0; i + n <= grid.rows; ++i)
-        for (int j = 0; j + n <= grid.cols; ++j) {
-            auto code = observed_code(grid, index.codec(), i, j);
-            if (!code) continue;
-            ++out.windows_read;
-            auto match = index.find(*code);
-            if (!match) continue;
-            ++out.windows_known;
-            ballots.push_back(pack(placement_of(*match, n, i, j)));
-            where.emplace_back(i, j);
-        }
+    read_windows(grid, index, out, [&](int i, int j, const GridPlacement& p) {
+        ballots.push_back(pack(p));
+        where.emplace_back(i, j);
+    });
     const std::vector<std::uint64_t> unsorted = ballots;
     if (ballots.empty()) return out;
     std::sort(ballots.begin(), ballots.end());
@@ -177,22 +188,12 @@ VoteResult vote_near(const ModuleGrid& grid, const WindowIndex& index, const Gri
     out.evidence_bits = best_bits - choice_bits;
     // Complete windows that agree: the same count the global vote reports.
     const int n = index.codec().window();
-    for (int i = 0; i + n <= grid.rows; ++i)
-        for (int j = 0; j + n <= grid.cols; ++j) {
-            auto code = observed_code(grid, index.codec(), i, j);
-            if (!code) continue;
-            ++out.windows_read;
-            auto match = index.find(*code);
-            if (!match) continue;
-            ++out.windows_known;
-            const GridPlacement q = placement_of(*match, n, i, j);
-            if (q.quarter_turns == out.placement.quarter_turns && q.row_offset == out.placement.row_offset &&
-                q.col_offset == out.placement.col_offset) {
-                ++out.votes;
-                out.centre_x += j + n / 2.0;
-                out.centre_y += i + n / 2.0;
-            }
-        }
+    read_windows(grid, index, out, [&](int i, int j, const GridPlacement& q) {
+        if (pack(q) != pack(out.placement)) return;
+        ++out.votes;
+        out.centre_x += j + n / 2.0;
+        out.centre_y += i + n / 2.0;
+    });
     if (out.votes > 0) {
         out.centre_x /= out.votes;
         out.centre_y /= out.votes;

@@ -17,6 +17,14 @@ using namespace umf;
 constexpr double kPoses[][4] = {{0, 0, 0, 300}, {20, 15, 70, 300}, {-30, 10, 140, 280}, {40, -25, 20, 250},
                                 {10, 10, 100, 180}};
 
+// One of kPoses, aiming at the screen's centre.
+sim::CameraPose pose_of(const double (&p)[4]) {
+    sim::CameraPose pose;
+    pose.pitch_deg = p[0], pose.yaw_deg = p[1], pose.roll_deg = p[2], pose.distance_mm = p[3];
+    pose.aim_screen_px = {960, 540};
+    return pose;
+}
+
 struct Seen {
     int found = 0;
     double worst = 0;
@@ -33,12 +41,9 @@ Seen photograph_and_detect(const Field& f, double module_px, sim::ScreenKind kin
     const cv::Mat mixed = sim::mix_field(sim::make_screen(kind, geometry.pixels, 5), f, placement, opacity);
     Seen seen;
     for (const auto& p : kPoses) {
-        sim::CameraPose pose;
-        pose.pitch_deg = p[0], pose.yaw_deg = p[1], pose.roll_deg = p[2], pose.distance_mm = p[3];
-        pose.aim_screen_px = {960, 540};
         sim::Degradation degradation;
         degradation.noise_sigma = 2;
-        const sim::Shot shot = sim::photograph(mixed, geometry, camera, pose, degradation);
+        const sim::Shot shot = sim::photograph(mixed, geometry, camera, pose_of(p), degradation);
         const Detection d = detector.detect({shot.grey.data, shot.grey.cols, shot.grey.rows,
                                              static_cast<std::ptrdiff_t>(shot.grey.step)});
         if (!d.found) continue;
@@ -108,12 +113,9 @@ TEST(DetectorNegatives, NeverPlacesAnImpostorNorDoesTheTrackerLockOnOne) {
         Tracker tracker(detector);
         ASSERT_EQ(tracker.update(real.view()).state, TrackState::locked);
         for (const auto& p : kPoses) {
-            sim::CameraPose pose;
-            pose.pitch_deg = p[0], pose.yaw_deg = p[1], pose.roll_deg = p[2], pose.distance_mm = p[3];
-            pose.aim_screen_px = {960, 540};
             sim::Degradation degradation;
             degradation.noise_sigma = 2;
-            const sim::Shot shot = sim::photograph(screen, geometry, camera, pose, degradation);
+            const sim::Shot shot = sim::photograph(screen, geometry, camera, pose_of(p), degradation);
             const GreyView view{shot.grey.data, shot.grey.cols, shot.grey.rows,
                                 static_cast<std::ptrdiff_t>(shot.grey.step)};
             const Detection d = detector.detect(view);
