@@ -18,7 +18,7 @@ Tracker::Tracker(const Detector& detector, TrackerOptions options) : detector_(&
 void Tracker::reset() {
     has_prior_ = false;
     frames_since_lock_ = 0;
-    locks_in_a_row_ = 0;
+    has_motion_ = false;
 }
 
 TrackResult Tracker::update(const GreyView& image) {
@@ -34,13 +34,13 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
         // The place may drift further the longer it has not been seen.
         prior.radius_modules = options_.search_radius_modules + frames_since_lock_ / 2;
     }
-    if (has_prior_ && frames_since_lock_ == 0) {
-        // The image moved as much as between the last two frames: A_t =
-        // A_{t-1} A_{t-2}^-1 A_{t-1} for image-to-field maps A.
-        const Eigen::Matrix3d predicted = locks_in_a_row_ >= 2
-                                              ? Eigen::Matrix3d(last_image_to_field_ * before_last_image_to_field_.inverse() *
-                                                                last_image_to_field_)
-                                              : last_image_to_field_;
+    if (has_prior_ && frames_since_lock_ < options_.follow_frames) {
+        // The image keeps moving as it moved between the last two locked
+        // frames: A_t = A_{t-1} D with D = A_{t-2}^-1 A_{t-1} for
+        // image-to-field maps A, once per frame since the last lock.
+        Eigen::Matrix3d predicted = last_image_to_field_;
+        if (has_motion_)
+            for (int k = 0; k <= frames_since_lock_; ++k) predicted = predicted * motion_;
         out.detection = detector_->follow(image, aim, predicted);
     }
     if (!out.detection.found) {
@@ -51,7 +51,6 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
     const Detection& d = out.detection;
     if (!d.found) {
         ++frames_since_lock_;
-        locks_in_a_row_ = 0;
         out.frames_since_lock = frames_since_lock_;
         out.state = has_prior_ && frames_since_lock_ <= options_.prior_frames ? TrackState::lost : TrackState::searching;
         return out;
@@ -71,9 +70,10 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
     }
     out.aim_field = smoothed_;
     last_raw_aim_ = d.aim_field;
-    before_last_image_to_field_ = last_image_to_field_;
+    // The motion per frame is known from two locks in a row only.
+    has_motion_ = continuous;
+    if (continuous) motion_ = last_image_to_field_.inverse() * d.image_to_field;
     last_image_to_field_ = d.image_to_field;
-    ++locks_in_a_row_;
     has_prior_ = true;
     frames_since_lock_ = 0;
     return out;

@@ -18,6 +18,9 @@ namespace umf {
 struct TrackerOptions {
     // Frames after the last lock during which the prior is still used.
     int prior_frames = 12;
+    // Frames after the last lock during which the place is still predicted
+    // and followed (at the last motion) before a search.
+    int follow_frames = 4;
     // How far (in modules, at the aim point) the field may have moved
     // between the prior's frame and this one.
     int search_radius_modules = 3;
@@ -60,8 +63,8 @@ private:
     TrackerOptions options_;
     bool has_prior_ = false;
     Eigen::Matrix3d last_image_to_field_ = Eigen::Matrix3d::Identity();
-    Eigen::Matrix3d before_last_image_to_field_ = Eigen::Matrix3d::Identity();
-    int locks_in_a_row_ = 0;
+    Eigen::Matrix3d motion_ = Eigen::Matrix3d::Identity();  // image motion per frame, A_{t-1}^-1 A_t
+    bool has_motion_ = false;
     Eigen::Vector2d last_raw_aim_ = Eigen::Vector2d::Zero();
     Eigen::Vector2d smoothed_ = Eigen::Vector2d::Zero();
     int frames_since_lock_ = 0;
