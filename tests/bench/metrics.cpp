@@ -57,6 +57,8 @@ nlohmann::json to_json(const PulseSummary& p) {
             {"skipped", p.skipped},
             {"successes", p.successes},
             {"success_pct", json_number(p.success_pct)},
+            {"false_locations", p.false_locations},
+            {"false_location_pct", json_number(p.false_pct)},
             {"gaps", p.gaps.size()},
             {"gaps_le3_pct", json_number(p.gaps_le3_pct)},
             {"gaps_le5_pct", json_number(p.gaps_le5_pct)},
@@ -80,6 +82,13 @@ std::vector<T> unique_in_order(const std::vector<ConfigResult>& configs, T Confi
     std::vector<T> out;
     for (const auto& c : configs)
         if (std::find(out.begin(), out.end(), c.*member) == out.end()) out.push_back(c.*member);
+    return out;
+}
+
+std::vector<std::string> pulse_resolutions(const std::vector<PulseSummary>& pulsing) {
+    std::vector<std::string> out;
+    for (const auto& p : pulsing)
+        if (std::find(out.begin(), out.end(), p.resolution) == out.end()) out.push_back(p.resolution);
     return out;
 }
 
@@ -148,6 +157,12 @@ void reasons_table(std::ostringstream& md, const Report& r, const std::string& n
 
 }  // namespace
 
+std::string method_label(const std::string& key) {
+    for (const auto& m : kMethods)
+        if (key == m.key) return m.label;
+    return key;
+}
+
 double percentile(std::vector<double> values, double p) {
     values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }),
                  values.end());
@@ -189,7 +204,7 @@ Summary summarise(const std::vector<Outcome>& outcomes) {
     Summary s;
     s.frames = static_cast<int>(outcomes.size());
     std::vector<double> errors, ms, pixels;
-    std::array<std::vector<double>, 5> stages;
+    std::array<std::vector<double>, kStageNames.size()> stages;
     for (const auto& o : outcomes) {
         if (o.skipped) {
             ++s.skipped;
@@ -222,18 +237,20 @@ Summary summarise(const std::vector<Outcome>& outcomes) {
 }
 
 PulseSummary summarise_pulse(const std::string& method, const std::string& resolution,
-                             const std::vector<std::string>& screens, const std::vector<std::vector<bool>>& success,
-                             int skipped) {
+                             const std::vector<std::string>& screens,
+                             const std::vector<std::vector<Outcome>>& outcomes) {
     PulseSummary p;
     p.method = method;
     p.resolution = resolution;
-    p.sequences = static_cast<int>(success.size());
-    p.skipped = skipped;
-    for (std::size_t s = 0; s < success.size(); ++s) {
-        const auto& seq = success[s];
+    p.sequences = static_cast<int>(outcomes.size());
+    for (std::size_t s = 0; s < outcomes.size(); ++s) {
+        const auto& seq = outcomes[s];
         int last = -1, hits = 0;
         for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
-            if (!seq[static_cast<std::size_t>(i)]) continue;
+            const Outcome& o = seq[static_cast<std::size_t>(i)];
+            p.skipped += o.skipped;
+            p.false_locations += !o.skipped && o.false_location();
+            if (o.skipped || !o.success()) continue;
             ++hits;
             if (last >= 0) p.gaps.push_back(i - last);
             p.longest_miss = std::max(p.longest_miss, i - last - 1);
@@ -245,6 +262,7 @@ PulseSummary summarise_pulse(const std::string& method, const std::string& resol
         if (s < screens.size()) p.success_pct_by_screen[screens[s]] = pct(hits, static_cast<int>(seq.size()));
     }
     p.success_pct = pct(p.successes, p.frames);
+    p.false_pct = pct(p.false_locations, p.frames);
     const auto share = [&](int limit) {
         const auto n = std::count_if(p.gaps.begin(), p.gaps.end(), [&](int g) { return g <= limit; });
         return pct(static_cast<int>(n), static_cast<int>(p.gaps.size()));
@@ -279,9 +297,9 @@ nlohmann::json to_json(const Report& r) {
     }
     j["configurations"] = configs;
     nlohmann::json reasons = nlohmann::json::object();
-    for (const std::string name : {"umf", "aruco"})
-        for (const auto& [cat, entry] : reasons_by_category(r, name))
-            reasons[cat][name] = {{"evaluated", entry.first}, {"reasons", entry.second}};
+    for (const auto& m : kMethods)
+        for (const auto& [cat, entry] : reasons_by_category(r, m.key))
+            reasons[cat][m.key] = {{"evaluated", entry.first}, {"reasons", entry.second}};
     j["failure_reasons_by_category"] = reasons;
     nlohmann::json pulsing = nlohmann::json::array();
     for (const auto& p : r.pulsing) pulsing.push_back(to_json(p));
@@ -324,7 +342,17 @@ std::string to_markdown(const Report& r) {
     auto opacities = unique_in_order(r.configs, &ConfigResult::opacity);
     std::sort(opacities.begin(), opacities.end());
     const bool aruco = has_method(r, "aruco");
+    const bool video = has_method(r, "umf_video");
     const double op = headline_opacity(r);
+    // The methods that were run, in report order.
+    std::vector<MethodName> run;
+    for (const auto& m : kMethods)
+        if (has_method(r, m.key)) run.push_back(m);
+    const auto rule = [&](std::size_t columns) {
+        md << "|";
+        for (std::size_t i = 0; i < columns; ++i) md << "---|";
+        md << "\n";
+    };
 
     md << "# Detector benchmark: umf against ArUco on simulated phone photos\n\n";
     md << "Command: `" << r.command << "`, started " << r.started << ", wall time " << num(r.wall_s / 60, 1)
@@ -336,44 +364,88 @@ std::string to_markdown(const Report& r) {
            << "inflates the times.";
     md << "\n\n";
     md << "Setup: a 1920 x 1080 screen, 527 mm wide, showing one of five contents (document, code_dark, web_page, "
-          "photo, blank; frame i shows kind i mod 5). umf: the field `b4-64x36` (30 px modules, covering the whole "
+          "photo, blank; frame i shows kind i mod 5). umf: the field `" << r.settings.value("field", std::string("?")) << "` (30 px modules, covering the whole "
           "screen) blended in at the given opacity. ArUco: an 8 x 4 board of DICT_4X4_250 markers (180 px = 6 cells "
           "of 30 px, 60 px gaps, white background over the whole screen) blended in the same way; located by "
-          "`cv::aruco::detectMarkers` (default parameters) and a homography from the markers' corners. Both methods "
+          "`cv::aruco::detectMarkers` (default parameters) and a homography from the markers' corners. All methods "
           "see the very same poses, contents, degradations and occluders. A phone camera (65 degree horizontal field "
           "of view) at 200..600 mm films at 25 fps; every frame has defocus (sigma 0.5..1.5 px), noise (sigma 2..3), "
           "JPEG 80, and some frames motion blur (1..4 px, 30 %), RGB subpixel stripes (moire, 15 %) or a lamp's "
           "glare (10 %). occlusion: general motion plus a hand or mug over 15..35 % of the frame (never the centre); "
           "low_light: general motion at exposure 0.35, gamma 1.2, noise sigma 6.\n\n";
+    md << "Methods: **umf** is the detector on each frame on its own (`umf::Detector::detect`, single frame). "
+          "**umf video** is the tracker (`umf::Tracker`, on the same detector) fed a configuration's frames in their "
+          "order, the consecutive frames of the category's 25 fps camera motion, as a phone feeds its camera frames "
+          "(one fresh tracker per configuration and per pulsing video): it predicts the field's next place from the "
+          "last two, confirms it there on the field's own edges (`Detector::follow`), and falls back to a full "
+          "detection (with the last place as a prior) when that fails. It counts as found when the tracker is "
+          "locked, its aim point is the tracker's (smoothed) one, its time is the whole `update()` call. Frames "
+          "whose centre is off the screen are still fed to the tracker but left out of its statistics. **ArUco** is "
+          "the single-frame baseline above.\n\n";
     md << "Success: located within " << num(kSuccessRadiusModules, 0)
        << " module (30 screen px) of the true screen point under the image centre; false: located farther away. "
-          "Percentages are of the evaluated frames (frames whose centre falls off the screen are skipped for both "
+          "Percentages are of the evaluated frames (frames whose centre falls off the screen are skipped for all "
           "methods; the skipped count is in the JSON). Errors are in modules over the located frames; ms per frame "
-          "is the median of one detector call on one thread (OpenCV limited to one thread); px % is the median "
-          "share of the image's pixels the umf detector read; module px is the range of image pixels per module at "
-          "the image centre.\n\n";
+          "is the median of one detector call (for umf video one tracker update) on one thread (OpenCV limited to "
+          "one thread); px % is the median share of the image's pixels the umf detector read; module px is the "
+          "range of image pixels per module at the image centre.\n\n";
 
     md << "## (a) Per category at opacity " << num(op, 2) << "\n\n";
+    md << "Per resolution two tables: success, false locations and time of every method side by side, then the "
+          "aim errors of the located frames and the umf pixels read.\n\n";
     for (const auto& res : resolutions) {
         md << "### " << res << "\n\n";
-        md << "| category | frames (skipped) | module px | umf ok % | umf false % | umf err med | umf err p95 | umf ms | umf px % |";
-        if (aruco) md << " ArUco ok % | ArUco false % | ArUco err med | ArUco err p95 | ArUco ms |";
-        md << "\n|---|---|---|---|---|---|---|---|---|" << (aruco ? "---|---|---|---|---|" : "") << "\n";
+        md << "| category | frames (skipped) | module px |";
+        for (const char* what : {"ok %", "false %", "ms"})
+            for (const auto& m : run) md << " " << m.label << " " << what << " |";
+        md << "\n";
+        rule(3 + 3 * run.size());
         for (const auto& cat : categories) {
             const ConfigResult* c = find_config(r, cat, op, res);
-            const Summary* u = method(c, "umf");
+            const Summary* u = c && !c->methods.empty() ? &c->methods.begin()->second : nullptr;
             if (!u) continue;
             md << "| " << cat << " | " << u->frames << " (" << u->skipped << ") | " << num(c->module_px[0], 0) << "–"
-               << num(c->module_px[2], 0) << " | " << num(u->success_pct, 1) << " | "
-               << num(u->false_pct, 1) << " | " << num(u->err_median, 2) << " | " << num(u->err_p95, 2) << " | "
-               << num(u->ms_median, 1) << " | " << num(u->pixels_median_pct, 1) << " |";
-            if (aruco) {
-                if (const Summary* a = method(c, "aruco"))
-                    md << " " << num(a->success_pct, 1) << " | " << num(a->false_pct, 1) << " | "
-                       << num(a->err_median, 2) << " | " << num(a->err_p95, 2) << " | " << num(a->ms_median, 1) << " |";
-                else
-                    md << " – | – | – | – | – |";
+               << num(c->module_px[2], 0) << " |";
+            for (const auto& m : run) {
+                const Summary* s = method(c, m.key);
+                md << " " << (s ? num(s->success_pct, 1) : "–") << " |";
             }
+            for (const auto& m : run) {
+                const Summary* s = method(c, m.key);
+                md << " " << (s ? num(s->false_pct, 1) : "–") << " |";
+            }
+            for (const auto& m : run) {
+                const Summary* s = method(c, m.key);
+                md << " " << (s ? num(s->ms_median, 1) : "–") << " |";
+            }
+            md << "\n";
+        }
+        md << "\n| category |";
+        std::size_t columns = 1;
+        for (const auto& m : run) {
+            md << " " << m.label << " err med | " << m.label << " err p95 |";
+            columns += 2;
+        }
+        for (const auto& m : run)
+            if (m.key != std::string("aruco")) {
+                md << " " << m.label << " px % |";
+                ++columns;
+            }
+        md << "\n";
+        rule(columns);
+        for (const auto& cat : categories) {
+            const ConfigResult* c = find_config(r, cat, op, res);
+            if (!c || c->methods.empty()) continue;
+            md << "| " << cat << " |";
+            for (const auto& m : run) {
+                const Summary* s = method(c, m.key);
+                md << " " << (s ? num(s->err_median, 2) : "–") << " | " << (s ? num(s->err_p95, 2) : "–") << " |";
+            }
+            for (const auto& m : run)
+                if (m.key != std::string("aruco")) {
+                    const Summary* s = method(c, m.key);
+                    md << " " << (s ? num(s->pixels_median_pct, 1) : "–") << " |";
+                }
             md << "\n";
         }
         md << "\n";
@@ -382,42 +454,28 @@ std::string to_markdown(const Report& r) {
     const std::string sweep = std::find(categories.begin(), categories.end(), "general") != categories.end()
                                   ? "general"
                                   : (categories.empty() ? "" : categories.front());
-    md << "## (b) Success % against opacity, " << sweep << " category\n\n| opacity |";
-    for (const auto& res : resolutions) md << " umf " << res << " |" << (aruco ? " ArUco " + res + " |" : "");
-    md << "\n|---|";
-    for (std::size_t i = 0; i < resolutions.size(); ++i) md << (aruco ? "---|---|" : "---|");
-    md << "\n";
-    for (double o : opacities) {
-        md << "| " << num(o, 2) << " |";
-        for (const auto& res : resolutions) {
-            const ConfigResult* c = find_config(r, sweep, o, res);
-            const Summary* u = method(c, "umf");
-            md << " " << (u ? num(u->success_pct, 1) : "–") << " |";
-            if (aruco) {
-                const Summary* a = method(c, "aruco");
-                md << " " << (a ? num(a->success_pct, 1) : "–") << " |";
-            }
-        }
+    const auto by_opacity = [&](double Summary::*value) {
+        md << "| opacity |";
+        for (const auto& res : resolutions)
+            for (const auto& m : run) md << " " << m.label << " " << res << " |";
         md << "\n";
-    }
-    md << "\nFalse locations in the same runs (%):\n\n| opacity |";
-    for (const auto& res : resolutions) md << " umf " << res << " |" << (aruco ? " ArUco " + res + " |" : "");
-    md << "\n|---|";
-    for (std::size_t i = 0; i < resolutions.size(); ++i) md << (aruco ? "---|---|" : "---|");
-    md << "\n";
-    for (double o : opacities) {
-        md << "| " << num(o, 2) << " |";
-        for (const auto& res : resolutions) {
-            const ConfigResult* c = find_config(r, sweep, o, res);
-            const Summary* u = method(c, "umf");
-            md << " " << (u ? num(u->false_pct, 1) : "–") << " |";
-            if (aruco) {
-                const Summary* a = method(c, "aruco");
-                md << " " << (a ? num(a->false_pct, 1) : "–") << " |";
+        rule(1 + resolutions.size() * run.size());
+        for (double o : opacities) {
+            md << "| " << num(o, 2) << " |";
+            for (const auto& res : resolutions) {
+                const ConfigResult* c = find_config(r, sweep, o, res);
+                for (const auto& m : run) {
+                    const Summary* s = method(c, m.key);
+                    md << " " << (s ? num(s->*value, 1) : "–") << " |";
+                }
             }
+            md << "\n";
         }
-        md << "\n";
-    }
+    };
+    md << "## (b) Success % against opacity, " << sweep << " category\n\n";
+    by_opacity(&Summary::success_pct);
+    md << "\nFalse locations in the same runs (%):\n\n";
+    by_opacity(&Summary::false_pct);
     md << "\n";
 
     md << "## (c) Pulsing opacity: gaps between successful locations\n\n";
@@ -425,19 +483,31 @@ std::string to_markdown(const Report& r) {
         md << "Not run.\n\n";
     } else {
         md << "25 fps, opacity 0.1..0.4 with a 1.5 s period, pitch swinging over about -20..+60 degrees, distance "
-              "100..400 mm, aim wandering around the screen centre; one video per screen content. A gap is the number "
-              "of frames from one success to the next (1 = consecutive frames); the longest miss also counts the "
-              "frames before the first and after the last success of a video.\n\n";
-        md << "| method | resolution | frames | success % | gaps | gaps <= 3 | gaps <= 5 | gap median | gap max | "
-              "longest miss |";
-        md << " document | code_dark | web_page | photo | blank |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-        for (const auto& p : r.pulsing) {
-            md << "| " << p.method << " | " << p.resolution << " | " << p.frames << " | " << num(p.success_pct, 1)
-               << " | " << p.gaps.size() << " | " << num(p.gaps_le3_pct, 1) << " % | " << num(p.gaps_le5_pct, 1)
-               << " % | " << num(p.gap_median, 0) << " | " << p.gap_max << " | " << p.longest_miss << " |";
+              "100..400 mm, aim wandering around the screen centre; one video per screen content";
+        if (video) md << " (umf video: one fresh tracker per video)";
+        md << ". A gap is the number of frames from one success to the next (1 = consecutive frames); the longest "
+              "miss also counts the frames before the first and after the last success of a video. Success % and "
+              "false % are of all frames (frames with the centre off the screen count as misses).\n\n";
+        md << "| method | resolution | frames | success % | false % | gaps | gaps <= 3 | gaps <= 5 | gap median | "
+              "gap max | longest miss |";
+        md << " document | code_dark | web_page | photo | blank |\n";
+        rule(16);
+        // Rows grouped by resolution, methods in report order.
+        std::vector<const PulseSummary*> rows;
+        for (const auto& res : pulse_resolutions(r.pulsing))
+            for (const auto& m : kMethods)
+                for (const auto& p : r.pulsing)
+                    if (p.resolution == res && p.method == m.key) rows.push_back(&p);
+        for (const auto& p : r.pulsing)
+            if (std::find(rows.begin(), rows.end(), &p) == rows.end()) rows.push_back(&p);
+        for (const PulseSummary* p : rows) {
+            md << "| " << method_label(p->method) << " | " << p->resolution << " | " << p->frames << " | "
+               << num(p->success_pct, 1) << " | " << num(p->false_pct, 1) << " | " << p->gaps.size() << " | "
+               << num(p->gaps_le3_pct, 1) << " % | " << num(p->gaps_le5_pct, 1) << " % | " << num(p->gap_median, 0)
+               << " | " << p->gap_max << " | " << p->longest_miss << " |";
             for (const char* kind : {"document", "code_dark", "web_page", "photo", "blank"}) {
-                auto it = p.success_pct_by_screen.find(kind);
-                md << " " << (it == p.success_pct_by_screen.end() ? "–" : num(it->second, 0)) << " |";
+                auto it = p->success_pct_by_screen.find(kind);
+                md << " " << (it == p->success_pct_by_screen.end() ? "–" : num(it->second, 0)) << " |";
             }
             md << "\n";
         }
@@ -449,7 +519,10 @@ std::string to_markdown(const Report& r) {
                                       : (resolutions.empty() ? "" : resolutions.front());
     md << "## (d) umf stage times, " << stage_res << ", opacity " << num(op, 2)
        << " (median ms per frame over the evaluated frames)\n\n";
-    md << "| category | edgels | vanishing | grid | classify | vote | total |\n|---|---|---|---|---|---|---|\n";
+    md << "Single frame (`Detector::detect`):\n\n| category |";
+    for (const char* stage : kStageNames) md << " " << stage << " |";
+    md << " total |\n";
+    rule(kStageNames.size() + 2);
     for (const auto& cat : categories)
         if (const Summary* u = method(find_config(r, cat, op, stage_res), "umf")) {
             md << "| " << cat << " |";
@@ -457,26 +530,38 @@ std::string to_markdown(const Report& r) {
             md << " " << num(u->ms_median, 2) << " |\n";
         }
     md << "\nMedians of each stage separately, so they need not add up to the total. A stage that did not run (the "
-          "search ended before it) counts as 0 ms.\n\n";
+          "search ended before it) counts as 0 ms. refine: the fit of the place to the field's own module edges "
+          "after the vote.\n\n";
 
     md << "## Time per frame over all categories and opacities\n\n| method | resolution | frames | median ms | "
-          "mean ms | p95 ms |\n|---|---|---|---|---|---|\n";
-    for (const auto& [name, by_res] : r.all_ms)
+          "mean ms | p95 ms |\n";
+    rule(6);
+    for (const auto& m : kMethods) {
+        const auto by_res = r.all_ms.find(m.key);
+        if (by_res == r.all_ms.end()) continue;
         for (const auto& res : resolutions) {
-            auto it = by_res.find(res);
-            if (it == by_res.end()) continue;
+            auto it = by_res->second.find(res);
+            if (it == by_res->second.end()) continue;
             const auto& ms = it->second;
             const double mean =
                 ms.empty() ? kNaN : std::accumulate(ms.begin(), ms.end(), 0.0) / static_cast<double>(ms.size());
-            md << "| " << name << " | " << res << " | " << ms.size() << " | " << num(percentile(ms, 50), 1) << " | "
+            md << "| " << m.label << " | " << res << " | " << ms.size() << " | " << num(percentile(ms, 50), 1) << " | "
                << num(mean, 1) << " | " << num(percentile(ms, 95), 1) << " |\n";
         }
+    }
     md << "\n";
 
     md << "## (e) Why frames were not successes, per category (all opacities and resolutions)\n\n";
     md << "umf: `Detection::failure` of the frames not found, and \"" << kWrongPlace
        << "\"; share of the evaluated frames.\n\n";
     reasons_table(md, r, "umf", categories);
+    if (video) {
+        md << "umf video: for the frames where the tracker is not locked, the failure of that frame's detection (the "
+              "full detection after a failed follow), or the tracker's state (lost, searching) when it gives none; "
+              "and \""
+           << kWrongPlace << "\".\n\n";
+        reasons_table(md, r, "umf_video", categories);
+    }
     if (aruco) {
         md << "ArUco:\n\n";
         reasons_table(md, r, "aruco", categories);
@@ -485,9 +570,8 @@ std::string to_markdown(const Report& r) {
         const auto row = [&](const std::string& label, const auto& lookup) {
             md << "| " << label << " |";
             bool first = true;
-            for (const char* name : {"umf", "aruco"}) {
-                if (name != std::string("umf") && !aruco) continue;
-                const Tally t = lookup(name);
+            for (const auto& m : run) {
+                const Tally t = lookup(m.key);
                 if (first) md << " " << t.evaluated << " |";
                 first = false;
                 md << " " << num(pct(t.success, t.evaluated), 1) << " | " << num(pct(t.false_location, t.evaluated), 1)
@@ -495,8 +579,13 @@ std::string to_markdown(const Report& r) {
             }
             md << "\n";
         };
-        const std::string head = aruco ? " frames | umf ok % | umf false % | ArUco ok % | ArUco false % |\n|---|---|---|---|---|---|\n"
-                                       : " frames | umf ok % | umf false % |\n|---|---|---|---|\n";
+        std::ostringstream head_text;
+        head_text << " frames |";
+        for (const auto& m : run) head_text << " " << m.label << " ok % | " << m.label << " false % |";
+        head_text << "\n|";
+        for (std::size_t i = 0; i < 2 + 2 * run.size(); ++i) head_text << "---|";
+        head_text << "\n";
+        const std::string head = head_text.str();
         md << "## (f) Success by module size in the image, opacity " << num(op, 2)
            << "\n\nPooled over the five motion categories (near_far, horizontal, rotation, perspective, general) and "
               "all resolutions; module px = image pixels per 30 px module (ArUco cell) at the image centre.\n\n"

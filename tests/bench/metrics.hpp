@@ -1,5 +1,6 @@
 // What the detector benchmark counts and how it reports it: per-frame
-// outcomes of a method, their aggregate over one configuration (category x
+// outcomes of a method (umf single frame, umf video through the tracker,
+// ArUco), their aggregate over one configuration (category x
 // opacity x resolution), the gaps between successes in the pulsing video,
 // and the JSON and Markdown reports. No OpenCV here: numbers in, text out.
 #pragma once
@@ -20,7 +21,15 @@ inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 inline constexpr double kSuccessRadiusModules = 1.0;
 inline constexpr const char* kWrongPlace = "wrong place (found, error > 1 module)";
 
-inline constexpr std::array<const char*, 5> kStageNames = {"edgels", "vanishing", "grid", "classify", "vote"};
+inline constexpr std::array<const char*, 6> kStageNames = {"edgels", "vanishing", "grid", "classify", "vote", "refine"};
+
+// The methods, in report order: key (JSON, maps) and name in the tables.
+struct MethodName {
+    const char* key;
+    const char* label;
+};
+inline constexpr std::array<MethodName, 3> kMethods = {{{"umf", "umf"}, {"umf_video", "umf video"}, {"aruco", "ArUco"}}};
+std::string method_label(const std::string& key);
 
 // One method on one frame.
 struct Outcome {
@@ -30,7 +39,7 @@ struct Outcome {
     double ms = 0;                // the method's call on one thread
     double pixels_pct = kNaN;     // share of the image's pixels read; NaN when the method does not say
     std::string failure;          // why not found; empty when found
-    std::array<double, 5> stage_ms{kNaN, kNaN, kNaN, kNaN, kNaN};  // see kStageNames; umf only
+    std::array<double, kStageNames.size()> stage_ms{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};  // see kStageNames; umf methods only
 
     bool success() const { return found && error_modules <= kSuccessRadiusModules; }
     bool false_location() const { return found && !(error_modules <= kSuccessRadiusModules); }
@@ -45,7 +54,7 @@ struct Summary {
     double err_median = kNaN, err_p95 = kNaN;
     double ms_median = kNaN, ms_mean = kNaN;
     double pixels_median_pct = kNaN;
-    std::array<double, 5> stage_median_ms{kNaN, kNaN, kNaN, kNaN, kNaN};
+    std::array<double, kStageNames.size()> stage_median_ms{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};
     // Why frames were not successes: the method's failure strings, and
     // kWrongPlace for false locations.
     std::map<std::string, int> reasons;
@@ -60,7 +69,7 @@ struct ConfigResult {
     std::string category;
     double opacity = 0;
     std::string resolution;                  // "640x480"
-    std::map<std::string, Summary> methods;  // "umf", "aruco"
+    std::map<std::string, Summary> methods;  // keys of kMethods
     // Image px per 30 px module at the image centre over the evaluated
     // frames: min, median, max (how near the camera was).
     std::array<double, 3> module_px{kNaN, kNaN, kNaN};
@@ -70,8 +79,8 @@ struct ConfigResult {
 // sequence per screen kind.
 struct PulseSummary {
     std::string method, resolution;
-    int sequences = 0, frames = 0, skipped = 0, successes = 0;
-    double success_pct = kNaN;
+    int sequences = 0, frames = 0, skipped = 0, successes = 0, false_locations = 0;
+    double success_pct = kNaN, false_pct = kNaN;  // of all frames, skipped ones included
     std::vector<int> gaps;  // frames from one success to the next, within each sequence
     double gaps_le3_pct = kNaN, gaps_le5_pct = kNaN, gap_median = kNaN;
     int gap_max = 0;
@@ -81,12 +90,12 @@ struct PulseSummary {
     std::map<std::string, double> success_pct_by_screen;
 };
 
-// `success[s][i]`: sequence s, frame i was located within a module. Skipped
+// `outcomes[s][i]`: sequence s (screen kind screens[s]), frame i. Skipped
 // frames (centre off the screen) count as misses for the gaps: the user
 // sees no position there either.
 PulseSummary summarise_pulse(const std::string& method, const std::string& resolution,
-                             const std::vector<std::string>& screens, const std::vector<std::vector<bool>>& success,
-                             int skipped);
+                             const std::vector<std::string>& screens,
+                             const std::vector<std::vector<Outcome>>& outcomes);
 
 // Success pooled over many configurations, split by one property of the
 // frame: the module's size in the image, or the screen content.

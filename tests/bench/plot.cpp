@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 namespace umf::bench::plot {
 namespace {
@@ -80,18 +81,31 @@ void frame_and_labels(cv::Mat& img, const Frame& f, const Axes& axes) {
     vertical_text(img, axes.y_label, {22, f.area.y + f.area.height / 2});
 }
 
-void dashed_line(cv::Mat& img, cv::Point a, cv::Point b, const cv::Scalar& ink, int thickness) {
+void dashed_line(cv::Mat& img, cv::Point a, cv::Point b, const cv::Scalar& ink, int thickness, double on = 10,
+                 double off = 6) {
     const double len = std::hypot(b.x - a.x, b.y - a.y);
-    constexpr double kOn = 10, kOff = 6;
-    for (double s = 0; s < len; s += kOn + kOff) {
-        const double e = std::min(len, s + kOn);
+    for (double s = 0; s < len; s += on + off) {
+        const double e = std::min(len, s + on);
         const cv::Point2d d = cv::Point2d(b - a) / std::max(len, 1e-9);
         cv::line(img, cv::Point2d(a) + d * s, cv::Point2d(a) + d * e, ink, thickness, cv::LINE_AA);
     }
 }
 
-void marker(cv::Mat& img, cv::Point at, const cv::Scalar& ink, bool square) {
-    if (square)
+void styled_line(cv::Mat& img, cv::Point a, cv::Point b, const Series& s) {
+    if (s.dotted)
+        dashed_line(img, a, b, s.colour, 2, 3, 4);
+    else if (s.dashed)
+        dashed_line(img, a, b, s.colour, 2);
+    else
+        cv::line(img, a, b, s.colour, 2, cv::LINE_AA);
+}
+
+void marker(cv::Mat& img, cv::Point at, const Series& s) {
+    const cv::Scalar& ink = s.colour;
+    if (s.triangle_markers) {
+        const std::vector<cv::Point> tri = {at + cv::Point(0, -6), at + cv::Point(6, 5), at + cv::Point(-6, 5)};
+        cv::fillConvexPoly(img, tri, ink, cv::LINE_AA);
+    } else if (s.square_markers)
         cv::rectangle(img, at - cv::Point(4, 4), at + cv::Point(4, 4), ink, cv::FILLED, cv::LINE_AA);
     else
         cv::circle(img, at, 5, ink, cv::FILLED, cv::LINE_AA);
@@ -102,11 +116,8 @@ void legend(cv::Mat& img, const Frame& f, const std::vector<Series>& series) {
     int y = f.area.y + 10;
     for (const auto& s : series) {
         const cv::Point a(x, y), b(x + 36, y);
-        if (s.dashed)
-            dashed_line(img, a, b, s.colour, 2);
-        else
-            cv::line(img, a, b, s.colour, 2, cv::LINE_AA);
-        marker(img, (a + b) / 2, s.colour, s.square_markers);
+        styled_line(img, a, b, s);
+        marker(img, (a + b) / 2, s);
         text(img, s.label, {x + 46, y + 5});
         y += 24;
     }
@@ -170,13 +181,8 @@ cv::Mat line_chart(const Axes& axes, const std::vector<Series>& series, cv::Size
                 continue;
             }
             const cv::Point p(f.px(s.x[i]), f.py(s.y[i]));
-            if (prev) {
-                if (s.dashed)
-                    dashed_line(plot, *prev - off, p - off, s.colour, 2);
-                else
-                    cv::line(plot, *prev - off, p - off, s.colour, 2, cv::LINE_AA);
-            }
-            marker(plot, p - off, s.colour, s.square_markers);
+            if (prev) styled_line(plot, *prev - off, p - off, s);
+            marker(plot, p - off, s);
             prev = p;
         }
     }

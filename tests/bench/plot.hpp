@@ -23,7 +23,9 @@ struct Series {
     std::vector<double> x, y;  // NaN y values leave a hole
     cv::Scalar colour;
     bool dashed = false;
-    bool square_markers = false;  // circles otherwise
+    bool dotted = false;            // short dashes; wins over `dashed`
+    bool square_markers = false;    // circles otherwise
+    bool triangle_markers = false;  // wins over `square_markers`
 };
 
 // Lines through points, each series with its own colour, dash and marker.

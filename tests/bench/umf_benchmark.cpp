@@ -1,7 +1,10 @@
 // The detector benchmark of record: the umf detector against OpenCV's ArUco
 // markers on simulated phone frames of a screen, per test category, field
-// opacity and camera resolution, plus a pulsing-opacity video. Writes
-// detector.json, detector.md and two PNG charts (see --help).
+// opacity and camera resolution, plus a pulsing-opacity video. Three
+// methods: "umf" (Detector::detect on every frame on its own), "umf_video"
+// (a Tracker fed a configuration's frames in their order, as a phone feeds
+// its camera frames) and "aruco". Writes detector.json, detector.md and two
+// PNG charts (see --help).
 //
 // Frames are made on all cores; the detectors are then timed one after the
 // other on one thread each, so that frame making never competes with a
@@ -30,6 +33,7 @@
 #include "bench/plot.hpp"
 #include "bench/scenario.hpp"
 #include "detect/detector.hpp"
+#include "detect/tracker.hpp"
 #include "field/field_io.hpp"
 #include "sim/field_mix.hpp"
 #include "sim/screen_content.hpp"
@@ -40,10 +44,9 @@ using namespace umf;
 using namespace umf::bench;
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* kFieldFile = "b4-64x36.json";
 constexpr std::uint64_t kScreenSeed = 7;
 
-const char* const kUsage = R"(umf_benchmark: the umf detector against ArUco on simulated phone frames.
+const char* const kUsage = R"(umf_benchmark: the umf detector (single frame and video) against ArUco on simulated phone frames.
 
 Usage: umf_benchmark [options]
   --frames N             frames per category x opacity x resolution (default 40)
@@ -53,11 +56,13 @@ Usage: umf_benchmark [options]
                          (default all)
   --resolutions WxH,...  camera resolutions (default 640x480,1280x720,1920x1080)
   --opacities a,b        field and board opacities (default 0.1,0.15,0.2,0.3,0.5)
-  --no-aruco             the umf detector only
+  --no-aruco             leave ArUco out
+  --no-video             leave "umf video" (the tracker over consecutive frames) out
   --pulse-frames N       frames per screen content in the pulsing video (default 150, quick 50; 0 = skip)
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --dump DIR             also save every frame as PNG there (for looking at them; use with few frames)
+  --field NAME           a shipped 64 x 36 field of shared/data/fields (default b4-64x36.json)
   --help                 this text
 
 Progress goes to stderr. The detectors are timed on one thread each.
@@ -70,10 +75,12 @@ struct Options {
     std::vector<cv::Size> resolutions{{640, 480}, {1280, 720}, {1920, 1080}};
     std::vector<double> opacities{0.1, 0.15, 0.2, 0.3, 0.5};
     bool aruco = true;
+    bool video = true;
     int pulse_frames = 150;
     std::uint64_t seed = 1;
     int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     std::string dump;
+    std::string field = "b4-64x36.json";
 };
 
 std::vector<std::string> split(const std::string& list) {
@@ -141,6 +148,8 @@ Options parse(int argc, char** argv) {
             }
         } else if (a == "--no-aruco") {
             o.aruco = false;
+        } else if (a == "--no-video") {
+            o.video = false;
         } else if (a == "--pulse-frames") {
             o.pulse_frames = positive_int(value(), a, 0);
             pulse_given = true;
@@ -148,6 +157,9 @@ Options parse(int argc, char** argv) {
             o.seed = static_cast<std::uint64_t>(positive_int(value(), a, 0));
         } else if (a == "--threads") {
             o.threads = positive_int(value(), a);
+        } else if (a == "--field") {
+            o.field = value();
+            if (o.field.find('/') != std::string::npos) throw std::invalid_argument("--field takes a name in shared/data/fields");
         } else if (a == "--dump") {
             o.dump = value();
         } else {
@@ -202,12 +214,10 @@ public:
             o.skipped = true;
             return o;
         }
-        const GreyView view{frame.grey.data, frame.grey.cols, frame.grey.rows,
-                            static_cast<std::ptrdiff_t>(frame.grey.step)};
         Detection d;
         const auto t0 = Clock::now();
         try {
-            d = detector_.detect(view);
+            d = detector_.detect(grey_view(frame));
         } catch (const std::exception& e) {
             // The detector is work in progress: one bad frame should cost
             // that frame, not the whole run.
@@ -218,14 +228,37 @@ public:
         o.ms = ms_between(t0, t1);
         o.found = d.found;
         o.failure = d.failure;
-        o.pixels_pct = 100.0 * static_cast<double>(d.pixels_visited) / (frame.grey.total());
-        o.stage_ms = {d.times.edgels_ms, d.times.vanishing_ms, d.times.grid_ms, d.times.classify_ms, d.times.vote_ms};
-        if (d.found) {
-            // The field's placement is at the screen's origin, so field
-            // (u, v) in modules is screen px / module_px.
-            const cv::Point2d aim(d.aim_field.x() * scene_.module_px, d.aim_field.y() * scene_.module_px);
-            o.error_modules = cv::norm(aim - frame.centre_screen_px) / scene_.module_px;
+        fill_umf(o, frame, d, d.aim_field);
+        return o;
+    }
+
+    // A fresh tracker on this detector: one per configuration and per
+    // pulsing video.
+    Tracker tracker() const { return Tracker(detector_); }
+
+    // One frame of a video: every frame goes to the tracker (a phone keeps
+    // filming while the centre is off the screen), but such frames are
+    // marked skipped for the statistics.
+    Outcome video(Tracker& tracker, const Frame& frame) const {
+        Outcome o;
+        TrackResult t;
+        const auto t0 = Clock::now();
+        try {
+            t = tracker.update(grey_view(frame));
+        } catch (const std::exception& e) {
+            t = TrackResult{};
+            t.state = TrackState::lost;
+            t.detection.failure = std::string("exception: ") + e.what();
         }
+        const auto t1 = Clock::now();
+        if (!frame.centre_on_screen) {
+            o.skipped = true;
+            return o;
+        }
+        o.ms = ms_between(t0, t1);
+        o.found = t.state == TrackState::locked;
+        if (!o.found) o.failure = t.detection.failure.empty() ? to_string(t.state) : t.detection.failure;
+        fill_umf(o, frame, t.detection, t.aim_field);
         return o;
     }
 
@@ -255,6 +288,23 @@ public:
     const Field& field() const { return detector_.field(); }
 
 private:
+    static GreyView grey_view(const Frame& frame) {
+        return {frame.grey.data, frame.grey.cols, frame.grey.rows, static_cast<std::ptrdiff_t>(frame.grey.step)};
+    }
+
+    // The umf methods' pixels, stage times and aim error (when found).
+    void fill_umf(Outcome& o, const Frame& frame, const Detection& d, const Eigen::Vector2d& aim_field) const {
+        o.pixels_pct = 100.0 * static_cast<double>(d.pixels_visited) / static_cast<double>(frame.grey.total());
+        o.stage_ms = {d.times.edgels_ms, d.times.vanishing_ms, d.times.grid_ms,
+                      d.times.classify_ms, d.times.vote_ms,      d.times.refine_ms};
+        if (o.found) {
+            // The field's placement is at the screen's origin, so field
+            // (u, v) in modules is screen px / module_px.
+            const cv::Point2d aim(aim_field.x() * scene_.module_px, aim_field.y() * scene_.module_px);
+            o.error_modules = cv::norm(aim - frame.centre_screen_px) / scene_.module_px;
+        }
+    }
+
     const Scene& scene_;
     Detector detector_;
     ArucoBaseline aruco_;
@@ -295,8 +345,8 @@ void write_png(const std::filesystem::path& path, const cv::Mat& image) {
 
 void write_plots(const Report& report, const std::filesystem::path& dir) {
     std::vector<std::string> methods;
-    for (const char* name : {"umf", "aruco"})
-        if (report.all_ms.count(name)) methods.emplace_back(name);
+    for (const auto& m : kMethods)
+        if (report.all_ms.count(m.key)) methods.emplace_back(m.key);
     std::vector<std::string> resolutions, categories;
     std::vector<double> opacities;
     for (const auto& c : report.configs) {
@@ -310,14 +360,16 @@ void write_plots(const Report& report, const std::filesystem::path& dir) {
     const std::string sweep =
         std::find(categories.begin(), categories.end(), "general") != categories.end() ? "general" : categories.front();
 
-    // One colour per resolution; ArUco dashed with squares.
+    // One colour per resolution; umf solid with circles, umf video dotted
+    // with triangles, ArUco dashed with squares.
     std::vector<plot::Series> lines;
     for (std::size_t r = 0; r < resolutions.size(); ++r)
         for (const auto& m : methods) {
             plot::Series s;
-            s.label = (m == "umf" ? "umf " : "ArUco ") + resolutions[r];
+            s.label = method_label(m) + " " + resolutions[r];
             s.colour = plot::colour(static_cast<int>(r));
-            s.dashed = s.square_markers = m != "umf";
+            s.dashed = s.square_markers = m == "aruco";
+            s.dotted = s.triangle_markers = m == "umf_video";
             for (double op : opacities)
                 for (const auto& c : report.configs)
                     if (c.category == sweep && c.resolution == resolutions[r] && c.opacity == op &&
@@ -334,8 +386,8 @@ void write_plots(const Report& report, const std::filesystem::path& dir) {
     plot::Bars bars;
     bars.groups = resolutions;
     for (std::size_t m = 0; m < methods.size(); ++m) {
-        bars.series.push_back(methods[m] == "umf" ? "umf" : "ArUco");
-        bars.colours.push_back(plot::colour(methods[m] == "umf" ? 0 : 3));
+        bars.series.push_back(method_label(methods[m]));
+        bars.colours.push_back(plot::colour(methods[m] == "umf" ? 0 : methods[m] == "umf_video" ? 2 : 3));
         std::vector<double> row;
         for (const auto& res : resolutions) {
             const auto& by_res = report.all_ms.at(methods[m]);
@@ -357,12 +409,13 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
     for (cv::Size r : opt.resolutions) s["resolutions"].push_back(resolution_name(r));
     s["opacities"] = opt.opacities;
     s["aruco"] = opt.aruco;
+    s["umf_video"] = opt.video;
     s["pulse_frames_per_screen"] = opt.pulse_frames;
     s["seed"] = opt.seed;
     s["frame_threads"] = opt.threads;
     s["hardware_threads"] = std::thread::hardware_concurrency();
     s["load_average_at_start"] = load_average();
-    s["field"] = kFieldFile;
+    s["field"] = opt.field;
     s["screen"] = {{"pixels", "1920x1080"}, {"width_mm", scene.screen.width_mm}, {"module_px", scene.module_px}};
     s["camera_hfov_deg"] = scene.hfov_deg;
     s["distance_mm"] = {{"rest", scene.range.distance_mm}, {"near", scene.range.near_mm}, {"far", scene.range.far_mm}};
@@ -376,7 +429,7 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
 class Bench {
 public:
     Bench(const Options& opt, const std::string& command)
-        : opt_(opt), field_(load_field(std::string(UMF_DATA_DIR) + "/fields/" + kFieldFile)), methods_(scene_, field_) {
+        : opt_(opt), field_(load_field(std::string(UMF_DATA_DIR) + "/fields/" + opt.field)), methods_(scene_, field_) {
         report_.command = command;
         report_.started = now_text();
         report_.settings = settings_json(opt_, scene_, methods_);
@@ -413,8 +466,7 @@ public:
     // are mixed per frame, on the frame-making threads.
     void pulsing(cv::Size res) {
         std::vector<std::string> kinds;
-        std::vector<std::vector<bool>> umf_ok, aruco_ok;
-        int skipped = 0;
+        std::vector<std::vector<Outcome>> umf_out, video_out, aruco_out;
         for (std::size_t k = 0; k < screens_.size(); ++k) {
             kinds.push_back(sim::to_string(sim::kAllScreenKinds[k]));
             const auto rs = pulsing_recipes(scene_, sim::kAllScreenKinds[k], opt_.pulse_frames, opt_.seed);
@@ -425,22 +477,23 @@ public:
                 field_frames[at] = shoot(scene_, rs[at], sim::mix_field(screens_[k], field_, placement_, op), res);
                 if (opt_.aruco) board_frames[at] = shoot(scene_, rs[at], methods_.board().mix(screens_[k], op), res);
             });
-            std::vector<bool> u, a;
-            for (std::size_t i = 0; i < rs.size(); ++i) {
-                const Outcome o = methods_.umf(field_frames[i]);
-                skipped += o.skipped;
-                u.push_back(o.success());
-                if (opt_.aruco) a.push_back(methods_.aruco(board_frames[i]).success());
-            }
-            std::cerr << "[pulsing " << resolution_name(res) << " " << kinds.back() << "] umf "
-                      << std::count(u.begin(), u.end(), true) << "/" << u.size();
-            if (opt_.aruco) std::cerr << ", ArUco " << std::count(a.begin(), a.end(), true) << "/" << a.size();
+            std::vector<Outcome> u, v, a;
+            run_methods(field_frames, board_frames, u, v, a);
+            const auto hits = [](const std::vector<Outcome>& out) {
+                return std::to_string(std::count_if(out.begin(), out.end(), [](const Outcome& o) { return o.success(); })) +
+                       "/" + std::to_string(out.size());
+            };
+            std::cerr << "[pulsing " << resolution_name(res) << " " << kinds.back() << "] umf " << hits(u);
+            if (opt_.video) std::cerr << ", umf video " << hits(v);
+            if (opt_.aruco) std::cerr << ", ArUco " << hits(a);
             std::cerr << ", elapsed " << minutes() << " min\n";
-            umf_ok.push_back(std::move(u));
-            aruco_ok.push_back(std::move(a));
+            umf_out.push_back(std::move(u));
+            video_out.push_back(std::move(v));
+            aruco_out.push_back(std::move(a));
         }
-        report_.pulsing.push_back(summarise_pulse("umf", resolution_name(res), kinds, umf_ok, skipped));
-        if (opt_.aruco) report_.pulsing.push_back(summarise_pulse("aruco", resolution_name(res), kinds, aruco_ok, skipped));
+        report_.pulsing.push_back(summarise_pulse("umf", resolution_name(res), kinds, umf_out));
+        if (opt_.video) report_.pulsing.push_back(summarise_pulse("umf_video", resolution_name(res), kinds, video_out));
+        if (opt_.aruco) report_.pulsing.push_back(summarise_pulse("aruco", resolution_name(res), kinds, aruco_out));
     }
 
     void write() {
@@ -456,6 +509,23 @@ public:
     }
 
 private:
+    // Runs the methods on one sequence of frames on this thread, so that no
+    // timed call shares the cores. umf and ArUco alternate frame by frame
+    // (as before the tracker came); the tracker then gets the whole
+    // sequence in its own pass, in order, so that it never finds its frame
+    // in the cache from the single-frame call just before.
+    void run_methods(const std::vector<Frame>& field_frames, const std::vector<Frame>& board_frames,
+                     std::vector<Outcome>& umf_out, std::vector<Outcome>& video_out,
+                     std::vector<Outcome>& aruco_out) const {
+        for (std::size_t i = 0; i < field_frames.size(); ++i) {
+            umf_out.push_back(methods_.umf(field_frames[i]));
+            if (opt_.aruco) aruco_out.push_back(methods_.aruco(board_frames[i]));
+        }
+        if (!opt_.video) return;
+        Tracker tracker = methods_.tracker();
+        for (const auto& frame : field_frames) video_out.push_back(methods_.video(tracker, frame));
+    }
+
     // Makes the frames on all threads, then runs the methods one frame at a
     // time on this thread, so that no timed call shares the cores.
     void configuration(Category category, const std::vector<FrameRecipe>& rs, double opacity, cv::Size res,
@@ -473,12 +543,10 @@ private:
         cr.resolution = resolution_name(res);
         if (!opt_.dump.empty()) dump(cr, field_frames, board_frames);
 
-        std::vector<Outcome> umf_out, aruco_out;
-        for (std::size_t i = 0; i < rs.size(); ++i) {
-            umf_out.push_back(methods_.umf(field_frames[i]));
-            if (opt_.aruco) aruco_out.push_back(methods_.aruco(board_frames[i]));
-        }
+        std::vector<Outcome> umf_out, video_out, aruco_out;
+        run_methods(field_frames, board_frames, umf_out, video_out, aruco_out);
         cr.methods["umf"] = summarise(umf_out);
+        if (opt_.video) cr.methods["umf_video"] = summarise(video_out);
         if (opt_.aruco) cr.methods["aruco"] = summarise(aruco_out);
 
         std::vector<double> module_px;
@@ -489,11 +557,15 @@ private:
                             *std::max_element(module_px.begin(), module_px.end())};
         for (std::size_t i = 0; i < rs.size(); ++i) {
             if (!umf_out[i].skipped) report_.all_ms["umf"][cr.resolution].push_back(umf_out[i].ms);
+            if (opt_.video && !video_out[i].skipped)
+                report_.all_ms["umf_video"][cr.resolution].push_back(video_out[i].ms);
             if (opt_.aruco && !aruco_out[i].skipped) report_.all_ms["aruco"][cr.resolution].push_back(aruco_out[i].ms);
             if (category == Category::occlusion || category == Category::low_light) continue;
             const std::string kind = sim::to_string(rs[i].screen);
-            tally(report_, "umf", opacity, field_frames[i].module_px_in_image, kind, umf_out[i]);
-            if (opt_.aruco) tally(report_, "aruco", opacity, field_frames[i].module_px_in_image, kind, aruco_out[i]);
+            const double px = field_frames[i].module_px_in_image;
+            tally(report_, "umf", opacity, px, kind, umf_out[i]);
+            if (opt_.video) tally(report_, "umf_video", opacity, px, kind, video_out[i]);
+            if (opt_.aruco) tally(report_, "aruco", opacity, px, kind, aruco_out[i]);
         }
         report_.configs.push_back(std::move(cr));
     }
@@ -512,6 +584,7 @@ private:
     std::string progress(const ConfigResult& cr) const {
         std::ostringstream o;
         o << cr.category << " opacity " << cr.opacity << " " << cr.resolution << ": umf " << short_result(cr.methods.at("umf"));
+        if (opt_.video) o << " | umf video " << short_result(cr.methods.at("umf_video"));
         if (opt_.aruco) o << " | ArUco " << short_result(cr.methods.at("aruco"));
         return o.str();
     }
