@@ -159,28 +159,30 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
                 continue;
             }
             const Eigen::Matrix3d placement = placement_matrix(vote.placement);
-            out.image_to_field = placement * g2i.inverse();
+            Eigen::Matrix3d field_to_image = g2i * placement.inverse();
             // Step 7. Module edges around the voting windows, then outwards.
             if (options_.refine_enabled) {
                 double su, sv;
                 vote.placement.field_point(vote.centre_x, vote.centre_y, su, sv);
-                const Refinement r = refine_homography(im, f, g2i * placement.inverse(), Point2(su, sv),
-                                                       options_.refine, out.pixels_visited);
+                const Refinement r = refine_homography(im, f, field_to_image, Point2(su, sv), options_.refine,
+                                                       out.pixels_visited);
                 out.times.refine_ms += ms_since(t);
                 if (r.refined) {
-                    // The refit reaches beyond the windows that voted: the
-                    // modules it predicts must still read as the field.
-                    if (!confirm_place(im, r.field_to_image, aim, out).found) {
-                        failure = "refined place not confirmed";
-                        t = Clock::now();
-                        continue;
-                    }
-                    out.image_to_field = r.field_to_image.inverse();
-                    out.image_to_field /= out.image_to_field(2, 2);
+                    field_to_image = r.field_to_image;
                     out.edges_fitted = r.edges_fitted;
                 }
-                t = Clock::now();
             }
+            // The final homography reaches beyond the windows that voted: the
+            // modules it predicts over the whole view must read as the field.
+            if (!confirm_place(im, field_to_image, aim, out).found) {
+                failure = "place not confirmed";
+                out.edges_fitted = 0;
+                t = Clock::now();
+                continue;
+            }
+            t = Clock::now();
+            out.image_to_field = field_to_image.inverse();
+            out.image_to_field /= out.image_to_field(2, 2);
             auto aim_field = apply_homography(out.image_to_field, aim);
             if (!aim_field) return "aim point at infinity";
             out.aim_field = *aim_field;
