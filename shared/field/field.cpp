@@ -42,7 +42,7 @@ Field make_field(int width, int height, int window, int colors, WindowKey key, s
     return f;
 }
 
-static bool is_hex_colour(const std::string& s) {
+bool is_hex_colour(const std::string& s) {
     if (s.size() != 7 || s[0] != '#') return false;
     for (std::size_t i = 1; i < 7; ++i) {
         char c = s[i];

@@ -45,6 +45,9 @@ Field make_field(int width, int height, int window, int colors, WindowKey key, s
 // The key that suits a colour count: modules for binary, edges otherwise.
 WindowKey default_key(int colors);
 
+// True for "#rrggbb" (either case), the form palettes are written in.
+bool is_hex_colour(const std::string& s);
+
 // Evenly spaced greys from black to white.
 std::vector<std::string> grey_palette(int colors);
 

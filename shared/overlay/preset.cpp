@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "field/field.hpp"
 #include "io/atomic_file.hpp"
 
 namespace umf::overlay {
@@ -21,16 +22,6 @@ std::string number_text(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.10g", v);
     return buf;
-}
-
-bool is_hex_colour(const std::string& s) {
-    if (s.size() != 7 || s[0] != '#') return false;
-    for (std::size_t i = 1; i < 7; ++i) {
-        char c = s[i];
-        bool hex = (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f') || (c >= 'A' && c <= 'F');
-        if (!hex) return false;
-    }
-    return true;
 }
 
 // "must be 0..1, not 1.5" for a member outside [lo, hi] (NaN included).
