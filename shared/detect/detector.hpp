@@ -7,6 +7,8 @@
 //   4. grid homography from line crossings   (homography.hpp)
 //   5. module values or edge signs           (classify.hpp)
 //   6. window lookup and placement vote      (window_index.hpp, placement_vote.hpp)
+//   7. the homography refitted to the field's own module edges (refine.hpp),
+//      then checked: the whole view must read as the field at that place
 // A wrong place is worse than none: every stage may end in "not found".
 #pragma once
 
@@ -33,7 +35,7 @@ struct DetectorOptions {
     VoteOptions vote;
     RefineOptions refine;
     bool refine_enabled = true;
-    bool rescan = true;  // a second, interleaved scan when the first finds nothing
+    bool rescan = true;  // scans on the lines in between (down to 4 px apart) when a scan finds nothing
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
 
