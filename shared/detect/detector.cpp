@@ -64,6 +64,16 @@ Detection Detector::detect(const GreyView& image) const {
 
 Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim) const { return detect(im, aim, nullptr); }
 
+Detection Detector::detect(const ColourView& image) const {
+    if (auto problem = describe_invalid(image); !problem.empty()) {
+        Detection out;
+        out.failure = "invalid image: " + problem;
+        return out;
+    }
+    std::vector<std::uint8_t> luma;
+    return detect(to_luma(image, luma));
+}
+
 Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior) const {
     Detection out;
     out.aim_image = aim;

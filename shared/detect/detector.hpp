@@ -73,6 +73,8 @@ public:
     Detection detect(const GreyView& image) const;
     Detection detect(const GreyView& image, const Eigen::Vector2d& aim) const;
     Detection detect(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior) const;
+    // Colour frames are detected on their luma (image.hpp's to_luma).
+    Detection detect(const ColourView& image) const;
 
     // Video: confirms the field near where it is predicted to be, without
     // searching for it. The module edges the prediction expects are searched

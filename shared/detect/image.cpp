@@ -14,11 +14,22 @@ std::string describe_invalid(const GreyView& im) {
     return {};
 }
 
+namespace {
+
+int channels_of(PixelOrder order) { return order == PixelOrder::rgb || order == PixelOrder::bgr ? 3 : 4; }
+
+}  // namespace
+
+std::string describe_invalid(const ColourView& im) {
+    // The checks of a grey view, with the row's bytes counted in pixels.
+    const std::ptrdiff_t pixels_per_stride = im.stride / channels_of(im.order);
+    return describe_invalid(GreyView{im.data, im.width, im.height, pixels_per_stride});
+}
+
 GreyView to_luma(const ColourView& im, std::vector<std::uint8_t>& out) {
-    const int channels = (im.order == PixelOrder::rgb || im.order == PixelOrder::bgr) ? 3 : 4;
-    if (!im.data || im.width <= 0 || im.height <= 0 || im.width > kMaxImageSideForDetection ||
-        im.height > kMaxImageSideForDetection || im.stride < static_cast<std::ptrdiff_t>(im.width) * channels)
-        throw std::invalid_argument("to_luma: invalid colour image");
+    const int channels = channels_of(im.order);
+    if (auto problem = describe_invalid(im); !problem.empty())
+        throw std::invalid_argument("to_luma: " + problem);
     const bool red_first = im.order == PixelOrder::rgb || im.order == PixelOrder::rgba;
     out.resize(static_cast<std::size_t>(im.width) * im.height);
     for (int y = 0; y < im.height; ++y) {

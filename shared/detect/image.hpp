@@ -35,8 +35,12 @@ struct ColourView {
     PixelOrder order = PixelOrder::rgba;
 };
 
+// Empty when the colour view can be read; otherwise what is wrong with it.
+std::string describe_invalid(const ColourView& image);
+
 // Luma (BT.601 weights in integers) of a colour image into `out`, reused
-// between frames; returns a view of it.
+// between frames; returns a view of it. Throws std::invalid_argument for a
+// view describe_invalid rejects.
 GreyView to_luma(const ColourView& image, std::vector<std::uint8_t>& out);
 
 }  // namespace umf

@@ -44,7 +44,7 @@ Seen photograph_and_detect(const Field& f, double module_px, sim::ScreenKind kin
         sim::Degradation degradation;
         degradation.noise_sigma = 2;
         const sim::Shot shot = sim::photograph(mixed, geometry, camera, pose_of(p), degradation);
-        const Detection d = detector.detect({shot.grey.data, shot.grey.cols, shot.grey.rows,
+        const Detection d = detector.detect(GreyView{shot.grey.data, shot.grey.cols, shot.grey.rows,
                                              static_cast<std::ptrdiff_t>(shot.grey.step)});
         if (!d.found) continue;
         ++seen.found;
@@ -123,6 +123,32 @@ TEST(DetectorNegatives, NeverPlacesAnImpostorNorDoesTheTrackerLockOnOne) {
             EXPECT_NE(tracker.update(view).state, TrackState::locked);
         }
     }
+}
+
+}  // namespace
+
+namespace {
+
+// Colour frames: the same place as their grey version; bad views are
+// "not found" with a reason, never an exception.
+TEST(DetectorColour, ColourFramesAreDetectedOnTheirLuma) {
+    const umf::Field f = umf::test::shipped_field("b4-64x36.json");
+    const umf::Detector detector(f);
+    const umf::test::Photo p = umf::test::photograph_field(f, 0.4, 10, 5, 30, 300);
+    const cv::Mat& bgr = p.shot.bgr;
+    const umf::Detection colour = detector.detect(
+        umf::ColourView{bgr.data, bgr.cols, bgr.rows, static_cast<std::ptrdiff_t>(bgr.step), umf::PixelOrder::bgr});
+    const umf::Detection grey = detector.detect(p.view());
+    ASSERT_TRUE(colour.found) << colour.failure;
+    ASSERT_TRUE(grey.found);
+    EXPECT_LT((colour.aim_field - grey.aim_field).norm(), 0.05);
+
+    std::vector<std::uint8_t> px(64, 0);
+    const umf::Detection bad =
+        detector.detect(umf::ColourView{px.data(), 8, 8, 8, umf::PixelOrder::rgba});  // stride below 8 x 4 bytes
+    EXPECT_FALSE(bad.found);
+    EXPECT_NE(bad.failure.find("invalid image"), std::string::npos) << bad.failure;
+    EXPECT_FALSE(detector.detect(umf::ColourView{nullptr, 8, 8, 32, umf::PixelOrder::rgba}).found);
 }
 
 }  // namespace
