@@ -1,0 +1,79 @@
+#include "server/pairing.hpp"
+
+#include <openssl/crypto.h>
+#include <openssl/evp.h>
+#include <openssl/rand.h>
+
+#include <stdexcept>
+
+#include "server/config_dir.hpp"
+
+namespace umf::provider {
+
+std::string base64url(const unsigned char* data, std::size_t size) {
+    static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_";
+    std::string out;
+    out.reserve((size * 4 + 2) / 3);
+    for (std::size_t i = 0; i < size; i += 3) {
+        const std::size_t n = std::min<std::size_t>(3, size - i);
+        std::uint32_t v = static_cast<std::uint32_t>(data[i]) << 16;
+        if (n > 1) v |= static_cast<std::uint32_t>(data[i + 1]) << 8;
+        if (n > 2) v |= data[i + 2];
+        out += kAlphabet[(v >> 18) & 63];
+        out += kAlphabet[(v >> 12) & 63];
+        if (n > 1) out += kAlphabet[(v >> 6) & 63];
+        if (n > 2) out += kAlphabet[v & 63];
+    }
+    return out;
+}
+
+std::string make_token() {
+    unsigned char bytes[kTokenRandomBytes];
+    if (RAND_bytes(bytes, sizeof bytes) != 1) throw std::runtime_error("the random generator failed");
+    return base64url(bytes, sizeof bytes);
+}
+
+bool tokens_equal(std::string_view a, std::string_view b) {
+    unsigned char da[EVP_MAX_MD_SIZE], db[EVP_MAX_MD_SIZE];
+    unsigned int la = 0, lb = 0;
+    if (EVP_Digest(a.data(), a.size(), da, &la, EVP_sha256(), nullptr) != 1 ||
+        EVP_Digest(b.data(), b.size(), db, &lb, EVP_sha256(), nullptr) != 1 || la != lb)
+        return false;
+    return CRYPTO_memcmp(da, db, la) == 0 && a.size() == b.size();
+}
+
+namespace {
+
+bool is_token(std::string_view s) {
+    if (s.size() < 22 || s.size() > 128) return false;
+    for (char c : s)
+        if (!((c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_'))
+            return false;
+    return true;
+}
+
+}  // namespace
+
+std::string load_or_create_token(const std::filesystem::path& dir, bool rotate) {
+    ensure_config_dir(dir);
+    const auto path = dir / kTokenFile;
+    if (!rotate) {
+        if (auto text = read_small_file(path, 4096)) {
+            while (!text->empty() && (text->back() == '\n' || text->back() == '\r' || text->back() == ' '))
+                text->pop_back();
+            if (is_token(*text)) return *text;
+        }
+    }
+    std::string token = make_token();
+    write_private_file(path, token + "\n");
+    return token;
+}
+
+std::string pairing_url(const std::string& host, unsigned short port, const std::string& token,
+                        const std::string& fingerprint) {
+    const bool ipv6 = host.find(':') != std::string::npos && host.front() != '[';
+    return "https://" + (ipv6 ? "[" + host + "]" : host) + ":" + std::to_string(port) + "/#t=" + token +
+           "&fp=" + fingerprint;
+}
+
+}  // namespace umf::provider

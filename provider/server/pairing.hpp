@@ -1,0 +1,33 @@
+// Pairing: the token a requester proves itself with, and the URL (shown as a
+// QR code) that carries it with the certificate's fingerprint. docs/PROTOCOL.md,
+// "Pairing".
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace umf::provider {
+
+inline constexpr const char* kTokenFile = "pairing-token";
+inline constexpr std::size_t kTokenRandomBytes = 24;  // 192 bits, 32 base64url characters
+
+// base64url without padding (RFC 4648, section 5).
+std::string base64url(const unsigned char* data, std::size_t size);
+
+// kTokenRandomBytes from the operating system's generator, base64url.
+std::string make_token();
+
+// True when a and b are equal, in time independent of where they differ
+// (both are hashed first, so their lengths do not show either).
+bool tokens_equal(std::string_view a, std::string_view b);
+
+// The token kept in `dir`: made and saved (0600) when missing, empty or
+// malformed, or when `rotate` is set. Throws ConfigError.
+std::string load_or_create_token(const std::filesystem::path& dir, bool rotate = false);
+
+// https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT; an IPv6 host goes in brackets.
+std::string pairing_url(const std::string& host, unsigned short port, const std::string& token,
+                        const std::string& fingerprint);
+
+}  // namespace umf::provider

@@ -1,0 +1,68 @@
+#include "server/server.hpp"
+
+#include <boost/asio/ip/address.hpp>
+#include <stdexcept>
+
+#include "server/listener.hpp"
+#include "server/session.hpp"
+
+namespace umf::provider {
+
+namespace net = boost::asio;
+
+Server::Server(std::shared_ptr<const Service> service, const TlsIdentity& identity, ServerOptions options)
+    : service_(std::move(service)),
+      options_(std::move(options)),
+      io_(options_.threads > 0 ? options_.threads : 1),
+      tls_(net::ssl::context::tls_server),
+      registry_(std::make_shared<SessionRegistry>()) {
+    configure_server_context(tls_, identity);
+}
+
+Server::~Server() { stop(); }
+
+void Server::start() {
+    if (running_) return;
+    boost::system::error_code ec;
+    const auto address = net::ip::make_address(options_.bind_address, ec);
+    if (ec) throw std::runtime_error("not an IP address: " + options_.bind_address);
+    const net::ip::tcp::endpoint endpoint(address, options_.port);
+    try {
+        listener_ = std::make_shared<Listener>(io_, tls_, endpoint, service_, registry_);
+    } catch (const boost::system::system_error& e) {
+        throw std::runtime_error("cannot listen on " + options_.bind_address + " port " +
+                                 std::to_string(options_.port) + ": " + e.code().message());
+    }
+    port_ = listener_->local_endpoint().port();
+    listener_->run();
+    running_ = true;
+    const int n = options_.threads > 0 ? options_.threads : 1;
+    for (int i = 0; i < n; ++i) threads_.emplace_back([this] { io_.run(); });
+}
+
+std::size_t Server::session_count() const { return registry_->size(); }
+
+void Server::stop(std::chrono::milliseconds grace) {
+    if (!running_) return;
+    running_ = false;
+    listener_->stop();
+    for (const auto& session : registry_->sessions()) session->shutdown();
+
+    // The io_context runs out of work once the listener and every session
+    // are done; what is still open after the grace period is dropped.
+    const auto wait_for_sessions = [this](std::chrono::milliseconds limit) {
+        const auto deadline = std::chrono::steady_clock::now() + limit;
+        while (registry_->size() > 0 && std::chrono::steady_clock::now() < deadline)
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        return registry_->size() == 0;
+    };
+    if (!wait_for_sessions(grace)) {
+        for (const auto& session : registry_->sessions()) session->abort();
+        if (!wait_for_sessions(std::chrono::milliseconds(1000))) io_.stop();
+    }
+    for (auto& t : threads_) t.join();
+    threads_.clear();
+    listener_.reset();
+}
+
+}  // namespace umf::provider

@@ -1,0 +1,58 @@
+// The provider's server: an io_context with its threads, the TLS context, the
+// listener and the live sessions. Start, then stop (or destroy) from the
+// thread that started it.
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ssl/context.hpp>
+#include <chrono>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "server/service.hpp"
+#include "server/tls_identity.hpp"
+
+namespace umf::provider {
+
+class Listener;
+class SessionRegistry;
+
+struct ServerOptions {
+    std::string bind_address = "127.0.0.1";
+    unsigned short port = 0;  // 0: any free port (see Server::port)
+    int threads = 2;
+};
+
+class Server {
+public:
+    Server(std::shared_ptr<const Service> service, const TlsIdentity& identity, ServerOptions options = {});
+    ~Server();
+    Server(const Server&) = delete;
+    Server& operator=(const Server&) = delete;
+
+    // Binds, listens and starts the threads. Throws std::runtime_error naming
+    // the address when it cannot bind.
+    void start();
+    // The port listened on, once started.
+    unsigned short port() const { return port_; }
+    // Stops accepting, closes every WebSocket session with going_away (1001)
+    // and waits up to `grace` for the closing handshakes before dropping
+    // what is left; returns when the threads have ended.
+    void stop(std::chrono::milliseconds grace = std::chrono::milliseconds(2000));
+    std::size_t session_count() const;
+
+private:
+    std::shared_ptr<const Service> service_;
+    ServerOptions options_;
+    boost::asio::io_context io_;
+    boost::asio::ssl::context tls_;
+    std::shared_ptr<SessionRegistry> registry_;
+    std::shared_ptr<Listener> listener_;
+    std::vector<std::thread> threads_;
+    unsigned short port_ = 0;
+    bool running_ = false;
+};
+
+}  // namespace umf::provider

@@ -1,0 +1,71 @@
+// One connection: the TLS handshake, the first HTTP request, and then either
+// a WebSocket session (GET /ws with an upgrade) or a small HTTP error. All of
+// a session's work runs on its strand; at most one write is outstanding and
+// replies wait in a queue.
+#pragma once
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl/context.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
+#include <boost/beast/websocket.hpp>
+#include <deque>
+#include <memory>
+#include <string>
+
+#include "server/service.hpp"
+
+namespace umf::provider {
+
+class SessionRegistry;
+
+// The WebSocket path (docs/PROTOCOL.md, "Transport").
+inline constexpr const char* kWebSocketPath = "/ws";
+
+class Session : public std::enable_shared_from_this<Session> {
+public:
+    Session(boost::asio::ip::tcp::socket&& socket, boost::asio::ssl::context& tls,
+            std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry);
+    ~Session();
+
+    void run();
+    // From any thread: a WebSocket session closes with going_away (1001);
+    // a connection still in its handshake is dropped.
+    void shutdown();
+    // From any thread: drops the connection at once.
+    void abort();
+
+private:
+    using TlsStream = boost::beast::ssl_stream<boost::beast::tcp_stream>;
+
+    void on_tls_handshake(boost::beast::error_code ec);
+    void on_request(boost::beast::error_code ec, std::size_t);
+    void reject(boost::beast::http::status status, const char* text);
+    void on_accept(boost::beast::error_code ec);
+    void read();
+    void on_read(boost::beast::error_code ec, std::size_t);
+    void send(std::string text);
+    void write_next();
+    void on_write(boost::beast::error_code ec, std::size_t);
+    void close(boost::beast::websocket::close_code code);
+    void on_close(boost::beast::error_code ec);
+    void do_shutdown();
+
+    boost::beast::websocket::stream<TlsStream> ws_;
+    std::shared_ptr<const Service> service_;
+    std::shared_ptr<SessionRegistry> registry_;
+    boost::beast::flat_buffer buffer_;
+    boost::beast::http::request_parser<boost::beast::http::empty_body> request_;
+    std::shared_ptr<boost::beast::http::response<boost::beast::http::string_body>> response_;
+    SessionState state_;
+    std::deque<std::string> queue_;
+    bool websocket_ = false;  // accepted
+    bool reading_ = false;
+    bool closing_ = false;            // no more reading: a close is due or under way
+    bool close_after_queue_ = false;  // close once the queue is sent
+    bool close_started_ = false;
+    boost::beast::websocket::close_code close_code_ = boost::beast::websocket::close_code::normal;
+};
+
+}  // namespace umf::provider

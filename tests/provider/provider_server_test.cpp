@@ -1,0 +1,474 @@
+// The provider's service half: pairing, the TLS identity, the message
+// handling without sockets, and a real server on 127.0.0.1 with a Beast TLS
+// WebSocket client that pins the certificate. Built only with the provider
+// (UMF_PROVIDER_TESTS, see tests/CMakeLists.txt).
+#ifdef UMF_PROVIDER_TESTS
+
+#include <gtest/gtest.h>
+#include <openssl/x509.h>
+#include <stdlib.h>
+#include <sys/stat.h>
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/executor_work_guard.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/ssl.hpp>
+#include <boost/asio/strand.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
+#include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
+#include <chrono>
+#include <filesystem>
+#include <future>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "protocol/messages.hpp"
+#include "server/config_dir.hpp"
+#include "server/pairing.hpp"
+#include "server/server.hpp"
+#include "server/service.hpp"
+#include "server/tls_identity.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace net = boost::asio;
+namespace ssl = boost::asio::ssl;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+namespace p = umf::protocol;
+using namespace umf::provider;
+
+constexpr auto kOpTimeout = std::chrono::seconds(5);
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        std::string tmpl = (fs::temp_directory_path() / "umf-provider-test-XXXXXX").string();
+        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+        path = tmpl;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+
+p::Message parse_reply(const std::string& text) {
+    auto parsed = p::parse_message(text, p::kRequesterLimits);
+    if (const auto* e = std::get_if<p::ProtocolError>(&parsed)) {
+        ADD_FAILURE() << "reply does not parse: " << e->message << "\n" << text.substr(0, 200);
+        return p::Error{};
+    }
+    return std::get<p::Message>(parsed);
+}
+
+std::string hello(const std::string& token, int id = 1) {
+    return p::encode(p::Hello{p::RequestId{std::int64_t{id}}, token, "provider_server_test"});
+}
+
+// A TLS WebSocket client on its own io_context thread. Every operation is
+// started on that thread and waited for with a timeout.
+class Client {
+public:
+    Client(unsigned short port, const std::string& fingerprint)
+        : port_(port), tls_(make_context(fingerprint)), ws_(net::make_strand(io_), tls_), work_(io_.get_executor()) {
+        ws_.read_message_max(p::kMaxReplyBytes);
+        thread_ = std::thread([this] { io_.run(); });
+    }
+    ~Client() {
+        net::post(ws_.get_executor(), [this] { beast::get_lowest_layer(ws_).close(); });
+        work_.reset();
+        thread_.join();
+    }
+
+    // TCP, TLS with the pinned certificate, then the WebSocket handshake.
+    beast::error_code connect(const std::string& path = "/ws") {
+        const net::ip::tcp::endpoint endpoint(net::ip::make_address("127.0.0.1"), port_);
+        if (auto ec = run([&](auto h) { beast::get_lowest_layer(ws_).async_connect(endpoint, h); })) return ec;
+        if (auto ec = run([&](auto h) { ws_.next_layer().async_handshake(ssl::stream_base::client, h); })) return ec;
+        return run([&](auto h) { ws_.async_handshake("127.0.0.1:" + std::to_string(port_), path, h); });
+    }
+    beast::error_code send(const std::string& text, bool binary = false) {
+        return run([&](auto h) {
+            ws_.binary(binary);
+            ws_.async_write(net::buffer(text), h);
+        });
+    }
+    // The next message, or the error that ended the session.
+    std::pair<beast::error_code, std::string> read() {
+        beast::flat_buffer buffer;
+        auto ec = run([&](auto h) { ws_.async_read(buffer, h); });
+        return {ec, beast::buffers_to_string(buffer.data())};
+    }
+    p::Message read_message() {
+        auto [ec, text] = read();
+        EXPECT_FALSE(ec) << ec.message();
+        return parse_reply(text);
+    }
+    // Reads until the session ends; the close code the provider sent.
+    std::optional<websocket::close_code> read_close() {
+        for (int i = 0; i < 8; ++i) {
+            auto [ec, text] = read();
+            if (ec == websocket::error::closed) return static_cast<websocket::close_code>(ws_.reason().code);
+            if (ec) return std::nullopt;
+        }
+        return std::nullopt;
+    }
+    // The welcome for a good token.
+    void connect_and_hello(const std::string& token) {
+        ASSERT_FALSE(connect());
+        ASSERT_FALSE(send(hello(token)));
+        const p::Message m = read_message();
+        ASSERT_TRUE(std::holds_alternative<p::Welcome>(m)) << p::type_name(m);
+    }
+    // Raw HTTP over TLS, for the non-WebSocket paths.
+    std::pair<beast::error_code, unsigned> http_get(const std::string& target) {
+        const net::ip::tcp::endpoint endpoint(net::ip::make_address("127.0.0.1"), port_);
+        if (auto ec = run([&](auto h) { beast::get_lowest_layer(ws_).async_connect(endpoint, h); })) return {ec, 0};
+        if (auto ec = run([&](auto h) { ws_.next_layer().async_handshake(ssl::stream_base::client, h); }))
+            return {ec, 0};
+        http::request<http::empty_body> req(http::verb::get, target, 11);
+        req.set(http::field::host, "127.0.0.1");
+        if (auto ec = run([&](auto h) { http::async_write(ws_.next_layer(), req, h); })) return {ec, 0};
+        beast::flat_buffer buffer;
+        http::response<http::string_body> res;
+        auto ec = run([&](auto h) { http::async_read(ws_.next_layer(), buffer, res, h); });
+        return {ec, res.result_int()};
+    }
+
+private:
+    static ssl::context make_context(const std::string& fingerprint) {
+        ssl::context ctx(ssl::context::tls_client);
+        ctx.set_verify_mode(ssl::verify_peer);
+        ctx.set_verify_callback([fingerprint](bool, ssl::verify_context& vc) {
+            X509_STORE_CTX* store = vc.native_handle();
+            if (X509_STORE_CTX_get_error_depth(store) != 0) return false;
+            X509* cert = X509_STORE_CTX_get_current_cert(store);
+            unsigned char* der = nullptr;
+            const int len = i2d_X509(cert, &der);
+            if (len <= 0) return false;
+            const bool ok = der_fingerprint(der, static_cast<std::size_t>(len)) == fingerprint;
+            OPENSSL_free(der);
+            return ok;
+        });
+        return ctx;
+    }
+
+    template <class Init>
+    beast::error_code run(Init init) {
+        auto promise = std::make_shared<std::promise<beast::error_code>>();
+        auto future = promise->get_future();
+        net::post(ws_.get_executor(), [&, promise] {
+            init([promise](beast::error_code ec, auto&&...) { promise->set_value(ec); });
+        });
+        if (future.wait_for(kOpTimeout) != std::future_status::ready) {
+            ADD_FAILURE() << "operation timed out";
+            net::post(ws_.get_executor(), [this] { beast::get_lowest_layer(ws_).close(); });
+            future.wait();
+        }
+        return future.get();
+    }
+
+    unsigned short port_;
+    net::io_context io_;
+    ssl::context tls_;
+    websocket::stream<beast::ssl_stream<beast::tcp_stream>> ws_;
+    net::executor_work_guard<net::io_context::executor_type> work_;
+    std::thread thread_;
+};
+
+// ---- pairing and identity ------------------------------------------------
+
+TEST(ProviderPairing, Base64urlAndTokens) {
+    const unsigned char bytes[] = {0xfb, 0xff, 0xbf, 0x00, 0x10};
+    EXPECT_EQ(base64url(bytes, 0), "");
+    EXPECT_EQ(base64url(bytes, 1), "-w");
+    EXPECT_EQ(base64url(bytes, 3), "-_-_");
+    EXPECT_EQ(base64url(bytes, 5), "-_-_ABA");
+    const std::string a = make_token(), b = make_token();
+    EXPECT_GE(a.size(), 22u);
+    EXPECT_NE(a, b);
+    EXPECT_TRUE(tokens_equal(a, a));
+    EXPECT_FALSE(tokens_equal(a, b));
+    EXPECT_FALSE(tokens_equal(a, a.substr(0, a.size() - 1)));
+    EXPECT_FALSE(tokens_equal(a, ""));
+}
+
+TEST(ProviderPairing, Url) {
+    EXPECT_EQ(pairing_url("192.168.1.20", 47470, "tok", "ab"), "https://192.168.1.20:47470/#t=tok&fp=ab");
+    EXPECT_EQ(pairing_url("fe80::1", 443, "tok", "ab"), "https://[fe80::1]:443/#t=tok&fp=ab");
+}
+
+TEST(ProviderPairing, TokenIsKeptAndRotates) {
+    TempDir dir;
+    const std::string first = load_or_create_token(dir.path);
+    EXPECT_EQ(load_or_create_token(dir.path), first);
+    struct stat st {};
+    ASSERT_EQ(stat((dir.path / kTokenFile).c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0600u);
+    const std::string rotated = load_or_create_token(dir.path, true);
+    EXPECT_NE(rotated, first);
+    EXPECT_EQ(load_or_create_token(dir.path), rotated);
+}
+
+TEST(ProviderIdentity, CreatedOnceThenReused) {
+    TempDir dir;
+    const fs::path config = dir.path / "nested" / "umf";
+    const TlsIdentity first = load_or_create_tls_identity(config);
+    EXPECT_EQ(first.fingerprint.size(), 64u);
+    EXPECT_EQ(first.fingerprint.find_first_not_of("0123456789abcdef"), std::string::npos);
+    EXPECT_EQ(certificate_fingerprint(first.certificate_pem), first.fingerprint);
+    for (const char* name : {kCertificateFile, kPrivateKeyFile}) {
+        struct stat st {};
+        ASSERT_EQ(stat((config / name).c_str(), &st), 0);
+        EXPECT_EQ(st.st_mode & 0777, 0600u) << name;
+    }
+    const TlsIdentity again = load_or_create_tls_identity(config);
+    EXPECT_EQ(again.fingerprint, first.fingerprint);
+    EXPECT_EQ(again.private_key_pem, first.private_key_pem);
+    EXPECT_NE(create_tls_identity().fingerprint, first.fingerprint);
+
+    // Half an identity is refused rather than silently replaced.
+    fs::remove(config / kPrivateKeyFile);
+    EXPECT_THROW(load_or_create_tls_identity(config), TlsIdentityError);
+}
+
+// ---- the service without sockets ------------------------------------------
+
+class ProviderService : public ::testing::Test {
+protected:
+    Service service{default_service_config(), "good-token-0123456789abcdef"};
+    SessionState state;
+    void welcome() {
+        auto out = service.handle_text(state, hello("good-token-0123456789abcdef"));
+        ASSERT_EQ(out.replies.size(), 1u);
+        ASSERT_TRUE(std::holds_alternative<p::Welcome>(out.replies[0]));
+        ASSERT_FALSE(out.close);
+        ASSERT_TRUE(state.welcomed);
+    }
+    static p::ErrorCode code_of(const Outcome& out) {
+        EXPECT_EQ(out.replies.size(), 1u);
+        const auto* e = out.replies.empty() ? nullptr : std::get_if<p::Error>(&out.replies[0]);
+        EXPECT_NE(e, nullptr);
+        return e ? e->code : p::ErrorCode::internal;
+    }
+};
+
+TEST_F(ProviderService, WelcomeCarriesTheDefaultFieldAndBalancedPreset) {
+    auto out = service.handle_text(state, hello("good-token-0123456789abcdef", 42));
+    ASSERT_EQ(out.replies.size(), 1u);
+    const auto& w = std::get<p::Welcome>(out.replies[0]);
+    EXPECT_EQ(w.id, p::RequestId{std::int64_t{42}});
+    EXPECT_EQ(w.field.definition.id, "b4-64x36-s1");
+    ASSERT_EQ(w.field.screens.size(), 1u);
+    EXPECT_EQ(w.field.screens[0].region, (p::FieldRect{0, 0, 64, 36}));
+    EXPECT_EQ(w.field.screens[0].width_px, 1920);
+    EXPECT_EQ(w.overlay.preset, "balanced");
+    EXPECT_EQ(w.limits.max_message_bytes, 16384);
+    EXPECT_FALSE(w.provider.name.empty());
+    // What the provider sends parses on the requester's side.
+    EXPECT_EQ(parse_reply(p::encode(out.replies[0])), out.replies[0]);
+}
+
+TEST_F(ProviderService, BeforeWelcomeEverythingElseCloses) {
+    auto wrong = service.handle_text(state, hello("wrong-token-0123456789abcdef"));
+    EXPECT_EQ(code_of(wrong), p::ErrorCode::unauthorized);
+    EXPECT_TRUE(wrong.close);
+    EXPECT_FALSE(state.welcomed);
+
+    auto aim = service.handle_text(state, R"({"type":"aim","v":1,"id":3,"point":[1,2],"confidence":0.5})");
+    EXPECT_EQ(code_of(aim), p::ErrorCode::unauthorized);
+    EXPECT_TRUE(aim.close);
+
+    auto malformed = service.handle_text(state, "{not json");
+    EXPECT_EQ(code_of(malformed), p::ErrorCode::bad_request);
+    EXPECT_TRUE(malformed.close);
+
+    auto version = service.handle_text(state, R"({"type":"hello","v":2,"id":1,"token":"x","client":""})");
+    EXPECT_EQ(code_of(version), p::ErrorCode::unsupported_version);
+    EXPECT_TRUE(version.close);
+
+    auto binary = service.handle_binary(state);
+    EXPECT_EQ(code_of(binary), p::ErrorCode::bad_request);
+    EXPECT_TRUE(binary.close);
+    EXPECT_FALSE(state.welcomed);
+}
+
+TEST_F(ProviderService, AfterWelcomeRequestsAreAnsweredAndNothingCloses) {
+    welcome();
+    EXPECT_TRUE(service.handle_text(state, R"({"type":"seeking","v":1})").replies.empty());
+
+    auto aim = service.handle_text(state, R"({"type":"aim","v":1,"id":3,"point":[31.5,17.25],"confidence":0.9})");
+    ASSERT_EQ(aim.replies.size(), 1u);
+    EXPECT_EQ(std::get<p::Target>(aim.replies[0]),
+              (p::Target{p::RequestId{std::int64_t{3}}, {31.5, 17.25}, p::ContentKind::none, ""}));
+
+    auto grab = service.handle_text(state, R"({"type":"grab","v":1,"id":"g1","point":[1,1]})");
+    ASSERT_EQ(grab.replies.size(), 1u);
+    const auto& content = std::get<p::Content>(grab.replies[0]);
+    EXPECT_EQ(content.id, p::RequestId{std::string("g1")});
+    EXPECT_EQ(content.kind, p::ContentKind::none);
+
+    for (const char* bad : {"{not json", R"({"type":"teleport","v":1})", R"({"type":"grab","v":1,"id":"g2","point":"here"})",
+                            R"({"type":"target","v":1,"point":[1,1],"kind":"none","title":""})"}) {
+        auto out = service.handle_text(state, bad);
+        EXPECT_EQ(code_of(out), p::ErrorCode::bad_request) << bad;
+        EXPECT_FALSE(out.close) << bad;
+    }
+    auto id_kept = service.handle_text(state, R"({"type":"grab","v":1,"id":"g2","point":"here"})");
+    EXPECT_EQ(std::get<p::Error>(id_kept.replies[0]).id, p::RequestId{std::string("g2")});
+    auto again = service.handle_text(state, hello("good-token-0123456789abcdef"));
+    EXPECT_EQ(code_of(again), p::ErrorCode::bad_request);
+    EXPECT_FALSE(again.close);
+    EXPECT_EQ(code_of(service.handle_binary(state)), p::ErrorCode::bad_request);
+    EXPECT_EQ(code_of(service.handle_text(state, std::string(20000, ' '))), p::ErrorCode::too_large);
+    EXPECT_TRUE(state.welcomed);
+}
+
+TEST_F(ProviderService, TokenCanBeReplaced) {
+    service.set_token("new-token-0123456789abcdefgh");
+    auto old = service.handle_text(state, hello("good-token-0123456789abcdef"));
+    EXPECT_EQ(code_of(old), p::ErrorCode::unauthorized);
+    SessionState fresh;
+    service.handle_text(fresh, hello("new-token-0123456789abcdefgh"));
+    EXPECT_TRUE(fresh.welcomed);
+}
+
+// ---- a real server ------------------------------------------------------------
+
+class ProviderServer : public ::testing::Test {
+protected:
+    void SetUp() override {
+        identity = load_or_create_tls_identity(dir.path);
+        token = load_or_create_token(dir.path);
+        start();
+    }
+    void start() {
+        server = std::make_unique<Server>(std::make_shared<const Service>(default_service_config(), token), identity);
+        server->start();
+        ASSERT_NE(server->port(), 0);
+    }
+    std::unique_ptr<Client> client() { return std::make_unique<Client>(server->port(), identity.fingerprint); }
+
+    TempDir dir;
+    TlsIdentity identity;
+    std::string token;
+    std::unique_ptr<Server> server;
+};
+
+TEST_F(ProviderServer, HelloWithTheTokenIsWelcomed) {
+    auto c = client();
+    ASSERT_FALSE(c->connect());
+    ASSERT_FALSE(c->send(hello(token, 1)));
+    const p::Message m = c->read_message();
+    const auto* w = std::get_if<p::Welcome>(&m);
+    ASSERT_NE(w, nullptr) << p::type_name(m);
+    EXPECT_EQ(w->id, p::RequestId{std::int64_t{1}});
+    EXPECT_EQ(w->field.definition.id, "b4-64x36-s1");
+    EXPECT_EQ(w->overlay.preset, "balanced");
+}
+
+TEST_F(ProviderServer, WrongTokenIsUnauthorizedThenClosed) {
+    auto c = client();
+    ASSERT_FALSE(c->connect());
+    ASSERT_FALSE(c->send(hello("not-the-token-0123456789abc")));
+    const p::Message m = c->read_message();
+    ASSERT_TRUE(std::holds_alternative<p::Error>(m));
+    EXPECT_EQ(std::get<p::Error>(m).code, p::ErrorCode::unauthorized);
+    EXPECT_EQ(c->read_close(), websocket::close_code::policy_error);
+}
+
+TEST_F(ProviderServer, ServesAWelcomedSession) {
+    auto c = client();
+    c->connect_and_hello(token);
+
+    auto expect_error = [&](const std::string& text, bool binary, p::ErrorCode code) {
+        ASSERT_FALSE(c->send(text, binary));
+        const p::Message m = c->read_message();
+        ASSERT_TRUE(std::holds_alternative<p::Error>(m)) << p::type_name(m);
+        EXPECT_EQ(std::get<p::Error>(m).code, code) << text;
+    };
+    expect_error("{\"type\":", false, p::ErrorCode::bad_request);
+    expect_error(std::string("\x00\xff\x13garbage", 10), true, p::ErrorCode::bad_request);
+    expect_error(R"({"type":"teleport","v":1})", false, p::ErrorCode::bad_request);
+
+    // seeking gets no reply: the next message is the aim's target.
+    ASSERT_FALSE(c->send(R"({"type":"seeking","v":1})"));
+    ASSERT_FALSE(c->send(R"({"type":"aim","v":1,"id":2,"point":[10.5,4.25],"confidence":0.8})"));
+    const p::Message t = c->read_message();
+    ASSERT_TRUE(std::holds_alternative<p::Target>(t)) << p::type_name(t);
+    EXPECT_EQ(std::get<p::Target>(t).id, p::RequestId{std::int64_t{2}});
+    EXPECT_EQ(std::get<p::Target>(t).point, (p::FieldPoint{10.5, 4.25}));
+    EXPECT_EQ(std::get<p::Target>(t).kind, p::ContentKind::none);
+
+    ASSERT_FALSE(c->send(R"({"type":"grab","v":1,"id":7,"point":[10.5,4.25]})"));
+    const p::Message g = c->read_message();
+    ASSERT_TRUE(std::holds_alternative<p::Content>(g)) << p::type_name(g);
+    EXPECT_EQ(std::get<p::Content>(g).id, p::RequestId{std::int64_t{7}});
+    EXPECT_EQ(std::get<p::Content>(g).kind, p::ContentKind::none);
+}
+
+TEST_F(ProviderServer, OversizedMessageClosesWithTooBigAndTheServerGoesOn) {
+    auto c = client();
+    c->connect_and_hello(token);
+    ASSERT_FALSE(c->send(std::string(p::kMaxRequestBytes + 1, ' ')));
+    EXPECT_EQ(c->read_close(), websocket::close_code::too_big);
+
+    auto next = client();
+    next->connect_and_hello(token);
+}
+
+TEST_F(ProviderServer, TwoClientsAtOnce) {
+    auto a = client(), b = client();
+    a->connect_and_hello(token);
+    b->connect_and_hello(token);
+    ASSERT_FALSE(a->send(R"({"type":"aim","v":1,"id":"a","point":[1,1],"confidence":1})"));
+    ASSERT_FALSE(b->send(R"({"type":"aim","v":1,"id":"b","point":[2,2],"confidence":1})"));
+    EXPECT_EQ(std::get<p::Target>(b->read_message()).id, p::RequestId{std::string("b")});
+    EXPECT_EQ(std::get<p::Target>(a->read_message()).id, p::RequestId{std::string("a")});
+}
+
+TEST_F(ProviderServer, ShutdownClosesSessionsWithGoingAway) {
+    auto a = client(), b = client();
+    a->connect_and_hello(token);
+    b->connect_and_hello(token);
+    auto stopped = std::async(std::launch::async, [this] { server->stop(); });
+    EXPECT_EQ(a->read_close(), websocket::close_code::going_away);
+    EXPECT_EQ(b->read_close(), websocket::close_code::going_away);
+    ASSERT_EQ(stopped.wait_for(kOpTimeout), std::future_status::ready);
+    EXPECT_EQ(server->session_count(), 0u);
+
+    // A restart keeps the identity, so the pinned fingerprint still holds.
+    server.reset();
+    EXPECT_EQ(load_or_create_tls_identity(dir.path).fingerprint, identity.fingerprint);
+    start();
+    auto c = client();
+    c->connect_and_hello(token);
+}
+
+TEST_F(ProviderServer, PinningRefusesAnotherCertificate) {
+    Client c(server->port(), create_tls_identity().fingerprint);
+    EXPECT_TRUE(c.connect());
+}
+
+TEST_F(ProviderServer, PlainHttpsRequestsGet404) {
+    auto c = client();
+    auto [ec, status] = c->http_get("/");
+    EXPECT_FALSE(ec) << ec.message();
+    EXPECT_EQ(status, 404u);
+    auto other = client();
+    EXPECT_TRUE(other->connect("/elsewhere"));  // an upgrade on another path is refused too
+}
+
+}  // namespace
+
+#endif  // UMF_PROVIDER_TESTS
