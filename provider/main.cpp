@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/args.hpp"
 #include "server/config_dir.hpp"
 #include "server/pairing.hpp"
 #include "server/server.hpp"
@@ -60,70 +61,25 @@ exit codes: 0 success; 2 wrong usage; 3 the configuration directory, TLS
             not start.
 )";
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
+using umf::cli::Args;
+using umf::cli::get;
+using umf::cli::has_flag;
+using umf::cli::UsageError;
 
-struct Args {
-    std::map<std::string, std::string> named;
-    std::vector<std::string> flags;
-};
-
+// The tools' arguments (cli/args.hpp), without words: every argument here is
+// an option or a flag.
 Args parse_args(int argc, char** argv, int first, const std::vector<std::string>& options,
                 const std::vector<std::string>& flags) {
-    Args a;
-    for (int i = first; i < argc; ++i) {
-        std::string s = argv[i];
-        if (s.rfind("--", 0) != 0 || s.size() == 2) throw UsageError("unexpected argument " + s);
-        std::string name = s.substr(2), value;
-        bool has_value = false;
-        if (auto eq = name.find('='); eq != std::string::npos) {
-            value = name.substr(eq + 1);
-            name = name.substr(0, eq);
-            has_value = true;
-        }
-        bool is_flag = false, is_option = false;
-        for (const auto& f : flags) is_flag |= f == name;
-        for (const auto& o : options) is_option |= o == name;
-        if (is_flag) {
-            if (has_value) throw UsageError("--" + name + " takes no value");
-            a.flags.push_back(name);
-        } else if (is_option) {
-            if (!has_value) {
-                if (i + 1 >= argc) throw UsageError("--" + name + " needs a value");
-                value = argv[++i];
-            }
-            a.named[name] = value;
-        } else {
-            throw UsageError("unknown option --" + name);
-        }
-    }
+    Args a = umf::cli::parse_args(argc, argv, first, flags);
+    umf::cli::reject_unknown(a, options);
+    if (!a.positional.empty()) throw UsageError("unexpected argument " + a.positional.front());
     return a;
-}
-
-bool has_flag(const Args& a, const std::string& f) {
-    for (const auto& x : a.flags)
-        if (x == f) return true;
-    return false;
-}
-
-std::optional<std::string> get(const Args& a, const std::string& name) {
-    auto it = a.named.find(name);
-    if (it == a.named.end()) return std::nullopt;
-    return it->second;
 }
 
 unsigned short port_option(const Args& a) {
     auto v = get(a, "port");
     if (!v) return kDefaultPort;
-    std::size_t used = 0;
-    long x = -1;
-    try {
-        x = std::stol(*v, &used);
-    } catch (...) {
-    }
-    if (used != v->size() || x < 0 || x > 65535) throw UsageError("--port must be an integer 0..65535, not " + *v);
-    return static_cast<unsigned short>(x);
+    return static_cast<unsigned short>(umf::cli::to_integer("port", *v, 0, 65535));
 }
 
 std::filesystem::path config_dir_option(const Args& a) {
