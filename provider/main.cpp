@@ -1,215 +1,119 @@
-// umf-provider: serve the field's content to requesters over a TLS WebSocket.
-#include <arpa/inet.h>
-#include <ifaddrs.h>
-#include <net/if.h>
-#include <netinet/in.h>
-#include <pthread.h>
-#include <signal.h>
-
-#include <cstdio>
+// umf-provider: show a marker field and serve what it points at.
 #include <cstring>
 #include <iostream>
-#include <map>
-#include <memory>
-#include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "cli/args.hpp"
+#include "commands/common_options.hpp"
+#include "commands/compose_command.hpp"
+#include "commands/pair_command.hpp"
+#include "commands/serve_command.hpp"
+#include "screen/gui_application.hpp"
 #include "server/config_dir.hpp"
-#include "server/pairing.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
-#include "server/tls_identity.hpp"
 
 namespace {
 
 using namespace umf::provider;
 
-enum Exit {
-    kOk = 0,
-    kUsage = 2,
-    kConfigError = 3,  // the configuration directory, the identity or the token cannot be read or written
-    kServeError = 4,   // cannot listen, or the field cannot be loaded
-};
-
-constexpr unsigned short kDefaultPort = 47470;
-
 const char* kUsageText = R"(umf-provider: show a marker field and serve what it points at
 
 usage:
-  umf-provider serve [--port P] [--bind ADDR] [--host HOST] [--config-dir DIR]
-  umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate]
+  umf-provider [serve] [--board BOARD.json] [--preset NAME] [--port P] [--headless]
+               [--screen WxH] [--public] [--bind ADDR] [--host HOST] [--web DIR]
+               [--config-dir DIR] [--no-qr]
+  umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate] [--no-qr]
+  umf-provider share FILE|URL --rect X,Y,W,H [--title T] [--screen N] [--port P]
+  umf-provider share --list | --remove ID [--port P]
+  umf-provider compose --content SCREEN.png [--board BOARD.json] --preset NAME
+                       --time T --out OUT.png --map MAP.json [--screen WxH]
   umf-provider --help
 
-serve   listens for requesters on wss://ADDR:P/ws (default 127.0.0.1, port 47470;
-        port 0 picks a free one), prints the pairing URL and serves until
-        SIGINT or SIGTERM, then closes every session and exits.
-pair    prints the pairing URL; --rotate makes a new token first, which
-        unpairs every requester (a running server keeps the old token
-        until it restarts).
+serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /ws;
+         default 127.0.0.1, port 47470; port 0 picks a free one), prints the
+         pairing URL and its QR code, and serves until SIGINT or SIGTERM.
+         Without a display, or with --headless, the screen is virtual (--screen,
+         default 1920x1080) and shows BOARD.json, or the built-in demo board.
+         --public (kiosks) welcomes any requester and serves board items only.
+pair     prints the pairing URL and its QR code; --rotate makes a new token
+         first, which unpairs every requester (a running provider keeps the
+         old token until it restarts).
+share    pins a file or URL to a region of the running provider's screen, so
+         pointing there takes it; --list and --remove ID manage what is shared.
+compose  writes the screen exactly as shown at time T (content, the board over
+         it, the field at the preset's opacity then) and the map from field to
+         screen pixels.
 
+--preset      overlay preset: subtle, balanced, visible, static, kiosk, or one
+              of yours in CONFIG_DIR/presets.json (default: kiosk with a board,
+              else balanced).
 --config-dir  where the TLS identity and the pairing token are kept
               (default $XDG_CONFIG_HOME/umf, else ~/.config/umf); made on first use.
 --host        the host name or address put in the pairing URL (default: the
               bind address, or this machine's first non-loopback IPv4 address
               when binding to all addresses).
+--web         serve the web client from DIR (default: a page saying how to pair).
 
 exit codes: 0 success; 2 wrong usage; 3 the configuration directory, TLS
-            identity or token could not be read or written; 4 the server could
-            not start.
+            identity, token, board or an input could not be read or written;
+            4 the server could not start, or (share) no provider is running.
 )";
 
-using umf::cli::Args;
-using umf::cli::get;
-using umf::cli::has_flag;
-using umf::cli::UsageError;
-
-// The tools' arguments (cli/args.hpp), without words: every argument here is
-// an option or a flag.
-Args parse_args(int argc, char** argv, int first, const std::vector<std::string>& options,
-                const std::vector<std::string>& flags) {
-    Args a = umf::cli::parse_args(argc, argv, first, flags);
-    umf::cli::reject_unknown(a, options);
-    if (!a.positional.empty()) throw UsageError("unexpected argument " + a.positional.front());
-    return a;
+std::vector<std::string> names(const char* const* list) {
+    std::vector<std::string> out;
+    for (; *list; ++list) out.emplace_back(*list);
+    return out;
 }
 
-unsigned short port_option(const Args& a) {
-    auto v = get(a, "port");
-    if (!v) return kDefaultPort;
-    return static_cast<unsigned short>(umf::cli::to_integer("port", *v, 0, 65535));
-}
-
-std::filesystem::path config_dir_option(const Args& a) {
-    if (auto v = get(a, "config-dir")) {
-        if (v->empty()) throw UsageError("--config-dir needs a directory");
-        return *v;
+int dispatch(int argc, char** argv) {
+    // The command word is optional: `umf-provider --board B` serves.
+    std::string command = "serve";
+    int first = 1;
+    if (argc >= 2 && std::strncmp(argv[1], "--", 2) != 0) {
+        command = argv[1];
+        first = 2;
     }
-    return default_config_dir();
-}
-
-// The first up, non-loopback IPv4 address, or nullopt.
-std::optional<std::string> first_lan_address() {
-    ifaddrs* list = nullptr;
-    if (getifaddrs(&list) != 0) return std::nullopt;
-    std::optional<std::string> found;
-    for (ifaddrs* i = list; i && !found; i = i->ifa_next) {
-        if (!i->ifa_addr || i->ifa_addr->sa_family != AF_INET || !(i->ifa_flags & IFF_UP) ||
-            (i->ifa_flags & IFF_LOOPBACK))
-            continue;
-        char text[INET_ADDRSTRLEN] = {};
-        if (inet_ntop(AF_INET, &reinterpret_cast<sockaddr_in*>(i->ifa_addr)->sin_addr, text, sizeof text))
-            found = text;
+    if (command == "serve") {
+        const auto args = parse_command_args(argc, argv, first, names(kServeOptions), names(kServeFlags));
+        const bool headless = umf::cli::has_flag(args, "headless");
+        auto app = make_gui_application(argc, argv, headless);
+        return run_serve(args);
     }
-    freeifaddrs(list);
-    return found;
-}
-
-std::string url_host(const Args& a, const std::string& bind) {
-    if (auto h = get(a, "host")) {
-        if (h->empty()) throw UsageError("--host needs a value");
-        return *h;
+    if (command == "pair")
+        return run_pair(parse_command_args(argc, argv, first, {"port", "host", "config-dir"}, {"rotate", "no-qr"}));
+    if (command == "share")
+        return run_share(parse_command_args(argc, argv, first, {"rect", "title", "screen", "port", "remove"}, {"list"}, 1));
+    if (command == "compose") {
+        const auto args = parse_command_args(argc, argv, first,
+                                             {"content", "board", "preset", "time", "out", "map", "screen", "config-dir"}, {});
+        const auto config_dir = config_dir_option(args);
+        auto compose_args = args;  // compose's own options only
+        compose_args.named.erase("config-dir");
+        auto app = make_gui_application(argc, argv, true);
+        return run_compose(compose_args, config_dir);
     }
-    if (bind == "0.0.0.0" || bind == "::") return first_lan_address().value_or("localhost");
-    return bind;
-}
-
-int serve(const Args& a) {
-    const unsigned short port = port_option(a);
-    const std::string bind = get(a, "bind").value_or("127.0.0.1");
-    const std::string host = url_host(a, bind);
-    const auto dir = config_dir_option(a);
-
-    TlsIdentity identity;
-    std::string token;
-    try {
-        identity = load_or_create_tls_identity(dir);
-        token = load_or_create_token(dir);
-    } catch (const std::exception& e) {
-        std::cerr << "umf-provider: " << e.what() << "\n";
-        return kConfigError;
-    }
-
-    // SIGINT and SIGTERM are taken with sigwait below; blocked before any
-    // thread starts, so none of the server's threads receives them.
-    sigset_t signals;
-    sigemptyset(&signals);
-    sigaddset(&signals, SIGINT);
-    sigaddset(&signals, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-
-    std::unique_ptr<Server> server;
-    try {
-        auto service = std::make_shared<const Service>(default_service_config(), token);
-        ServerOptions options;
-        options.bind_address = bind;
-        options.port = port;
-        options.threads = 2;
-        server = std::make_unique<Server>(service, identity, options);
-        server->start();
-    } catch (const std::exception& e) {
-        std::cerr << "umf-provider: " << e.what() << "\n";
-        return kServeError;
-    }
-
-    std::cout << "umf-provider: listening on wss://" << (bind.find(':') != std::string::npos ? "[" + bind + "]" : bind)
-              << ":" << server->port() << "/ws\n"
-              << "pairing URL: " << pairing_url(host, server->port(), token, identity.fingerprint) << "\n"
-              << "certificate fingerprint (SHA-256): " << identity.fingerprint << "\n"
-              << std::flush;
-
-    int received = 0;
-    sigwait(&signals, &received);
-    std::cerr << "umf-provider: " << (received == SIGINT ? "SIGINT" : "SIGTERM") << ", closing sessions\n";
-    server->stop();
-    std::cerr << "umf-provider: stopped\n";
-    return kOk;
-}
-
-int pair(const Args& a) {
-    const unsigned short port = port_option(a);
-    const std::string host = url_host(a, "127.0.0.1");
-    const auto dir = config_dir_option(a);
-    try {
-        const TlsIdentity identity = load_or_create_tls_identity(dir);
-        const std::string token = load_or_create_token(dir, has_flag(a, "rotate"));
-        std::cout << pairing_url(host, port, token, identity.fingerprint) << "\n";
-    } catch (const std::exception& e) {
-        std::cerr << "umf-provider: " << e.what() << "\n";
-        return kConfigError;
-    }
-    return kOk;
+    throw umf::cli::UsageError("unknown command " + command);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2) {
-        std::cerr << kUsageText;
-        return kUsage;
-    }
-    const std::string command = argv[1];
-    if (command == "--help" || command == "-h" || command == "help") {
-        std::cout << kUsageText;
-        return kOk;
-    }
+    for (int i = 1; i < argc; ++i)
+        if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0 ||
+            (i == 1 && std::strcmp(argv[i], "help") == 0)) {
+            std::cout << kUsageText;
+            return kOk;
+        }
     try {
-        for (int i = 2; i < argc; ++i)
-            if (std::strcmp(argv[i], "--help") == 0) {
-                std::cout << kUsageText;
-                return kOk;
-            }
-        if (command == "serve")
-            return serve(parse_args(argc, argv, 2, {"port", "bind", "host", "config-dir"}, {}));
-        if (command == "pair") return pair(parse_args(argc, argv, 2, {"port", "host", "config-dir"}, {"rotate"}));
-        throw UsageError("unknown command " + command);
-    } catch (const UsageError& e) {
+        return dispatch(argc, argv);
+    } catch (const umf::cli::UsageError& e) {
         std::cerr << "umf-provider: " << e.what() << "\n\n" << kUsageText;
         return kUsage;
     } catch (const ConfigError& e) {
         std::cerr << "umf-provider: " << e.what() << "\n";
         return kConfigError;
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: " << e.what() << "\n";
+        return kServeError;
     }
 }

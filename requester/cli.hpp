@@ -13,7 +13,9 @@ namespace umf::requester {
 enum Exit {
     kOk = 0,         // the command ran; per-frame trouble is reported in its output
     kUsage = 2,      // wrong usage
-    kInputError = 3  // the field file, the video or the output could not be read or written
+    kInputError = 3,  // the field file, the video or the output could not be read or written
+    kConnection = 4,  // grab: the provider could not be reached, its certificate or its replies were wrong
+    kNothing = 5      // grab: nothing was grabbed (no field in view, nothing at the point, refused)
 };
 
 // Wrong usage: main prints it with a pointer to --help and exits with kUsage.

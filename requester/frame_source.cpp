@@ -1,6 +1,7 @@
 #include "frame_source.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -93,6 +94,11 @@ public:
         if (!opened) throw InputError("cannot open video " + path + ": " + why);
     }
 
+    double fps() const override {
+        const double fps = capture_.get(cv::CAP_PROP_FPS);
+        return std::isfinite(fps) && fps > 0 && fps < 1000 ? fps : 0;
+    }
+
     std::optional<Frame> next() override {
         if (done_) return std::nullopt;
         Frame f;
@@ -121,7 +127,51 @@ private:
     bool done_ = false;
 };
 
+class Camera : public FrameSource {
+public:
+    explicit Camera(int index) : name_("camera " + std::to_string(index)) {
+        const auto level = cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+        bool opened = false;
+        std::string why = "no such camera, or it is busy";
+        try {
+            opened = capture_.open(index, cv::CAP_ANY);
+        } catch (const cv::Exception& e) {
+            why = e.err;
+        }
+        cv::utils::logging::setLogLevel(level);
+        if (!opened) throw InputError("cannot open " + name_ + ": " + why);
+        // Frames queued in the driver are old by the time they are read: a
+        // short queue keeps the preview and the aim current.
+        capture_.set(cv::CAP_PROP_BUFFERSIZE, 1);
+    }
+
+    std::optional<Frame> next() override {
+        Frame f;
+        f.index = index_++;
+        f.name = name_;
+        try {
+            if (!capture_.read(f.pixels) || f.pixels.empty()) return std::nullopt;  // unplugged
+        } catch (const cv::Exception& e) {
+            f.pixels.release();
+            f.error = "cannot read " + name_ + ": " + e.err;
+        }
+        return f;
+    }
+    double fps() const override {
+        const double fps = capture_.get(cv::CAP_PROP_FPS);
+        return std::isfinite(fps) && fps > 0 && fps < 1000 ? fps : 0;
+    }
+    bool live() const override { return true; }
+
+private:
+    std::string name_;
+    cv::VideoCapture capture_;
+    int index_ = 0;
+};
+
 }  // namespace
+
+std::unique_ptr<FrameSource> camera(int index) { return std::make_unique<Camera>(index); }
 
 Frame read_image_file(const std::string& path, int index) {
     Frame f;

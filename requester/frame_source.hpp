@@ -26,6 +26,11 @@ public:
     virtual ~FrameSource() = default;
     // The next frame, or nothing once the source is exhausted.
     virtual std::optional<Frame> next() = 0;
+    // Frames per second of a recording, 0 when unknown (image files).
+    virtual double fps() const { return 0; }
+    // Frames arrive in real time (a camera): time is the wall clock's, not
+    // the frame count's.
+    virtual bool live() const { return false; }
 };
 
 // Image files larger than this are not images from a camera.
@@ -40,6 +45,10 @@ std::unique_ptr<FrameSource> image_files(std::vector<std::string> paths);
 // stream URL, numbered images "frame_%03d.png"). Throws InputError (cli.hpp)
 // when it cannot be opened.
 std::unique_ptr<FrameSource> video_file(const std::string& path);
+
+// Camera `index` (/dev/videoINDEX on Linux), live. Throws InputError when it
+// cannot be opened.
+std::unique_ptr<FrameSource> camera(int index);
 
 // One image file as a frame (what image_files gives for each path).
 Frame read_image_file(const std::string& path, int index);

@@ -14,6 +14,7 @@
 #include "detect/tracker.hpp"
 #include "field/field_io.hpp"
 #include "frame_source.hpp"
+#include "grey_frame.hpp"
 
 namespace umf::requester {
 
@@ -77,23 +78,6 @@ Json homography_json(const Eigen::Matrix3d& h) {
     for (int r = 0; r < 3; ++r)
         for (int c = 0; c < 3; ++c) out.push_back(h(r, c) / scale);
     return out;
-}
-
-// The grey image the detector reads, through libumf's own luma so that the
-// requester sees the same grey as the web client. Empty `why` when fine.
-GreyView grey_view(const cv::Mat& px, std::vector<std::uint8_t>& luma, std::string& why) {
-    if (px.depth() != CV_8U || (px.channels() != 1 && px.channels() != 3 && px.channels() != 4)) {
-        why = "pixels of OpenCV type " + std::to_string(px.type()) + " are not 8-bit grey, BGR or BGRA";
-        return {};
-    }
-    const auto stride = static_cast<std::ptrdiff_t>(px.step);
-    // An image beyond the detector's limit is not converted (that could take
-    // gigabytes): a view of its raw bytes, which are all in bounds, lets the
-    // detector reject it with its own "invalid image" reason.
-    if (px.channels() == 1 || px.cols > kMaxImageSideForDetection || px.rows > kMaxImageSideForDetection)
-        return {px.data, px.cols, px.rows, stride};
-    return to_luma({px.data, px.cols, px.rows, stride, px.channels() == 3 ? PixelOrder::bgr : PixelOrder::bgra},
-                   luma);
 }
 
 Json detection_json(int frame, const Detection& d, const Eigen::Vector2d& point) {

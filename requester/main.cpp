@@ -11,6 +11,7 @@
 
 #include "cli.hpp"
 #include "field/field_io.hpp"
+#include "grab_command.hpp"
 #include "locate_command.hpp"
 
 namespace {
@@ -21,16 +22,23 @@ const char* kUsageText = R"(umf-requester: find the marker field in camera frame
 
 usage:
   umf-requester locate --field F.json [--sequence] [--aim X,Y] IMAGE... | --video FILE
+  umf-requester grab --url URL [--camera I | --video FILE | --image FILE]
+                     [--out DIR] [--open] [--auto] [--no-window] [--timeout S]
   umf-requester help [COMMAND]
   umf-requester COMMAND --help
 
 locate    finds the field in image files or the frames of a video and prints one JSON
           line per frame: the field point under the image centre (or --aim), the
           image -> field homography, and how sure the detector is.
+grab      connects to a provider (its pairing URL), finds its field in the camera,
+          a video or a photo, and takes what the screen shows under the image
+          centre: prints a link, downloads a file. One JSON line at the end.
 
-exit codes: 0 the command ran (frames without the field are reported, not failed);
-            2 wrong usage; 3 the field file or the video could not be read, or the
-            output could not be written.
+exit codes: 0 the command ran (locate: frames without the field are reported, not
+            failed; grab: something was grabbed); 2 wrong usage; 3 an input could
+            not be read, or the output could not be written; grab only: 4 the
+            provider could not be reached, its certificate or token did not match,
+            or the exchange failed; 5 nothing was grabbed.
 )";
 
 struct Command {
@@ -41,8 +49,21 @@ struct Command {
 
 int locate(int argc, char** argv) { return run_locate(parse_locate_args(argc, argv, 2), stdout); }
 
+// grab promises a JSON line on stdout whatever happens, wrong usage included.
+int grab(int argc, char** argv) {
+    GrabOptions options;
+    try {
+        options = parse_grab_args(argc, argv, 2);
+    } catch (const UsageError& e) {
+        write_usage_failure(stdout, e.what());
+        throw;
+    }
+    return run_grab(options, stdout);
+}
+
 const Command kCommands[] = {
     {"locate", kLocateUsage, locate},
+    {"grab", kGrabUsage, grab},
 };
 
 const Command* find_command(const std::string& name) {

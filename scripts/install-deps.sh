@@ -12,14 +12,14 @@ packages=(
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev poppler-utils
   # provider/: Qt 6, Beast server, TLS, pairing QR codes, X11 window lookup
-  qt6-base-dev qt6-base-dev-tools libgl-dev libx11-dev libxcb1-dev
+  qt6-base-dev qt6-base-dev-tools libgl-dev libx11-dev libxres-dev libxcb1-dev curl
   libboost-dev libboost-system-dev libssl-dev openssl libqrencode-dev
   # requester/ and the camera simulator
   libopencv-dev libopencv-contrib-dev libapriltag-dev
   # web/: WebAssembly build and browser tests
   emscripten chromium
   # headless desktop for overlay and window tests
-  xvfb xauth x11-utils xdotool openbox
+  xvfb xauth x11-utils xdotool openbox mupdf xterm
 )
 
 # node and npm may come from another repository whose nodejs bundles npm

@@ -48,6 +48,14 @@ struct Board {
 
 inline constexpr std::size_t kMaxBoardItems = 256;
 inline constexpr std::size_t kMaxBoardFileBytes = 1u << 20;
+inline constexpr const char* kBoardFormat = "umf-board/1";
+inline constexpr int kMaxBoardColumns = 64;
+inline constexpr std::size_t kMaxBoardTitleBytes = 512;
+inline constexpr std::size_t kMaxBoardUrlBytes = 8192;
+inline constexpr std::size_t kMaxBoardPathBytes = 4096;
+// Rect members beyond this are refused: no screen is that large, and it keeps
+// x + width within int.
+inline constexpr int kMaxBoardRectCoordinate = 1 << 20;
 
 class BoardError : public std::runtime_error {
 public:
@@ -67,9 +75,22 @@ Board load_board(const std::filesystem::path& file);
 // the title bar and lie within the screen.
 std::vector<PixelRect> layout_board(const Board& board, int screen_width, int screen_height);
 
+// The height of the title bar across the top of the screen (0 when the board
+// has no title): about 8 % of the screen, at least 48 pixels, at most a
+// quarter of the screen. layout_board keeps the tiles below it and the board
+// window paints the title in it.
+int board_title_height(const Board& board, int screen_height);
+
+// The board as a "umf-board/1" file: paths inside base_dir are written
+// relative to it, others absolute. parse_board(board_to_json(b, d), d) == b.
+std::string board_to_json(const Board& board, const std::filesystem::path& base_dir);
+
 // The built-in demo board: writes its six items' files (a text note, a PNG
 // picture, a PDF, a CSV table; the rest are URLs) into `dir` (created when
-// missing) and returns the board pointing at them.
+// missing) and returns the board pointing at them. Also writes the board
+// itself as "board.json" in `dir`, for `umf-provider compose --board`. Same
+// bytes every time, each file replaced atomically. Throws std::runtime_error
+// (FileWriteError) naming the file that cannot be written.
 Board write_demo_board(const std::filesystem::path& dir);
 
 }  // namespace umf::provider

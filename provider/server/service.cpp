@@ -3,12 +3,12 @@
 #include <unistd.h>
 
 #include <climits>
+#include <cstdio>
 #include <stdexcept>
 #include <type_traits>
 
-#include "field/default_field.hpp"
-#include "field/field_io.hpp"
 #include "overlay/preset.hpp"
+#include "screen/screen_field.hpp"
 #include "server/pairing.hpp"
 
 #ifndef UMF_PROVIDER_VERSION
@@ -19,21 +19,41 @@ namespace umf::provider {
 
 namespace p = protocol;
 
+namespace {
+
+std::string point_text(p::FieldPoint point) {
+    char text[96];
+    std::snprintf(text, sizeof text, "[%.2f, %.2f]", point.u, point.v);
+    return text;
+}
+
+// Aims may come in short bursts (a requester catching up after a stall);
+// grabs up to a fifth of a minute's allowance at once.
+TokenBucket aim_bucket(const p::Limits& limits) { return {limits.aims_per_s, std::max(1.0, limits.aims_per_s)}; }
+TokenBucket grab_bucket(const p::Limits& limits) {
+    return {limits.grabs_per_min / 60.0, std::max(1.0, limits.grabs_per_min / 5.0)};
+}
+
+}  // namespace
+
 ServiceConfig default_service_config(int screen_width_px, int screen_height_px, const std::string& screen_name) {
     ServiceConfig c;
     char host[HOST_NAME_MAX + 1] = {};
     c.provider.name = ::gethostname(host, sizeof host - 1) == 0 && host[0] ? host : "umf-provider";
     c.provider.software = std::string("umf-provider/") + UMF_PROVIDER_VERSION;
 
-    const DefaultField choice = default_field_for_screen(screen_width_px, screen_height_px);
-    c.field.definition = load_field(std::string(UMF_DATA_DIR) + "/fields/" + choice.file);
+    const ScreenField screen_field = screen_field_for(screen_width_px, screen_height_px);
+    c.field.definition = screen_field.field;
+    const auto area = overlay::visible_area(screen_field.placement, screen_field.field.width,
+                                            screen_field.field.height, screen_width_px, screen_height_px);
+    if (!area) throw std::logic_error("the default field does not meet its screen");
     p::Screen screen;
     screen.name = screen_name;
-    screen.region = {0.0, 0.0, static_cast<double>(c.field.definition.width),
-                     static_cast<double>(c.field.definition.height)};
+    screen.region = {area->u0, area->v0, area->u1, area->v1};
     screen.width_px = screen_width_px;
     screen.height_px = screen_height_px;
     c.field.screens.push_back(screen);
+    c.placements.push_back(screen_field.placement);
 
     const auto presets = overlay::built_in_presets();
     const overlay::Preset* balanced = overlay::find_preset(presets, "balanced");
@@ -43,7 +63,18 @@ ServiceConfig default_service_config(int screen_width_px, int screen_height_px, 
     return c;
 }
 
-Service::Service(ServiceConfig config, std::string token) : config_(std::move(config)), token_(std::move(token)) {}
+Service::Service(ServiceConfig config, std::string token, std::vector<std::shared_ptr<const Resolver>> resolvers,
+                 std::shared_ptr<const StaticSite> site)
+    : config_(std::move(config)),
+      resolvers_(std::move(resolvers)),
+      downloads_(std::make_shared<DownloadTable>(std::chrono::milliseconds(
+          static_cast<std::int64_t>(config_.limits.download_ttl_s * 1000.0)))),
+      facts_(std::make_shared<FileFactsCache>()),
+      site_(site ? std::move(site) : std::make_shared<const StaticSite>()),
+      token_(std::move(token)) {
+    if (config_.placements.size() != config_.field.screens.size())
+        throw std::invalid_argument("a service needs one field placement per screen");
+}
 
 void Service::set_token(std::string token) {
     std::lock_guard lock(token_mutex_);
@@ -55,11 +86,34 @@ bool Service::token_matches(std::string_view token) const {
     return !token_.empty() && tokens_equal(token, token_);
 }
 
-Outcome Service::handle_text(SessionState& state, std::string_view text) const {
+std::optional<ScreenPoint> Service::screen_point(p::FieldPoint point) const {
+    const auto& screens = config_.field.screens;
+    for (std::size_t i = 0; i < screens.size(); ++i) {
+        const p::FieldRect& r = screens[i].region;
+        if (point.u < r.u0 || point.u >= r.u1 || point.v < r.v0 || point.v >= r.v1) continue;
+        const overlay::ScreenPoint s = overlay::field_to_screen(config_.placements[i], point.u, point.v);
+        ScreenPoint out;
+        out.screen = static_cast<int>(i);
+        out.x = s.x;
+        out.y = s.y;
+        out.root_x = s.x;
+        out.root_y = s.y;
+        return out;
+    }
+    return std::nullopt;
+}
+
+Resolved Service::resolve(const ScreenPoint& point, Purpose purpose) const {
+    for (const auto& resolver : resolvers_)
+        if (auto found = resolver->resolve(point, purpose)) return std::move(*found);
+    return {};
+}
+
+Outcome Service::handle_text(SessionState& state, std::string_view text, SteadyTime now) const {
     // Parsing checks the size before anything else.
     p::ParseLimits limits;
     limits.max_bytes = static_cast<std::size_t>(config_.limits.max_message_bytes);
-    return handle(state, p::parse_message(text, limits));
+    return handle(state, p::parse_message(text, limits), now);
 }
 
 Outcome Service::handle_binary(SessionState& state) const {
@@ -69,7 +123,126 @@ Outcome Service::handle_binary(SessionState& state) const {
     return out;
 }
 
-Outcome Service::handle(SessionState& state, const p::ParseResult& parsed) const {
+Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime now) const {
+    Outcome out;
+    out.close = true;
+    {
+        std::lock_guard lock(wrong_mutex_);
+        auto it = wrong_tokens_.find(state.peer);
+        if (it != wrong_tokens_.end() && now - it->second.since >= kWrongTokenWindow) {
+            wrong_tokens_.erase(it);
+            it = wrong_tokens_.end();
+        }
+        if (it != wrong_tokens_.end() && it->second.count >= kMaxWrongTokens) {
+            out.replies.push_back(p::Error{hello.id, p::ErrorCode::rate_limited,
+                                           "too many wrong pairing tokens from this address; wait a minute"});
+            return out;
+        }
+    }
+    if (!config_.public_mode && !token_matches(hello.token)) {
+        std::lock_guard lock(wrong_mutex_);
+        if (wrong_tokens_.size() > 4096) wrong_tokens_.clear();  // bounded, whatever the addresses
+        auto& wrong = wrong_tokens_[state.peer];
+        if (wrong.count == 0) wrong.since = now;
+        ++wrong.count;
+        out.replies.push_back(p::Error{hello.id, p::ErrorCode::unauthorized, "unknown pairing token"});
+        return out;
+    }
+    state.welcomed = true;
+    state.aims = aim_bucket(config_.limits);
+    state.grabs = grab_bucket(config_.limits);
+    out.close = false;
+    out.replies.push_back(p::Welcome{hello.id, config_.provider, config_.field, config_.overlay, config_.limits});
+    return out;
+}
+
+std::optional<p::Message> Service::aim(SessionState& state, const p::Aim& aim, SteadyTime now) const {
+    if (!state.aims.take(now)) {
+        // The excess is dropped, with at most one error a second to say so.
+        if (state.rate_error_sent && now - state.last_rate_error < std::chrono::seconds(1)) return std::nullopt;
+        state.rate_error_sent = true;
+        state.last_rate_error = now;
+        char text[96];
+        std::snprintf(text, sizeof text, "more than %g aims a second", config_.limits.aims_per_s);
+        return p::Error{aim.id, p::ErrorCode::rate_limited, text};
+    }
+    p::Target target{aim.id, aim.point, p::ContentKind::none, ""};
+    if (const auto point = screen_point(aim.point)) {
+        try {
+            const Resolved found = resolve(*point, Purpose::preview);
+            target.kind = found.kind;
+            target.title = found.title;
+        } catch (const std::exception&) {
+            // A preview that fails says nothing; the grab reports the failure.
+        }
+    }
+    return target;
+}
+
+p::Message Service::grab(SessionState& state, const p::Grab& grab, SteadyTime now) const {
+    if (!state.grabs.take(now)) {
+        char text[96];
+        std::snprintf(text, sizeof text, "more than %g grabs a minute", config_.limits.grabs_per_min);
+        return p::Error{grab.id, p::ErrorCode::rate_limited, text};
+    }
+    const auto point = screen_point(grab.point);
+    if (!point) return p::Error{grab.id, p::ErrorCode::not_found, "no screen shows field point " + point_text(grab.point)};
+    try {
+        return content_for(grab, resolve(*point, Purpose::grab));
+    } catch (const std::exception& e) {
+        return p::Error{grab.id, p::ErrorCode::internal, e.what()};
+    }
+}
+
+p::Message Service::content_for(const p::Grab& grab, const Resolved& resolved) const {
+    p::Content c;
+    c.id = grab.id;
+    c.kind = resolved.kind;
+    c.title = resolved.title;
+    switch (resolved.kind) {
+        case p::ContentKind::none:
+            break;
+        case p::ContentKind::url:
+            c.url = resolved.url;
+            break;
+        case p::ContentKind::file:
+        case p::ContentKind::snapshot: {
+            DownloadEntry entry;
+            entry.name = p::safe_file_name(resolved.name);
+            entry.mime = resolved.mime.empty() ? "application/octet-stream" : resolved.mime;
+            if (resolved.file) {
+                FileFacts facts;
+                try {
+                    facts = facts_->facts(*resolved.file);
+                } catch (const std::exception&) {
+                    return p::Error{grab.id, p::ErrorCode::internal, "cannot read " + entry.name};
+                }
+                entry.size = facts.size;
+                entry.sha256 = facts.sha256;
+                entry.file = resolved.file;
+            } else if (resolved.bytes) {
+                entry.size = static_cast<std::int64_t>(resolved.bytes->size());
+                entry.sha256 = sha256_hex(*resolved.bytes);
+                entry.bytes = resolved.bytes;
+            } else {
+                return p::Error{grab.id, p::ErrorCode::internal, "the content under the point has no data"};
+            }
+            if (entry.size > config_.max_download_bytes)
+                return p::Error{grab.id, p::ErrorCode::too_large,
+                                entry.name + " is " + std::to_string(entry.size) + " bytes, more than the limit of " +
+                                    std::to_string(config_.max_download_bytes)};
+            c.name = entry.name;
+            c.mime = entry.mime;
+            c.size = entry.size;
+            c.sha256 = entry.sha256;
+            c.download = downloads_->add(std::move(entry));
+            break;
+        }
+    }
+    return c;
+}
+
+Outcome Service::handle(SessionState& state, const p::ParseResult& parsed, SteadyTime now) const {
     Outcome out;
     if (const auto* error = std::get_if<p::ProtocolError>(&parsed)) {
         out.replies.push_back(p::to_error(*error));
@@ -79,20 +252,10 @@ Outcome Service::handle(SessionState& state, const p::ParseResult& parsed) const
     const p::Message& message = std::get<p::Message>(parsed);
 
     if (!state.welcomed) {
-        const auto* hello = std::get_if<p::Hello>(&message);
-        if (!hello) {
-            out.replies.push_back(p::Error{std::nullopt, p::ErrorCode::unauthorized,
-                                           std::string("a session starts with hello, not ") + p::type_name(message)});
-            out.close = true;
-            return out;
-        }
-        if (!token_matches(hello->token)) {
-            out.replies.push_back(p::Error{hello->id, p::ErrorCode::unauthorized, "unknown pairing token"});
-            out.close = true;
-            return out;
-        }
-        state.welcomed = true;
-        out.replies.push_back(p::Welcome{hello->id, config_.provider, config_.field, config_.overlay, config_.limits});
+        if (const auto* h = std::get_if<p::Hello>(&message)) return hello(state, *h, now);
+        out.replies.push_back(p::Error{std::nullopt, p::ErrorCode::unauthorized,
+                                       std::string("a session starts with hello, not ") + p::type_name(message)});
+        out.close = true;
         return out;
     }
 
@@ -100,15 +263,13 @@ Outcome Service::handle(SessionState& state, const p::ParseResult& parsed) const
         [&](const auto& m) {
             using T = std::decay_t<decltype(m)>;
             if constexpr (std::is_same_v<T, p::Seeking>) {
-                // No reply. The overlay's on-demand activation comes later.
+                // No reply. Counted with the aims; the overlay's on-demand
+                // activation listens for it.
+                state.aims.take(now);
             } else if constexpr (std::is_same_v<T, p::Aim>) {
-                // Resolvers come later: a screen is there, nothing to take.
-                out.replies.push_back(p::Target{m.id, m.point, p::ContentKind::none, ""});
+                if (auto reply = aim(state, m, now)) out.replies.push_back(std::move(*reply));
             } else if constexpr (std::is_same_v<T, p::Grab>) {
-                p::Content content;
-                content.id = m.id;
-                content.kind = p::ContentKind::none;
-                out.replies.push_back(std::move(content));
+                out.replies.push_back(grab(state, m, now));
             } else if constexpr (std::is_same_v<T, p::Hello>) {
                 out.replies.push_back(p::Error{m.id, p::ErrorCode::bad_request, "this session is already welcomed"});
             } else {

@@ -4,32 +4,52 @@
 // order; `close` says to close the WebSocket afterwards.
 #pragma once
 
+#include <chrono>
+#include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "content/download_table.hpp"
+#include "content/file_facts.hpp"
+#include "content/resolver.hpp"
+#include "overlay/placement.hpp"
 #include "protocol/messages.hpp"
+#include "server/rate_limit.hpp"
+#include "server/static_site.hpp"
 
 namespace umf::provider {
 
 struct ServiceConfig {
     protocol::ProviderInfo provider;
     protocol::FieldInfo field;
+    // Where the field lies on each of field.screens, in the same order.
+    std::vector<overlay::FieldPlacement> placements;
     protocol::OverlayInfo overlay;
     protocol::Limits limits;
+    // Files above this are refused with too_large.
+    std::int64_t max_download_bytes = std::int64_t{16} << 30;
+    // Kiosks: any token is welcome; the resolvers (chosen by whoever builds
+    // the Service) are the board's only.
+    bool public_mode = false;
 };
 
-// The shipped default field for one screen of the given size, covering the
-// whole field (portrait screens are not turned yet), the `balanced` preset,
-// the protocol's default limits and this host's name. Throws when the field
-// file cannot be loaded.
+// The shipped default field for one screen of the given size
+// (screen/screen_field.hpp), the `balanced` preset, the protocol's default
+// limits and this host's name. Throws when the field file cannot be loaded.
 ServiceConfig default_service_config(int screen_width_px = 1920, int screen_height_px = 1080,
                                      const std::string& screen_name = "screen");
 
-// What one connection has established so far.
+// What one connection has established so far, and its rate limits.
 struct SessionState {
     bool welcomed = false;
+    std::string peer;  // the remote address, for per-address limits on wrong tokens
+    TokenBucket aims;
+    TokenBucket grabs;
+    SteadyTime last_rate_error{};
+    bool rate_error_sent = false;
 };
 
 struct Outcome {
@@ -37,30 +57,61 @@ struct Outcome {
     bool close = false;  // close the WebSocket (policy violation, 1008) after sending the replies
 };
 
+// Wrong tokens an address may send within kWrongTokenWindow before its
+// hellos are refused unread for the rest of that window.
+inline constexpr int kMaxWrongTokens = 5;
+inline constexpr std::chrono::seconds kWrongTokenWindow{60};
+
 class Service {
 public:
-    Service(ServiceConfig config, std::string token);
+    // Resolvers are asked in order. No site: the built-in page.
+    Service(ServiceConfig config, std::string token, std::vector<std::shared_ptr<const Resolver>> resolvers = {},
+            std::shared_ptr<const StaticSite> site = nullptr);
 
     // One text frame. Before the welcome: a hello with the token gets the
     // welcome, anything else an error and `close`. After it: seeking gets
     // nothing, aim a target, grab a content, anything malformed or not a
     // request an error; the session is never closed.
-    Outcome handle_text(SessionState& state, std::string_view text) const;
+    Outcome handle_text(SessionState& state, std::string_view text, SteadyTime now = std::chrono::steady_clock::now()) const;
     // A binary frame: bad_request (and `close` before the welcome).
     Outcome handle_binary(SessionState& state) const;
     // A parsed frame (what handle_text does after parsing).
-    Outcome handle(SessionState& state, const protocol::ParseResult& parsed) const;
+    Outcome handle(SessionState& state, const protocol::ParseResult& parsed,
+                   SteadyTime now = std::chrono::steady_clock::now()) const;
+
+    // The screen point a field point lies on, or nullopt when no screen
+    // shows it.
+    std::optional<ScreenPoint> screen_point(protocol::FieldPoint point) const;
+    // What the resolvers find at a field point, first answer wins; kind none
+    // when nothing. Throws what a resolver throws.
+    Resolved resolve(const ScreenPoint& point, Purpose purpose) const;
 
     // Replaces the token; sessions already welcomed stay.
     void set_token(std::string token);
     const ServiceConfig& config() const { return config_; }
+    DownloadTable& downloads() const { return *downloads_; }
+    const StaticSite& site() const { return *site_; }
 
 private:
     bool token_matches(std::string_view token) const;
+    Outcome hello(SessionState& state, const protocol::Hello& hello, SteadyTime now) const;
+    std::optional<protocol::Message> aim(SessionState& state, const protocol::Aim& aim, SteadyTime now) const;
+    protocol::Message grab(SessionState& state, const protocol::Grab& grab, SteadyTime now) const;
+    protocol::Message content_for(const protocol::Grab& grab, const Resolved& resolved) const;
 
     ServiceConfig config_;
+    std::vector<std::shared_ptr<const Resolver>> resolvers_;
+    std::shared_ptr<DownloadTable> downloads_;
+    std::shared_ptr<FileFactsCache> facts_;
+    std::shared_ptr<const StaticSite> site_;
     mutable std::mutex token_mutex_;
     std::string token_;
+    struct WrongTokens {
+        int count = 0;
+        SteadyTime since{};
+    };
+    mutable std::mutex wrong_mutex_;
+    mutable std::map<std::string, WrongTokens> wrong_tokens_;
 };
 
 }  // namespace umf::provider

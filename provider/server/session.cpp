@@ -2,10 +2,13 @@
 
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
+#include <cctype>
 #include <chrono>
+#include <limits>
 #include <exception>
 #include <stdexcept>
 
+#include "content/download_table.hpp"
 #include "server/listener.hpp"
 
 namespace umf::provider {
@@ -20,6 +23,9 @@ namespace {
 
 constexpr auto kHandshakeTimeout = std::chrono::seconds(30);
 constexpr std::size_t kMaxRequestHeaderBytes = 8 * 1024;
+// GET and HEAD only for now; the HTTPS fallback of the protocol will carry
+// messages in bodies of at most max_message_bytes.
+constexpr std::size_t kMaxRequestBodyBytes = 16 * 1024;
 // Replies waiting beyond this stop the reading until the peer takes them.
 constexpr std::size_t kMaxQueuedReplies = 64;
 
@@ -61,25 +67,38 @@ void Session::run() {
 
 void Session::on_tls_handshake(beast::error_code ec) {
     if (ec || closing_) return;
+    read_request();
+}
+
+void Session::read_request() {
+    // Also the idle timeout of a kept-alive connection.
     beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
-    request_.header_limit(kMaxRequestHeaderBytes);
-    request_.body_limit(0);
-    http::async_read(ws_.next_layer(), buffer_, request_,
+    request_.emplace();
+    request_->header_limit(kMaxRequestHeaderBytes);
+    request_->body_limit(kMaxRequestBodyBytes);
+    buffer_.max_size(kMaxRequestHeaderBytes + kMaxRequestBodyBytes);
+    http::async_read(ws_.next_layer(), buffer_, *request_,
                      beast::bind_front_handler(&Session::on_request, shared_from_this()));
 }
 
 void Session::on_request(beast::error_code ec, std::size_t) {
     if (closing_) return;
     if (ec) {
-        // A request that is not HTTP gets a 400; a connection gone or timed out, nothing.
-        if (ec.category() == http::make_error_code(http::error::bad_method).category() &&
-            ec != http::error::end_of_stream)
+        // A request that is not HTTP or too large gets its status; a
+        // connection gone or timed out, nothing.
+        if (ec == http::error::header_limit || ec == http::error::buffer_overflow)
+            reject(http::status::request_header_fields_too_large, "request header too large\n");
+        else if (ec == http::error::body_limit)
+            reject(http::status::payload_too_large, "request body too large\n");
+        else if (ec.category() == http::make_error_code(http::error::bad_method).category() &&
+                 ec != http::error::end_of_stream && ec != http::error::partial_message)
             reject(http::status::bad_request, "bad request\n");
         return;
     }
-    const auto& req = request_.get();
+    buffer_.max_size(std::numeric_limits<std::size_t>::max());
+    const auto& req = request_->get();
     if (!websocket::is_upgrade(req)) {
-        reject(http::status::not_found, "not found\n");
+        serve_http(req);
         return;
     }
     const beast::string_view target = req.target();
@@ -88,29 +107,172 @@ void Session::on_request(beast::error_code ec, std::size_t) {
         return;
     }
     beast::get_lowest_layer(ws_).expires_never();
-    ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+    // A requester that vanished (a phone locked, Wi-Fi gone) is pinged after
+    // 30 s of silence and dropped after 60.
+    auto timeouts = websocket::stream_base::timeout::suggested(beast::role_type::server);
+    timeouts.idle_timeout = std::chrono::seconds(60);
+    timeouts.keep_alive_pings = true;
+    ws_.set_option(timeouts);
     ws_.set_option(websocket::stream_base::decorator(
         [](websocket::response_type& res) { res.set(http::field::server, "umf-provider"); }));
     ws_.read_message_max(static_cast<std::size_t>(service_->config().limits.max_message_bytes));
     ws_.async_accept(req, beast::bind_front_handler(&Session::on_accept, shared_from_this()));
 }
 
-void Session::reject(http::status status, const char* text) {
-    response_ = std::make_shared<http::response<http::string_body>>(status, 11);
-    response_->set(http::field::server, "umf-provider");
-    response_->set(http::field::content_type, "text/plain; charset=utf-8");
-    response_->keep_alive(false);
-    response_->body() = text;
-    response_->prepare_payload();
-    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
-    http::async_write(ws_.next_layer(), *response_, [self = shared_from_this()](beast::error_code ec, std::size_t) {
-        if (ec) return;
-        beast::get_lowest_layer(self->ws_).expires_after(std::chrono::seconds(5));
-        self->ws_.next_layer().async_shutdown([self](beast::error_code) {
-            beast::error_code ignored;
-            beast::get_lowest_layer(self->ws_).socket().shutdown(net::ip::tcp::socket::shutdown_both, ignored);
-        });
+namespace {
+
+template <class Body>
+void set_common_headers(http::response<Body>& res) {
+    res.set(http::field::server, "umf-provider");
+    res.set("X-Content-Type-Options", "nosniff");
+    res.set("Referrer-Policy", "no-referrer");
+}
+
+// RFC 6266 / 8187: a plain ASCII fallback and the UTF-8 name percent-encoded.
+std::string content_disposition(const std::string& name) {
+    std::string ascii, encoded;
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    for (unsigned char c : name) {
+        ascii += (c >= 0x20 && c < 0x7f && c != '"' && c != '\\') ? static_cast<char>(c) : '_';
+        if (std::isalnum(c) || c == '.' || c == '-' || c == '_' || c == '~') {
+            encoded += static_cast<char>(c);
+        } else {
+            encoded += '%';
+            encoded += kHex[c >> 4];
+            encoded += kHex[c & 15];
+        }
+    }
+    return "attachment; filename=\"" + ascii + "\"; filename*=UTF-8''" + encoded;
+}
+
+}  // namespace
+
+void Session::serve_http(const http::request<http::string_body>& req) {
+    const bool keep_alive = req.keep_alive();
+    if (req.method() != http::verb::get && req.method() != http::verb::head) {
+        http_error(http::status::method_not_allowed, keep_alive, protocol::ErrorCode::bad_request,
+                   "only GET and HEAD are served here");
+        return;
+    }
+    const beast::string_view target = req.target();
+    if (target.starts_with(kDownloadPrefix)) {
+        serve_download(req);
+        return;
+    }
+    const auto file = service_->site().find(std::string_view(target.data(), target.size()));
+    if (!file) {
+        http_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found, "no such page");
+        return;
+    }
+    auto res = std::make_shared<http::response<http::string_body>>(http::status::ok, req.version());
+    set_common_headers(*res);
+    res->set(http::field::content_type, file->mime);
+    res->set(http::field::cache_control, "no-cache");
+    res->keep_alive(keep_alive);
+    if (req.method() == http::verb::get) res->body() = *file->bytes;
+    res->prepare_payload();
+    if (req.method() == http::verb::head) res->content_length(file->bytes->size());
+    write_response(std::move(res));
+}
+
+void Session::serve_download(const http::request<http::string_body>& req) {
+    const bool keep_alive = req.keep_alive();
+    const beast::string_view target = req.target();
+    // The link is used up by this request, whatever follows.
+    auto entry = service_->downloads().take(std::string_view(target.data(), target.size()));
+    if (!entry) {
+        http_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found,
+                   "unknown, used or expired download link");
+        return;
+    }
+    const bool head = req.method() == http::verb::head;
+    auto prepare = [&](auto& res) {
+        set_common_headers(res);
+        res.set(http::field::content_type, entry->mime);
+        res.set(http::field::content_disposition, content_disposition(entry->name));
+        res.set(http::field::cache_control, "no-store");
+        res.keep_alive(keep_alive);
+        res.content_length(static_cast<std::uint64_t>(entry->size));
+    };
+    // A slow reader gets a minute plus a second per megabyte.
+    beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(60 + entry->size / (1 << 20)));
+    if (entry->bytes) {
+        auto res = std::make_shared<http::response<http::string_body>>(http::status::ok, req.version());
+        if (!head) res->body() = *entry->bytes;
+        prepare(*res);
+        write_response(std::move(res));
+        return;
+    }
+    http::file_body::value_type body;
+    beast::error_code ec;
+    body.open(entry->file->c_str(), beast::file_mode::scan, ec);
+    if (ec || static_cast<std::int64_t>(body.size()) != entry->size) {
+        // Gone or changed since the grab hashed it: what would arrive is not
+        // what the content message promised.
+        http_error(http::status::internal_server_error, keep_alive, protocol::ErrorCode::internal,
+                   ec ? "the file can no longer be read" : "the file changed since it was grabbed");
+        return;
+    }
+    if (head) {
+        auto res = std::make_shared<http::response<http::empty_body>>(http::status::ok, req.version());
+        prepare(*res);
+        write_response(std::move(res));
+        return;
+    }
+    auto res = std::make_shared<http::response<http::file_body>>(
+        std::piecewise_construct, std::make_tuple(std::move(body)), std::make_tuple(http::status::ok, req.version()));
+    prepare(*res);
+    write_response(std::move(res));
+}
+
+void Session::http_error(http::status status, bool keep_alive, protocol::ErrorCode code, const std::string& message) {
+    auto res = std::make_shared<http::response<http::string_body>>(status, 11);
+    set_common_headers(*res);
+    res->set(http::field::content_type, "application/json");
+    res->set(http::field::cache_control, "no-store");
+    res->keep_alive(keep_alive);
+    res->body() = protocol::encode(protocol::Error{std::nullopt, code, message});
+    res->prepare_payload();
+    write_response(std::move(res));
+}
+
+template <class Body>
+void Session::write_response(std::shared_ptr<http::response<Body>> response) {
+    const bool keep_alive = response->keep_alive();
+    auto& res = *response;
+    response_ = std::move(response);
+    http::async_write(ws_.next_layer(), res, [self = shared_from_this(), keep_alive](beast::error_code ec, std::size_t) {
+        self->response_.reset();
+        if (ec) return;  // the peer went away mid-response; the session ends and frees what it held
+        self->after_response(keep_alive);
     });
+}
+
+void Session::after_response(bool keep_alive) {
+    if (keep_alive && !closing_) {
+        read_request();
+        return;
+    }
+    end_tls();
+}
+
+void Session::end_tls() {
+    beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(5));
+    ws_.next_layer().async_shutdown([self = shared_from_this()](beast::error_code) {
+        beast::error_code ignored;
+        beast::get_lowest_layer(self->ws_).socket().shutdown(net::ip::tcp::socket::shutdown_both, ignored);
+    });
+}
+
+void Session::reject(http::status status, const char* text) {
+    auto res = std::make_shared<http::response<http::string_body>>(status, 11);
+    set_common_headers(*res);
+    res->set(http::field::content_type, "text/plain; charset=utf-8");
+    res->keep_alive(false);
+    res->body() = text;
+    res->prepare_payload();
+    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+    write_response(std::move(res));
 }
 
 void Session::on_accept(beast::error_code ec) {
@@ -198,7 +360,7 @@ void Session::do_shutdown() {
         // Still in the TLS handshake, the HTTP request or the upgrade: an
         // accept under way finishes and then closes (on_accept); anything
         // earlier is simply dropped.
-        if (!request_.is_done()) beast::get_lowest_layer(ws_).close();
+        if (!request_ || !request_->is_done()) beast::get_lowest_layer(ws_).close();
         return;
     }
     if (queue_.empty()) close(close_code_);

@@ -1,7 +1,7 @@
-// One connection: the TLS handshake, the first HTTP request, and then either
-// a WebSocket session (GET /ws with an upgrade) or a small HTTP error. All of
-// a session's work runs on its strand; at most one write is outstanding and
-// replies wait in a queue.
+// One connection: the TLS handshake, then HTTP requests (one-time downloads
+// under /dl/, the web client's files, kept alive between requests) until one
+// upgrades to the WebSocket session at /ws. All of a session's work runs on
+// its strand; at most one write is outstanding and replies wait in a queue.
 #pragma once
 
 #include <boost/asio/ip/tcp.hpp>
@@ -12,6 +12,7 @@
 #include <boost/beast/websocket.hpp>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "server/service.hpp"
@@ -40,8 +41,17 @@ private:
     using TlsStream = boost::beast::ssl_stream<boost::beast::tcp_stream>;
 
     void on_tls_handshake(boost::beast::error_code ec);
+    void read_request();
     void on_request(boost::beast::error_code ec, std::size_t);
+    void serve_http(const boost::beast::http::request<boost::beast::http::string_body>& req);
+    void serve_download(const boost::beast::http::request<boost::beast::http::string_body>& req);
     void reject(boost::beast::http::status status, const char* text);
+    void http_error(boost::beast::http::status status, bool keep_alive, protocol::ErrorCode code,
+                    const std::string& message);
+    template <class Body>
+    void write_response(std::shared_ptr<boost::beast::http::response<Body>> response);
+    void after_response(bool keep_alive);
+    void end_tls();
     void on_accept(boost::beast::error_code ec);
     void read();
     void on_read(boost::beast::error_code ec, std::size_t);
@@ -56,8 +66,8 @@ private:
     std::shared_ptr<const Service> service_;
     std::shared_ptr<SessionRegistry> registry_;
     boost::beast::flat_buffer buffer_;
-    boost::beast::http::request_parser<boost::beast::http::empty_body> request_;
-    std::shared_ptr<boost::beast::http::response<boost::beast::http::string_body>> response_;
+    std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> request_;
+    std::shared_ptr<void> response_;  // the response being written
     SessionState state_;
     std::deque<std::string> queue_;
     bool websocket_ = false;  // accepted

@@ -460,11 +460,13 @@ TEST_F(ProviderServer, PinningRefusesAnotherCertificate) {
     EXPECT_TRUE(c.connect());
 }
 
-TEST_F(ProviderServer, PlainHttpsRequestsGet404) {
+TEST_F(ProviderServer, HttpsServesThePageAndNothingElse) {
     auto c = client();
     auto [ec, status] = c->http_get("/");
     EXPECT_FALSE(ec) << ec.message();
-    EXPECT_EQ(status, 404u);
+    EXPECT_EQ(status, 200u);
+    auto unknown = client();
+    EXPECT_EQ(unknown->http_get("/provider-key.pem").second, 404u);
     auto other = client();
     EXPECT_TRUE(other->connect("/elsewhere"));  // an upgrade on another path is refused too
 }

@@ -1,0 +1,80 @@
+#include "commands/common_options.hpp"
+
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <net/if.h>
+#include <netinet/in.h>
+
+#include <optional>
+
+#include "server/config_dir.hpp"
+
+namespace umf::provider {
+
+using cli::Args;
+using cli::get;
+using cli::UsageError;
+
+Args parse_command_args(int argc, char** argv, int first, const std::vector<std::string>& options,
+                        const std::vector<std::string>& flags, std::size_t max_positional) {
+    Args a = cli::parse_args(argc, argv, first, flags);
+    cli::reject_unknown(a, options);
+    if (a.positional.size() > max_positional)
+        throw UsageError("unexpected argument " + a.positional[max_positional]);
+    return a;
+}
+
+unsigned short port_option(const Args& a) {
+    auto v = get(a, "port");
+    if (!v) return kDefaultPort;
+    return static_cast<unsigned short>(cli::to_integer("port", *v, 0, 65535));
+}
+
+std::filesystem::path config_dir_option(const Args& a) {
+    if (auto v = get(a, "config-dir")) {
+        if (v->empty()) throw UsageError("--config-dir needs a directory");
+        return *v;
+    }
+    return default_config_dir();
+}
+
+namespace {
+
+// The first up, non-loopback IPv4 address, or nullopt.
+std::optional<std::string> first_lan_address() {
+    ifaddrs* list = nullptr;
+    if (getifaddrs(&list) != 0) return std::nullopt;
+    std::optional<std::string> found;
+    for (ifaddrs* i = list; i && !found; i = i->ifa_next) {
+        if (!i->ifa_addr || i->ifa_addr->sa_family != AF_INET || !(i->ifa_flags & IFF_UP) ||
+            (i->ifa_flags & IFF_LOOPBACK))
+            continue;
+        char text[INET_ADDRSTRLEN] = {};
+        if (inet_ntop(AF_INET, &reinterpret_cast<sockaddr_in*>(i->ifa_addr)->sin_addr, text, sizeof text))
+            found = text;
+    }
+    freeifaddrs(list);
+    return found;
+}
+
+}  // namespace
+
+std::string url_host(const Args& a, const std::string& bind) {
+    if (auto h = get(a, "host")) {
+        if (h->empty()) throw UsageError("--host needs a value");
+        return *h;
+    }
+    if (bind == "0.0.0.0" || bind == "::") return first_lan_address().value_or("localhost");
+    return bind;
+}
+
+std::pair<int, int> screen_size_option(const Args& a, const std::string& name, std::pair<int, int> fallback) {
+    auto v = get(a, name);
+    if (!v) return fallback;
+    const auto x = v->find('x');
+    if (x == std::string::npos) throw UsageError("--" + name + " takes WIDTHxHEIGHT, for example 1920x1080");
+    return {static_cast<int>(cli::to_integer(name + " width", v->substr(0, x), 64, 16384)),
+            static_cast<int>(cli::to_integer(name + " height", v->substr(x + 1), 64, 16384))};
+}
+
+}  // namespace umf::provider

@@ -1,0 +1,198 @@
+#include "commands/serve_command.hpp"
+
+#include <pthread.h>
+#include <unistd.h>
+#include <signal.h>
+
+#include <QGuiApplication>
+#include <QScreen>
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+
+#include "board/board.hpp"
+#include "commands/common_options.hpp"
+#include "content/board_resolver.hpp"
+#include "content/image_snapshot.hpp"
+#include "content/shared_items.hpp"
+#include "content/x11_snapshot.hpp"
+#include "content/x11_window.hpp"
+#include "overlay/preset.hpp"
+#include "screen/screen_image.hpp"
+#include "server/config_dir.hpp"
+#include "server/control_socket.hpp"
+#include "server/pairing.hpp"
+#include "server/pairing_qr.hpp"
+#include "server/server.hpp"
+#include "server/service.hpp"
+#include "server/static_site.hpp"
+#include "server/tls_identity.hpp"
+
+namespace umf::provider {
+
+const char* const kServeOptions[] = {"port", "bind", "host", "config-dir", "board", "preset", "screen", "web", nullptr};
+const char* const kServeFlags[] = {"headless", "public", "no-qr", nullptr};
+
+namespace {
+
+using cli::get;
+using cli::has_flag;
+using cli::UsageError;
+
+bool have_display() {
+    const char* x = std::getenv("DISPLAY");
+    const char* w = std::getenv("WAYLAND_DISPLAY");
+    return (x && *x) || (w && *w);
+}
+
+overlay::Preset preset_option(const cli::Args& a, const std::filesystem::path& config_dir, bool board) {
+    std::vector<overlay::Preset> presets = overlay::built_in_presets();
+    const auto user_file = config_dir / "presets.json";
+    std::error_code ec;
+    if (std::filesystem::exists(user_file, ec))
+        for (auto& p : overlay::load_presets(user_file.string())) presets.push_back(std::move(p));
+    // Boards and kiosks are there to be pointed at: their field is always up.
+    const std::string name = get(a, "preset").value_or(board ? "kiosk" : "balanced");
+    // User presets come last and win over a built-in of the same name.
+    for (auto it = presets.rbegin(); it != presets.rend(); ++it)
+        if (it->name == name) return *it;
+    std::string names;
+    for (const auto& p : presets) names += (names.empty() ? "" : ", ") + p.name;
+    throw UsageError("no preset called \"" + name + "\"; there are " + names);
+}
+
+}  // namespace
+
+int run_serve(const cli::Args& a) {
+    const unsigned short port = port_option(a);
+    const std::string bind = get(a, "bind").value_or("127.0.0.1");
+    const std::string host = url_host(a, bind);
+    const auto dir = config_dir_option(a);
+    const bool headless = has_flag(a, "headless") || !have_display();
+    const bool public_mode = has_flag(a, "public");
+
+    TlsIdentity identity;
+    std::string token;
+    try {
+        identity = load_or_create_tls_identity(dir);
+        token = load_or_create_token(dir);
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: " << e.what() << "\n";
+        return kConfigError;
+    }
+
+    // The screen: virtual when headless, the primary one otherwise (more
+    // screens come with the overlay).
+    std::pair<int, int> size{1920, 1080};
+    if (!headless) {
+        if (QScreen* s = QGuiApplication::primaryScreen()) {
+            const QSize px = s->size() * s->devicePixelRatio();
+            size = {px.width(), px.height()};
+        }
+    }
+    size = screen_size_option(a, "screen", size);
+    const auto [width, height] = size;
+
+    std::optional<Board> board;
+    std::filesystem::path board_source;
+    try {
+        if (auto file = get(a, "board")) {
+            board = load_board(*file);
+            board_source = *file;
+        } else if (headless) {
+            board_source = dir / "demo-board";
+            board = write_demo_board(board_source);
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: " << e.what() << "\n";
+        return kConfigError;
+    }
+    if (public_mode && !board) throw UsageError("--public needs a board: it serves board items and nothing else");
+    const overlay::Preset preset = preset_option(a, dir, board.has_value());
+
+    std::vector<std::shared_ptr<const Resolver>> resolvers;
+    auto shared_items = std::make_shared<SharedItems>();
+    QImage screen_image(width, height, QImage::Format_RGB32);
+    screen_image.fill(Qt::black);
+    if (board) {
+        auto tiles = layout_board(*board, width, height);
+        screen_image = paint_board(*board, tiles, QSize(width, height));
+        resolvers.push_back(std::make_shared<BoardResolver>(*board, std::move(tiles)));
+    }
+    if (!public_mode) {
+        resolvers.push_back(shared_items);
+        if (headless) {
+            resolvers.push_back(std::make_shared<ImageSnapshotResolver>(screen_image));
+        } else if (const char* x = std::getenv("DISPLAY"); x && *x) {
+            // The windows under the point, never the provider's own.
+            try {
+                auto desktop = std::make_shared<const X11Desktop>();
+                X11WindowOptions options;
+                options.filter.own_pids.insert(static_cast<int>(::getpid()));
+                resolvers.push_back(std::make_shared<X11WindowResolver>(desktop, options));
+                resolvers.push_back(std::make_shared<X11SnapshotResolver>(desktop, options.filter, true));
+            } catch (const std::exception& e) {
+                std::cerr << "umf-provider: windows cannot be looked up (" << e.what()
+                          << "); serving board and shared items only\n";
+            }
+        }
+    }
+
+    std::shared_ptr<const StaticSite> site;
+    try {
+        if (auto web = get(a, "web")) site = std::make_shared<const StaticSite>(StaticSite::from_folder(*web));
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: " << e.what() << "\n";
+        return kConfigError;
+    }
+
+    // SIGINT and SIGTERM are taken with sigwait below; blocked before any
+    // thread starts, so none of the server's threads receives them.
+    sigset_t signals;
+    sigemptyset(&signals);
+    sigaddset(&signals, SIGINT);
+    sigaddset(&signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+    std::unique_ptr<Server> server;
+    std::unique_ptr<ControlSocket> control;
+    try {
+        ServiceConfig config = default_service_config(width, height, headless ? "headless" : "screen");
+        config.overlay = protocol::overlay_info(preset);
+        config.public_mode = public_mode;
+        auto service = std::make_shared<const Service>(std::move(config), token, resolvers, site);
+        ServerOptions options;
+        options.bind_address = bind;
+        options.port = port;
+        options.threads = 2;
+        server = std::make_unique<Server>(service, identity, options);
+        server->start();
+        if (!public_mode) control = std::make_unique<ControlSocket>(control_socket_path(server->port()), shared_items);
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: " << e.what() << "\n";
+        return kServeError;
+    }
+
+    const std::string url = pairing_url(host, server->port(), token, identity.fingerprint);
+    std::cout << "umf-provider: listening on https://" << (bind.find(':') != std::string::npos ? "[" + bind + "]" : bind)
+              << ":" << server->port() << " (WebSocket at /ws)\n";
+    if (board)
+        std::cout << "board: " << board->items.size() << " items" << (board->title.empty() ? "" : " (" + board->title + ")")
+                  << " from " << board_source.string() << "\n";
+    std::cout << (headless ? "headless: a virtual " : "screen: ") << width << "x" << height << ", preset "
+              << preset.name << (public_mode ? ", public mode (board items only, no pairing needed)" : "") << "\n";
+    if (control) std::cout << "share with: umf-provider share FILE|URL --rect x,y,w,h\n";
+    std::cout << "certificate fingerprint (SHA-256): " << identity.fingerprint << "\n";
+    if (!has_flag(a, "no-qr")) std::cout << qr_text(url);
+    std::cout << "pairing URL: " << url << "\n" << std::flush;
+
+    int received = 0;
+    sigwait(&signals, &received);
+    std::cerr << "umf-provider: " << (received == SIGINT ? "SIGINT" : "SIGTERM") << ", closing sessions\n";
+    control.reset();
+    server->stop();
+    std::cerr << "umf-provider: stopped\n";
+    return kOk;
+}
+
+}  // namespace umf::provider

@@ -1,0 +1,114 @@
+#include "content/file_facts.hpp"
+
+#include <fcntl.h>
+#include <openssl/evp.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+namespace umf::provider {
+
+namespace {
+
+struct MimeEntry {
+    const char* extension;
+    const char* mime;
+};
+constexpr MimeEntry kMimeTypes[] = {
+    {".pdf", "application/pdf"},   {".png", "image/png"},       {".jpg", "image/jpeg"},
+    {".jpeg", "image/jpeg"},       {".gif", "image/gif"},       {".webp", "image/webp"},
+    {".svg", "image/svg+xml"},     {".txt", "text/plain"},      {".md", "text/markdown"},
+    {".csv", "text/csv"},          {".html", "text/html"},      {".htm", "text/html"},
+    {".json", "application/json"}, {".zip", "application/zip"}, {".mp4", "video/mp4"},
+    {".webm", "video/webm"},       {".mp3", "audio/mpeg"},      {".odt", "application/vnd.oasis.opendocument.text"},
+    {".ods", "application/vnd.oasis.opendocument.spreadsheet"},
+    {".odp", "application/vnd.oasis.opendocument.presentation"},
+    {".docx", "application/vnd.openxmlformats-officedocument.wordprocessingml.document"},
+    {".xlsx", "application/vnd.openxmlformats-officedocument.spreadsheetml.sheet"},
+    {".pptx", "application/vnd.openxmlformats-officedocument.presentationml.presentation"},
+};
+
+std::string to_hex(const unsigned char* data, unsigned int size) {
+    static constexpr char kDigits[] = "0123456789abcdef";
+    std::string out;
+    out.reserve(size * 2);
+    for (unsigned int i = 0; i < size; ++i) {
+        out += kDigits[data[i] >> 4];
+        out += kDigits[data[i] & 15];
+    }
+    return out;
+}
+
+struct DigestDeleter {
+    void operator()(EVP_MD_CTX* c) const { EVP_MD_CTX_free(c); }
+};
+
+std::string hash_fd(int fd, const std::string& what) {
+    std::unique_ptr<EVP_MD_CTX, DigestDeleter> ctx(EVP_MD_CTX_new());
+    if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
+        throw std::runtime_error("cannot start a SHA-256 of " + what);
+    std::vector<char> buffer(1 << 20);
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer.data(), buffer.size());
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw std::runtime_error("cannot read " + what + ": " + std::strerror(errno));
+        if (n == 0) break;
+        EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<std::size_t>(n));
+    }
+    unsigned char digest[EVP_MAX_MD_SIZE];
+    unsigned int size = 0;
+    EVP_DigestFinal_ex(ctx.get(), digest, &size);
+    return to_hex(digest, size);
+}
+
+}  // namespace
+
+std::string mime_for(const std::filesystem::path& file) {
+    std::string ext = file.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    for (const auto& m : kMimeTypes)
+        if (ext == m.extension) return m.mime;
+    return "application/octet-stream";
+}
+
+std::string sha256_hex(const std::string& bytes) {
+    unsigned char digest[EVP_MAX_MD_SIZE];
+    unsigned int size = 0;
+    if (EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha256(), nullptr) != 1)
+        throw std::runtime_error("SHA-256 failed");
+    return to_hex(digest, size);
+}
+
+FileFacts FileFactsCache::facts(const std::filesystem::path& file) {
+    const std::string what = file.string();
+    const int fd = ::open(what.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0) throw std::runtime_error("cannot open " + what + ": " + std::strerror(errno));
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) throw std::runtime_error("cannot read " + what + ": " + std::strerror(errno));
+    if (!S_ISREG(st.st_mode)) throw std::runtime_error(what + " is not a regular file");
+    const Key key{what, static_cast<std::int64_t>(st.st_size),
+                  static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec};
+    {
+        std::lock_guard lock(mutex_);
+        if (auto it = hashes_.find(key); it != hashes_.end()) return {key.size, it->second};
+    }
+    std::string hash = hash_fd(fd, what);
+    std::lock_guard lock(mutex_);
+    if (hashes_.size() > 1024) hashes_.clear();
+    hashes_[key] = hash;
+    return {key.size, hash};
+}
+
+}  // namespace umf::provider

@@ -1,0 +1,207 @@
+#include "server/control_socket.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/un.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace umf::provider {
+
+namespace {
+
+using json = nlohmann::json;
+constexpr std::size_t kMaxLine = 64 * 1024;
+
+sockaddr_un address_of(const std::filesystem::path& path) {
+    sockaddr_un addr{};
+    addr.sun_family = AF_UNIX;
+    const std::string s = path.string();
+    if (s.size() >= sizeof addr.sun_path) throw std::runtime_error("the control socket path is too long: " + s);
+    std::memcpy(addr.sun_path, s.c_str(), s.size() + 1);
+    return addr;
+}
+
+std::string error_answer(const std::string& what) { return json{{"ok", false}, {"error", what}}.dump(); }
+
+PixelRect rect_of(const json& j) {
+    if (!j.is_array() || j.size() != 4) throw std::invalid_argument("\"rect\" must be [x, y, width, height]");
+    int v[4];
+    for (int i = 0; i < 4; ++i) {
+        if (!j[i].is_number_integer()) throw std::invalid_argument("\"rect\" must hold four integers");
+        const auto n = j[i].get<long long>();
+        if (n < -65536 || n > 65536) throw std::invalid_argument("\"rect\" is out of range");
+        v[i] = static_cast<int>(n);
+    }
+    return {v[0], v[1], v[2], v[3]};
+}
+
+}  // namespace
+
+std::filesystem::path control_socket_path(unsigned short port) {
+    const char* runtime = std::getenv("XDG_RUNTIME_DIR");
+    const std::filesystem::path base = runtime && *runtime ? std::filesystem::path(runtime) / "umf"
+                                                           : std::filesystem::path("/tmp") / ("umf-" + std::to_string(::getuid()));
+    return base / ("provider-" + std::to_string(port) + ".sock");
+}
+
+std::string handle_control_request(const std::string& line, SharedItems& items) {
+    try {
+        const json request = json::parse(line);
+        if (!request.is_object() || !request.contains("cmd") || !request["cmd"].is_string())
+            return error_answer("a request is an object with \"cmd\"");
+        const std::string cmd = request["cmd"];
+        if (cmd == "share") {
+            SharedItem item;
+            if (request.contains("file")) item.file = request.at("file").get<std::string>();
+            if (request.contains("url")) item.url = request.at("url").get<std::string>();
+            if (request.contains("title")) item.title = request.at("title").get<std::string>();
+            if (request.contains("screen")) item.screen = request.at("screen").get<int>();
+            if (!request.contains("rect")) return error_answer("\"rect\" is required");
+            item.rect = rect_of(request.at("rect"));
+            return json{{"ok", true}, {"id", items.add(std::move(item))}}.dump();
+        }
+        if (cmd == "unshare") {
+            if (!items.remove(request.at("id").get<int>())) return error_answer("no shared item with that id");
+            return json{{"ok", true}}.dump();
+        }
+        if (cmd == "list") {
+            json list = json::array();
+            for (const auto& i : items.items()) {
+                json j{{"id", i.id}, {"title", i.title}, {"screen", i.screen},
+                       {"rect", {i.rect.x, i.rect.y, i.rect.width, i.rect.height}}};
+                if (i.file) j["file"] = i.file->string();
+                if (i.url) j["url"] = *i.url;
+                list.push_back(std::move(j));
+            }
+            return json{{"ok", true}, {"items", std::move(list)}}.dump();
+        }
+        return error_answer("unknown command \"" + cmd + "\"");
+    } catch (const std::exception& e) {
+        return error_answer(e.what());
+    }
+}
+
+ControlSocket::ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items)
+    : path_(std::move(path)), items_(std::move(items)) {
+    const auto dir = path_.parent_path();
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    struct stat st {};
+    if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::getuid())
+        throw std::runtime_error("the control socket folder " + dir.string() + " is not this user's own folder");
+    ::chmod(dir.c_str(), 0700);
+    const sockaddr_un addr = address_of(path_);
+    listen_fd_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (listen_fd_ < 0) throw std::runtime_error(std::string("cannot make a socket: ") + std::strerror(errno));
+    // A socket file left by a provider that died is replaced; one that
+    // answers belongs to a running provider and is not.
+    if (std::filesystem::exists(path_, ec)) {
+        bool alive = false;
+        try {
+            control_request(path_, R"({"cmd":"list"})");
+            alive = true;
+        } catch (const std::exception&) {
+        }
+        if (alive) {
+            ::close(listen_fd_);
+            throw std::runtime_error("another provider already answers at " + path_.string());
+        }
+        ::unlink(path_.c_str());
+    }
+    if (::bind(listen_fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0 || ::chmod(path_.c_str(), 0600) != 0 ||
+        ::listen(listen_fd_, 8) != 0 || ::pipe2(wake_, O_CLOEXEC) != 0) {
+        const std::string why = std::strerror(errno);
+        ::close(listen_fd_);
+        throw std::runtime_error("cannot listen on " + path_.string() + ": " + why);
+    }
+    thread_ = std::thread([this] { serve(); });
+}
+
+ControlSocket::~ControlSocket() {
+    if (wake_[1] >= 0) {
+        const char c = 0;
+        [[maybe_unused]] auto n = ::write(wake_[1], &c, 1);
+    }
+    if (thread_.joinable()) thread_.join();
+    ::close(listen_fd_);
+    ::close(wake_[0]);
+    ::close(wake_[1]);
+    ::unlink(path_.c_str());
+}
+
+void ControlSocket::serve() {
+    for (;;) {
+        pollfd fds[2] = {{listen_fd_, POLLIN, 0}, {wake_[0], POLLIN, 0}};
+        if (::poll(fds, 2, -1) < 0) {
+            if (errno == EINTR) continue;
+            return;
+        }
+        if (fds[1].revents) return;
+        if (!(fds[0].revents & POLLIN)) continue;
+        const int fd = ::accept4(listen_fd_, nullptr, nullptr, SOCK_CLOEXEC);
+        if (fd < 0) continue;
+        answer(fd);
+        ::close(fd);
+    }
+}
+
+void ControlSocket::answer(int fd) {
+    ucred cred{};
+    socklen_t len = sizeof cred;
+    if (::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) != 0 || cred.uid != ::getuid()) return;
+    // A client that says nothing does not hold the socket up for long.
+    timeval timeout{2, 0};
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    ::setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &timeout, sizeof timeout);
+    std::string line;
+    char buffer[4096];
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n <= 0) break;
+        line.append(buffer, static_cast<std::size_t>(n));
+        if (line.find('\n') != std::string::npos || line.size() > kMaxLine) break;
+    }
+    std::string reply = line.size() > kMaxLine ? error_answer("request too long")
+                        : line.find('\n') == std::string::npos
+                            ? error_answer("a request ends with a newline")
+                            : handle_control_request(line.substr(0, line.find('\n')), *items_);
+    reply += '\n';
+    [[maybe_unused]] auto n = ::write(fd, reply.data(), reply.size());
+}
+
+std::string control_request(const std::filesystem::path& path, const std::string& line) {
+    const sockaddr_un addr = address_of(path);
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) throw std::runtime_error(std::string("cannot make a socket: ") + std::strerror(errno));
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{fd};
+    if (::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0)
+        throw std::runtime_error("no provider is running at " + path.string() + " (" + std::strerror(errno) + ")");
+    timeval timeout{5, 0};
+    ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
+    const std::string request = line + "\n";
+    if (::write(fd, request.data(), request.size()) != static_cast<ssize_t>(request.size()))
+        throw std::runtime_error("cannot talk to the provider at " + path.string());
+    std::string answer;
+    char buffer[4096];
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n <= 0) break;
+        answer.append(buffer, static_cast<std::size_t>(n));
+        if (answer.find('\n') != std::string::npos) break;
+    }
+    if (answer.empty()) throw std::runtime_error("the provider at " + path.string() + " did not answer");
+    return answer.substr(0, answer.find('\n'));
+}
+
+}  // namespace umf::provider

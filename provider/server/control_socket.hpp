@@ -1,0 +1,54 @@
+// The running provider's local control socket: `umf-provider share` reaches
+// it to pin a file or URL to a screen region. A Unix socket in a 0700 folder
+// of the user's runtime directory, and only the same user's processes are
+// answered (SO_PEERCRED). One JSON request per line, one JSON answer:
+//   {"cmd":"share","file":"/abs/path" | "url":"https://...","title":"...","rect":[x,y,w,h],"screen":0}
+//       -> {"ok":true,"id":3}
+//   {"cmd":"unshare","id":3} -> {"ok":true}
+//   {"cmd":"list"} -> {"ok":true,"items":[{"id":3,"title":"...","file":...,"rect":[...],"screen":0}]}
+//   anything wrong -> {"ok":false,"error":"what is wrong"}
+#pragma once
+
+#include <atomic>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "content/shared_items.hpp"
+
+namespace umf::provider {
+
+// $XDG_RUNTIME_DIR/umf/provider-PORT.sock, else /tmp/umf-UID/provider-PORT.sock.
+std::filesystem::path control_socket_path(unsigned short port);
+
+// One request line's answer (what the socket thread does per line; tests
+// call it directly).
+std::string handle_control_request(const std::string& line, SharedItems& items);
+
+class ControlSocket {
+public:
+    // Binds (replacing a stale socket file) and starts answering. Throws
+    // std::runtime_error naming the path when it cannot.
+    ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items);
+    ~ControlSocket();
+    ControlSocket(const ControlSocket&) = delete;
+    ControlSocket& operator=(const ControlSocket&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    void serve();
+    void answer(int fd);
+
+    std::filesystem::path path_;
+    std::shared_ptr<SharedItems> items_;
+    int listen_fd_ = -1;
+    int wake_[2] = {-1, -1};
+    std::thread thread_;
+};
+
+// The client side: sends one request line, returns the answer line. Throws
+// std::runtime_error when no provider answers at `path`.
+std::string control_request(const std::filesystem::path& path, const std::string& line);
+
+}  // namespace umf::provider

@@ -1,0 +1,41 @@
+// The web client's files (web/), served over HTTPS. Read into memory once at
+// start-up: a request's path is only ever a key into this map, never a path
+// on the file system.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace umf::provider {
+
+struct StaticFile {
+    std::string mime;
+    std::shared_ptr<const std::string> bytes;
+};
+
+class StaticSite {
+public:
+    inline static constexpr std::size_t kMaxFiles = 4096;
+    inline static constexpr std::size_t kMaxTotalBytes = 64u << 20;
+
+    // A small built-in page saying how to pair, for a provider built without
+    // the web client.
+    StaticSite();
+    // Every regular file under `root` (no hidden ones), as "/relative/path";
+    // "/" serves "/index.html". Throws std::runtime_error when the folder
+    // cannot be read or exceeds the limits above.
+    static StaticSite from_folder(const std::filesystem::path& root);
+
+    // The file for a request target (a query or fragment is ignored).
+    std::optional<StaticFile> find(std::string_view target) const;
+    std::size_t size() const { return files_.size(); }
+
+private:
+    std::map<std::string, StaticFile, std::less<>> files_;
+};
+
+}  // namespace umf::provider

@@ -1,0 +1,249 @@
+#include "download.hpp"
+
+#include <fcntl.h>
+#include <openssl/evp.h>
+#include <stdio.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <boost/asio/ssl.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
+#include <cerrno>
+#include <cstring>
+#include <memory>
+
+#include "cli.hpp"
+#include "grab_failure.hpp"
+#include "protocol/messages.hpp"
+#include "unique_name.hpp"
+
+namespace umf::requester {
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace net = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+using Clock = std::chrono::steady_clock;
+
+// Error bodies are a short JSON message; anything longer is cut off.
+constexpr std::size_t kMaxErrorBodyBytes = 64 * 1024;
+
+GrabFailure output_failure(const std::string& message) { return {"output", message, kInputError}; }
+GrabFailure download_failure(const std::string& message) { return {"download", message, kConnection}; }
+
+std::string errno_text() { return std::strerror(errno); }
+
+// The private file the bytes land in first: 0600, in the target directory
+// (so the final link stays on one file system), removed unless kept.
+class TempFile {
+public:
+    explicit TempFile(const fs::path& dir) {
+        std::string tmpl = (dir / ".umf-download-XXXXXX").string();
+        fd_ = mkostemp(tmpl.data(), O_CLOEXEC);
+        if (fd_ < 0) throw output_failure("cannot create a file in " + dir.string() + ": " + errno_text());
+        path_ = tmpl;
+    }
+    ~TempFile() {
+        if (fd_ >= 0) ::close(fd_);
+        if (!kept_) ::unlink(path_.c_str());
+    }
+    TempFile(const TempFile&) = delete;
+    TempFile& operator=(const TempFile&) = delete;
+
+    void write(const char* data, std::size_t size) {
+        while (size > 0) {
+            const ssize_t n = ::write(fd_, data, size);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) throw output_failure("cannot write " + path_.string() + ": " + errno_text());
+            data += n;
+            size -= static_cast<std::size_t>(n);
+        }
+    }
+    // Flushed to disk and given the permissions of a file the user saved:
+    // 0600 only kept strangers out while it was incomplete.
+    void finish() {
+        const mode_t mask = ::umask(0);
+        ::umask(mask);
+        if (::fchmod(fd_, 0666 & ~mask) != 0 || ::fsync(fd_) != 0 || ::close(fd_) != 0) {
+            fd_ = -1;
+            throw output_failure("cannot finish " + path_.string() + ": " + errno_text());
+        }
+        fd_ = -1;
+    }
+    void keep() { kept_ = true; }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+    int fd_ = -1;
+    bool kept_ = false;
+};
+
+struct Sha256 {
+    Sha256() : ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free) {
+        if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
+            throw std::runtime_error("OpenSSL cannot compute SHA-256");
+    }
+    void update(const void* data, std::size_t size) { EVP_DigestUpdate(ctx.get(), data, size); }
+    std::string hex() {
+        unsigned char md[EVP_MAX_MD_SIZE];
+        unsigned int len = 0;
+        EVP_DigestFinal_ex(ctx.get(), md, &len);
+        std::string out;
+        for (unsigned int i = 0; i < len; ++i) {
+            out += "0123456789abcdef"[md[i] >> 4];
+            out += "0123456789abcdef"[md[i] & 15];
+        }
+        return out;
+    }
+    std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> ctx;
+};
+
+// One step on the stream with the idle timeout; the error it ended with.
+template <class Start>
+beast::error_code step(net::io_context& io, TlsStream& stream, std::chrono::milliseconds timeout, Start start) {
+    bool done = false;
+    beast::error_code ec;
+    beast::get_lowest_layer(stream).expires_after(timeout);
+    start([&](beast::error_code e, std::size_t) {
+        ec = e;
+        done = true;
+    });
+    if (!run_until(io, done, Clock::now() + timeout + std::chrono::seconds(1),
+                   [&] { beast::get_lowest_layer(stream).close(); }))
+        return beast::error::timeout;
+    return ec;
+}
+
+std::string seconds(std::chrono::milliseconds ms) { return std::to_string(ms.count() / 1000) + " s"; }
+
+}  // namespace
+
+std::string store_without_overwriting(const fs::path& temp, const fs::path& dir, const std::string& name) {
+    for (int n = 0; n < 10000; ++n) {
+        const std::string candidate = numbered_name(name, n);
+        const fs::path target = dir / candidate;
+        // Both refuse an existing target atomically, so a file appearing
+        // between a check and the rename can never be replaced.
+        if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_NOREPLACE) == 0) return candidate;
+        if (errno == EEXIST) continue;
+        if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP)
+            throw output_failure("cannot store " + target.string() + ": " + errno_text());
+        // The file system has no RENAME_NOREPLACE: a hard link fails on an
+        // existing name just the same.
+        if (::link(temp.c_str(), target.c_str()) == 0) {
+            ::unlink(temp.c_str());
+            return candidate;
+        }
+        if (errno == EEXIST) continue;
+        throw output_failure("cannot store " + target.string() + ": " + errno_text());
+    }
+    throw output_failure("cannot store " + name + " in " + dir.string() + ": 10000 files of that name exist");
+}
+
+SavedFile download_file(const PairingUrl& provider, const DownloadRequest& request, const fs::path& dir_in,
+                        const NetTimeouts& timeouts) {
+    std::error_code fec;
+    fs::path dir = fs::absolute(dir_in, fec);
+    if (fec) throw output_failure("cannot use " + dir_in.string() + ": " + fec.message());
+    fs::create_directories(dir, fec);
+    if (fec) throw output_failure("cannot create " + dir.string() + ": " + fec.message());
+    if (!fs::is_directory(dir, fec)) throw output_failure(dir.string() + " is not a directory");
+    if (request.size < 0) throw download_failure("the provider announced a negative size");
+    const std::string name = protocol::safe_file_name(request.name);
+
+    TempFile file(dir);
+    net::io_context io;
+    auto tls = make_pinned_client_context();
+    TlsStream stream(io.get_executor(), tls);
+    connect_pinned(io, stream, provider, timeouts);
+
+    http::request<http::empty_body> req(http::verb::get, request.path, 11);
+    req.set(http::field::host, provider.authority());
+    req.set(http::field::user_agent, "umf-requester/" UMF_VERSION);
+    req.set(http::field::connection, "close");
+    auto ec = step(io, stream, timeouts.download_idle, [&](auto h) { http::async_write(stream, req, h); });
+    if (ec) throw download_failure("cannot request " + request.path + ": " + ec.message());
+
+    beast::flat_buffer buffer;
+    http::response_parser<http::buffer_body> parser;
+    parser.body_limit(std::max<std::uint64_t>(static_cast<std::uint64_t>(request.size), kMaxErrorBodyBytes));
+    ec = step(io, stream, timeouts.download_idle,
+              [&](auto h) { http::async_read_header(stream, buffer, parser, h); });
+    if (ec == beast::error::timeout)
+        throw download_failure("the provider sent no answer to the download within " + seconds(timeouts.download_idle));
+    if (ec) throw download_failure("cannot read the download's answer: " + ec.message());
+
+    const unsigned status = parser.get().result_int();
+    std::array<char, 64 * 1024> chunk{};
+    Sha256 sha;
+    std::uint64_t received = 0;
+    std::string error_body;
+    const auto expected = static_cast<std::uint64_t>(request.size);
+    if (status == 200) {
+        const auto length = parser.content_length();
+        if (!length)
+            throw download_failure("the provider's download has no Content-Length; it must announce the size");
+        if (*length != expected)
+            throw download_failure("the provider announced " + std::to_string(request.size) +
+                                   " bytes but the download has " + std::to_string(*length));
+    }
+    while (!parser.is_done()) {
+        parser.get().body().data = chunk.data();
+        parser.get().body().size = chunk.size();
+        ec = step(io, stream, timeouts.download_idle, [&](auto h) { http::async_read(stream, buffer, parser, h); });
+        if (ec == http::error::need_buffer) ec = {};
+        const std::size_t n = chunk.size() - parser.get().body().size;
+        if (ec == beast::error::timeout)
+            throw download_failure("the download stalled: nothing arrived for " + seconds(timeouts.download_idle));
+        if (ec == http::error::body_limit)
+            throw download_failure("the download is longer than the announced " + std::to_string(request.size) +
+                                   " bytes");
+        if (ec) throw download_failure("the download broke off after " + std::to_string(received) +
+                                       " of " + std::to_string(request.size) + " bytes: " + ec.message());
+        if (status == 200) {
+            file.write(chunk.data(), n);
+            sha.update(chunk.data(), n);
+            received += n;
+        } else if (error_body.size() < kMaxErrorBodyBytes) {
+            error_body.append(chunk.data(), std::min(n, kMaxErrorBodyBytes - error_body.size()));
+        }
+    }
+    beast::error_code ignored;
+    beast::get_lowest_layer(stream).socket().close(ignored);
+
+    if (status != 200) {
+        const auto parsed = protocol::parse_message(error_body, protocol::kRequesterLimits);
+        const auto* m = std::get_if<protocol::Message>(&parsed);
+        const auto* e = m ? std::get_if<protocol::Error>(m) : nullptr;
+        const std::string why = e ? e->message : "HTTP status " + std::to_string(status);
+        if (status == 404)
+            throw GrabFailure("not_found",
+                              "the download link is unknown, used or expired (" + why + "); grab again", kNothing);
+        throw GrabFailure(e ? protocol::to_string(e->code) : "download", "the download failed: " + why,
+                          kConnection);
+    }
+    if (received != expected)
+        throw download_failure("the download ended after " + std::to_string(received) + " of " +
+                               std::to_string(request.size) + " bytes");
+    const std::string digest = sha.hex();
+    if (request.sha256 && *request.sha256 != digest)
+        throw download_failure("the downloaded file's SHA-256 is " + digest + ", the provider announced " +
+                               *request.sha256 + "; it was not kept");
+
+    file.finish();
+    SavedFile saved;
+    saved.name = store_without_overwriting(file.path(), dir, name);
+    file.keep();
+    saved.path = dir / saved.name;
+    saved.size = request.size;
+    saved.sha256 = digest;
+    return saved;
+}
+
+}  // namespace umf::requester

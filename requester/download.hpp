@@ -1,0 +1,47 @@
+// Fetching a grabbed file over its one-time HTTPS link (docs/PROTOCOL.md,
+// "Downloads"), with the same certificate pin as the session. The bytes go
+// to a private temporary file in the target directory and are checked
+// (Content-Length, size, SHA-256) while they stream; only a complete, checked
+// file gets a real name, and never one that already exists. On any failure
+// nothing is left behind.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "pairing_url.hpp"
+#include "pinned_tls.hpp"
+
+namespace umf::requester {
+
+struct DownloadRequest {
+    std::string path;                   // the content's "download": "/dl/..."
+    std::string name;                   // the content's "name", cleaned again here
+    std::int64_t size = 0;              // the content's "size"
+    std::optional<std::string> sha256;  // checked when given
+};
+
+struct SavedFile {
+    std::filesystem::path path;  // absolute
+    std::string name;            // the name it got: the cleaned name, or "name (n).ext"
+    std::int64_t size = 0;
+    std::string sha256;          // of the bytes received
+};
+
+// Creates `dir` when missing. Throws GrabFailure: "output" (exit 3) for the
+// directory or the file, "connection"/"certificate" for the network,
+// the provider's code ("not_found", "too_large", "internal") for an HTTP
+// error it explains, "download" for a short, long or corrupt transfer.
+SavedFile download_file(const PairingUrl& provider, const DownloadRequest& request, const std::filesystem::path& dir,
+                        const NetTimeouts& timeouts = {});
+
+// Links (or renames without replacing) the finished temporary file at
+// `temp` to `name`, or "name (1)", "name (2)"... in `dir`, whichever is free
+// first; the temporary name is gone afterwards. Returns the name used.
+// Throws GrabFailure "output" when none can be made.
+std::string store_without_overwriting(const std::filesystem::path& temp, const std::filesystem::path& dir,
+                                      const std::string& name);
+
+}  // namespace umf::requester

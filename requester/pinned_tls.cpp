@@ -1,0 +1,168 @@
+#include "pinned_tls.hpp"
+
+#include <openssl/evp.h>
+#include <openssl/ssl.h>
+#include <openssl/x509.h>
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl.hpp>
+#include <boost/beast/core.hpp>
+#include <memory>
+
+#include "cli.hpp"
+#include "grab_failure.hpp"
+
+namespace umf::requester {
+
+namespace {
+
+namespace net = boost::asio;
+namespace ssl = boost::asio::ssl;
+namespace beast = boost::beast;
+using Clock = std::chrono::steady_clock;
+
+// What the verify callback saw, for a message that tells a wrong pin from a
+// network failure.
+struct PinCheck {
+    std::string expected;
+    std::string seen;  // the leaf's fingerprint when it did not match
+    bool mismatch = false;
+};
+
+std::string fingerprint_of(X509* cert) {
+    if (!cert) return {};
+    unsigned char* der = nullptr;
+    const int len = i2d_X509(cert, &der);
+    if (len <= 0) return {};
+    std::string fp = der_sha256_hex(der, static_cast<std::size_t>(len));
+    OPENSSL_free(der);
+    return fp;
+}
+
+GrabFailure connection_failure(const std::string& message) { return {"connection", message, kConnection}; }
+
+GrabFailure certificate_failure(const PairingUrl& url, const std::string& seen) {
+    return {"certificate",
+            "the provider at " + url.authority() + " has another certificate than the pairing URL names (" +
+                (seen.empty() ? std::string("none") : seen.substr(0, 16) + "...") + " instead of " +
+                url.fingerprint.substr(0, 16) +
+                "...); nothing was sent to it. Pair again if the provider was reinstalled; otherwise something "
+                "on the network is in between",
+            kConnection};
+}
+
+}  // namespace
+
+std::string der_sha256_hex(const unsigned char* der, std::size_t size) {
+    unsigned char md[EVP_MAX_MD_SIZE];
+    unsigned int md_len = 0;
+    if (EVP_Digest(der, size, md, &md_len, EVP_sha256(), nullptr) != 1) return {};
+    std::string hex;
+    for (unsigned int i = 0; i < md_len; ++i) {
+        hex += "0123456789abcdef"[md[i] >> 4];
+        hex += "0123456789abcdef"[md[i] & 15];
+    }
+    return hex;
+}
+
+ssl::context make_pinned_client_context() {
+    ssl::context ctx(ssl::context::tls_client);
+    ctx.set_options(ssl::context::default_workarounds | ssl::context::no_sslv2 | ssl::context::no_sslv3 |
+                    ssl::context::no_tlsv1 | ssl::context::no_tlsv1_1);
+    // Deliberately no set_default_verify_paths(): a CA never vouches here.
+    ctx.set_verify_mode(ssl::verify_peer);
+    return ctx;
+}
+
+bool run_until(net::io_context& io, const bool& done, Clock::time_point deadline,
+               const std::function<void()>& cancel) {
+    while (!done && Clock::now() < deadline) {
+        if (io.stopped()) io.restart();
+        io.run_one_until(deadline);
+    }
+    if (done) return true;
+    cancel();
+    const auto grace = Clock::now() + std::chrono::seconds(2);
+    while (!done && Clock::now() < grace) {
+        if (io.stopped()) io.restart();
+        io.run_one_until(grace);
+    }
+    return false;
+}
+
+void connect_pinned(net::io_context& io, TlsStream& stream, const PairingUrl& url, const NetTimeouts& timeouts) {
+    // Resolve (a name may take a DNS round trip; an address resolves at once).
+    net::ip::tcp::resolver resolver(io);
+    net::ip::tcp::resolver::results_type endpoints;
+    beast::error_code ec;
+    bool done = false;
+    resolver.async_resolve(url.host, std::to_string(url.port), net::ip::tcp::resolver::numeric_service,
+                           [&](beast::error_code e, net::ip::tcp::resolver::results_type r) {
+                               ec = e;
+                               endpoints = std::move(r);
+                               done = true;
+                           });
+    if (!run_until(io, done, Clock::now() + timeouts.connect, [&] { resolver.cancel(); }))
+        throw connection_failure("cannot resolve " + url.host + ": no answer within " +
+                                 std::to_string(timeouts.connect.count() / 1000) + " s");
+    if (ec) throw connection_failure("cannot resolve " + url.host + ": " + ec.message());
+
+    auto& tcp = beast::get_lowest_layer(stream);
+    done = false;
+    tcp.expires_after(timeouts.connect);
+    tcp.async_connect(endpoints, [&](beast::error_code e, const net::ip::tcp::endpoint&) {
+        ec = e;
+        done = true;
+    });
+    if (!run_until(io, done, Clock::now() + timeouts.connect + std::chrono::seconds(1), [&] { tcp.close(); }) ||
+        ec == beast::error::timeout)
+        throw connection_failure("cannot connect to " + url.authority() + ": no answer within " +
+                                 std::to_string(timeouts.connect.count() / 1000) + " s (is the provider running?)");
+    if (ec) throw connection_failure("cannot connect to " + url.authority() + ": " + ec.message());
+
+    // SNI only for names: RFC 6066 leaves addresses out.
+    if (!url.host_is_ip && !SSL_set_tlsext_host_name(stream.native_handle(), url.host.c_str()))
+        throw connection_failure("cannot set the TLS server name " + url.host);
+
+    auto pin = std::make_shared<PinCheck>();
+    pin->expected = url.fingerprint;
+    stream.set_verify_mode(ssl::verify_peer);
+    stream.set_verify_callback([pin](bool, ssl::verify_context& vc) {
+        X509_STORE_CTX* store = vc.native_handle();
+        // Only the leaf is pinned; whatever chain comes with it proves nothing
+        // more, and OpenSSL's own verdict (self-signed: "untrusted") is ignored.
+        if (X509_STORE_CTX_get_error_depth(store) != 0) return true;
+        const std::string fp = fingerprint_of(X509_STORE_CTX_get_current_cert(store));
+        if (!fp.empty() && fp == pin->expected) return true;
+        pin->mismatch = true;
+        pin->seen = fp;
+        return false;
+    });
+
+    done = false;
+    tcp.expires_after(timeouts.handshake);
+    stream.async_handshake(ssl::stream_base::client, [&](beast::error_code e) {
+        ec = e;
+        done = true;
+    });
+    const bool finished =
+        run_until(io, done, Clock::now() + timeouts.handshake + std::chrono::seconds(1), [&] { tcp.close(); });
+    if (pin->mismatch) throw certificate_failure(url, pin->seen);
+    if (!finished || ec == beast::error::timeout)
+        throw connection_failure("the TLS handshake with " + url.authority() + " did not finish within " +
+                                 std::to_string(timeouts.handshake.count() / 1000) + " s");
+    if (ec) throw connection_failure("the TLS handshake with " + url.authority() + " failed: " + ec.message());
+
+    // The callback must have passed the leaf; checked again on the session's
+    // own certificate so no path through OpenSSL skips the pin.
+    X509* peer = SSL_get1_peer_certificate(stream.native_handle());
+    const std::string fp = fingerprint_of(peer);
+    X509_free(peer);
+    if (fp != url.fingerprint) {
+        tcp.close();
+        throw certificate_failure(url, fp);
+    }
+    tcp.expires_never();
+}
+
+}  // namespace umf::requester

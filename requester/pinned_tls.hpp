@@ -1,0 +1,53 @@
+// TLS to a provider, trusted by the certificate's fingerprint from the
+// pairing URL and by nothing else: the provider's certificate is
+// self-signed, and a CA-signed certificate for the same host must not be
+// accepted instead (that would let anyone with a certificate for the name
+// in between). Used by the WebSocket session and by downloads alike.
+#pragma once
+
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ssl/context.hpp>
+#include <boost/beast/core/tcp_stream.hpp>
+#include <boost/beast/ssl/ssl_stream.hpp>
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <string>
+
+#include "pairing_url.hpp"
+
+namespace umf::requester {
+
+// Every network step has a deadline, so a provider that went away (or a
+// firewall that drops packets) ends a grab with a message instead of a hang.
+struct NetTimeouts {
+    std::chrono::milliseconds connect{5000};
+    std::chrono::milliseconds handshake{5000};   // TLS, then the WebSocket upgrade, each
+    std::chrono::milliseconds reply{10000};      // welcome, target, content
+    std::chrono::milliseconds download_idle{30000};
+};
+
+using TlsStream = boost::beast::ssl_stream<boost::beast::tcp_stream>;
+
+// SHA-256 of a certificate's DER bytes as 64 lowercase hex digits.
+std::string der_sha256_hex(const unsigned char* der, std::size_t size);
+
+// A client context with no trust store: verification is left entirely to
+// the pin that connect_pinned installs on each stream.
+boost::asio::ssl::context make_pinned_client_context();
+
+// Runs io until `done` is set or the deadline passes; then calls `cancel`
+// and lets the cancelled operation finish (up to 2 s). False on a timeout.
+// The caller's operation must be outstanding, or io have a work guard.
+bool run_until(boost::asio::io_context& io, const bool& done, std::chrono::steady_clock::time_point deadline,
+               const std::function<void()>& cancel);
+
+// Resolves the URL's host, connects (timeouts.connect) and completes the TLS
+// handshake (timeouts.handshake) with SNI for host names, accepting the peer
+// only when its certificate's SHA-256 is url.fingerprint. Throws GrabFailure:
+// "connection" when the provider cannot be reached, "certificate" when it
+// shows another certificate (nothing has been sent to it then).
+void connect_pinned(boost::asio::io_context& io, TlsStream& stream, const PairingUrl& url,
+                    const NetTimeouts& timeouts);
+
+}  // namespace umf::requester

@@ -1,0 +1,44 @@
+// The camera preview while grabbing: the frame, a crosshair at its centre
+// (the point a grab takes), and whether the field is locked, in a way nobody
+// can miss: a red banner while searching, a green ring and what a grab would
+// take once locked. Keys: space or Enter grabs, q or Esc quits.
+#pragma once
+
+#include <string>
+
+#include <opencv2/core.hpp>
+
+namespace umf::requester {
+
+enum class PreviewState { searching, locked, grabbing };
+
+enum class PreviewKey { none, grab, quit };
+
+struct PreviewStatus {
+    PreviewState state = PreviewState::searching;
+    std::string target_title;  // what a grab would take, when the provider said
+    std::string target_kind;   // "url", "file", "snapshot", "none" or empty
+    std::string provider;      // "desk-1", shown in the corner
+    bool auto_grab = false;    // the hint line says a steady aim grabs
+};
+
+class Preview {
+public:
+    explicit Preview(std::string window_title);
+    ~Preview();
+    Preview(const Preview&) = delete;
+    Preview& operator=(const Preview&) = delete;
+
+    // Draws the frame (8-bit grey, BGR or BGRA) with the overlay and waits
+    // up to wait_ms (at least 1) for a key; closing the window counts as quit.
+    PreviewKey show(const cv::Mat& frame, const PreviewStatus& status, int wait_ms = 1);
+
+    // The picture show() puts in the window (BGR), without a window.
+    static cv::Mat render(const cv::Mat& frame, const PreviewStatus& status);
+
+private:
+    std::string title_;
+    bool shown_ = false;
+};
+
+}  // namespace umf::requester

@@ -1,0 +1,20 @@
+// The QGuiApplication the provider's painting tests need (text needs fonts,
+// fonts need the application). Made once, on the offscreen platform, and
+// never destroyed: tearing it down during static destruction would race Qt's
+// own global objects.
+#pragma once
+
+#include <QGuiApplication>
+
+namespace umf::test {
+
+inline void ensure_gui_application() {
+    if (QCoreApplication::instance()) return;
+    static int argc = 1;
+    static char name[] = "umf_tests";
+    static char* argv[] = {name, nullptr};
+    qputenv("QT_QPA_PLATFORM", "offscreen");
+    new QGuiApplication(argc, argv);  // lives as long as the process
+}
+
+}  // namespace umf::test

@@ -1,0 +1,153 @@
+// The provider's HTTPS side with an independent client (curl): one-time
+// downloads of what a grab resolved, the page, and nothing else — no path a
+// client sends reaches the file system, whatever its spelling.
+#ifdef UMF_PROVIDER_TESTS
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "content/board_resolver.hpp"
+#include "protocol/messages.hpp"
+#include "server/pairing.hpp"
+#include "server/server.hpp"
+#include "server/service.hpp"
+#include "server/tls_identity.hpp"
+#include "support/process.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace p = umf::protocol;
+using namespace umf::provider;
+using umf::test::run_command;
+
+constexpr const char* kToken = "http-test-token-0123456789ab";
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        std::string tmpl = (fs::temp_directory_path() / "umf-http-test-XXXXXX").string();
+        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
+        path = tmpl;
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+struct Response {
+    int status = 0;
+    std::string body;
+    std::string headers;
+};
+
+class ProviderHttp : public ::testing::Test {
+protected:
+    TempDir dir;
+    fs::path big;
+    std::shared_ptr<Service> service;
+    std::unique_ptr<Server> server;
+
+    static void SetUpTestSuite() {
+        if (run_command("curl --version >/dev/null 2>&1").exit_code != 0) GTEST_SKIP() << "curl is not installed";
+    }
+    void SetUp() override {
+        big = dir.path / "big file.bin";
+        {
+            std::ofstream out(big, std::ios::binary);
+            std::string chunk(1 << 20, '\0');
+            for (std::size_t i = 0; i < chunk.size(); ++i) chunk[i] = static_cast<char>(i * 7 + 3);
+            for (int i = 0; i < 24; ++i) out << chunk;
+        }
+        std::ofstream(dir.path / "secret.txt") << "not for requesters";
+        Board board;
+        board.items.push_back({"Big", big, std::nullopt, std::nullopt, std::nullopt});
+        auto resolver = std::make_shared<BoardResolver>(board, std::vector<PixelRect>{{0, 0, 1920, 1080}});
+        service = std::make_shared<Service>(default_service_config(), kToken,
+                                            std::vector<std::shared_ptr<const Resolver>>{resolver});
+        const TlsIdentity identity = load_or_create_tls_identity(dir.path / "cfg");
+        server = std::make_unique<Server>(service, identity);
+        server->start();
+    }
+    // A link as a grab over the WebSocket would get it.
+    std::string grab_link() {
+        SessionState state;
+        service->handle_text(state, p::encode(p::Hello{std::nullopt, kToken, "t"}));
+        const auto out = service->handle_text(state, p::encode(p::Grab{p::RequestId{std::string("g")}, {5, 5}}));
+        return *std::get<p::Content>(out.replies.at(0)).download;
+    }
+    Response curl(const std::string& target, const std::string& options = "") {
+        const fs::path body = dir.path / "body", headers = dir.path / "headers";
+        fs::remove(body);
+        const auto r = run_command("curl -s -k --path-as-is --max-time 20 " + options + " -o '" + body.string() +
+                                   "' -D '" + headers.string() + "' -w '%{http_code}' 'https://127.0.0.1:" +
+                                   std::to_string(server->port()) + target + "'");
+        Response out;
+        out.status = std::atoi(r.out.c_str());
+        std::ifstream b(body, std::ios::binary), h(headers);
+        out.body.assign(std::istreambuf_iterator<char>(b), {});
+        out.headers.assign(std::istreambuf_iterator<char>(h), {});
+        return out;
+    }
+    bool sessions_drain() {
+        for (int i = 0; i < 200 && server->session_count() > 0; ++i)
+            std::this_thread::sleep_for(std::chrono::milliseconds(25));
+        return server->session_count() == 0;
+    }
+};
+
+TEST_F(ProviderHttp, ADownloadLinkWorksOnceWithTheRightHeaders) {
+    const std::string link = grab_link();
+    const Response first = curl(link);
+    EXPECT_EQ(first.status, 200);
+    EXPECT_EQ(first.body.size(), fs::file_size(big));
+    std::ifstream in(big, std::ios::binary);
+    const std::string expected{std::istreambuf_iterator<char>(in), {}};
+    EXPECT_TRUE(first.body == expected) << "the bytes differ";
+    EXPECT_NE(first.headers.find("Content-Disposition: attachment; filename=\"big file.bin\"; filename*=UTF-8''big%20file.bin"),
+              std::string::npos)
+        << first.headers;
+    EXPECT_NE(first.headers.find("Content-Type: application/octet-stream"), std::string::npos);
+    EXPECT_NE(first.headers.find("Cache-Control: no-store"), std::string::npos);
+
+    const Response second = curl(link);
+    EXPECT_EQ(second.status, 404);
+    const auto parsed = p::parse_message(second.body, p::kRequesterLimits);
+    ASSERT_TRUE(std::holds_alternative<p::Message>(parsed)) << second.body;
+    EXPECT_EQ(std::get<p::Error>(std::get<p::Message>(parsed)).code, p::ErrorCode::not_found);
+}
+
+TEST_F(ProviderHttp, NoClientPathReachesTheFileSystem) {
+    EXPECT_EQ(curl("/").status, 200);
+    for (const std::string& target : std::vector<std::string>{"/../../../../etc/passwd", "/%2e%2e/%2e%2e/%2e%2e/etc/passwd", "//etc/passwd", "/dl/../index.html",
+          "/dl/..%2f..%2fetc%2fpasswd", "/dl/" + (dir.path / "secret.txt").string(), "/secret.txt",
+          "/provider-key.pem", "/dl/AAAAAAAAAAAAAAAAAAAAAA", "/index.html/..", "/\\..\\etc\\passwd"}) {
+        const Response r = curl(target);
+        EXPECT_EQ(r.status, 404) << target;
+        EXPECT_EQ(r.body.find("not for requesters"), std::string::npos) << target;
+        EXPECT_EQ(r.body.find("root:"), std::string::npos) << target;
+    }
+    EXPECT_EQ(curl("/", "-X POST --data x=1").status, 405);
+    EXPECT_EQ(curl("/", "-X DELETE").status, 405);
+    EXPECT_EQ(curl("/", "-H 'X-Big: " + std::string(9000, 'a') + "'").status, 431);
+    EXPECT_EQ(server->session_count() > 100, false);
+}
+
+TEST_F(ProviderHttp, AClientThatLeavesMidDownloadLeavesNothingBehind) {
+    // 24 MiB read at 1 MiB/s, abandoned after half a second.
+    const std::string link = grab_link();
+    const Response cut = curl(link, "--limit-rate 1M --max-time 0.5");
+    EXPECT_EQ(cut.body.size() < fs::file_size(big), true);
+    EXPECT_TRUE(sessions_drain()) << server->session_count() << " sessions still open";
+    EXPECT_EQ(curl(link).status, 404) << "the link was used by the first request";
+    EXPECT_EQ(curl("/").status, 200) << "the server serves on";
+    EXPECT_EQ(fs::file_size(big), 24u << 20) << "the file is untouched";
+}
+
+}  // namespace
+
+#endif

@@ -1,0 +1,224 @@
+// A stand-in provider for the requester's tests: TLS with a provider
+// identity, the WebSocket session (welcome with the default field, a target
+// per aim, a scripted content per grab) and the one-time downloads, with
+// every answer under the test's control; it also counts what arrived, so a
+// test can tell that a refused certificate kept the hello from being sent.
+// The real server (provider/server) has no downloads yet and answers every
+// grab with "none".
+#pragma once
+
+#include <atomic>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
+#include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "protocol/messages.hpp"
+#include "server/service.hpp"
+#include "server/tls_identity.hpp"
+
+namespace umf::test {
+
+// What a grab answers and what its download link serves.
+struct FakeContent {
+    protocol::ContentKind kind = protocol::ContentKind::file;
+    std::string title = "report.pdf - Document Viewer";
+    std::string url;                      // kind url
+    std::string name = "report.pdf";      // kind file or snapshot
+    std::string body = "%PDF-1.4 pretend this is a document\n";
+    std::optional<std::int64_t> size;     // announced; body.size() unless set
+    std::optional<std::string> sha256;    // announced; none unless set
+    unsigned status = 200;                // the download's HTTP status
+    std::optional<std::size_t> sent_bytes;  // how much of the body is sent (a cut-off transfer)
+};
+
+class FakeProvider {
+public:
+    FakeProvider(provider::TlsIdentity identity, std::string token)
+        : identity_(std::move(identity)), token_(std::move(token)), tls_(boost::asio::ssl::context::tls_server),
+          acceptor_(io_, {boost::asio::ip::make_address("127.0.0.1"), 0}) {
+        provider::configure_server_context(tls_, identity_);
+        accept();
+        thread_ = std::thread([this] { io_.run(); });
+    }
+    ~FakeProvider() {
+        boost::asio::post(io_, [this] { acceptor_.close(); });
+        thread_.join();
+        join_connections();
+    }
+
+    // Waits for the connections so far to end (they do when the requester's
+    // process has): the counts below are final afterwards.
+    void join_connections() {
+        std::vector<std::thread> threads;
+        {
+            std::lock_guard lock(mutex_);
+            threads.swap(connections_);
+        }
+        for (auto& t : threads) t.join();
+    }
+
+    unsigned short port() const { return acceptor_.local_endpoint().port(); }
+    const std::string& fingerprint() const { return identity_.fingerprint; }
+
+    void set_content(FakeContent c) {
+        std::lock_guard lock(mutex_);
+        content_ = std::move(c);
+    }
+    // HTTP requests read after a completed TLS handshake (the WebSocket
+    // upgrade included): none when the client refused the certificate.
+    int requests() const { return requests_; }
+    int hellos() const { return hellos_; }
+    int grabs() const { return grabs_; }
+    int downloads() const { return downloads_; }
+    int aims() const { return aims_; }
+    int aims_with_quad() const { return aims_with_quad_; }
+    int seekings() const { return seekings_; }
+
+private:
+    using Tls = boost::beast::ssl_stream<boost::asio::ip::tcp::socket>;
+
+    void accept() {
+        acceptor_.async_accept([this](boost::system::error_code ec, boost::asio::ip::tcp::socket socket) {
+            if (ec) return;  // closed
+            std::lock_guard lock(mutex_);
+            connections_.emplace_back([this, s = std::move(socket)]() mutable { serve(std::move(s)); });
+            accept();
+        });
+    }
+
+    // One connection, synchronously on its own thread; it ends when the
+    // requester's process does, which closes the socket.
+    void serve(boost::asio::ip::tcp::socket socket) {
+        namespace http = boost::beast::http;
+        namespace websocket = boost::beast::websocket;
+        boost::system::error_code ec;
+        Tls tls(std::move(socket), tls_);
+        tls.handshake(boost::asio::ssl::stream_base::server, ec);
+        if (ec) return;
+        boost::beast::flat_buffer buffer;
+        http::request<http::string_body> req;
+        http::read(tls, buffer, req, ec);
+        if (ec) return;
+        ++requests_;
+        if (websocket::is_upgrade(req)) {
+            websocket::stream<Tls&> ws(tls);
+            ws.accept(req, ec);
+            if (!ec) session(ws);
+            return;
+        }
+        download(tls, std::string(req.target()));
+    }
+
+    template <class Ws>
+    void session(Ws& ws) {
+        namespace p = protocol;
+        const auto config = provider::default_service_config();
+        for (;;) {
+            boost::beast::flat_buffer buffer;
+            boost::system::error_code ec;
+            ws.read(buffer, ec);
+            if (ec) return;
+            auto parsed = p::parse_message(boost::beast::buffers_to_string(buffer.data()));
+            const auto* m = std::get_if<p::Message>(&parsed);
+            if (!m) return;
+            std::optional<p::Message> reply;
+            bool close = false;
+            if (const auto* h = std::get_if<p::Hello>(m)) {
+                ++hellos_;
+                if (h->token == token_) {
+                    reply = p::Welcome{h->id, {"fake-desk", "fake-provider/1"}, config.field, config.overlay,
+                                       config.limits};
+                } else {
+                    reply = p::Error{h->id, p::ErrorCode::unauthorized, "unknown pairing token"};
+                    close = true;
+                }
+            } else if (std::holds_alternative<p::Seeking>(*m)) {
+                ++seekings_;
+            } else if (const auto* a = std::get_if<p::Aim>(m)) {
+                ++aims_;
+                if (a->quad) ++aims_with_quad_;
+                std::lock_guard lock(mutex_);
+                reply = p::Target{a->id, a->point, content_.kind, content_.title};
+            } else if (const auto* g = std::get_if<p::Grab>(m)) {
+                ++grabs_;
+                std::lock_guard lock(mutex_);
+                p::Content c;
+                c.id = g->id;
+                c.kind = content_.kind;
+                c.title = content_.title;
+                if (c.kind == p::ContentKind::url) c.url = content_.url;
+                if (c.kind == p::ContentKind::file || c.kind == p::ContentKind::snapshot) {
+                    c.name = content_.name;
+                    c.mime = "application/pdf";
+                    c.size = content_.size.value_or(static_cast<std::int64_t>(content_.body.size()));
+                    c.sha256 = content_.sha256;
+                    c.download = "/dl/link" + std::to_string(grabs_.load());
+                }
+                reply = c;
+            }
+            if (reply) {
+                ws.text(true);
+                ws.write(boost::asio::buffer(p::encode(*reply)), ec);
+                if (ec) return;
+            }
+            if (close) {
+                ws.close(boost::beast::websocket::close_code::policy_error, ec);
+                return;
+            }
+        }
+    }
+
+    void download(Tls& tls, const std::string& target) {
+        namespace http = boost::beast::http;
+        FakeContent c;
+        {
+            std::lock_guard lock(mutex_);
+            c = content_;
+        }
+        ++downloads_;
+        boost::system::error_code ec;
+        if (target.rfind("/dl/", 0) != 0 || c.status != 200) {
+            const unsigned status = c.status == 200 ? 404 : c.status;
+            http::response<http::string_body> res(static_cast<http::status>(status), 11);
+            res.set(http::field::content_type, "application/json");
+            res.body() = protocol::encode(protocol::Error{
+                std::nullopt, status == 404 ? protocol::ErrorCode::not_found : protocol::ErrorCode::internal,
+                "unknown, used or expired download link"});
+            res.prepare_payload();
+            http::write(tls, res, ec);
+            return;
+        }
+        // Content-Length is the whole body's even when less is sent, as when
+        // a transfer breaks off.
+        std::string head = "HTTP/1.1 200 OK\r\nContent-Type: application/pdf\r\nContent-Length: " +
+                           std::to_string(c.body.size()) +
+                           "\r\nContent-Disposition: attachment\r\nConnection: close\r\n\r\n";
+        head += c.body.substr(0, c.sent_bytes.value_or(c.body.size()));
+        boost::asio::write(tls, boost::asio::buffer(head), ec);
+        tls.shutdown(ec);
+    }
+
+    provider::TlsIdentity identity_;
+    std::string token_;
+    boost::asio::io_context io_;
+    boost::asio::ssl::context tls_;
+    boost::asio::ip::tcp::acceptor acceptor_;
+    std::thread thread_;
+    std::mutex mutex_;
+    std::vector<std::thread> connections_;
+    FakeContent content_;
+    std::atomic<int> requests_{0}, hellos_{0}, grabs_{0}, downloads_{0}, aims_{0}, aims_with_quad_{0}, seekings_{0};
+};
+
+}  // namespace umf::test
