@@ -37,13 +37,15 @@ std::size_t SessionRegistry::size() const {
 }
 
 Listener::Listener(net::io_context& io, net::ssl::context& tls, const tcp::endpoint& endpoint,
-                   std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry)
+                   std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
+                   std::size_t max_connections)
     : io_(io),
       tls_(tls),
       strand_(net::make_strand(io)),
       acceptor_(strand_),
       service_(std::move(service)),
-      registry_(std::move(registry)) {
+      registry_(std::move(registry)),
+      max_connections_(max_connections) {
     acceptor_.open(endpoint.protocol());
     acceptor_.set_option(net::socket_base::reuse_address(true));
     acceptor_.bind(endpoint);
@@ -77,7 +79,13 @@ void Listener::on_accept(beast::error_code ec, tcp::socket socket) {
         timer->async_wait([self = shared_from_this(), timer](beast::error_code) { self->accept(); });
         return;
     }
-    std::make_shared<Session>(std::move(socket), tls_, service_, registry_)->run();
+    if (registry_->size() >= max_connections_) {
+        // Full: the connection is dropped before any TLS work is spent on it.
+        beast::error_code ignored;
+        socket.close(ignored);
+    } else {
+        std::make_shared<Session>(std::move(socket), tls_, service_, registry_)->run();
+    }
     accept();
 }
 

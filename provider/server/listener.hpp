@@ -37,7 +37,8 @@ class Listener : public std::enable_shared_from_this<Listener> {
 public:
     // Binds and listens; throws boost::system::system_error.
     Listener(boost::asio::io_context& io, boost::asio::ssl::context& tls, const boost::asio::ip::tcp::endpoint& endpoint,
-             std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry);
+             std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
+             std::size_t max_connections = 1024);
 
     void run();
     // From any thread: stops accepting.
@@ -55,6 +56,7 @@ private:
     boost::asio::ip::tcp::endpoint endpoint_;
     std::shared_ptr<const Service> service_;
     std::shared_ptr<SessionRegistry> registry_;
+    std::size_t max_connections_;
     bool stopped_ = false;
 };
 

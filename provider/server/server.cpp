@@ -28,7 +28,7 @@ void Server::start() {
     if (ec) throw std::runtime_error("not an IP address: " + options_.bind_address);
     const net::ip::tcp::endpoint endpoint(address, options_.port);
     try {
-        listener_ = std::make_shared<Listener>(io_, tls_, endpoint, service_, registry_);
+        listener_ = std::make_shared<Listener>(io_, tls_, endpoint, service_, registry_, options_.max_connections);
     } catch (const boost::system::system_error& e) {
         throw std::runtime_error("cannot listen on " + options_.bind_address + " port " +
                                  std::to_string(options_.port) + ": " + e.code().message());

@@ -23,6 +23,9 @@ struct ServerOptions {
     std::string bind_address = "127.0.0.1";
     unsigned short port = 0;  // 0: any free port (see Server::port)
     int threads = 2;
+    // Connections at once (WebSocket sessions and HTTPS downloads); more are
+    // closed as they arrive.
+    std::size_t max_connections = 1024;
 };
 
 class Server {

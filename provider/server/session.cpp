@@ -49,7 +49,12 @@ std::string encode_reply(const protocol::Message& message) {
 
 Session::Session(net::ip::tcp::socket&& socket, ssl::context& tls, std::shared_ptr<const Service> service,
                  std::shared_ptr<SessionRegistry> registry)
-    : ws_(std::move(socket), tls), service_(std::move(service)), registry_(std::move(registry)) {}
+    : ws_(std::move(socket), tls), service_(std::move(service)), registry_(std::move(registry)) {
+    // Wrong pairing tokens are counted per address.
+    beast::error_code ec;
+    const auto remote = beast::get_lowest_layer(ws_).socket().remote_endpoint(ec);
+    state_.peer = ec ? "unknown" : remote.address().to_string();
+}
 
 Session::~Session() {
     if (registry_) registry_->remove(this);

@@ -387,6 +387,38 @@ TEST_F(ProviderServer, WrongTokenIsUnauthorizedThenClosed) {
     EXPECT_EQ(c->read_close(), websocket::close_code::policy_error);
 }
 
+TEST_F(ProviderServer, AnAddressGuessingTokensIsStopped) {
+    for (int i = 0; i < kMaxWrongTokens; ++i) {
+        auto c = client();
+        ASSERT_FALSE(c->connect());
+        ASSERT_FALSE(c->send(hello("guess-" + std::to_string(i) + "-0123456789abcdefgh")));
+        EXPECT_EQ(std::get<p::Error>(c->read_message()).code, p::ErrorCode::unauthorized);
+    }
+    auto c = client();
+    ASSERT_FALSE(c->connect());
+    ASSERT_FALSE(c->send(hello(token)));
+    const p::Message m = c->read_message();
+    ASSERT_TRUE(std::holds_alternative<p::Error>(m)) << p::type_name(m);
+    EXPECT_EQ(std::get<p::Error>(m).code, p::ErrorCode::rate_limited) << "even the right token, for a minute";
+    EXPECT_EQ(c->read_close(), websocket::close_code::policy_error);
+}
+
+TEST_F(ProviderServer, ConnectionsBeyondTheCapAreClosed) {
+    server->stop();
+    ServerOptions options;
+    options.max_connections = 2;
+    server = std::make_unique<Server>(std::make_shared<const Service>(default_service_config(), token), identity, options);
+    server->start();
+    auto a = client(), b = client(), c = client();
+    a->connect_and_hello(token);
+    b->connect_and_hello(token);
+    EXPECT_TRUE(c->connect()) << "a third connection is refused";
+    a.reset();
+    for (int i = 0; i < 100 && server->session_count() > 1; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    auto d = client();
+    d->connect_and_hello(token);  // room again
+}
+
 TEST_F(ProviderServer, ServesAWelcomedSession) {
     auto c = client();
     c->connect_and_hello(token);
