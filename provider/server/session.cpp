@@ -1,6 +1,8 @@
 #include "server/session.hpp"
 
 #include <boost/asio/dispatch.hpp>
+#include <boost/asio/write.hpp>
+#include <boost/beast/core/detect_ssl.hpp>
 #include <boost/asio/post.hpp>
 #include <cctype>
 #include <chrono>
@@ -65,9 +67,33 @@ void Session::run() {
     net::dispatch(ws_.get_executor(), [self = shared_from_this()] {
         if (self->closing_) return;
         beast::get_lowest_layer(self->ws_).expires_after(kHandshakeTimeout);
-        self->ws_.next_layer().async_handshake(ssl::stream_base::server,
-                                               beast::bind_front_handler(&Session::on_tls_handshake, self));
+        // Someone typing http:// gets told to use https:// rather than a
+        // connection that just drops.
+        beast::async_detect_ssl(beast::get_lowest_layer(self->ws_), self->buffer_,
+                                beast::bind_front_handler(&Session::on_detect, self));
     });
+}
+
+void Session::on_detect(beast::error_code ec, bool tls) {
+    if (ec || closing_) return;
+    if (!tls) {
+        static const std::string kPlainHttp =
+            "HTTP/1.1 400 Bad Request\r\nServer: umf-provider\r\nContent-Type: text/plain; charset=utf-8\r\n"
+            "Connection: close\r\nContent-Length: 60\r\n\r\n"
+            "This is an HTTPS server: open the pairing link, https://...\n";
+        net::async_write(beast::get_lowest_layer(ws_), net::buffer(kPlainHttp),
+                         [self = shared_from_this()](beast::error_code, std::size_t) {
+                             beast::error_code ignored;
+                             beast::get_lowest_layer(self->ws_).socket().shutdown(net::ip::tcp::socket::shutdown_both,
+                                                                                ignored);
+                         });
+        return;
+    }
+    ws_.next_layer().async_handshake(ssl::stream_base::server, buffer_.data(),
+                                     [self = shared_from_this()](beast::error_code ec, std::size_t used) {
+                                         self->buffer_.consume(used);
+                                         self->on_tls_handshake(ec);
+                                     });
 }
 
 void Session::on_tls_handshake(beast::error_code ec) {

@@ -40,6 +40,7 @@ public:
 private:
     using TlsStream = boost::beast::ssl_stream<boost::beast::tcp_stream>;
 
+    void on_detect(boost::beast::error_code ec, bool tls);
     void on_tls_handshake(boost::beast::error_code ec);
     void read_request();
     void on_request(boost::beast::error_code ec, std::size_t);

@@ -137,6 +137,13 @@ TEST_F(ProviderHttp, NoClientPathReachesTheFileSystem) {
     EXPECT_EQ(server->session_count() > 100, false);
 }
 
+TEST_F(ProviderHttp, PlainHttpIsToldToUseHttps) {
+    const auto r = run_command("curl -s --max-time 5 -w '\\n%{http_code}' http://127.0.0.1:" + std::to_string(server->port()) + "/");
+    EXPECT_NE(r.out.find("This is an HTTPS server"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("400"), std::string::npos) << r.out;
+    EXPECT_EQ(curl("/").status, 200) << "TLS still works";
+}
+
 TEST_F(ProviderHttp, AClientThatLeavesMidDownloadLeavesNothingBehind) {
     // 24 MiB read at 1 MiB/s, abandoned after half a second.
     const std::string link = grab_link();
