@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <atomic>
+#include <thread>
 
 #include "board/board.hpp"
 #include "commands/common_options.hpp"
@@ -18,6 +20,8 @@
 #include "content/x11_snapshot.hpp"
 #include "content/x11_window.hpp"
 #include "overlay/preset.hpp"
+#include "screen/board_window.hpp"
+#include "screen/screen_field.hpp"
 #include "screen/screen_image.hpp"
 #include "server/config_dir.hpp"
 #include "server/control_socket.hpp"
@@ -187,7 +191,26 @@ int run_serve(const cli::Args& a) {
     std::cout << "pairing URL: " << url << "\n" << std::flush;
 
     int received = 0;
-    sigwait(&signals, &received);
+    if (!headless && board) {
+        // The board in a full-screen window: the Qt event loop runs here and a
+        // thread waits for the signals, then ends the loop.
+        BoardWindow window(screen_image, field_layer(screen_field_for(width, height), preset.palette), preset,
+                           QGuiApplication::primaryScreen());
+        window.showFullScreen();
+        std::atomic<int> got{0};
+        std::thread waiter([&] {
+            int signal = 0;
+            sigwait(&signals, &signal);
+            got = signal;
+            QMetaObject::invokeMethod(qApp, [] { QCoreApplication::quit(); }, Qt::QueuedConnection);
+        });
+        QGuiApplication::exec();
+        if (got == 0) ::kill(::getpid(), SIGTERM);  // the loop ended otherwise: release the waiter
+        waiter.join();
+        received = got;
+    } else {
+        sigwait(&signals, &received);
+    }
     std::cerr << "umf-provider: " << (received == SIGINT ? "SIGINT" : "SIGTERM") << ", closing sessions\n";
     control.reset();
     server->stop();

@@ -1,0 +1,48 @@
+// The board shown for real: a frameless full-screen window of the board's
+// tiles with the field mixed in at the preset's pulsing opacity. The board and
+// the field are painted once; each frame only blends the two, which QPainter
+// does in SIMD, and the window repaints only when the opacity has moved.
+#pragma once
+
+#include <QElapsedTimer>
+#include <QImage>
+#include <QRasterWindow>
+#include <QTimer>
+
+#include "overlay/preset.hpp"
+#include "screen/screen_field.hpp"
+
+class QPainter;
+class QScreen;
+
+namespace umf::provider {
+
+// The field as a layer over the screen (Format_ARGB32_Premultiplied): the
+// module colours, opaque on the pixels whose centres lie on the field (the
+// pixels overlay::mix_field changes), transparent elsewhere. Drawn at opacity
+// a over the board it gives compose_screen's pixels to within rounding.
+QImage field_layer(const ScreenField& field, const std::vector<std::string>& palette);
+
+// One frame: the board, then the layer at `opacity`.
+void paint_board_frame(QPainter& painter, const QImage& board, const QImage& layer, double opacity);
+
+class BoardWindow : public QRasterWindow {
+public:
+    BoardWindow(QImage board, QImage layer, overlay::Preset preset, QScreen* screen);
+
+protected:
+    void paintEvent(QPaintEvent* event) override;
+
+private:
+    double opacity_now() const;
+    void tick();
+
+    QImage board_;
+    QImage layer_;
+    overlay::Preset preset_;
+    QElapsedTimer clock_;
+    QTimer timer_;
+    double painted_opacity_ = -1.0;
+};
+
+}  // namespace umf::provider
