@@ -64,7 +64,7 @@ def hello(msg_id=1):
 def aim(msg_id, **extra):
     m = {"type": "aim", "v": 1, "id": msg_id, "point": [10.5, 4.25], "confidence": 0.9}
     m.update(extra)
-    return json.dumps(m)
+    return json.dumps(m, ensure_ascii=False)
 
 
 def text_event(data):
