@@ -20,25 +20,13 @@
 #include "screen/screen_field.hpp"
 #include "screen/screen_image.hpp"
 #include "support/x11_session.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace umf::provider;
 using namespace umf::test;
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "umf-board-window-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 Board two_item_board(const fs::path& dir) {
     std::ofstream(dir / "a.txt") << "a";

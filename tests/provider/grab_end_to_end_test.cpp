@@ -17,26 +17,16 @@
 #include "board/board.hpp"
 #include "sim/camera.hpp"
 #include "support/process.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
+
+using umf::test::TempDir;
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 using umf::test::ChildProcess;
 using umf::test::run_command;
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "umf-e2e-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 std::string read_file(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "content/process_documents.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
@@ -25,17 +26,8 @@ namespace fs = std::filesystem;
 using namespace umf::provider;
 using Paths = std::vector<fs::path>;
 
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "umf-procdocs-test-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = fs::canonical(tmpl);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
+// A temporary folder that also makes files with some content.
+struct TempDir : umf::test::TempDir {
     fs::path file(const fs::path& relative) const {
         fs::create_directories((path / relative).parent_path());
         std::ofstream(path / relative) << "content";

@@ -17,8 +17,11 @@
 #include "server/control_socket.hpp"
 #include "server/pairing_qr.hpp"
 #include "server/service.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
+
+using umf::test::TempDir;
 
 namespace fs = std::filesystem;
 namespace p = umf::protocol;
@@ -26,19 +29,6 @@ using namespace umf::provider;
 using namespace std::chrono_literals;
 
 constexpr const char* kToken = "content-test-token-0123456789";
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "umf-content-test-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 std::string grab_text(const std::string& id, double u, double v) {
     return p::encode(p::Grab{p::RequestId{id}, {u, v}});

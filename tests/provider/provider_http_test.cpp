@@ -16,8 +16,11 @@
 #include "server/service.hpp"
 #include "server/tls_identity.hpp"
 #include "support/process.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
+
+using umf::test::TempDir;
 
 namespace fs = std::filesystem;
 namespace p = umf::protocol;
@@ -25,19 +28,6 @@ using namespace umf::provider;
 using umf::test::run_command;
 
 constexpr const char* kToken = "http-test-token-0123456789ab";
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "umf-http-test-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 struct Response {
     int status = 0;

@@ -34,8 +34,11 @@
 #include "server/server.hpp"
 #include "server/service.hpp"
 #include "server/tls_identity.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
+
+using umf::test::TempDir;
 
 namespace fs = std::filesystem;
 namespace net = boost::asio;
@@ -47,19 +50,6 @@ namespace p = umf::protocol;
 using namespace umf::provider;
 
 constexpr auto kOpTimeout = std::chrono::seconds(5);
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "umf-provider-test-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 
 p::Message parse_reply(const std::string& text) {

@@ -12,29 +12,21 @@
 #include <thread>
 
 #include "content/recent_files.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
-using namespace umf::provider;
-using namespace std::chrono_literals;
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "umf-recent-test-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-    fs::path touch(const std::string& name) const {
+// A temporary folder that also makes files with some content.
+struct TempDir : umf::test::TempDir {
+    std::filesystem::path touch(const std::string& name) const {
         std::ofstream(path / name) << "content";
         return path / name;
     }
 };
+
+namespace fs = std::filesystem;
+using namespace umf::provider;
+using namespace std::chrono_literals;
 
 std::string bookmark(const std::string& href, const std::string& modified, const std::string& inner = {}) {
     return "  <bookmark href=\"" + href + "\" added=\"2020-01-01T00:00:00Z\" modified=\"" + modified +

@@ -25,8 +25,11 @@
 #include "server/server.hpp"
 #include "server/service.hpp"
 #include "server/tls_identity.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
+
+using umf::test::TempDir;
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -69,19 +72,6 @@ std::string why_skip() {
     if (run_command("command -v timeout >/dev/null 2>&1").first != 0) return "coreutils' timeout is missing";
     return {};
 }
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "umf-websocket-rfc-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = tmpl;
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 class WebSocketRfc : public ::testing::Test {
 protected:

@@ -35,6 +35,7 @@
 #include "content/file_facts.hpp"
 #include "content/x11_window.hpp"
 #include "support/x11_session.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
@@ -44,19 +45,6 @@ using namespace umf::provider;
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 using namespace umf::test;
-
-struct TempDir {
-    fs::path path;
-    TempDir() {
-        std::string tmpl = (fs::temp_directory_path() / "umf-x11-test-XXXXXX").string();
-        if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed");
-        path = fs::canonical(tmpl);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path, ec);
-    }
-};
 
 // A one-page PDF with correct cross-references, so no viewer has to repair it.
 std::string minimal_pdf() {
