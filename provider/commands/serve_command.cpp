@@ -165,6 +165,12 @@ int run_serve(const cli::Args& a) {
         config.overlay = protocol::overlay_info(preset);
         config.public_mode = public_mode;
         auto service = std::make_shared<const Service>(std::move(config), token, resolvers, site);
+        if (board) {
+            std::vector<std::filesystem::path> files;
+            for (const auto& item : board->items)
+                if (item.file) files.push_back(*item.file);
+            service->prepare_files(files);
+        }
         ServerOptions options;
         options.bind_address = bind;
         options.port = port;

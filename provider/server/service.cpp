@@ -76,6 +76,8 @@ Service::Service(ServiceConfig config, std::string token, std::vector<std::share
         throw std::invalid_argument("a service needs one field placement per screen");
 }
 
+void Service::prepare_files(const std::vector<std::filesystem::path>& files) const { facts_->prepare(files); }
+
 void Service::set_token(std::string token) {
     std::lock_guard lock(token_mutex_);
     token_ = std::move(token);
@@ -234,7 +236,7 @@ p::Message Service::content_for(const p::Grab& grab, const Resolved& resolved) c
             c.name = entry.name;
             c.mime = entry.mime;
             c.size = entry.size;
-            c.sha256 = entry.sha256;
+            if (!entry.sha256.empty()) c.sha256 = entry.sha256;  // not yet for a large file's first grab
             c.download = downloads_->add(std::move(entry));
             break;
         }

@@ -86,6 +86,10 @@ public:
     // when nothing. Throws what a resolver throws.
     Resolved resolve(const ScreenPoint& point, Purpose purpose) const;
 
+    // Hashes these files in the background (a board's), so their first grabs
+    // carry a SHA-256 and wait for nothing.
+    void prepare_files(const std::vector<std::filesystem::path>& files) const;
+
     // Replaces the token; sessions already welcomed stay.
     void set_token(std::string token);
     const ServiceConfig& config() const { return config_; }

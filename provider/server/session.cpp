@@ -309,6 +309,9 @@ void Session::reject(http::status status, const char* text) {
 void Session::on_accept(beast::error_code ec) {
     if (ec) return;
     websocket_ = true;
+    // The upgrade request is read: an idle session keeps no more buffer than
+    // its next message needs (memory per idle requester, docs/BENCHMARKS.md).
+    buffer_.shrink_to_fit();
     if (closing_) {
         if (!close_started_) close(close_code_);
         return;
@@ -330,6 +333,7 @@ void Session::on_read(beast::error_code ec, std::size_t) {
 
     const std::string text = beast::buffers_to_string(buffer_.data());
     buffer_.consume(buffer_.size());
+    if (buffer_.capacity() > 4096) buffer_.shrink_to_fit();  // after a rare large message
     const Outcome outcome = ws_.got_binary() ? service_->handle_binary(state_) : service_->handle_text(state_, text);
     for (const auto& reply : outcome.replies) send(encode_reply(reply));
     if (outcome.close) {

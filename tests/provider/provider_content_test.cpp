@@ -246,6 +246,27 @@ TEST(ProviderDownloads, LinksExpireAndTheTableStaysBounded) {
     EXPECT_TRUE(table.take(links[4], t0 + std::chrono::seconds(5)));
 }
 
+TEST_F(ProviderContent, ALargeFileIsHashedInTheBackgroundNotWhileTheGrabWaits) {
+    const fs::path large = dir.path / "large.bin";
+    { std::ofstream(large) << "x"; }
+    fs::resize_file(large, static_cast<std::uintmax_t>(kHashAtOnceBytes) + 1);
+    SharedItem item;
+    item.file = large;
+    item.rect = {960, 540, 960, 540};
+    shared->add(item);
+    const auto first = std::get<p::Content>(one(grab_text("g1", 50, 30)));
+    EXPECT_EQ(first.size, kHashAtOnceBytes + 1);
+    EXPECT_FALSE(first.sha256) << "no hash yet: the grab did not wait for one";
+    std::optional<std::string> hash;
+    for (int i = 0; i < 250 && !hash; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        now += 3s;  // within the grab rate
+        hash = std::get<p::Content>(one(grab_text("g" + std::to_string(i + 2), 50, 30))).sha256;
+    }
+    ASSERT_TRUE(hash) << "the background hash never arrived";
+    EXPECT_EQ(hash->size(), 64u);
+}
+
 TEST(ProviderDownloads, FileFacts) {
     TempDir dir;
     const fs::path f = dir.path / "x.CSV";
