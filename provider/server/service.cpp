@@ -64,19 +64,24 @@ ServiceConfig default_service_config(int screen_width_px, int screen_height_px, 
 }
 
 Service::Service(ServiceConfig config, std::string token, std::vector<std::shared_ptr<const Resolver>> resolvers,
-                 std::shared_ptr<const StaticSite> site)
+                 std::shared_ptr<const StaticSite> site, std::shared_ptr<ActivityListener> activity)
     : config_(std::move(config)),
       resolvers_(std::move(resolvers)),
       downloads_(std::make_shared<DownloadTable>(std::chrono::milliseconds(
           static_cast<std::int64_t>(config_.limits.download_ttl_s * 1000.0)))),
       facts_(std::make_shared<FileFactsCache>()),
       site_(site ? std::move(site) : std::make_shared<const StaticSite>()),
+      activity_(std::move(activity)),
       token_(std::move(token)) {
     if (config_.placements.size() != config_.field.screens.size())
         throw std::invalid_argument("a service needs one field placement per screen");
 }
 
 void Service::prepare_files(const std::vector<std::filesystem::path>& files) const { facts_->prepare(files); }
+
+void Service::session_ended(const SessionState& state) const {
+    if (state.welcomed && activity_) activity_->left(state.id);
+}
 
 void Service::set_token(std::string token) {
     std::lock_guard lock(token_mutex_);
@@ -151,6 +156,7 @@ Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime no
         return out;
     }
     state.welcomed = true;
+    state.id = next_session_++;
     state.aims = aim_bucket(config_.limits);
     state.grabs = grab_bucket(config_.limits);
     out.close = false;
@@ -169,7 +175,8 @@ std::optional<p::Message> Service::aim(SessionState& state, const p::Aim& aim, S
         return p::Error{aim.id, p::ErrorCode::rate_limited, text};
     }
     p::Target target{aim.id, aim.point, p::ContentKind::none, ""};
-    if (const auto point = screen_point(aim.point)) {
+    const auto point = screen_point(aim.point);
+    if (point) {
         try {
             const Resolved found = resolve(*point, Purpose::preview);
             target.kind = found.kind;
@@ -178,6 +185,7 @@ std::optional<p::Message> Service::aim(SessionState& state, const p::Aim& aim, S
             // A preview that fails says nothing; the grab reports the failure.
         }
     }
+    if (activity_) activity_->aimed({state.id, aim.point, point, aim.confidence, target.kind, target.title});
     return target;
 }
 
@@ -265,9 +273,9 @@ Outcome Service::handle(SessionState& state, const p::ParseResult& parsed, Stead
         [&](const auto& m) {
             using T = std::decay_t<decltype(m)>;
             if constexpr (std::is_same_v<T, p::Seeking>) {
-                // No reply. Counted with the aims; the overlay's on-demand
-                // activation listens for it.
-                state.aims.take(now);
+                // No reply. Counted with the aims (the excess is not
+                // reported); the overlay's on-demand activation listens.
+                if (state.aims.take(now) && activity_) activity_->seeking(state.id);
             } else if constexpr (std::is_same_v<T, p::Aim>) {
                 if (auto reply = aim(state, m, now)) out.replies.push_back(std::move(*reply));
             } else if constexpr (std::is_same_v<T, p::Grab>) {

@@ -4,6 +4,7 @@
 // order; `close` says to close the WebSocket afterwards.
 #pragma once
 
+#include <atomic>
 #include <chrono>
 #include <map>
 #include <memory>
@@ -15,6 +16,7 @@
 #include "content/download_table.hpp"
 #include "content/file_facts.hpp"
 #include "content/resolver.hpp"
+#include "server/activity.hpp"
 #include "overlay/placement.hpp"
 #include "protocol/messages.hpp"
 #include "server/rate_limit.hpp"
@@ -45,6 +47,7 @@ ServiceConfig default_service_config(int screen_width_px = 1920, int screen_heig
 // What one connection has established so far, and its rate limits.
 struct SessionState {
     bool welcomed = false;
+    std::uint64_t id = 0;  // given at the welcome; for the activity listener
     std::string peer;  // the remote address, for per-address limits on wrong tokens
     TokenBucket aims;
     TokenBucket grabs;
@@ -65,8 +68,9 @@ inline constexpr std::chrono::seconds kWrongTokenWindow{60};
 class Service {
 public:
     // Resolvers are asked in order. No site: the built-in page.
+    // The activity listener hears of every seeking, aim and session end.
     Service(ServiceConfig config, std::string token, std::vector<std::shared_ptr<const Resolver>> resolvers = {},
-            std::shared_ptr<const StaticSite> site = nullptr);
+            std::shared_ptr<const StaticSite> site = nullptr, std::shared_ptr<ActivityListener> activity = nullptr);
 
     // One text frame. Before the welcome: a hello with the token gets the
     // welcome, anything else an error and `close`. After it: seeking gets
@@ -90,6 +94,9 @@ public:
     // carry a SHA-256 and wait for nothing.
     void prepare_files(const std::vector<std::filesystem::path>& files) const;
 
+    // A connection ends (the session calls this once, welcomed or not).
+    void session_ended(const SessionState& state) const;
+
     // Replaces the token; sessions already welcomed stay.
     void set_token(std::string token);
     const ServiceConfig& config() const { return config_; }
@@ -108,6 +115,8 @@ private:
     std::shared_ptr<DownloadTable> downloads_;
     std::shared_ptr<FileFactsCache> facts_;
     std::shared_ptr<const StaticSite> site_;
+    std::shared_ptr<ActivityListener> activity_;
+    mutable std::atomic<std::uint64_t> next_session_{1};
     mutable std::mutex token_mutex_;
     std::string token_;
     struct WrongTokens {

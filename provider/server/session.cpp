@@ -59,6 +59,7 @@ Session::Session(net::ip::tcp::socket&& socket, ssl::context& tls, std::shared_p
 }
 
 Session::~Session() {
+    service_->session_ended(state_);
     if (registry_) registry_->remove(this);
 }
 

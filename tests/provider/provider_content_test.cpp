@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <thread>
 
 #include "content/board_resolver.hpp"
@@ -226,6 +227,54 @@ TEST_F(ProviderContent, PublicModeWelcomesAnyoneToTheBoardOnly) {
     shared->add(a);  // shared on the desktop, but not resolved in public mode
     EXPECT_EQ(std::get<p::Content>(one(grab_text("g1", 50, 5))).kind, p::ContentKind::none);
     EXPECT_EQ(std::get<p::Content>(one(grab_text("g2", 10, 5))).kind, p::ContentKind::file);
+}
+
+// What an overlay would hear.
+struct RecordingListener : ActivityListener {
+    std::mutex mutex;
+    std::vector<std::string> events;
+    std::vector<AimActivity> aims;
+    void seeking(std::uint64_t session) override {
+        std::lock_guard lock(mutex);
+        events.push_back("seeking " + std::to_string(session));
+    }
+    void aimed(const AimActivity& aim) override {
+        std::lock_guard lock(mutex);
+        events.push_back("aim " + std::to_string(aim.session));
+        aims.push_back(aim);
+    }
+    void left(std::uint64_t session) override {
+        std::lock_guard lock(mutex);
+        events.push_back("left " + std::to_string(session));
+    }
+};
+
+TEST_F(ProviderContent, TheOverlayHearsWhoSeeksAimsAndLeaves) {
+    auto listener = std::make_shared<RecordingListener>();
+    Board board;
+    board.items.push_back({"Report", report, std::nullopt, std::nullopt, std::nullopt});
+    Service s(default_service_config(1920, 1080), kToken,
+              {std::make_shared<BoardResolver>(board, std::vector<PixelRect>{{0, 0, 960, 1080}})}, nullptr, listener);
+    SessionState a, b, stranger;
+    s.handle_text(a, p::encode(p::Hello{std::nullopt, kToken, "a"}), now);
+    s.handle_text(b, p::encode(p::Hello{std::nullopt, kToken, "b"}), now);
+    s.handle_text(stranger, p::encode(p::Hello{std::nullopt, "wrong-token-0123456789abcdef", "x"}), now);
+    ASSERT_NE(a.id, b.id);
+    s.handle_text(a, R"({"type":"seeking","v":1})", now);
+    s.handle_text(b, aim_text(1, 10, 10), now);
+    s.handle_text(b, aim_text(2, 70, 10), now);  // off the field
+    s.session_ended(a);
+    s.session_ended(stranger);  // never welcomed: nothing to tell
+    s.session_ended(b);
+    const std::string ia = std::to_string(a.id), ib = std::to_string(b.id);
+    EXPECT_EQ(listener->events, (std::vector<std::string>{"seeking " + ia, "aim " + ib, "aim " + ib, "left " + ia,
+                                                          "left " + ib}));
+    ASSERT_EQ(listener->aims.size(), 2u);
+    ASSERT_TRUE(listener->aims[0].screen);
+    EXPECT_DOUBLE_EQ(listener->aims[0].screen->x, 300.0);
+    EXPECT_EQ(listener->aims[0].title, "Report");
+    EXPECT_DOUBLE_EQ(listener->aims[0].confidence, 0.9);
+    EXPECT_FALSE(listener->aims[1].screen);
 }
 
 TEST(ProviderDownloads, LinksExpireAndTheTableStaysBounded) {
