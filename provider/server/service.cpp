@@ -8,7 +8,6 @@
 #include <type_traits>
 
 #include "overlay/preset.hpp"
-#include "screen/screen_field.hpp"
 #include "server/pairing.hpp"
 
 #ifndef UMF_PROVIDER_VERSION
@@ -36,31 +35,32 @@ TokenBucket grab_bucket(const p::Limits& limits) {
 
 }  // namespace
 
-ServiceConfig default_service_config(int screen_width_px, int screen_height_px, const std::string& screen_name) {
+ServiceConfig service_config_for(const DesktopLayout& layout) {
     ServiceConfig c;
     char host[HOST_NAME_MAX + 1] = {};
     c.provider.name = ::gethostname(host, sizeof host - 1) == 0 && host[0] ? host : "umf-provider";
     c.provider.software = std::string("umf-provider/") + UMF_PROVIDER_VERSION;
-
-    const ScreenField screen_field = screen_field_for(screen_width_px, screen_height_px);
-    c.field.definition = screen_field.field;
-    const auto area = overlay::visible_area(screen_field.placement, screen_field.field.width,
-                                            screen_field.field.height, screen_width_px, screen_height_px);
-    if (!area) throw std::logic_error("the default field does not meet its screen");
-    p::Screen screen;
-    screen.name = screen_name;
-    screen.region = {area->u0, area->v0, area->u1, area->v1};
-    screen.width_px = screen_width_px;
-    screen.height_px = screen_height_px;
-    c.field.screens.push_back(screen);
-    c.placements.push_back(screen_field.placement);
-
+    c.field.definition = layout.field;
+    for (const auto& laid : layout.screens) {
+        p::Screen screen;
+        screen.name = laid.screen.name;
+        screen.region = {laid.region.u0, laid.region.v0, laid.region.u1, laid.region.v1};
+        screen.width_px = laid.screen.width;
+        screen.height_px = laid.screen.height;
+        c.field.screens.push_back(screen);
+        c.placements.push_back(laid.field.placement);
+        c.desktop_offsets.push_back({laid.screen.x, laid.screen.y});
+    }
     const auto presets = overlay::built_in_presets();
     const overlay::Preset* balanced = overlay::find_preset(presets, "balanced");
     if (!balanced) throw std::logic_error("the built-in preset \"balanced\" is missing");
     c.overlay = p::overlay_info(*balanced);
     c.limits = p::Limits{};
     return c;
+}
+
+ServiceConfig default_service_config(int screen_width_px, int screen_height_px, const std::string& screen_name) {
+    return service_config_for(lay_out_desktop({{screen_name, 0, 0, screen_width_px, screen_height_px}}));
 }
 
 Service::Service(ServiceConfig config, std::string token, std::vector<std::shared_ptr<const Resolver>> resolvers,
@@ -75,6 +75,7 @@ Service::Service(ServiceConfig config, std::string token, std::vector<std::share
       token_(std::move(token)) {
     if (config_.placements.size() != config_.field.screens.size())
         throw std::invalid_argument("a service needs one field placement per screen");
+    config_.desktop_offsets.resize(config_.placements.size(), {0, 0});
 }
 
 void Service::prepare_files(const std::vector<std::filesystem::path>& files) const { facts_->prepare(files); }
@@ -103,8 +104,8 @@ std::optional<ScreenPoint> Service::screen_point(p::FieldPoint point) const {
         out.screen = static_cast<int>(i);
         out.x = s.x;
         out.y = s.y;
-        out.root_x = s.x;
-        out.root_y = s.y;
+        out.root_x = s.x + config_.desktop_offsets[i][0];
+        out.root_y = s.y + config_.desktop_offsets[i][1];
         return out;
     }
     return std::nullopt;

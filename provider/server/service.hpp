@@ -4,6 +4,7 @@
 // order; `close` says to close the WebSocket afterwards.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <map>
@@ -16,6 +17,7 @@
 #include "content/download_table.hpp"
 #include "content/file_facts.hpp"
 #include "content/resolver.hpp"
+#include "screen/desktop_layout.hpp"
 #include "server/activity.hpp"
 #include "overlay/placement.hpp"
 #include "protocol/messages.hpp"
@@ -27,8 +29,10 @@ namespace umf::provider {
 struct ServiceConfig {
     protocol::ProviderInfo provider;
     protocol::FieldInfo field;
-    // Where the field lies on each of field.screens, in the same order.
+    // Where the field lies on each of field.screens, in the same order, and
+    // where each screen's top-left corner is on the desktop (X11 root window).
     std::vector<overlay::FieldPlacement> placements;
+    std::vector<std::array<int, 2>> desktop_offsets;
     protocol::OverlayInfo overlay;
     protocol::Limits limits;
     // Files above this are refused with too_large.
@@ -38,9 +42,11 @@ struct ServiceConfig {
     bool public_mode = false;
 };
 
-// The shipped default field for one screen of the given size
-// (screen/screen_field.hpp), the `balanced` preset, the protocol's default
-// limits and this host's name. Throws when the field file cannot be loaded.
+// The screens and the field of a desktop layout, the `balanced` preset, the
+// protocol's default limits and this host's name.
+ServiceConfig service_config_for(const DesktopLayout& layout);
+// The same for one screen of the given size at the desktop's origin. Throws
+// when the field file cannot be loaded.
 ServiceConfig default_service_config(int screen_width_px = 1920, int screen_height_px = 1080,
                                      const std::string& screen_name = "screen");
 
