@@ -1,10 +1,11 @@
-// The QGuiApplication the provider's painting tests need (text needs fonts,
+// The QApplication (widgets need one; painting needs at least a
+// QGuiApplication) the provider's painting and tuning tests need (text needs fonts,
 // fonts need the application). Made once, on the offscreen platform, and
 // never destroyed: tearing it down during static destruction would race Qt's
 // own global objects.
 #pragma once
 
-#include <QGuiApplication>
+#include <QApplication>
 
 namespace umf::test {
 
@@ -14,7 +15,7 @@ inline void ensure_gui_application() {
     static char name[] = "umf_tests";
     static char* argv[] = {name, nullptr};
     qputenv("QT_QPA_PLATFORM", "offscreen");
-    new QGuiApplication(argc, argv);  // lives as long as the process
+    new QApplication(argc, argv);  // lives as long as the process
 }
 
 }  // namespace umf::test

@@ -1,0 +1,216 @@
+#include "overlay/overlay_manager.hpp"
+
+#include <QGuiApplication>
+#include <QScreen>
+#include <algorithm>
+#include <cmath>
+
+#include "overlay/pulse.hpp"
+
+namespace umf::provider {
+
+namespace {
+
+constexpr double kMaxPulseHz = 60.0;
+// One level of an 8-bit screen: a smaller change cannot show.
+constexpr double kOpacityStep = 1.0 / 255.0;
+// How often the windows are raised again: see OverlayWindow's flags. Rare
+// enough to cost nothing, often enough that a window put above them by the
+// window manager covers the field only briefly.
+constexpr int kRaiseIntervalMs = 1000;
+
+QSize physical_size(const QScreen* screen) {
+    const double dpr = screen->devicePixelRatio();
+    return {qRound(screen->geometry().width() * dpr), qRound(screen->geometry().height() * dpr)};
+}
+
+}  // namespace
+
+struct OverlayManager::Entry {
+    QScreen* screen = nullptr;
+    int index = 0;
+    std::unique_ptr<OverlayWindow> window;
+    std::optional<QPointF> focus;
+};
+
+OverlayManager::OverlayManager(overlay::Preset preset, QObject* parent)
+    : QObject(parent), preset_(std::move(preset)) {
+    clock_.start();
+    for (QScreen* screen : QGuiApplication::screens()) add_screen(screen);
+    connect(qGuiApp, &QGuiApplication::screenAdded, this, [this](QScreen* screen) {
+        add_screen(screen);
+        notify();
+    });
+    connect(qGuiApp, &QGuiApplication::screenRemoved, this, [this](QScreen* screen) {
+        remove_screen(screen);
+        notify();
+    });
+    connect(&pulse_timer_, &QTimer::timeout, this, [this] { tick(); });
+    connect(&raise_timer_, &QTimer::timeout, this, [this] {
+        for (auto& entry : entries_)
+            if (entry->window->isVisible()) entry->window->raise();
+    });
+    raise_timer_.start(kRaiseIntervalMs);
+    retime();
+    tick();
+}
+
+OverlayManager::~OverlayManager() = default;
+
+void OverlayManager::add_screen(QScreen* screen) {
+    auto entry = std::make_unique<Entry>();
+    entry->screen = screen;
+    entry->index = next_index_++;
+    const QSize size = physical_size(screen);
+    entry->window = std::make_unique<OverlayWindow>(screen, screen_field_for(size.width(), size.height()),
+                                                    preset_.palette);
+    entry->window->set_opacity(std::max(applied_opacity_, 0.0));
+    Entry* raw = entry.get();
+    auto refit_this = [this, raw] {
+        refit(*raw);
+        notify();
+    };
+    connect(screen, &QScreen::geometryChanged, this, refit_this);
+    connect(screen, &QScreen::physicalDotsPerInchChanged, this, refit_this);
+    connect(screen, &QScreen::logicalDotsPerInchChanged, this, refit_this);
+    connect(screen, &QScreen::refreshRateChanged, this, [this] { retime(); });
+    entries_.push_back(std::move(entry));
+    if (applied_opacity_ > 0 && visible_ && snapshot_depth_ == 0) raw->window->show();
+    retime();
+}
+
+void OverlayManager::remove_screen(QScreen* screen) {
+    disconnect(screen, nullptr, this, nullptr);
+    std::erase_if(entries_, [screen](const auto& entry) { return entry->screen == screen; });
+    retime();
+}
+
+void OverlayManager::refit(Entry& entry) {
+    entry.window->cover_screen();
+    const QSize size = physical_size(entry.screen);
+    const ScreenField& field = entry.window->screen_field();
+    if (size.width() != field.screen_width || size.height() != field.screen_height)
+        entry.window->set_field(screen_field_for(size.width(), size.height()), preset_.palette);
+    set_focus(entry.index, entry.focus);
+}
+
+void OverlayManager::retime() {
+    double hz = 0;
+    for (const auto& entry : entries_) hz = std::max(hz, entry->screen->refreshRate());
+    if (hz <= 0 || hz > kMaxPulseHz) hz = kMaxPulseHz;
+    pulse_timer_.setInterval(static_cast<int>(std::ceil(1000.0 / hz)));
+    pulse_timer_.setTimerType(Qt::PreciseTimer);
+}
+
+void OverlayManager::set_preset(const overlay::Preset& preset) {
+    const bool new_palette = preset.palette != preset_.palette;
+    preset_ = preset;
+    for (auto& entry : entries_) {
+        if (new_palette) entry->window->set_field(entry->window->screen_field(), preset_.palette);
+        set_focus(entry->index, entry->focus);
+    }
+    pulse_timer_.start();
+    tick();
+}
+
+void OverlayManager::note_request() {
+    last_request_ms_ = clock_.elapsed();
+    if (!pulse_timer_.isActive()) pulse_timer_.start();
+    tick();
+}
+
+void OverlayManager::tick() {
+    const qint64 now = clock_.elapsed();
+    std::optional<double> since;
+    if (last_request_ms_) since = static_cast<double>(now - *last_request_ms_) / 1000.0;
+    const double presence = overlay::presence(preset_, since);
+    const double opacity = overlay::mixed_opacity(preset_, static_cast<double>(now) / 1000.0, since);
+    if (std::abs(opacity - applied_opacity_) >= kOpacityStep || (opacity == 0) != (applied_opacity_ == 0))
+        apply_shown(opacity);
+    // Nothing moves until the next request or preset: no wake-ups meanwhile.
+    const bool idle = presence == 0 || (presence == 1 && preset_.activation == overlay::Activation::always &&
+                                        preset_.period_s == 0);
+    if (idle)
+        pulse_timer_.stop();
+    else if (!pulse_timer_.isActive())
+        pulse_timer_.start();
+}
+
+void OverlayManager::apply_shown(double opacity) {
+    applied_opacity_ = opacity;
+    // An invisible field is unmapped rather than composited at opacity 0.
+    const bool shown = visible_ && snapshot_depth_ == 0 && opacity > 0;
+    for (auto& entry : entries_) {
+        OverlayWindow& window = *entry->window;
+        if (shown) {
+            window.set_opacity(opacity);
+            if (!window.isVisible()) {
+                window.show();
+                window.raise();
+            }
+        } else if (window.isVisible()) {
+            window.hide();
+        }
+    }
+}
+
+OverlayManager::Entry* OverlayManager::entry_for(int index) {
+    for (auto& entry : entries_)
+        if (entry->index == index) return entry.get();
+    return nullptr;
+}
+
+void OverlayManager::set_focus(int index, std::optional<QPointF> centre_px) {
+    Entry* entry = entry_for(index);
+    if (!entry) return;
+    entry->focus = centre_px;
+    const bool focused = preset_.region == overlay::Region::focus;
+    const double radius = preset_.focus_radius_modules * entry->window->screen_field().placement.module_px;
+    // Focus without an aim point yet: nothing of the field is shown.
+    entry->window->set_focus(focused ? std::optional<QPointF>(centre_px.value_or(QPointF(-1e6, -1e6)))
+                                     : std::nullopt,
+                             radius);
+}
+
+void OverlayManager::set_pointer(int index, std::optional<QPointF> point_px, const QString& title) {
+    if (Entry* entry = entry_for(index)) entry->window->set_pointer(point_px, title);
+}
+
+void OverlayManager::set_visible(bool visible) {
+    visible_ = visible;
+    apply_shown(std::max(applied_opacity_, 0.0));
+}
+
+void OverlayManager::hide_for_snapshot() {
+    ++snapshot_depth_;
+    apply_shown(std::max(applied_opacity_, 0.0));
+}
+
+void OverlayManager::show_after_snapshot() {
+    snapshot_depth_ = std::max(0, snapshot_depth_ - 1);
+    apply_shown(std::max(applied_opacity_, 0.0));
+}
+
+std::vector<OverlayScreen> OverlayManager::screens() const {
+    std::vector<OverlayScreen> out;
+    for (const auto& entry : entries_) {
+        // Qt keeps a screen's origin in native pixels and scales its size:
+        // the root rectangle is the origin with the physical size.
+        const QSize size = physical_size(entry->screen);
+        out.push_back({entry->index, entry->screen->name(),
+                       QRect(entry->screen->geometry().topLeft(), size), entry->window->screen_field()});
+    }
+    return out;
+}
+
+std::vector<OverlayWindow*> OverlayManager::windows() const {
+    std::vector<OverlayWindow*> out;
+    for (const auto& entry : entries_) out.push_back(entry->window.get());
+    return out;
+}
+
+void OverlayManager::notify() {
+    if (screens_changed_) screens_changed_();
+}
+
+}  // namespace umf::provider
