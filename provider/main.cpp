@@ -21,7 +21,7 @@ const char* kUsageText = R"(umf-provider: show a marker field and serve what it 
 usage:
   umf-provider [serve] [--board BOARD.json] [--preset NAME] [--port P] [--headless]
                [--screen WxH] [--public] [--bind ADDR] [--host HOST] [--web DIR]
-               [--config-dir DIR] [--no-qr]
+               [--config-dir DIR] [--no-qr] [--no-overlay]
   umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate] [--no-qr]
   umf-provider share FILE|URL --rect X,Y,W,H [--title T] [--screen N] [--port P]
   umf-provider share --list | --remove ID [--port P]
@@ -34,6 +34,9 @@ serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /w
          pairing URL and its QR code, and serves until SIGINT or SIGTERM.
          Without a display, or with --headless, the screen is virtual (--screen,
          default 1920x1080) and shows BOARD.json, or the built-in demo board.
+         On a desktop with --board the board fills the screen; without one the
+         field is mixed over every screen (a compositing manager must run;
+         --no-overlay leaves it out) and pointing takes the window there.
          --public (kiosks) welcomes any requester and serves board items only.
 pair     prints the pairing URL and its QR code; --rotate makes a new token
          first, which unpairs every requester (a running provider keeps the

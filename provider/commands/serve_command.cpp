@@ -8,6 +8,7 @@
 #include <QScreen>
 #include <cstdlib>
 #include <iostream>
+#include <chrono>
 #include <memory>
 #include <atomic>
 #include <thread>
@@ -19,7 +20,11 @@
 #include "content/shared_items.hpp"
 #include "content/x11_snapshot.hpp"
 #include "content/x11_window.hpp"
+#include "overlay/compositor.hpp"
+#include "overlay/overlay_activity.hpp"
+#include "overlay/overlay_manager.hpp"
 #include "overlay/preset.hpp"
+#include "screen/desktop_layout.hpp"
 #include "screen/board_window.hpp"
 #include "screen/screen_field.hpp"
 #include "screen/screen_image.hpp"
@@ -35,7 +40,7 @@
 namespace umf::provider {
 
 const char* const kServeOptions[] = {"port", "bind", "host", "config-dir", "board", "preset", "screen", "web", nullptr};
-const char* const kServeFlags[] = {"headless", "public", "no-qr", nullptr};
+const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", nullptr};
 
 namespace {
 
@@ -114,6 +119,31 @@ int run_serve(const cli::Args& a) {
     if (public_mode && !board) throw UsageError("--public needs a board: it serves board items and nothing else");
     const overlay::Preset preset = preset_option(a, dir, board.has_value());
 
+    // On a desktop without a board: the overlay over every screen, when a
+    // compositor can mix it in (without one a translucent window is opaque).
+    std::unique_ptr<OverlayManager> overlay_manager;
+    std::shared_ptr<OverlayActivity> activity;
+    std::optional<DesktopLayout> layout;
+    if (!headless && !board && !has_flag(a, "no-overlay")) {
+        const char* x = std::getenv("DISPLAY");
+        if (!x || !*x || !compositor_running(std::string(x), 0)) {
+            std::cerr << "umf-provider: no compositing manager runs on this display, so the field cannot be mixed "
+                         "into the screen. "
+                      << compositor_advice() << "\n";
+        } else {
+            overlay_manager = std::make_unique<OverlayManager>(preset);
+            std::vector<DesktopScreen> desktop;
+            std::vector<int> indices;
+            for (const auto& screen : overlay_manager->screens()) {
+                desktop.push_back({screen.name.toStdString(), screen.root_rect.x(), screen.root_rect.y(),
+                                   screen.root_rect.width(), screen.root_rect.height()});
+                indices.push_back(screen.index);
+            }
+            layout = lay_out_desktop(desktop);
+            activity = std::make_shared<OverlayActivity>(overlay_manager.get(), std::move(indices));
+        }
+    }
+
     std::vector<std::shared_ptr<const Resolver>> resolvers;
     auto shared_items = std::make_shared<SharedItems>();
     QImage screen_image(width, height, QImage::Format_RGB32);
@@ -134,7 +164,20 @@ int run_serve(const cli::Args& a) {
                 X11WindowOptions options;
                 options.filter.own_pids.insert(static_cast<int>(::getpid()));
                 resolvers.push_back(std::make_shared<X11WindowResolver>(desktop, options));
-                resolvers.push_back(std::make_shared<X11SnapshotResolver>(desktop, options.filter, true));
+                auto snapshots = std::make_shared<X11SnapshotResolver>(desktop, options.filter, true);
+                if (overlay_manager) {
+                    // A snapshot shows the screen without the field. Called
+                    // from a server thread; the server stops before the Qt
+                    // loop does, so the blocking call always returns.
+                    OverlayManager* m = overlay_manager.get();
+                    snapshots->set_around_capture(
+                        [m] {
+                            QMetaObject::invokeMethod(m, [m] { m->hide_for_snapshot(); }, Qt::BlockingQueuedConnection);
+                            std::this_thread::sleep_for(std::chrono::milliseconds(OverlayManager::kSnapshotSettleMs));
+                        },
+                        [m] { QMetaObject::invokeMethod(m, [m] { m->show_after_snapshot(); }, Qt::QueuedConnection); });
+                }
+                resolvers.push_back(std::move(snapshots));
             } catch (const std::exception& e) {
                 std::cerr << "umf-provider: windows cannot be looked up (" << e.what()
                           << "); serving board and shared items only\n";
@@ -161,10 +204,11 @@ int run_serve(const cli::Args& a) {
     std::unique_ptr<Server> server;
     std::unique_ptr<ControlSocket> control;
     try {
-        ServiceConfig config = default_service_config(width, height, headless ? "headless" : "screen");
+        ServiceConfig config = layout ? service_config_for(*layout)
+                                      : default_service_config(width, height, headless ? "headless" : "screen");
         config.overlay = protocol::overlay_info(preset);
         config.public_mode = public_mode;
-        auto service = std::make_shared<const Service>(std::move(config), token, resolvers, site);
+        auto service = std::make_shared<const Service>(std::move(config), token, resolvers, site, activity);
         if (board) {
             std::vector<std::filesystem::path> files;
             for (const auto& item : board->items)
@@ -196,27 +240,39 @@ int run_serve(const cli::Args& a) {
     if (!has_flag(a, "no-qr")) std::cout << qr_text(url);
     std::cout << "pairing URL: " << url << "\n" << std::flush;
 
+    if (layout) {
+        std::cout << "overlay: " << layout->screens.size() << " screen(s), field " << layout->field.id << ", preset "
+                  << preset.name << " (" << overlay::to_string(preset.activation) << ")\n" << std::flush;
+    }
     int received = 0;
+    std::unique_ptr<BoardWindow> board_window;
     if (!headless && board) {
-        // The board in a full-screen window: the Qt event loop runs here and a
-        // thread waits for the signals, then ends the loop.
-        BoardWindow window(screen_image, field_layer(screen_field_for(width, height), preset.palette), preset,
-                           QGuiApplication::primaryScreen());
-        window.showFullScreen();
+        board_window = std::make_unique<BoardWindow>(
+            screen_image, field_layer(screen_field_for(width, height), preset.palette), preset,
+            QGuiApplication::primaryScreen());
+        board_window->showFullScreen();
+    }
+    if (board_window || overlay_manager) {
+        // Windows are up: the Qt event loop runs here, and a thread waits for
+        // the signals, stops the server (whose snapshots may wait on this
+        // loop) and then ends the loop.
         std::atomic<int> got{0};
         std::thread waiter([&] {
             int signal = 0;
             sigwait(&signals, &signal);
             got = signal;
+            std::cerr << "umf-provider: " << (signal == SIGINT ? "SIGINT" : "SIGTERM") << ", closing sessions\n";
+            control.reset();
+            server->stop();
             QMetaObject::invokeMethod(qApp, [] { QCoreApplication::quit(); }, Qt::QueuedConnection);
         });
         QGuiApplication::exec();
         if (got == 0) ::kill(::getpid(), SIGTERM);  // the loop ended otherwise: release the waiter
         waiter.join();
-        received = got;
-    } else {
-        sigwait(&signals, &received);
+        std::cerr << "umf-provider: stopped\n";
+        return kOk;
     }
+    sigwait(&signals, &received);
     std::cerr << "umf-provider: " << (received == SIGINT ? "SIGINT" : "SIGTERM") << ", closing sessions\n";
     control.reset();
     server->stop();

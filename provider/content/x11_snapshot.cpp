@@ -95,6 +95,11 @@ X11SnapshotResolver::X11SnapshotResolver(std::shared_ptr<const X11Desktop> deskt
     if (enabled_ && !desktop_) throw std::invalid_argument("X11SnapshotResolver: no X11 desktop");
 }
 
+void X11SnapshotResolver::set_around_capture(std::function<void()> before, std::function<void()> after) {
+    before_capture_ = std::move(before);
+    after_capture_ = std::move(after);
+}
+
 std::optional<Resolved> X11SnapshotResolver::resolve(const ScreenPoint& point, Purpose purpose) const {
     if (!enabled_) return std::nullopt;
     const auto window = desktop_->window_at(point.root_x, point.root_y, filter_);
@@ -106,6 +111,13 @@ std::optional<Resolved> X11SnapshotResolver::resolve(const ScreenPoint& point, P
     resolved.mime = "image/png";
     if (purpose == Purpose::preview) return resolved;
     const WindowRect rect = snapshot_rect(window->rect, desktop_->screen(), point.root_x, point.root_y);
+    if (before_capture_) before_capture_();
+    struct After {
+        const std::function<void()>& after;
+        ~After() {
+            if (after) after();
+        }
+    } restore{after_capture_};
     const Capture capture = desktop_->capture(rect);
     if (capture.pixels.empty()) return std::nullopt;
     resolved.bytes = std::make_shared<const std::string>(encode_png(capture));

@@ -4,6 +4,7 @@
 // or kiosk mode.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -35,6 +36,10 @@ class X11SnapshotResolver final : public Resolver {
 public:
     // enabled false (public and kiosk modes): never answers.
     X11SnapshotResolver(std::shared_ptr<const X11Desktop> desktop, WindowFilter filter, bool enabled);
+    // Called around each capture, from a server thread: the overlay hides
+    // itself (and waits until the screen shows it gone) and comes back, so a
+    // snapshot never holds the field.
+    void set_around_capture(std::function<void()> before, std::function<void()> after);
     const char* name() const override { return "snapshot"; }
     // An aim only names the window; a grab captures it (the frame included,
     // and whatever covers it, as the screen shows it).
@@ -44,6 +49,8 @@ private:
     std::shared_ptr<const X11Desktop> desktop_;
     WindowFilter filter_;
     bool enabled_;
+    std::function<void()> before_capture_;
+    std::function<void()> after_capture_;
 };
 
 }  // namespace umf::provider

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "overlay/pulse.hpp"
+#include "screen/desktop_layout.hpp"
 
 namespace umf::provider {
 
@@ -75,6 +76,7 @@ void OverlayManager::add_screen(QScreen* screen) {
     connect(screen, &QScreen::logicalDotsPerInchChanged, this, refit_this);
     connect(screen, &QScreen::refreshRateChanged, this, [this] { retime(); });
     entries_.push_back(std::move(entry));
+    relayout();
     if (applied_opacity_ > 0 && visible_ && snapshot_depth_ == 0) raw->window->show();
     retime();
 }
@@ -82,16 +84,42 @@ void OverlayManager::add_screen(QScreen* screen) {
 void OverlayManager::remove_screen(QScreen* screen) {
     disconnect(screen, nullptr, this, nullptr);
     std::erase_if(entries_, [screen](const auto& entry) { return entry->screen == screen; });
+    relayout();
     retime();
 }
 
 void OverlayManager::refit(Entry& entry) {
     entry.window->cover_screen();
-    const QSize size = physical_size(entry.screen);
-    const ScreenField& field = entry.window->screen_field();
-    if (size.width() != field.screen_width || size.height() != field.screen_height)
-        entry.window->set_field(screen_field_for(size.width(), size.height()), preset_.palette);
-    set_focus(entry.index, entry.focus);
+    relayout();
+}
+
+void OverlayManager::relayout() {
+    if (entries_.empty()) return;
+    std::vector<DesktopScreen> desktop;
+    for (const auto& entry : entries_) {
+        // Qt keeps a screen's origin in native pixels and scales its size.
+        const QSize size = physical_size(entry->screen);
+        const QPoint origin = entry->screen->geometry().topLeft();
+        desktop.push_back({entry->screen->name().toStdString(), origin.x(), origin.y(), size.width(), size.height()});
+    }
+    try {
+        // One field over all screens, so that a field point tells the screen.
+        const DesktopLayout layout = lay_out_desktop(desktop);
+        for (std::size_t i = 0; i < entries_.size(); ++i) {
+            const ScreenField& field = layout.screens[i].field;
+            const ScreenField& shown = entries_[i]->window->screen_field();
+            if (!(shown.placement == field.placement) || shown.field.id != field.field.id ||
+                shown.screen_width != field.screen_width || shown.screen_height != field.screen_height)
+                entries_[i]->window->set_field(field, preset_.palette);
+        }
+    } catch (const std::invalid_argument&) {
+        // Mirrored (overlapping) screens: each keeps the field of its own size.
+        for (auto& entry : entries_) {
+            const QSize size = physical_size(entry->screen);
+            entry->window->set_field(screen_field_for(size.width(), size.height()), preset_.palette);
+        }
+    }
+    for (auto& entry : entries_) set_focus(entry->index, entry->focus);
 }
 
 void OverlayManager::retime() {

@@ -4,10 +4,9 @@
 // 60 Hz) and touches a window only when the opacity moved by a level the
 // screen can show.
 //
-// Limitation: every screen shows the default field for its own size, so two
-// screens of one size show the same field and a location alone cannot tell
-// them apart. Each screen has its own index here; giving screens distinct
-// field regions is left to the field layout across screens.
+// The screens share one field (screen/desktop_layout.hpp), each showing its
+// own part, so a field point names the screen; mirrored screens, which
+// overlap, each show the field of their own size instead.
 #pragma once
 
 #include <QElapsedTimer>
@@ -76,6 +75,7 @@ private:
     void add_screen(QScreen* screen);
     void remove_screen(QScreen* screen);
     void refit(Entry& entry);
+    void relayout();
     void tick();
     void retime();
     void apply_shown(double opacity);

@@ -1,0 +1,65 @@
+#include "overlay/overlay_activity.hpp"
+
+#include <QMetaObject>
+
+namespace umf::provider {
+
+OverlayActivity::OverlayActivity(OverlayManager* manager, std::vector<int> screen_indices)
+    : manager_(manager), screen_indices_(std::move(screen_indices)) {}
+
+void OverlayActivity::seeking(std::uint64_t) {
+    OverlayManager* m = manager_;
+    QMetaObject::invokeMethod(m, [m] { m->note_request(); }, Qt::QueuedConnection);
+}
+
+void OverlayActivity::aimed(const AimActivity& aim) {
+    std::optional<int> index;
+    if (aim.screen && aim.screen->screen >= 0 && aim.screen->screen < static_cast<int>(screen_indices_.size()))
+        index = screen_indices_[aim.screen->screen];
+    std::optional<int> previous;
+    {
+        std::lock_guard lock(mutex_);
+        if (auto it = pointer_screen_.find(aim.session); it != pointer_screen_.end()) previous = it->second;
+        if (index) pointer_screen_[aim.session] = *index;
+        else pointer_screen_.erase(aim.session);
+    }
+    OverlayManager* m = manager_;
+    const QPointF at = aim.screen ? QPointF(aim.screen->x, aim.screen->y) : QPointF();
+    const QString title = QString::fromStdString(aim.title);
+    QMetaObject::invokeMethod(
+        m,
+        [m, index, previous, at, title] {
+            m->note_request();
+            if (previous && previous != index) {
+                m->set_pointer(*previous, std::nullopt, {});
+                m->set_focus(*previous, std::nullopt);
+            }
+            if (index) {
+                m->set_pointer(*index, at, title);
+                m->set_focus(*index, at);
+            }
+        },
+        Qt::QueuedConnection);
+}
+
+void OverlayActivity::left(std::uint64_t session) {
+    std::optional<int> previous;
+    {
+        std::lock_guard lock(mutex_);
+        if (auto it = pointer_screen_.find(session); it != pointer_screen_.end()) {
+            previous = it->second;
+            pointer_screen_.erase(it);
+        }
+    }
+    if (!previous) return;
+    OverlayManager* m = manager_;
+    QMetaObject::invokeMethod(
+        m,
+        [m, previous] {
+            m->set_pointer(*previous, std::nullopt, {});
+            m->set_focus(*previous, std::nullopt);
+        },
+        Qt::QueuedConnection);
+}
+
+}  // namespace umf::provider

@@ -1,0 +1,34 @@
+// The overlay hearing the requesters: a seeking or aiming requester brings an
+// on-demand field up, an aim moves the pointer ring (with the title of what a
+// grab would take) and the focus region to where it points, and a requester
+// that leaves takes its ring away. The service calls in from the server's
+// threads; everything is handed to the manager's (Qt) thread.
+#pragma once
+
+#include <map>
+#include <mutex>
+#include <vector>
+
+#include "overlay/overlay_manager.hpp"
+#include "server/activity.hpp"
+
+namespace umf::provider {
+
+class OverlayActivity : public ActivityListener {
+public:
+    // `screen_indices[i]`: the manager's index of the welcome's screen i.
+    // The manager must outlive the server that calls this.
+    OverlayActivity(OverlayManager* manager, std::vector<int> screen_indices);
+
+    void seeking(std::uint64_t session) override;
+    void aimed(const AimActivity& aim) override;
+    void left(std::uint64_t session) override;
+
+private:
+    OverlayManager* manager_;
+    std::vector<int> screen_indices_;
+    std::mutex mutex_;
+    std::map<std::uint64_t, int> pointer_screen_;  // session -> manager index of its ring
+};
+
+}  // namespace umf::provider

@@ -1,0 +1,134 @@
+// The desktop provider for real: Xvfb with openbox and a compositing manager
+// (xcompmgr), an xterm in the middle of the screen, and umf-provider mixing
+// its field over the desktop. A screenshot of the desktop holds the field at
+// the right place; umf-requester grabbing with that screenshot gets a
+// snapshot of the xterm, and the snapshot holds no field (the overlay hides
+// itself while the window is captured).
+#if defined(UMF_PROVIDER_TESTS) && defined(UMF_REQUESTER_TOOL)
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "content/x11_window.hpp"
+#include "detect/detector.hpp"
+#include "screen/screen_field.hpp"
+#include "support/process.hpp"
+#include "support/temp_dir.hpp"
+#include "support/x11_session.hpp"
+
+namespace {
+
+using namespace umf::provider;
+using namespace umf::test;
+
+TEST(DesktopOverlay, TheFieldIsOverTheDesktopAndNotInSnapshots) {
+    for (const char* program : {"Xvfb", "openbox", "xcompmgr", "xterm", "xdotool"})
+        if (!find_program(program))
+            GTEST_SKIP() << program << " is not installed (Debian: apt-get install xvfb openbox xcompmgr xterm xdotool)";
+    TempDir dir("umf-desktop-overlay");
+    const XServer server = start_xvfb(dir.path / "xvfb.log", "1920x1080x24");
+    const auto env = environment_with({{"DISPLAY", server.display}, {"HOME", dir.path.string()},
+                                       {"QT_QPA_PLATFORM", "xcb"}, {"XDG_CONFIG_HOME", (dir.path / "config").string()}});
+    auto options = [&](const std::string& log) {
+        Process::Options o;
+        o.cwd = dir.path;
+        o.env = env;
+        o.log = dir.path / log;
+        return o;
+    };
+    auto log_of = [&](const std::string& log) {
+        std::ifstream in(dir.path / log);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    };
+    const auto desktop = std::make_shared<const X11Desktop>(server.display);
+    Process openbox({"openbox", "--sm-disable"}, options("openbox.log"));
+    ASSERT_TRUE(wait_until([&] { return desktop->has_ewmh(); }, 10s)) << log_of("openbox.log");
+    Process compositor({"xcompmgr"}, options("xcompmgr.log"));
+    // An xterm in grey over the screen's centre, placed once openbox manages it.
+    std::unique_ptr<Process> xterm;
+    unsigned long term = 0;
+    for (int attempt = 0; attempt < 3 && !term; ++attempt) {
+        xterm = std::make_unique<Process>(
+            std::vector<std::string>{"xterm", "-bg", "#808080", "-fg", "#808080", "-T", "umf grey", "-e", "sleep", "60"},
+            options("xterm.log"));
+        const int pid = xterm->pid();
+        wait_until(
+            [&] {
+                for (const auto& w : desktop->windows())
+                    if (w.pid == pid) term = w.id;
+                return term != 0;
+            },
+            5s);
+    }
+    ASSERT_NE(term, 0u) << "xterm showed no window";
+    run({"xdotool", "windowsize", std::to_string(term), "600", "400", "windowmove", std::to_string(term), "660", "340"},
+        env);
+    ASSERT_TRUE(wait_until([&] { auto w = desktop->window_at(960, 540); return w && w->id == term; }, 5s));
+
+    Process provider({UMF_PROVIDER_TOOL, "--port", "0", "--no-qr", "--config-dir", (dir.path / "cfg").string(),
+                      "--preset", "visible"},
+                     options("provider.log"));
+    ASSERT_TRUE(wait_until([&] { return log_of("provider.log").find("overlay: 1 screen") != std::string::npos; }, 20s))
+        << log_of("provider.log");
+    const std::string text = log_of("provider.log");
+    const auto url_at = text.find("pairing URL: ");
+    ASSERT_NE(url_at, std::string::npos) << text;
+    const std::string url = text.substr(url_at + 13, text.find('\n', url_at) - url_at - 13);
+
+    // The field over the desktop, where the provider says it is.
+    const ScreenField field = screen_field_for(1920, 1080);
+    const umf::Detector detector(field.field);
+    cv::Mat bgr(1080, 1920, CV_8UC3);
+    umf::Detection found;
+    ASSERT_TRUE(wait_until(
+        [&] {
+            const Capture shot = desktop->capture({0, 0, 1920, 1080});
+            std::vector<std::uint8_t> grey(shot.pixels.size());
+            for (std::size_t i = 0; i < grey.size(); ++i) {
+                const std::uint32_t p = shot.pixels[i];
+                const std::uint8_t r = (p >> 16) & 255, g = (p >> 8) & 255, b = p & 255;
+                grey[i] = static_cast<std::uint8_t>((r * 77 + g * 150 + b * 29) >> 8);
+                bgr.at<cv::Vec3b>(static_cast<int>(i / 1920), static_cast<int>(i % 1920)) = {b, g, r};
+            }
+            found = detector.detect(umf::GreyView{grey.data(), 1920, 1080, 1920});
+            return found.found;
+        },
+        20s))
+        << "no field on the desktop: " << found.failure << "\n" << log_of("provider.log");
+    double u = 0, v = 0;
+    umf::overlay::screen_to_field(field.placement, 960, 540, u, v);
+    EXPECT_NEAR(found.aim_field.x(), u, 0.05);
+    EXPECT_NEAR(found.aim_field.y(), v, 0.05);
+
+    // A grab with that screenshot: the xterm has no document, so a snapshot.
+    const fs::path shot = dir.path / "desktop.png", out = dir.path / "received";
+    cv::imwrite(shot.string(), bgr);
+    const auto grabbed = run_command(std::string(UMF_REQUESTER_TOOL) + " grab --url '" + url + "' --image " +
+                                     shot.string() + " --out " + out.string() + " 2>" + (dir.path / "grab.log").string());
+    ASSERT_EQ(grabbed.exit_code, 0) << grabbed.out << log_of("grab.log");
+    const auto result = nlohmann::json::parse(grabbed.out.substr(0, grabbed.out.find('\n')));
+    EXPECT_EQ(result.value("kind", ""), "snapshot");
+    EXPECT_EQ(result.value("title", "").find("umf grey"), 0u) << result.dump();
+    const cv::Mat snapshot = cv::imread(result.value("saved", ""), cv::IMREAD_COLOR);
+    ASSERT_FALSE(snapshot.empty());
+    EXPECT_GE(snapshot.cols, 600);
+    EXPECT_GE(snapshot.rows, 400);
+    // The xterm is grey throughout (its text is grey on grey); with the field
+    // mixed in, half its pixels would be darker or lighter by a third.
+    long grey_pixels = 0, inside = 0;
+    for (int y = snapshot.rows / 4; y < snapshot.rows * 3 / 4; ++y)
+        for (int x = snapshot.cols / 4; x < snapshot.cols * 3 / 4; ++x) {
+            const cv::Vec3b p = snapshot.at<cv::Vec3b>(y, x);
+            ++inside;
+            grey_pixels += std::abs(p[0] - 0x80) <= 3 && std::abs(p[1] - 0x80) <= 3 && std::abs(p[2] - 0x80) <= 3;
+        }
+    EXPECT_GT(grey_pixels, inside * 95 / 100) << "the snapshot holds the field";
+    provider.stop();
+}
+
+}  // namespace
+
+#endif
