@@ -50,6 +50,11 @@ compose  writes the screen exactly as shown at time T (content, the board over
 --preset      overlay preset: subtle, balanced, visible, static, kiosk, or one
               of yours in CONFIG_DIR/presets.json (default: kiosk with a board,
               else balanced).
+--opacity-min A --opacity-max A --period S --waveform sine|triangle --module-px P
+--blur B --region full|focus --focus-radius M --activation always|on_demand
+--fade S --palette #rrggbb,#rrggbb
+              change the preset's settings for this run (see the tuning
+              window to keep them).
 --config-dir  where the TLS identity and the pairing token are kept
               (default $XDG_CONFIG_HOME/umf, else ~/.config/umf); made on first use.
 --host        the host name or address put in the pairing URL (default: the

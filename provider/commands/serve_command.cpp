@@ -15,6 +15,7 @@
 
 #include "board/board.hpp"
 #include "commands/common_options.hpp"
+#include "commands/preset_options.hpp"
 #include "content/board_resolver.hpp"
 #include "content/image_snapshot.hpp"
 #include "content/shared_items.hpp"
@@ -39,7 +40,10 @@
 
 namespace umf::provider {
 
-const char* const kServeOptions[] = {"port", "bind", "host", "config-dir", "board", "preset", "screen", "web", nullptr};
+const char* const kServeOptions[] = {"port",         "bind",        "host",   "config-dir", "board",
+                                     "preset",       "screen",      "web",    "opacity-min", "opacity-max",
+                                     "period",       "waveform",    "module-px", "blur",     "region",
+                                     "focus-radius", "activation",  "fade",   "palette",     nullptr};
 const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", nullptr};
 
 namespace {
@@ -117,7 +121,7 @@ int run_serve(const cli::Args& a) {
         return kConfigError;
     }
     if (public_mode && !board) throw UsageError("--public needs a board: it serves board items and nothing else");
-    const overlay::Preset preset = preset_option(a, dir, board.has_value());
+    const overlay::Preset preset = apply_preset_options(preset_option(a, dir, board.has_value()), a);
 
     // On a desktop without a board: the overlay over every screen, when a
     // compositor can mix it in (without one a translucent window is opaque).

@@ -1,0 +1,21 @@
+// A preset's settings on the command line, over the chosen preset:
+// `umf-provider --preset subtle --opacity-max 0.25 --period 3`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli/args.hpp"
+#include "overlay/preset.hpp"
+
+namespace umf::provider {
+
+// --opacity-min, --opacity-max, --period, --waveform, --module-px, --blur,
+// --region, --focus-radius, --activation, --fade, --palette.
+const std::vector<std::string>& preset_setting_options();
+
+// The preset with the settings given in `args` applied; UsageError naming
+// the option when a value is malformed or the result is not a valid preset.
+overlay::Preset apply_preset_options(overlay::Preset preset, const cli::Args& args);
+
+}  // namespace umf::provider
