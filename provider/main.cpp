@@ -1,5 +1,11 @@
 // umf-provider: show a marker field and serve what it points at.
+#include <pthread.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <QApplication>
 #include <cstring>
+#include <iostream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -10,6 +16,7 @@
 #include "commands/pair_command.hpp"
 #include "commands/serve_command.hpp"
 #include "screen/gui_application.hpp"
+#include "tuning/desktop_controls.hpp"
 #include "server/config_dir.hpp"
 
 namespace {
@@ -21,7 +28,7 @@ const char* kUsageText = R"(umf-provider: show a marker field and serve what it 
 usage:
   umf-provider [serve] [--board BOARD.json] [--preset NAME] [--port P] [--headless]
                [--screen WxH] [--public] [--bind ADDR] [--host HOST] [--web DIR]
-               [--config-dir DIR] [--no-qr] [--no-overlay]
+               [--config-dir DIR] [--no-qr] [--no-overlay] [--tune]
   umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate] [--no-qr]
   umf-provider share FILE|URL --rect X,Y,W,H [--title T] [--screen N] [--port P]
   umf-provider share --list | --remove ID [--port P]
@@ -37,6 +44,8 @@ serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /w
          On a desktop with --board the board fills the screen; without one the
          field is mixed over every screen (a compositing manager must run;
          --no-overlay leaves it out) and pointing takes the window there.
+         The tray icon switches the overlay and its preset and opens the
+         tuning window (--tune opens it at start) and the pairing QR code.
          --public (kiosks) welcomes any requester and serves board items only.
 pair     prints the pairing URL and its QR code; --rotate makes a new token
          first, which unpairs every requester (a running provider keeps the
@@ -84,8 +93,33 @@ int dispatch(int argc, char** argv) {
     if (command == "serve") {
         const auto args = parse_command_args(argc, argv, first, names(kServeOptions), names(kServeFlags));
         const bool headless = umf::cli::has_flag(args, "headless");
+        // SIGINT and SIGTERM are taken by run_serve with sigwait: blocked
+        // before Qt starts threads of its own (the xcb event reader), which
+        // would otherwise receive them and die with the default action.
+        sigset_t signals;
+        sigemptyset(&signals);
+        sigaddset(&signals, SIGINT);
+        sigaddset(&signals, SIGTERM);
+        pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+        // On a desktop the tray and the tuning window need Qt Widgets.
         auto app = make_gui_application(argc, argv, headless);
-        return run_serve(args);
+        if (!headless && QGuiApplication::platformName() != "offscreen") {
+            app.reset();
+            app = std::make_unique<QApplication>(argc, argv);
+            QApplication::setQuitOnLastWindowClosed(false);
+        }
+        ServeHooks hooks;
+        if (qobject_cast<QApplication*>(app.get()))
+            hooks.desktop_controls = [](OverlayManager& overlay, const std::string& presets_file,
+                                        const std::string& pairing_url, bool tune) -> std::shared_ptr<void> {
+                auto controls = std::make_shared<DesktopControls>(overlay, presets_file, pairing_url,
+                                                                  [] { ::kill(::getpid(), SIGTERM); });
+                if (tune) controls->show_tuning();
+                if (!controls->has_tray())
+                    std::cerr << "umf-provider: no system tray here; --tune opens the tuning window\n";
+                return controls;
+            };
+        return run_serve(args, hooks);
     }
     if (command == "pair")
         return run_pair(parse_command_args(argc, argv, first, {"port", "host", "config-dir"}, {"rotate", "no-qr"}));

@@ -44,7 +44,7 @@ const char* const kServeOptions[] = {"port",         "bind",        "host",   "c
                                      "preset",       "screen",      "web",    "opacity-min", "opacity-max",
                                      "period",       "waveform",    "module-px", "blur",     "region",
                                      "focus-radius", "activation",  "fade",   "palette",     nullptr};
-const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", nullptr};
+const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", nullptr};
 
 namespace {
 
@@ -76,7 +76,7 @@ overlay::Preset preset_option(const cli::Args& a, const std::filesystem::path& c
 
 }  // namespace
 
-int run_serve(const cli::Args& a) {
+int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     const unsigned short port = port_option(a);
     const std::string bind = get(a, "bind").value_or("127.0.0.1");
     const std::string host = url_host(a, bind);
@@ -255,6 +255,15 @@ int run_serve(const cli::Args& a) {
             screen_image, field_layer(screen_field_for(width, height), preset.palette), preset,
             QGuiApplication::primaryScreen());
         board_window->showFullScreen();
+    }
+    std::shared_ptr<void> controls;
+    if (overlay_manager && hooks.desktop_controls) {
+        try {
+            controls = hooks.desktop_controls(*overlay_manager, (dir / "presets.json").string(), url,
+                                              has_flag(a, "tune"));
+        } catch (const std::exception& e) {
+            std::cerr << "umf-provider: no tray or tuning window: " << e.what() << "\n";
+        }
     }
     if (board_window || overlay_manager) {
         // Windows are up: the Qt event loop runs here, and a thread waits for

@@ -3,15 +3,30 @@
 // unless --board names one; on a desktop it serves what lies under the point.
 #pragma once
 
+#include <functional>
+#include <memory>
+#include <string>
+
 #include "cli/args.hpp"
 
 namespace umf::provider {
+
+class OverlayManager;
+
+// What the executable adds on a desktop (Qt Widgets live outside the core):
+// the controls for a running overlay, kept alive while it runs.
+struct ServeHooks {
+    // `tune`: open the tuning window now.
+    std::function<std::shared_ptr<void>(OverlayManager& overlay, const std::string& presets_file,
+                                        const std::string& pairing_url, bool tune)>
+        desktop_controls;
+};
 
 extern const char* const kServeOptions[];
 extern const char* const kServeFlags[];
 
 // Needs a QGuiApplication (main makes it). Returns the exit code after
 // SIGINT or SIGTERM.
-int run_serve(const cli::Args& args);
+int run_serve(const cli::Args& args, const ServeHooks& hooks = {});
 
 }  // namespace umf::provider

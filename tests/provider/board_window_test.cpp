@@ -130,7 +130,10 @@ TEST(BoardWindow, TheProvidersBoardOnAnXServerCarriesThePulsingField) {
     for (std::size_t i = 0; i < grey.size(); ++i) differing += std::abs(grey[i] - later[i]) > 4;
     EXPECT_GT(differing, 100000) << "the field does not pulse";
 
-    provider.stop();
+    ::kill(provider.pid(), SIGTERM);
+    const auto status = provider.wait_exit(10s);
+    ASSERT_TRUE(status) << "the provider did not stop";
+    EXPECT_EQ(*status, 0) << log();
 }
 
 }  // namespace

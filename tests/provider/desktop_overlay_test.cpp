@@ -126,7 +126,12 @@ TEST(DesktopOverlay, TheFieldIsOverTheDesktopAndNotInSnapshots) {
             grey_pixels += std::abs(p[0] - 0x80) <= 3 && std::abs(p[1] - 0x80) <= 3 && std::abs(p[2] - 0x80) <= 3;
         }
     EXPECT_GT(grey_pixels, inside * 95 / 100) << "the snapshot holds the field";
-    provider.stop();
+    // SIGTERM ends it cleanly, its windows and the Qt loop included.
+    ::kill(provider.pid(), SIGTERM);
+    const auto status = provider.wait_exit(10s);
+    ASSERT_TRUE(status) << "the provider did not stop";
+    EXPECT_EQ(*status, 0) << log_of("provider.log");
+    EXPECT_NE(log_of("provider.log").find("umf-provider: stopped"), std::string::npos);
 }
 
 }  // namespace

@@ -1,0 +1,43 @@
+// What the person at the desk controls the running provider with: the tray
+// icon's menu (overlay on/off, preset, tuning, pairing QR code, quit) and
+// the tuning window, which changes the overlay live. Without a system tray
+// (or with --tune) the tuning window is opened on request at start-up.
+#pragma once
+
+#include <QImage>
+#include <QLabel>
+#include <memory>
+#include <string>
+
+#include "overlay/overlay_manager.hpp"
+#include "tuning/preset_store.hpp"
+#include "tuning/tray_menu.hpp"
+#include "tuning/tuning_window.hpp"
+
+namespace umf::provider {
+
+// The pairing URL's QR code as an image, `scale` pixels a module, with a
+// quiet zone of 4 modules.
+QImage pairing_qr_image(const std::string& url, int scale = 6);
+
+class DesktopControls {
+public:
+    // Needs a QApplication; the manager must outlive the controls.
+    DesktopControls(OverlayManager& overlay, std::string presets_file, std::string pairing_url,
+                    std::function<void()> quit);
+    bool has_tray() const { return tray_ != nullptr; }
+    ~DesktopControls();
+
+    void show_tuning();
+    void show_pairing();
+
+private:
+    OverlayManager& overlay_;
+    PresetStore store_;
+    std::string pairing_url_;
+    std::unique_ptr<TrayMenu> tray_;
+    std::unique_ptr<TuningWindow> tuning_;
+    std::unique_ptr<QLabel> pairing_;
+};
+
+}  // namespace umf::provider
