@@ -65,6 +65,7 @@
 #include "server/server.hpp"
 #include "server/service.hpp"
 #include "server/tls_identity.hpp"
+#include "support/pinned_client.hpp"
 
 namespace {
 
@@ -326,22 +327,7 @@ void stop_server_child(ServerChild& child) {
 
 // ---- TLS for the clients ------------------------------------------------------------
 
-ssl::context pinned_client_context(const std::string& fingerprint) {
-    ssl::context ctx(ssl::context::tls_client);
-    ctx.set_verify_mode(ssl::verify_peer);
-    ctx.set_verify_callback([fingerprint](bool, ssl::verify_context& vc) {
-        X509_STORE_CTX* store = vc.native_handle();
-        if (X509_STORE_CTX_get_error_depth(store) != 0) return false;
-        X509* cert = X509_STORE_CTX_get_current_cert(store);
-        unsigned char* der = nullptr;
-        const int len = i2d_X509(cert, &der);
-        if (len <= 0) return false;
-        const bool ok = der_fingerprint(der, static_cast<std::size_t>(len)) == fingerprint;
-        OPENSSL_free(der);
-        return ok;
-    });
-    return ctx;
-}
+using umf::test::pinned_client_context;
 
 // The field points of the two board items, from a welcome's screen region
 // (the region is the screen's visible part, mapped linearly).
