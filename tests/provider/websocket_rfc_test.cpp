@@ -140,7 +140,8 @@ protected:
     }
     static std::vector<std::string> text_types(const json& r) {
         std::vector<std::string> out;
-        for (const auto& e : events(r, "text")) out.push_back(e["type"].is_string() ? e["type"].get<std::string>() : "?");
+        for (const auto& e : events(r, "text"))
+            out.push_back(e.contains("type") && e.at("type").is_string() ? e.at("type").get<std::string>() : "?");
         return out;
     }
     static std::string hex(const std::string& bytes) {
@@ -157,7 +158,17 @@ protected:
             if (e.value("payload", "") == hex(payload)) return true;
         return false;
     }
-    static int close_code(const json& r) { return r["close_code"].is_number() ? r["close_code"].get<int>() : -1; }
+    // A member or null: operator[] on a const json with a missing key is
+    // undefined behaviour.
+    static json member(const json& j, const char* key) {
+        const auto it = j.find(key);
+        return it == j.end() ? json() : *it;
+    }
+    static int close_code(const json& r) {
+        // operator[] on a const json with a missing key is undefined behaviour.
+        const auto it = r.find("close_code");
+        return it != r.end() && it->is_number() ? it->get<int>() : -1;
+    }
 
     // The provider failed or closed the connection with `code` and then
     // ended TLS and TCP, answering nothing after the welcome.
@@ -183,7 +194,7 @@ TEST_F(WebSocketRfc, Fragmentation) {
     EXPECT_EQ(text_types(raw), (std::vector<std::string>{"welcome", "target"})) << raw.dump();
     const auto texts = events(raw, "text");
     if (texts.size() == 2) {
-        EXPECT_EQ(texts[1]["id"], 2);
+        EXPECT_EQ(member(texts[1], "id"), 2);
     }
     EXPECT_TRUE(has_pong(raw, std::string("mid-message \x00\xff", 14))) << raw.dump();
     EXPECT_EQ(close_code(raw), -1);
@@ -272,7 +283,7 @@ TEST_F(WebSocketRfc, BinaryIsBadRequestAndTheSessionGoesOn) {
         EXPECT_EQ(text_types(r), (std::vector<std::string>{"welcome", "error", "target"})) << r.dump();
         const auto texts = events(r, "text");
         if (texts.size() == 3) {
-            EXPECT_EQ(texts[1]["code"], "bad_request") << r.dump();
+            EXPECT_EQ(member(texts[1], "code"), "bad_request") << r.dump();
         }
         EXPECT_EQ(close_code(r), -1) << r.dump();
     }
@@ -285,10 +296,10 @@ TEST_F(WebSocketRfc, PipelinedBurstIsAnsweredInOrder) {
     ASSERT_EQ(texts.size(), 51u) << r.dump();  // the welcome and 50 replies
     for (int i = 1; i <= 50; ++i) {
         const json& t = texts[static_cast<std::size_t>(i)];
-        EXPECT_EQ(t["type"], i <= 10 ? "target" : "error") << i;
-        EXPECT_EQ(t["id"], i) << "reply " << i << " out of order";
+        EXPECT_EQ(member(t, "type"), i <= 10 ? "target" : "error") << i;
+        EXPECT_EQ(member(t, "id"), i) << "reply " << i << " out of order";
         if (i > 10) {
-            EXPECT_EQ(t["code"], "bad_request") << i;
+            EXPECT_EQ(member(t, "code"), "bad_request") << i;
         }
     }
     EXPECT_EQ(close_code(r), -1);
@@ -296,7 +307,7 @@ TEST_F(WebSocketRfc, PipelinedBurstIsAnsweredInOrder) {
     const json lib = run_case("burst_lib");
     const auto targets = events(lib, "text");
     ASSERT_EQ(targets.size(), 11u) << lib.dump();
-    for (int i = 1; i <= 10; ++i) EXPECT_EQ(targets[static_cast<std::size_t>(i)]["id"], i);
+    for (int i = 1; i <= 10; ++i) EXPECT_EQ(member(targets[static_cast<std::size_t>(i)], "id"), i);
 }
 
 // 9. Every case above, one after another on one server, then a fresh
@@ -305,7 +316,7 @@ TEST_F(WebSocketRfc, ServerSurvivesEverything) {
     const auto results = run_cases("all", 60);
     EXPECT_GT(results.size(), 30u);
     for (const auto& r : results) {
-        EXPECT_TRUE(r["error"].is_null()) << r.dump();
+        EXPECT_TRUE(!r.contains("error") || r.at("error").is_null()) << r.dump();
         EXPECT_TRUE(r.value("alive_after", false)) << r.dump();
     }
     const json last = run_case("survives");
