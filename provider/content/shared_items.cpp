@@ -3,26 +3,9 @@
 #include <stdexcept>
 
 #include "content/board_resolver.hpp"
-#include <cctype>
 
 namespace umf::provider {
 
-namespace {
-
-bool is_web_url(const std::string& url) {
-    auto starts = [&](std::string_view prefix) {
-        if (url.size() < prefix.size()) return false;
-        for (std::size_t i = 0; i < prefix.size(); ++i)
-            if (std::tolower(static_cast<unsigned char>(url[i])) != prefix[i]) return false;
-        return true;
-    };
-    if (!(starts("http://") || starts("https://")) || url.size() > protocol::kMaxUrlBytes) return false;
-    for (unsigned char c : url)
-        if (c <= 0x20 || c == 0x7f) return false;
-    return true;
-}
-
-}  // namespace
 
 int SharedItems::add(SharedItem item) {
     if (item.title.empty()) item.title = item.file ? item.file->filename().string() : item.url.value_or("");
@@ -34,7 +17,7 @@ int SharedItems::add(SharedItem item) {
         if (ec || !std::filesystem::is_regular_file(*item.file, ec))
             throw std::invalid_argument(item.file->string() + " is not a readable regular file");
     }
-    if (item.url && !is_web_url(*item.url))
+    if (item.url && (!protocol::is_http_url(*item.url) || item.url->size() > protocol::kMaxUrlBytes))
         throw std::invalid_argument("a shared URL starts with http:// or https:// and has no spaces");
     if (item.rect.width <= 0 || item.rect.height <= 0)
         throw std::invalid_argument("a shared item's region needs a positive width and height");

@@ -87,18 +87,6 @@ ContentKind read_kind(MemberReader& r) {
     return kind.value_or(ContentKind::none);
 }
 
-bool is_http_url(std::string_view url) {
-    auto starts = [&](std::string_view scheme) {
-        if (url.size() <= scheme.size()) return false;
-        for (std::size_t i = 0; i < scheme.size(); ++i)
-            if (std::tolower(static_cast<unsigned char>(url[i])) != scheme[i]) return false;
-        return true;
-    };
-    if (!starts("http://") && !starts("https://")) return false;
-    for (char c : url)
-        if (c == ' ' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
-    return true;
-}
 
 bool is_file_name(std::string_view name) {
     if (name.empty() || name == "." || name == "..") return false;
@@ -564,6 +552,19 @@ std::string safe_file_name(std::string_view name) {
         if (c == '/' || c == '\\' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '_';
     if (out.empty() || out == "." || out == "..") return "file";
     return out;
+}
+
+bool is_http_url(std::string_view url) {
+    auto starts = [&](std::string_view scheme) {
+        if (url.size() <= scheme.size()) return false;
+        for (std::size_t i = 0; i < scheme.size(); ++i)
+            if (std::tolower(static_cast<unsigned char>(url[i])) != scheme[i]) return false;
+        return true;
+    };
+    if (!starts("http://") && !starts("https://")) return false;
+    for (char c : url)
+        if (c == ' ' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
+    return true;
 }
 
 }  // namespace umf::protocol

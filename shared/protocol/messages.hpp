@@ -240,6 +240,10 @@ ParseResult parse_message(std::string_view text, const ParseLimits& limits = {})
 // The error message that answers a text that did not parse.
 Error to_error(const ProtocolError& error);
 
+// A URL that Content accepts: http: or https: (any case), no spaces or
+// control characters.
+bool is_http_url(std::string_view url);
+
 // A file name that Content accepts: invalid UTF-8 repaired, '/', '\\' and
 // control characters replaced by '_', clipped to kMaxFileNameBytes; "file"
 // when nothing usable is left.
