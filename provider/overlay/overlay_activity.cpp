@@ -9,7 +9,7 @@ OverlayActivity::OverlayActivity(OverlayManager* manager, std::vector<int> scree
 
 void OverlayActivity::seeking(std::uint64_t) {
     OverlayManager* m = manager_;
-    QMetaObject::invokeMethod(m, [m] { m->note_request(); }, Qt::QueuedConnection);
+    QMetaObject::invokeMethod(m, [m] { m->report_seeking(); }, Qt::QueuedConnection);
 }
 
 void OverlayActivity::aimed(const AimActivity& aim) {
@@ -26,10 +26,11 @@ void OverlayActivity::aimed(const AimActivity& aim) {
     OverlayManager* m = manager_;
     const QPointF at = aim.screen ? QPointF(aim.screen->x, aim.screen->y) : QPointF();
     const QString title = QString::fromStdString(aim.title);
+    const double confidence = aim.confidence;
     QMetaObject::invokeMethod(
         m,
-        [m, index, previous, at, title] {
-            m->note_request();
+        [m, index, previous, at, title, confidence] {
+            m->report_aim(confidence);
             if (previous && previous != index) {
                 m->set_pointer(*previous, std::nullopt, {});
                 m->set_focus(*previous, std::nullopt);

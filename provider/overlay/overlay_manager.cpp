@@ -35,7 +35,7 @@ struct OverlayManager::Entry {
 };
 
 OverlayManager::OverlayManager(overlay::Preset preset, QObject* parent)
-    : QObject(parent), preset_(std::move(preset)) {
+    : QObject(parent), preset_(std::move(preset)), adaptive_(preset_) {
     clock_.start();
     for (QScreen* screen : QGuiApplication::screens()) add_screen(screen);
     connect(qGuiApp, &QGuiApplication::screenAdded, this, [this](QScreen* screen) {
@@ -133,6 +133,7 @@ void OverlayManager::retime() {
 void OverlayManager::set_preset(const overlay::Preset& preset) {
     const bool new_palette = preset.palette != preset_.palette;
     preset_ = preset;
+    adaptive_ = overlay::AdaptiveOverlay(preset_);
     for (auto& entry : entries_) {
         if (new_palette) entry->window->set_field(entry->window->screen_field(), preset_.palette);
         set_focus(entry->index, entry->focus);
@@ -147,12 +148,29 @@ void OverlayManager::note_request() {
     tick();
 }
 
+void OverlayManager::report_aim(double confidence) {
+    const double radius = adaptive_.focus_radius_modules();
+    adaptive_.aim(static_cast<double>(clock_.elapsed()) / 1000.0, confidence);
+    if (adaptive_.focus_radius_modules() != radius)
+        for (auto& entry : entries_) set_focus(entry->index, entry->focus);
+    note_request();
+}
+
+void OverlayManager::report_seeking() {
+    const double radius = adaptive_.focus_radius_modules();
+    adaptive_.seeking(static_cast<double>(clock_.elapsed()) / 1000.0);
+    if (adaptive_.focus_radius_modules() != radius)
+        for (auto& entry : entries_) set_focus(entry->index, entry->focus);
+    note_request();
+}
+
 void OverlayManager::tick() {
     const qint64 now = clock_.elapsed();
     std::optional<double> since;
     if (last_request_ms_) since = static_cast<double>(now - *last_request_ms_) / 1000.0;
     const double presence = overlay::presence(preset_, since);
-    const double opacity = overlay::mixed_opacity(preset_, static_cast<double>(now) / 1000.0, since);
+    // The preset's pulse, lowered while requesters lock easily.
+    const double opacity = adaptive_.opacity(static_cast<double>(now) / 1000.0) * presence;
     if (std::abs(opacity - applied_opacity_) >= kOpacityStep || (opacity == 0) != (applied_opacity_ == 0))
         apply_shown(opacity);
     // Nothing moves until the next request or preset: no wake-ups meanwhile.
@@ -193,7 +211,7 @@ void OverlayManager::set_focus(int index, std::optional<QPointF> centre_px) {
     if (!entry) return;
     entry->focus = centre_px;
     const bool focused = preset_.region == overlay::Region::focus;
-    const double radius = preset_.focus_radius_modules * entry->window->screen_field().placement.module_px;
+    const double radius = adaptive_.focus_radius_modules() * entry->window->screen_field().placement.module_px;
     // Focus without an aim point yet: nothing of the field is shown.
     entry->window->set_focus(focused ? std::optional<QPointF>(centre_px.value_or(QPointF(-1e6, -1e6)))
                                      : std::nullopt,

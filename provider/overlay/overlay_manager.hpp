@@ -20,6 +20,7 @@
 #include <optional>
 #include <vector>
 
+#include "overlay/adaptive.hpp"
 #include "overlay/overlay_window.hpp"
 #include "overlay/preset.hpp"
 
@@ -45,6 +46,12 @@ public:
     // A requester seeks or aims: an on-demand field comes up (and fades out
     // after the last one, overlay::presence).
     void note_request();
+    // What requesters report (overlay/adaptive.hpp): an aim with the
+    // detector's confidence, or seeking without a lock. Easy locks lower the
+    // field within the preset's range, struggling raises it and grows the
+    // focus region. Both also count as a request.
+    void report_aim(double confidence);
+    void report_seeking();
     // With Region::focus, where the field is shown on screen `index`, in its
     // physical pixels; nullopt hides the focus there. Ignored for Region::full.
     void set_focus(int index, std::optional<QPointF> centre_px);
@@ -83,6 +90,7 @@ private:
     void notify();
 
     overlay::Preset preset_;
+    overlay::AdaptiveOverlay adaptive_;
     std::vector<std::unique_ptr<Entry>> entries_;
     int next_index_ = 0;
     QElapsedTimer clock_;
