@@ -168,8 +168,7 @@ Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime no
 std::optional<p::Message> Service::aim(SessionState& state, const p::Aim& aim, SteadyTime now) const {
     if (!state.aims.take(now)) {
         // The excess is dropped, with at most one error a second to say so.
-        if (state.rate_error_sent && now - state.last_rate_error < std::chrono::seconds(1)) return std::nullopt;
-        state.rate_error_sent = true;
+        if (state.last_rate_error && now - *state.last_rate_error < std::chrono::seconds(1)) return std::nullopt;
         state.last_rate_error = now;
         char text[96];
         std::snprintf(text, sizeof text, "more than %g aims a second", config_.limits.aims_per_s);

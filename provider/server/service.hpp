@@ -10,6 +10,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,8 +58,7 @@ struct SessionState {
     std::string peer;  // the remote address, for per-address limits on wrong tokens
     TokenBucket aims;
     TokenBucket grabs;
-    SteadyTime last_rate_error{};
-    bool rate_error_sent = false;
+    std::optional<SteadyTime> last_rate_error;  // when dropped aims were last reported
 };
 
 struct Outcome {
