@@ -117,7 +117,12 @@ void ProviderConnection::start_read() {
             if (failure_code_.empty()) {
                 failure_code_ = "connection";
                 failure_exit_ = kConnection;
-                if (ec == websocket::error::closed) {
+                if (ec == websocket::error::closed &&
+                    ws_->reason().code == static_cast<std::uint16_t>(websocket::close_code::service_restart)) {
+                    // The provider's screens changed: the field this session
+                    // was given no longer holds; a new connection gets the new one.
+                    failure_message_ = "the provider's screens changed; connect again to get the new field";
+                } else if (ec == websocket::error::closed) {
                     const auto& reason = ws_->reason();
                     failure_message_ = "the provider closed the connection (code " + std::to_string(reason.code) +
                                        (reason.reason.empty() ? std::string() : ", " + std::string(reason.reason.data(), reason.reason.size())) +

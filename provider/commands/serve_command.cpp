@@ -122,6 +122,12 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     }
     if (public_mode && !board) throw UsageError("--public needs a board: it serves board items and nothing else");
     const overlay::Preset preset = apply_preset_options(preset_option(a, dir, board.has_value()), a);
+    // The board's field: the preset's module size, on a real screen scaled by
+    // its density; a virtual screen counts as 96 dpi, as compose does.
+    double board_module_px = preset.module_px;
+    if (!headless)
+        if (QScreen* s = QGuiApplication::primaryScreen())
+            board_module_px = module_px_for_density(preset.module_px, s->physicalDotsPerInch() * s->devicePixelRatio());
 
     // On a desktop without a board: the overlay over every screen, when a
     // compositor can mix it in (without one a translucent window is opaque).
@@ -136,15 +142,8 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
                       << compositor_advice() << "\n";
         } else {
             overlay_manager = std::make_unique<OverlayManager>(preset);
-            std::vector<DesktopScreen> desktop;
-            std::vector<int> indices;
-            for (const auto& screen : overlay_manager->screens()) {
-                desktop.push_back({screen.name.toStdString(), screen.root_rect.x(), screen.root_rect.y(),
-                                   screen.root_rect.width(), screen.root_rect.height()});
-                indices.push_back(screen.index);
-            }
-            layout = lay_out_desktop(desktop);
-            activity = std::make_shared<OverlayActivity>(overlay_manager.get(), std::move(indices));
+            layout = overlay_manager->layout();
+            activity = std::make_shared<OverlayActivity>(overlay_manager.get(), overlay_manager->layout_indices());
         }
     }
 
@@ -209,10 +208,24 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     std::unique_ptr<ControlSocket> control;
     try {
         ServiceConfig config = layout ? service_config_for(*layout)
-                                      : default_service_config(width, height, headless ? "headless" : "screen");
+                                      : default_service_config(width, height, headless ? "headless" : "screen",
+                                                               board_module_px);
         config.overlay = protocol::overlay_info(preset);
         config.public_mode = public_mode;
-        auto service = std::make_shared<const Service>(std::move(config), token, resolvers, site, activity);
+        auto service = std::make_shared<Service>(std::move(config), token, resolvers, site, activity);
+        if (overlay_manager) {
+            // Screens that come, go or change move the field: new sessions
+            // get the new one, older ones are told to connect again.
+            OverlayManager* m = overlay_manager.get();
+            overlay_manager->on_screens_changed([m, activity, weak = std::weak_ptr<Service>(service)] {
+                const auto service = weak.lock();
+                if (!service || !m->layout()) return;
+                activity->set_screen_indices(m->layout_indices());
+                service->set_screens(*m->layout());
+                std::cout << "overlay: screens changed: " << m->layout()->screens.size() << " screen(s), field "
+                          << m->layout()->field.id << "\n" << std::flush;
+            });
+        }
         if (board) {
             std::vector<std::filesystem::path> files;
             for (const auto& item : board->items)
@@ -252,7 +265,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     std::unique_ptr<BoardWindow> board_window;
     if (!headless && board) {
         board_window = std::make_unique<BoardWindow>(
-            screen_image, field_layer(screen_field_for(width, height), preset.palette), preset,
+            screen_image, field_layer(screen_field_for(width, height, board_module_px), preset.palette), preset,
             QGuiApplication::primaryScreen());
         board_window->showFullScreen();
     }

@@ -7,6 +7,11 @@ namespace umf::provider {
 OverlayActivity::OverlayActivity(OverlayManager* manager, std::vector<int> screen_indices)
     : manager_(manager), screen_indices_(std::move(screen_indices)) {}
 
+void OverlayActivity::set_screen_indices(std::vector<int> screen_indices) {
+    std::lock_guard lock(mutex_);
+    screen_indices_ = std::move(screen_indices);
+}
+
 void OverlayActivity::seeking(std::uint64_t) {
     OverlayManager* m = manager_;
     QMetaObject::invokeMethod(m, [m] { m->report_seeking(); }, Qt::QueuedConnection);
@@ -14,11 +19,11 @@ void OverlayActivity::seeking(std::uint64_t) {
 
 void OverlayActivity::aimed(const AimActivity& aim) {
     std::optional<int> index;
-    if (aim.screen && aim.screen->screen >= 0 && aim.screen->screen < static_cast<int>(screen_indices_.size()))
-        index = screen_indices_[aim.screen->screen];
     std::optional<int> previous;
     {
         std::lock_guard lock(mutex_);
+        if (aim.screen && aim.screen->screen >= 0 && aim.screen->screen < static_cast<int>(screen_indices_.size()))
+            index = screen_indices_[aim.screen->screen];
         if (auto it = pointer_screen_.find(aim.session); it != pointer_screen_.end()) previous = it->second;
         if (index) pointer_screen_[aim.session] = *index;
         else pointer_screen_.erase(aim.session);

@@ -20,14 +20,18 @@ public:
     // The manager must outlive the server that calls this.
     OverlayActivity(OverlayManager* manager, std::vector<int> screen_indices);
 
+    // The screens changed: the new welcome's screen i is the manager's index
+    // screen_indices[i].
+    void set_screen_indices(std::vector<int> screen_indices);
+
     void seeking(std::uint64_t session) override;
     void aimed(const AimActivity& aim) override;
     void left(std::uint64_t session) override;
 
 private:
     OverlayManager* manager_;
-    std::vector<int> screen_indices_;
     std::mutex mutex_;
+    std::vector<int> screen_indices_;
     std::map<std::uint64_t, int> pointer_screen_;  // session -> manager index of its ring
 };
 

@@ -25,6 +25,12 @@ QSize physical_size(const QScreen* screen) {
     return {qRound(screen->geometry().width() * dpr), qRound(screen->geometry().height() * dpr)};
 }
 
+// The preset's module size on this screen: Qt gives the physical density in
+// logical pixels an inch, the ratio turns it into the screen's own pixels.
+double module_px_for(const QScreen* screen, const overlay::Preset& preset) {
+    return module_px_for_density(preset.module_px, screen->physicalDotsPerInch() * screen->devicePixelRatio());
+}
+
 }  // namespace
 
 struct OverlayManager::Entry {
@@ -63,8 +69,8 @@ void OverlayManager::add_screen(QScreen* screen) {
     entry->screen = screen;
     entry->index = next_index_++;
     const QSize size = physical_size(screen);
-    entry->window = std::make_unique<OverlayWindow>(screen, screen_field_for(size.width(), size.height()),
-                                                    preset_.palette);
+    entry->window = std::make_unique<OverlayWindow>(
+        screen, screen_field_for(size.width(), size.height(), module_px_for(screen, preset_)), preset_.palette);
     entry->window->set_opacity(std::max(applied_opacity_, 0.0));
     Entry* raw = entry.get();
     auto refit_this = [this, raw] {
@@ -94,30 +100,39 @@ void OverlayManager::refit(Entry& entry) {
 }
 
 void OverlayManager::relayout() {
-    if (entries_.empty()) return;
+    if (entries_.empty()) {
+        layout_.reset();
+        return;
+    }
     std::vector<DesktopScreen> desktop;
     for (const auto& entry : entries_) {
         // Qt keeps a screen's origin in native pixels and scales its size.
         const QSize size = physical_size(entry->screen);
         const QPoint origin = entry->screen->geometry().topLeft();
-        desktop.push_back({entry->screen->name().toStdString(), origin.x(), origin.y(), size.width(), size.height()});
+        desktop.push_back({entry->screen->name().toStdString(), origin.x(), origin.y(), size.width(), size.height(),
+                           module_px_for(entry->screen, preset_)});
     }
+    std::vector<ScreenField> fields;
     try {
         // One field over all screens, so that a field point tells the screen.
-        const DesktopLayout layout = lay_out_desktop(desktop);
-        for (std::size_t i = 0; i < entries_.size(); ++i) {
-            const ScreenField& field = layout.screens[i].field;
-            const ScreenField& shown = entries_[i]->window->screen_field();
-            if (!(shown.placement == field.placement) || shown.field.id != field.field.id ||
-                shown.screen_width != field.screen_width || shown.screen_height != field.screen_height)
-                entries_[i]->window->set_field(field, preset_.palette);
-        }
+        layout_ = lay_out_desktop(desktop);
+        for (const auto& laid : layout_->screens) fields.push_back(laid.field);
     } catch (const std::invalid_argument&) {
-        // Mirrored (overlapping) screens: each keeps the field of its own size.
-        for (auto& entry : entries_) {
-            const QSize size = physical_size(entry->screen);
-            entry->window->set_field(screen_field_for(size.width(), size.height()), preset_.palette);
-        }
+        // Mirrored (overlapping) screens: the first screen's field, which a
+        // mirror of its size shows at the same place; another size shows its
+        // own, which points cannot name.
+        layout_ = lay_out_desktop({desktop[0]});
+        for (const auto& d : desktop)
+            fields.push_back(d.width == desktop[0].width && d.height == desktop[0].height
+                                 ? layout_->screens[0].field
+                                 : screen_field_for(d.width, d.height, d.module_px));
+    }
+    for (std::size_t i = 0; i < entries_.size(); ++i) {
+        const ScreenField& field = fields[i];
+        const ScreenField& shown = entries_[i]->window->screen_field();
+        if (!(shown.placement == field.placement) || shown.field.id != field.field.id ||
+            shown.screen_width != field.screen_width || shown.screen_height != field.screen_height)
+            entries_[i]->window->set_field(field, preset_.palette);
     }
     for (auto& entry : entries_) set_focus(entry->index, entry->focus);
 }
@@ -132,11 +147,16 @@ void OverlayManager::retime() {
 
 void OverlayManager::set_preset(const overlay::Preset& preset) {
     const bool new_palette = preset.palette != preset_.palette;
+    const bool new_module = preset.module_px != preset_.module_px;
     preset_ = preset;
     adaptive_ = overlay::AdaptiveOverlay(preset_);
     for (auto& entry : entries_) {
         if (new_palette) entry->window->set_field(entry->window->screen_field(), preset_.palette);
         set_focus(entry->index, entry->focus);
+    }
+    if (new_module) {
+        relayout();
+        notify();
     }
     pulse_timer_.start();
     tick();
@@ -246,6 +266,14 @@ std::vector<OverlayScreen> OverlayManager::screens() const {
         out.push_back({entry->index, entry->screen->name(),
                        QRect(entry->screen->geometry().topLeft(), size), entry->window->screen_field()});
     }
+    return out;
+}
+
+std::vector<int> OverlayManager::layout_indices() const {
+    std::vector<int> out;
+    // Mirrored screens: only the first is in the layout.
+    for (std::size_t i = 0; i < entries_.size() && layout_ && i < layout_->screens.size(); ++i)
+        out.push_back(entries_[i]->index);
     return out;
 }
 

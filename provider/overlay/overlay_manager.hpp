@@ -23,6 +23,7 @@
 #include "overlay/adaptive.hpp"
 #include "overlay/overlay_window.hpp"
 #include "overlay/preset.hpp"
+#include "screen/desktop_layout.hpp"
 
 class QScreen;
 
@@ -68,7 +69,13 @@ public:
     static constexpr int kSnapshotSettleMs = 50;
 
     std::vector<OverlayScreen> screens() const;
-    // Called after screens() changed: a screen came, went or changed size.
+    // The field over the screens as the service should know it (nullopt
+    // without screens): layout()->screens[i] is the screen with index
+    // layout_indices()[i]. Mirrored screens give the first alone.
+    const std::optional<DesktopLayout>& layout() const { return layout_; }
+    std::vector<int> layout_indices() const;
+    // Called after screens() or layout() changed: a screen came, went or
+    // changed size or density, or the preset's module size changed.
     void on_screens_changed(std::function<void()> callback) { screens_changed_ = std::move(callback); }
 
     // The windows, for tests and diagnostics.
@@ -92,6 +99,7 @@ private:
     overlay::Preset preset_;
     overlay::AdaptiveOverlay adaptive_;
     std::vector<std::unique_ptr<Entry>> entries_;
+    std::optional<DesktopLayout> layout_;
     int next_index_ = 0;
     QElapsedTimer clock_;
     std::optional<qint64> last_request_ms_;

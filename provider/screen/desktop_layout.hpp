@@ -4,6 +4,12 @@
 // the part of the field that falls on it, and since screens do not overlap,
 // neither do their parts (the welcome's screens). One screen alone gets
 // exactly what screen_field_for gives it.
+//
+// Screens of different pixel densities want different module sizes, so one
+// geometric field cannot serve them: each then shows its own columns of the
+// field at its own module size, in the desktop's left-to-right order. Where
+// the shipped fields are too small for that, every module grows by the same
+// factor until they fit.
 #pragma once
 
 #include <string>
@@ -18,6 +24,7 @@ struct DesktopScreen {
     std::string name;
     int x = 0, y = 0;  // top-left in desktop pixels
     int width = 0, height = 0;
+    double module_px = 0.0;  // wanted, in this screen's pixels (screen_field_for); 0: what covers
 };
 
 struct LaidOutScreen {

@@ -1,5 +1,7 @@
 #include "screen/screen_field.hpp"
 
+#include <cmath>
+
 #include "field/default_field.hpp"
 #include "field/field_io.hpp"
 
@@ -15,8 +17,8 @@ Field quarter_turned(const Field& field) {
     return out;
 }
 
-ScreenField screen_field_for(int screen_width, int screen_height) {
-    const DefaultField choice = default_field_for_screen(screen_width, screen_height);
+ScreenField screen_field_for(int screen_width, int screen_height, double module_px) {
+    const DefaultField choice = field_for_screen(screen_width, screen_height, module_px);
     ScreenField s;
     s.file = std::string(UMF_DATA_DIR) + "/fields/" + choice.file;
     s.field = load_field(s.file);
@@ -26,6 +28,12 @@ ScreenField screen_field_for(int screen_width, int screen_height) {
     s.screen_width = screen_width;
     s.screen_height = screen_height;
     return s;
+}
+
+double module_px_for_density(double preset_module_px, double pixels_per_inch) {
+    constexpr double kReferencePpi = 96.0;
+    const bool plausible = std::isfinite(pixels_per_inch) && pixels_per_inch >= 50.0 && pixels_per_inch <= 600.0;
+    return preset_module_px * (plausible ? pixels_per_inch : kReferencePpi) / kReferencePpi;
 }
 
 }  // namespace umf::provider

@@ -35,22 +35,28 @@ TokenBucket grab_bucket(const p::Limits& limits) {
 
 }  // namespace
 
-ServiceConfig service_config_for(const DesktopLayout& layout) {
-    ServiceConfig c;
-    char host[HOST_NAME_MAX + 1] = {};
-    c.provider.name = ::gethostname(host, sizeof host - 1) == 0 && host[0] ? host : "umf-provider";
-    c.provider.software = std::string("umf-provider/") + UMF_PROVIDER_VERSION;
-    c.field.definition = layout.field;
+ScreenMap screen_map_for(const DesktopLayout& layout) {
+    ScreenMap m;
+    m.field.definition = layout.field;
     for (const auto& laid : layout.screens) {
         p::Screen screen;
         screen.name = laid.screen.name;
         screen.region = {laid.region.u0, laid.region.v0, laid.region.u1, laid.region.v1};
         screen.width_px = laid.screen.width;
         screen.height_px = laid.screen.height;
-        c.field.screens.push_back(screen);
-        c.placements.push_back(laid.field.placement);
-        c.desktop_offsets.push_back({laid.screen.x, laid.screen.y});
+        m.field.screens.push_back(screen);
+        m.placements.push_back(laid.field.placement);
+        m.desktop_offsets.push_back({laid.screen.x, laid.screen.y});
     }
+    return m;
+}
+
+ServiceConfig service_config_for(const DesktopLayout& layout) {
+    ServiceConfig c;
+    char host[HOST_NAME_MAX + 1] = {};
+    c.provider.name = ::gethostname(host, sizeof host - 1) == 0 && host[0] ? host : "umf-provider";
+    c.provider.software = std::string("umf-provider/") + UMF_PROVIDER_VERSION;
+    c.screens = screen_map_for(layout);
     const auto presets = overlay::built_in_presets();
     const overlay::Preset* balanced = overlay::find_preset(presets, "balanced");
     if (!balanced) throw std::logic_error("the built-in preset \"balanced\" is missing");
@@ -59,8 +65,9 @@ ServiceConfig service_config_for(const DesktopLayout& layout) {
     return c;
 }
 
-ServiceConfig default_service_config(int screen_width_px, int screen_height_px, const std::string& screen_name) {
-    return service_config_for(lay_out_desktop({{screen_name, 0, 0, screen_width_px, screen_height_px}}));
+ServiceConfig default_service_config(int screen_width_px, int screen_height_px, const std::string& screen_name,
+                                     double module_px) {
+    return service_config_for(lay_out_desktop({{screen_name, 0, 0, screen_width_px, screen_height_px, module_px}}));
 }
 
 Service::Service(ServiceConfig config, std::string token, std::vector<std::shared_ptr<const Resolver>> resolvers,
@@ -73,9 +80,24 @@ Service::Service(ServiceConfig config, std::string token, std::vector<std::share
       site_(site ? std::move(site) : std::make_shared<const StaticSite>()),
       activity_(std::move(activity)),
       token_(std::move(token)) {
-    if (config_.placements.size() != config_.field.screens.size())
-        throw std::invalid_argument("a service needs one field placement per screen");
-    config_.desktop_offsets.resize(config_.placements.size(), {0, 0});
+    ScreenMap& first = config_.screens;
+    if (first.placements.size() != first.field.screens.size() || first.field.screens.empty())
+        throw std::invalid_argument("a service needs screens, with one field placement each");
+    first.desktop_offsets.resize(first.placements.size(), {0, 0});
+    screens_ = std::make_shared<const ScreenMap>(first);
+}
+
+void Service::set_screens(const DesktopLayout& layout) {
+    ScreenMap next = screen_map_for(layout);
+    if (next.field.screens.empty()) throw std::invalid_argument("a service needs screens");
+    std::lock_guard lock(screens_mutex_);
+    next.generation = screens_->generation + 1;
+    screens_ = std::make_shared<const ScreenMap>(std::move(next));
+}
+
+std::shared_ptr<const ScreenMap> Service::screens() const {
+    std::lock_guard lock(screens_mutex_);
+    return screens_;
 }
 
 void Service::prepare_files(const std::vector<std::filesystem::path>& files) const { facts_->prepare(files); }
@@ -95,17 +117,18 @@ bool Service::token_matches(std::string_view token) const {
 }
 
 std::optional<ScreenPoint> Service::screen_point(p::FieldPoint point) const {
-    const auto& screens = config_.field.screens;
+    const std::shared_ptr<const ScreenMap> map = screens();
+    const auto& screens = map->field.screens;
     for (std::size_t i = 0; i < screens.size(); ++i) {
         const p::FieldRect& r = screens[i].region;
         if (point.u < r.u0 || point.u >= r.u1 || point.v < r.v0 || point.v >= r.v1) continue;
-        const overlay::ScreenPoint s = overlay::field_to_screen(config_.placements[i], point.u, point.v);
+        const overlay::ScreenPoint s = overlay::field_to_screen(map->placements[i], point.u, point.v);
         ScreenPoint out;
         out.screen = static_cast<int>(i);
         out.x = s.x;
         out.y = s.y;
-        out.root_x = s.x + config_.desktop_offsets[i][0];
-        out.root_y = s.y + config_.desktop_offsets[i][1];
+        out.root_x = s.x + map->desktop_offsets[i][0];
+        out.root_y = s.y + map->desktop_offsets[i][1];
         return out;
     }
     return std::nullopt;
@@ -161,7 +184,9 @@ Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime no
     state.aims = aim_bucket(config_.limits);
     state.grabs = grab_bucket(config_.limits);
     out.close = false;
-    out.replies.push_back(p::Welcome{hello.id, config_.provider, config_.field, config_.overlay, config_.limits});
+    const std::shared_ptr<const ScreenMap> map = screens();
+    state.screens_generation = map->generation;
+    out.replies.push_back(p::Welcome{hello.id, config_.provider, map->field, config_.overlay, config_.limits});
     return out;
 }
 
@@ -266,6 +291,11 @@ Outcome Service::handle(SessionState& state, const p::ParseResult& parsed, Stead
         out.replies.push_back(p::Error{std::nullopt, p::ErrorCode::unauthorized,
                                        std::string("a session starts with hello, not ") + p::type_name(message)});
         out.close = true;
+        return out;
+    }
+    if (state.screens_generation != screens()->generation) {
+        out.close = true;
+        out.restart = true;
         return out;
     }
 

@@ -27,13 +27,22 @@
 
 namespace umf::provider {
 
-struct ServiceConfig {
-    protocol::ProviderInfo provider;
+// The field and where each screen shows it. A service keeps one at a time
+// and replaces it whole when the screens change (Service::set_screens).
+struct ScreenMap {
     protocol::FieldInfo field;
     // Where the field lies on each of field.screens, in the same order, and
     // where each screen's top-left corner is on the desktop (X11 root window).
     std::vector<overlay::FieldPlacement> placements;
     std::vector<std::array<int, 2>> desktop_offsets;
+    std::uint64_t generation = 0;  // counts the replacements
+};
+
+ScreenMap screen_map_for(const DesktopLayout& layout);
+
+struct ServiceConfig {
+    protocol::ProviderInfo provider;
+    ScreenMap screens;  // the first; Service::screens() has the current one
     protocol::OverlayInfo overlay;
     protocol::Limits limits;
     // Files above this are refused with too_large.
@@ -46,10 +55,11 @@ struct ServiceConfig {
 // The screens and the field of a desktop layout, the `balanced` preset, the
 // protocol's default limits and this host's name.
 ServiceConfig service_config_for(const DesktopLayout& layout);
-// The same for one screen of the given size at the desktop's origin. Throws
-// when the field file cannot be loaded.
+// The same for one screen of the given size at the desktop's origin, with
+// modules of module_px (0: the size that covers the screen). Throws when the
+// field file cannot be loaded.
 ServiceConfig default_service_config(int screen_width_px = 1920, int screen_height_px = 1080,
-                                     const std::string& screen_name = "screen");
+                                     const std::string& screen_name = "screen", double module_px = 0.0);
 
 // What one connection has established so far, and its rate limits.
 struct SessionState {
@@ -59,11 +69,15 @@ struct SessionState {
     TokenBucket aims;
     TokenBucket grabs;
     std::optional<SteadyTime> last_rate_error;  // when dropped aims were last reported
+    std::uint64_t screens_generation = 0;       // the ScreenMap its welcome described
 };
 
 struct Outcome {
     std::vector<protocol::Message> replies;
     bool close = false;  // close the WebSocket (policy violation, 1008) after sending the replies
+    // With close: 1012 (service restart) instead, for a session whose welcome
+    // no longer describes the screens; the requester connects again.
+    bool restart = false;
 };
 
 // Wrong tokens an address may send within kWrongTokenWindow before its
@@ -105,6 +119,13 @@ public:
 
     // Replaces the token; sessions already welcomed stay.
     void set_token(std::string token);
+    // The screens changed (one came, went or changed size or density): new
+    // sessions get the new field in their welcome, and a session welcomed
+    // before is closed with 1012 at its next request, since its field points
+    // would land elsewhere now. Throws std::invalid_argument for a layout
+    // without screens.
+    void set_screens(const DesktopLayout& layout);
+    std::shared_ptr<const ScreenMap> screens() const;
     const ServiceConfig& config() const { return config_; }
     DownloadTable& downloads() const { return *downloads_; }
     const StaticSite& site() const { return *site_; }
@@ -116,7 +137,9 @@ private:
     protocol::Message grab(SessionState& state, const protocol::Grab& grab, SteadyTime now) const;
     protocol::Message content_for(const protocol::Grab& grab, const Resolved& resolved) const;
 
-    ServiceConfig config_;
+    ServiceConfig config_;  // its screens are the first; screens_ holds the current
+    mutable std::mutex screens_mutex_;
+    std::shared_ptr<const ScreenMap> screens_;
     std::vector<std::shared_ptr<const Resolver>> resolvers_;
     std::shared_ptr<DownloadTable> downloads_;
     std::shared_ptr<FileFactsCache> facts_;

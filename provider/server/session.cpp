@@ -340,7 +340,7 @@ void Session::on_read(beast::error_code ec, std::size_t) {
     if (outcome.close) {
         closing_ = true;
         close_after_queue_ = true;
-        close_code_ = websocket::close_code::policy_error;
+        close_code_ = outcome.restart ? websocket::close_code::service_restart : websocket::close_code::policy_error;
         if (queue_.empty()) close(close_code_);
         return;
     }

@@ -247,6 +247,102 @@ TEST(OverlayWindow, MixesIntoACompositedDesktop) {
     EXPECT_NE(log.find("[  PASSED  ] 1 test"), std::string::npos) << log;
 }
 
+// Only in the child: screens come and go (RandR 1.5 monitors, which Qt
+// follows as screens), and one of them is twice as dense.
+TEST(OverlayWindowOnX, DISABLED_ScreensChild) {
+    if (!std::getenv(kChildVariable)) GTEST_SKIP() << "run by OverlayWindow.FollowsScreensAddedAndRemoved";
+    int argc = 1;
+    char name[] = "umf_overlay_child";
+    char* argv[] = {name, nullptr};
+    QGuiApplication app(argc, argv);
+    ASSERT_EQ(QGuiApplication::platformName(), "xcb");
+    const auto env = environment_with({});
+
+    umf::overlay::Preset preset;
+    preset.period_s = 0;
+    preset.opacity_max = 0.5;
+    preset.activation = umf::overlay::Activation::always;
+    OverlayManager manager(preset);
+    int changes = 0;
+    manager.on_screens_changed([&] { ++changes; });
+    ASSERT_EQ(manager.screens().size(), 1u);
+    ASSERT_TRUE(manager.layout());
+    EXPECT_EQ(manager.layout()->screens[0].screen.width, 3840);
+
+    // Split into two: 96 dpi on the left, 192 dpi on the right.
+    run({"xrandr", "--setmonitor", "L", "1920/508x1080/286+0+0", "screen"}, env);
+    run({"xrandr", "--setmonitor", "R", "1920/254x1080/143+1920+0", "none"}, env);
+    ASSERT_TRUE(pump_until([&] { return manager.screens().size() == 2; }, 5000))
+        << manager.screens().size() << " screens";
+    EXPECT_GE(changes, 1);
+    auto screens = manager.screens();
+    std::sort(screens.begin(), screens.end(), [](const auto& a, const auto& b) { return a.root_rect.x() < b.root_rect.x(); });
+    EXPECT_EQ(screens[0].root_rect, QRect(0, 0, 1920, 1080));
+    EXPECT_EQ(screens[1].root_rect, QRect(1920, 0, 1920, 1080));
+    // Each window covers its screen and is shown.
+    for (OverlayWindow* w : manager.windows()) {
+        EXPECT_TRUE(w->isVisible());
+        EXPECT_EQ(w->geometry().size(), QSize(1920, 1080));
+    }
+    // The denser screen shows modules twice as large, in its own part of the field.
+    const auto& layout = *manager.layout();
+    ASSERT_EQ(layout.screens.size(), 2u);
+    const auto& left = layout.screens[0].screen.x == 0 ? layout.screens[0] : layout.screens[1];
+    const auto& right = layout.screens[0].screen.x == 0 ? layout.screens[1] : layout.screens[0];
+    EXPECT_NEAR(right.field.placement.module_px / left.field.placement.module_px, 2.0, 0.1);
+    EXPECT_GE(left.field.placement.module_px, 30.0);
+    EXPECT_TRUE(left.region.u1 <= right.region.u0 || right.region.u1 <= left.region.u0);
+    EXPECT_EQ(manager.layout_indices().size(), 2u);
+
+    // The right one goes: one screen again, the whole field for it.
+    const int before = changes;
+    run({"xrandr", "--delmonitor", "R"}, env);
+    ASSERT_TRUE(pump_until([&] { return manager.screens().size() == 1; }, 5000));
+    EXPECT_GT(changes, before);
+    EXPECT_EQ(manager.screens()[0].root_rect, QRect(0, 0, 1920, 1080));
+    EXPECT_EQ(manager.layout()->screens.size(), 1u);
+    EXPECT_DOUBLE_EQ(manager.layout()->screens[0].field.placement.module_px, 30.0);
+    EXPECT_EQ(manager.windows().size(), 1u);
+
+    // A preset with larger modules relays the field out.
+    const int before_preset = changes;
+    preset.module_px = 40;
+    manager.set_preset(preset);
+    EXPECT_GT(changes, before_preset);
+    EXPECT_DOUBLE_EQ(manager.layout()->screens[0].field.placement.module_px, 40.0);
+    EXPECT_DOUBLE_EQ(manager.windows()[0]->screen_field().placement.module_px, 40.0);
+}
+
+TEST(OverlayWindow, FollowsScreensAddedAndRemoved) {
+    for (const char* program : {"Xvfb", "openbox", "xrandr", "xcompmgr"})
+        if (!find_program(program))
+            GTEST_SKIP() << program << " is not installed (Debian: apt-get install -y xvfb openbox x11-xserver-utils "
+                                       "xcompmgr)";
+    TempDir dir;
+    const XServer server = start_xvfb(dir.path / "xvfb.log", "3840x1080x24");
+    Process::Options options;
+    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}});
+    options.log = dir.path / "openbox.log";
+    Process openbox({"openbox"}, options);
+    const X11Desktop desktop(server.display);
+    ASSERT_TRUE(wait_until([&] { return desktop.has_ewmh(); }, 5s)) << "openbox did not start";
+    options.log = dir.path / "xcompmgr.log";
+    Process xcompmgr({"xcompmgr"}, options);
+    ASSERT_TRUE(wait_until([&] { return compositor_running(server.display, 0); }, 5s));
+
+    options.log = dir.path / "child.log";
+    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}, {kChildVariable, "1"}});
+    Process child({fs::read_symlink("/proc/self/exe").string(), "--gtest_also_run_disabled_tests",
+                   "--gtest_filter=OverlayWindowOnX.DISABLED_ScreensChild"},
+                  options);
+    const auto status = child.wait_exit(30s);
+    std::ifstream in(dir.path / "child.log");
+    const std::string log(std::istreambuf_iterator<char>(in), {});
+    ASSERT_TRUE(status) << "the child did not finish:\n" << log;
+    EXPECT_EQ(*status, 0) << log;
+    EXPECT_NE(log.find("[  PASSED  ] 1 test"), std::string::npos) << log;
+}
+
 }  // namespace
 
 #endif

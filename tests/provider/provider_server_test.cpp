@@ -255,6 +255,43 @@ TEST_F(ProviderService, WelcomeCarriesTheDefaultFieldAndBalancedPreset) {
     EXPECT_EQ(parse_reply(p::encode(out.replies[0])), out.replies[0]);
 }
 
+TEST_F(ProviderService, ScreensThatChangeMoveTheFieldAndRestartOlderSessions) {
+    welcome();
+    const auto before = service.screens();
+    EXPECT_EQ(before->generation, 0u);
+    // A second screen arrives: the 4K-wide desktop needs the larger field.
+    service.set_screens(lay_out_desktop({{"left", 0, 0, 1920, 1080}, {"right", 1920, 0, 1920, 1080}}));
+    const auto after = service.screens();
+    EXPECT_EQ(after->generation, 1u);
+    EXPECT_EQ(after->field.screens.size(), 2u);
+    EXPECT_NE(after->field.definition.id, before->field.definition.id);
+    // The snapshot taken before stays whole for whoever holds it.
+    EXPECT_EQ(before->field.screens.size(), 1u);
+
+    // The session welcomed before is told to connect again, without a reply.
+    auto stale = service.handle_text(state, R"({"type":"aim","v":1,"id":3,"point":[1,2],"confidence":0.5})");
+    EXPECT_TRUE(stale.replies.empty());
+    EXPECT_TRUE(stale.close);
+    EXPECT_TRUE(stale.restart);
+
+    // A new session gets the new field and is served.
+    SessionState fresh;
+    auto out = service.handle_text(fresh, hello("good-token-0123456789abcdef"));
+    ASSERT_EQ(out.replies.size(), 1u);
+    EXPECT_EQ(std::get<p::Welcome>(out.replies[0]).field.screens.size(), 2u);
+    auto aim = service.handle_text(fresh, R"({"type":"aim","v":1,"id":4,"point":[100,30],"confidence":0.9})");
+    ASSERT_EQ(aim.replies.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<p::Target>(aim.replies[0]));
+    EXPECT_FALSE(aim.close);
+    const auto point = service.screen_point({100, 30});
+    ASSERT_TRUE(point);
+    EXPECT_EQ(point->screen, 1);
+    EXPECT_GE(point->root_x, 1920);
+
+    EXPECT_THROW(service.set_screens(DesktopLayout{}), std::invalid_argument);
+    EXPECT_EQ(service.screens()->generation, 1u);
+}
+
 TEST_F(ProviderService, BeforeWelcomeEverythingElseCloses) {
     auto wrong = service.handle_text(state, hello("wrong-token-0123456789abcdef"));
     EXPECT_EQ(code_of(wrong), p::ErrorCode::unauthorized);
@@ -329,7 +366,8 @@ protected:
         start();
     }
     void start() {
-        server = std::make_unique<Server>(std::make_shared<const Service>(default_service_config(), token), identity);
+        service = std::make_shared<Service>(default_service_config(), token);
+        server = std::make_unique<Server>(service, identity);
         server->start();
         ASSERT_NE(server->port(), 0);
     }
@@ -338,6 +376,7 @@ protected:
     TempDir dir;
     TlsIdentity identity;
     std::string token;
+    std::shared_ptr<Service> service;
     std::unique_ptr<Server> server;
 };
 
@@ -461,6 +500,21 @@ TEST_F(ProviderServer, ShutdownClosesSessionsWithGoingAway) {
     start();
     auto c = client();
     c->connect_and_hello(token);
+}
+
+TEST_F(ProviderServer, ASessionFromBeforeTheScreensChangedIsRestarted) {
+    auto old = client();
+    old->connect_and_hello(token);
+    service->set_screens(lay_out_desktop({{"left", 0, 0, 1920, 1080}, {"right", 1920, 0, 1920, 1080}}));
+    ASSERT_FALSE(old->send(R"({"type":"aim","v":1,"id":2,"point":[10,10],"confidence":0.9})"));
+    EXPECT_EQ(old->read_close(), websocket::close_code::service_restart);
+    // Connecting again gives the new field.
+    auto again = client();
+    ASSERT_FALSE(again->connect());
+    ASSERT_FALSE(again->send(hello(token)));
+    const p::Message m = again->read_message();
+    ASSERT_TRUE(std::holds_alternative<p::Welcome>(m));
+    EXPECT_EQ(std::get<p::Welcome>(m).field.screens.size(), 2u);
 }
 
 TEST_F(ProviderServer, PinningRefusesAnotherCertificate) {

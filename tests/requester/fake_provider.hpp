@@ -137,7 +137,7 @@ private:
             if (const auto* h = std::get_if<p::Hello>(m)) {
                 ++hellos_;
                 if (h->token == token_) {
-                    reply = p::Welcome{h->id, {"fake-desk", "fake-provider/1"}, config.field, config.overlay,
+                    reply = p::Welcome{h->id, {"fake-desk", "fake-provider/1"}, config.screens.field, config.overlay,
                                        config.limits};
                 } else {
                     reply = p::Error{h->id, p::ErrorCode::unauthorized, "unknown pairing token"};

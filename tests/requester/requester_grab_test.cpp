@@ -108,7 +108,7 @@ protected:
     static void SetUpTestSuite() {
         shared_dir_ = fs::temp_directory_path() / ("umf_requester_grab_" + std::to_string(::getpid()));
         fs::create_directories(shared_dir_);
-        const umf::Field field = default_service_config().field.definition;
+        const umf::Field field = default_service_config().screens.field.definition;
         photo_ = new umf::test::Photo(umf::test::photograph_field(field, 0.5, 0, 0, 0, 300));
         const umf::test::Photo blank = umf::test::photograph_field(field, 0, 0, 0, 0, 300);
         ASSERT_TRUE(cv::imwrite(shared("photo.png"), photo_->shot.bgr));
