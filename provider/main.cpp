@@ -13,6 +13,7 @@
 #include "cli/args.hpp"
 #include "commands/common_options.hpp"
 #include "commands/compose_command.hpp"
+#include "commands/preset_options.hpp"
 #include "commands/pair_command.hpp"
 #include "commands/serve_command.hpp"
 #include "screen/gui_application.hpp"
@@ -34,6 +35,7 @@ usage:
   umf-provider share --list | --remove ID [--port P]
   umf-provider compose --content SCREEN.png [--board BOARD.json] --preset NAME
                        --time T --out OUT.png --map MAP.json [--screen WxH]
+                       [preset settings, as for serve: --module-px P --blur B ...]
   umf-provider --help
 
 serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /ws;
@@ -126,8 +128,9 @@ int dispatch(int argc, char** argv) {
     if (command == "share")
         return run_share(parse_command_args(argc, argv, first, {"rect", "title", "screen", "port", "remove"}, {"list"}, 1));
     if (command == "compose") {
-        const auto args = parse_command_args(argc, argv, first,
-                                             {"content", "board", "preset", "time", "out", "map", "screen", "config-dir"}, {});
+        std::vector<std::string> options = {"content", "board", "preset", "time", "out", "map", "screen", "config-dir"};
+        for (const auto& o : umf::provider::preset_setting_options()) options.push_back(o);
+        const auto args = parse_command_args(argc, argv, first, options, {});
         const auto config_dir = config_dir_option(args);
         auto compose_args = args;  // compose's own options only
         compose_args.named.erase("config-dir");

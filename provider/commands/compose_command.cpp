@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "board/board.hpp"
+#include "commands/preset_options.hpp"
 #include "field/field_io.hpp"
 #include "io/atomic_file.hpp"
 #include "overlay/preset.hpp"
@@ -27,6 +28,7 @@ const char* const kComposeUsage = R"(umf-provider compose: the screen as shown a
 usage:
   umf-provider compose (--content SCREEN.png | --board BOARD.json | both) --preset NAME
                        --time T --out OUT.png --map MAP.json [--screen WxH]
+                       [preset settings]
 
 --content  a screenshot to mix the field into; its size is the screen's
            (at most 16384 pixels a side)
@@ -35,11 +37,20 @@ usage:
 --screen   the screen size when there is no --content (default 1920x1080)
 --preset   a built-in preset (subtle, balanced, visible, static, kiosk) or
            one of presets.json in the configuration directory
+--opacity-min A --opacity-max A --period S --waveform sine|triangle --blur B
+--region full|focus --focus-radius M --activation always|on_demand --fade S
+--palette #rrggbb,#rrggbb
+           change the preset's settings, as for the provider; --blur B blurs
+           the content under the field (0..1, at 1 a Gaussian of half a
+           module) before the field is mixed in. --module-px P is the
+           module size (as on a 96 dpi screen, as the headless provider
+           places the field); the smallest shipped field that covers the
+           screen at that size is used, or larger modules where none does.
 --time     seconds since the pulse started; the opacity is the preset's at
            that time, as while a requester is aiming
 --out      the screen image: PNG, 8-bit RGB
 --map      JSON: {"field": <field file>, "field_id", "origin": [x, y],
-           "module_px", "opacity", "screen": [w, h], "preset", "time"};
+           "module_px", "opacity", "blur", "screen": [w, h], "preset", "time"};
            screen pixel = origin + module_px * (u, v) for field point (u, v).
            A field turned for a portrait screen is written beside it as
            <map name>.field.json.
@@ -123,7 +134,9 @@ bool same_field(const Field& a, const Field& b) {
 fs::path absolute_path(const fs::path& p) { return fs::absolute(p).lexically_normal(); }
 
 int compose(const cli::Args& args, const fs::path& config_dir) {
-    cli::reject_unknown(args, {"content", "board", "screen", "preset", "time", "out", "map"});
+    std::vector<std::string> known = {"content", "board", "screen", "preset", "time", "out", "map"};
+    for (const auto& o : preset_setting_options()) known.push_back(o);
+    cli::reject_unknown(args, known);
     if (!args.positional.empty()) throw UsageError("compose: unexpected argument " + args.positional.front());
     if (!args.flags.empty()) throw UsageError("compose: unexpected flag --" + args.flags.front());
     const auto content_path = cli::get(args, "content");
@@ -137,7 +150,7 @@ int compose(const cli::Args& args, const fs::path& config_dir) {
     const fs::path map_path = required(args, "map");
     std::optional<QSize> screen_given;
     if (auto s = cli::get(args, "screen")) screen_given = screen_option(*s);
-    const overlay::Preset preset = choose_preset(preset_name, config_dir);
+    const overlay::Preset preset = apply_preset_options(choose_preset(preset_name, config_dir), args);
 
     std::optional<QImage> content;
     QSize screen = screen_given.value_or(QSize(1920, 1080));
@@ -160,7 +173,9 @@ int compose(const cli::Args& args, const fs::path& config_dir) {
     ScreenField field;
     bool shipped_unchanged = false;
     try {
-        field = screen_field_for(screen.width(), screen.height());
+        // The preset's module size as on a 96 dpi screen, as the headless
+        // provider places it (serve_command.cpp).
+        field = screen_field_for(screen.width(), screen.height(), preset.module_px);
         shipped_unchanged = same_field(field.field, load_field(field.file));
     } catch (const std::runtime_error& e) {
         throw InputError(std::string("the screen's field: ") + e.what());
@@ -170,7 +185,7 @@ int compose(const cli::Args& args, const fs::path& config_dir) {
     QImage shown;
     try {
         shown = compose_screen(content ? &*content : nullptr, board ? &*board : nullptr, screen, field, opacity,
-                               preset.palette);
+                               preset.palette, preset.blur);
     } catch (const std::invalid_argument& e) {
         throw InputError(std::string("preset \"") + preset.name + "\": " + e.what());
     }
@@ -196,6 +211,7 @@ int compose(const cli::Args& args, const fs::path& config_dir) {
     map["origin"] = {field.placement.origin_x, field.placement.origin_y};
     map["module_px"] = field.placement.module_px;
     map["opacity"] = opacity;
+    map["blur"] = preset.blur;
     map["screen"] = {screen.width(), screen.height()};
     map["preset"] = preset.name;
     map["time"] = time;

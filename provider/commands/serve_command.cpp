@@ -264,9 +264,8 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     int received = 0;
     std::unique_ptr<BoardWindow> board_window;
     if (!headless && board) {
-        board_window = std::make_unique<BoardWindow>(
-            screen_image, field_layer(screen_field_for(width, height, board_module_px), preset.palette), preset,
-            QGuiApplication::primaryScreen());
+        board_window = std::make_unique<BoardWindow>(screen_image, screen_field_for(width, height, board_module_px),
+                                                     preset, QGuiApplication::primaryScreen());
         board_window->showFullScreen();
     }
     std::shared_ptr<void> controls;

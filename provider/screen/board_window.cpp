@@ -6,6 +6,7 @@
 
 #include "overlay/field_mix.hpp"
 #include "overlay/pulse.hpp"
+#include "screen/screen_image.hpp"
 
 namespace umf::provider {
 
@@ -37,6 +38,15 @@ void paint_board_frame(QPainter& painter, const QImage& board, const QImage& lay
     painter.drawImage(0, 0, layer);
     painter.setOpacity(1.0);
 }
+
+QImage board_under_field(QImage board, const ScreenField& field, const overlay::Preset& preset) {
+    blur_under_field(board, field, preset.blur);
+    return board;
+}
+
+BoardWindow::BoardWindow(QImage board, const ScreenField& field, const overlay::Preset& preset, QScreen* screen)
+    : BoardWindow(board_under_field(std::move(board), field, preset), field_layer(field, preset.palette), preset,
+                  screen) {}
 
 BoardWindow::BoardWindow(QImage board, QImage layer, overlay::Preset preset, QScreen* screen)
     : board_(std::move(board)), layer_(std::move(layer)), preset_(std::move(preset)) {

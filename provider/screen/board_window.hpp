@@ -26,9 +26,20 @@ QImage field_layer(const ScreenField& field, const std::vector<std::string>& pal
 // One frame: the board, then the layer at `opacity`.
 void paint_board_frame(QPainter& painter, const QImage& board, const QImage& layer, double opacity);
 
+// The board as the window shows it under the field: blurred under the
+// field at the preset's `blur` (screen_image.hpp's blur_under_field), once,
+// so that each frame is still only a blend. Throws std::invalid_argument for
+// a board of another size than the field's screen.
+QImage board_under_field(QImage board, const ScreenField& field, const overlay::Preset& preset);
+
 class BoardWindow : public QRasterWindow {
 public:
+    // `board` as it is shown, `layer` from field_layer: no blur is applied.
     BoardWindow(QImage board, QImage layer, overlay::Preset preset, QScreen* screen);
+    // The board painted (paint_board), the field it shows and the preset:
+    // board_under_field and field_layer, so the preset's blur and palette
+    // both apply. Throws what board_under_field throws.
+    BoardWindow(QImage board, const ScreenField& field, const overlay::Preset& preset, QScreen* screen);
 
 protected:
     void paintEvent(QPaintEvent* event) override;

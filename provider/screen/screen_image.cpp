@@ -14,6 +14,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "overlay/background_blur.hpp"
 #include "overlay/field_mix.hpp"
 
 namespace umf::provider {
@@ -203,13 +204,36 @@ QImage paint_board(const Board& board, const std::vector<PixelRect>& tiles, QSiz
     return image;
 }
 
+void blur_under_field(QImage& image, const ScreenField& field, double strength) {
+    if (!(strength >= 0.0 && strength <= 1.0))
+        throw std::invalid_argument("blur_under_field: strength must be 0..1, not " + std::to_string(strength));
+    if (image.width() != field.screen_width || image.height() != field.screen_height)
+        throw std::invalid_argument("blur_under_field: the field is placed for a " +
+                                    std::to_string(field.screen_width) + " x " + std::to_string(field.screen_height) +
+                                    " screen, the image is " + std::to_string(image.width()) + " x " +
+                                    std::to_string(image.height()));
+    if (strength == 0.0 || image.isNull()) return;
+    if (image.format() != QImage::Format_RGB888 && image.format() != QImage::Format_RGB32)
+        image = image.convertToFormat(QImage::Format_RGB32);
+    if (image.isNull()) throw std::runtime_error("blur_under_field: no memory for the image");
+    // Format_RGB32 is 0xffRRGGBB in a 32-bit word: the padding byte is last
+    // in memory on little-endian machines, where the blur leaves it alone.
+    const bool four = image.format() == QImage::Format_RGB32;
+    const overlay::PixelBuffer pixels{image.bits(), image.width(), image.height(), image.bytesPerLine(),
+                                      four ? 4 : 3, four};
+    if (!overlay::blur_under_field(pixels, field.field.width, field.field.height, field.placement, strength))
+        throw std::invalid_argument("blur_under_field: the field's placement has no positive, finite module size");
+}
+
 QImage compose_screen(const QImage* content, const Board* board, QSize screen, const ScreenField& field,
-                      double opacity, const std::vector<std::string>& palette) {
+                      double opacity, const std::vector<std::string>& palette, double blur) {
     check_screen(screen, "compose_screen");
     if (field.screen_width != screen.width() || field.screen_height != screen.height())
         throw std::invalid_argument("compose_screen: the field is placed for a " + std::to_string(field.screen_width) +
                                     " x " + std::to_string(field.screen_height) + " screen, not " +
                                     std::to_string(screen.width()) + " x " + std::to_string(screen.height()));
+    if (!(blur >= 0.0 && blur <= 1.0))
+        throw std::invalid_argument("compose_screen: blur must be 0..1, not " + std::to_string(blur));
     if (content && content->size() != screen)
         throw std::invalid_argument("compose_screen: the content is " + std::to_string(content->width()) + " x " +
                                     std::to_string(content->height()) + " pixels, the screen " +
@@ -226,6 +250,9 @@ QImage compose_screen(const QImage* content, const Board* board, QSize screen, c
         out.fill(Qt::black);
     }
     if (out.isNull()) throw std::runtime_error("compose_screen: no memory for the screen image");
+    // Before the field: the field's own edges must stay sharp, only what
+    // competes with them is blurred.
+    blur_under_field(out, field, blur);
     overlay::PixelBuffer pixels{out.bits(), out.width(), out.height(), out.bytesPerLine(), 3, false};
     overlay::mix_field(pixels, field.field, field.placement, opacity, palette);
     return out;

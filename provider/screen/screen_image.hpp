@@ -33,11 +33,22 @@ QImage paint_board(const Board& board, const std::vector<PixelRect>& tiles, QSiz
 
 // The screen as shown (Format_RGB888): `content` (which must have the
 // screen's size; any format, its alpha dropped) or black, the board window
-// over all of it when there is a board (laid out by layout_board), then the
-// field mixed in at `opacity` with `palette` (empty: the field's own).
+// over all of it when there is a board (laid out by layout_board), blurred
+// under the field at `blur` (a preset's, 0..1; blur_under_field), then the
+// field mixed in at `opacity` with `palette` (empty: the field's own). With
+// blur 0 the pixels are exactly overlay::mix_field's over the content.
 // Throws std::invalid_argument for a content or ScreenField of another size
-// than the screen, and what paint_board and overlay::mix_field throw.
+// than the screen, a blur outside 0..1, and what paint_board and
+// overlay::mix_field throw.
 QImage compose_screen(const QImage* content, const Board* board, QSize screen, const ScreenField& field,
-                      double opacity, const std::vector<std::string>& palette);
+                      double opacity, const std::vector<std::string>& palette, double blur = 0.0);
+
+// `image` with the pixels under the field blurred at `strength` (0..1) by
+// overlay::blur_under_field, in place; the board window does this once to
+// its board, compose to every screen. Format_RGB888 and Format_RGB32 are
+// blurred as they are, any other format is converted to Format_RGB32 first.
+// Strength 0 leaves the image untouched. Throws std::invalid_argument for a
+// strength outside 0..1 or a field placed for another screen size.
+void blur_under_field(QImage& image, const ScreenField& field, double strength);
 
 }  // namespace umf::provider

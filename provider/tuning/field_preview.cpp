@@ -9,6 +9,7 @@
 
 #include "field/default_field.hpp"
 #include "field/field_io.hpp"
+#include "overlay/background_blur.hpp"
 #include "overlay/field_mix.hpp"
 #include "overlay/placement.hpp"
 #include "overlay/pulse.hpp"
@@ -30,12 +31,11 @@ bool single_colour(const QImage& image) {
     return true;
 }
 
-QImage blurred(const QImage& image) {
-    // Shrinking by 8 and smoothing back is blur enough to show what the
-    // setting does, at a fraction of a real Gaussian's cost per frame.
-    const QSize small = (image.size() / 8).expandedTo(QSize(1, 1));
-    return image.scaled(small, Qt::IgnoreAspectRatio, Qt::SmoothTransformation)
-        .scaled(image.size(), Qt::IgnoreAspectRatio, Qt::SmoothTransformation);
+// The field on the preview: centred as on the screen, its module scaled
+// with the screen, so it covers the same share of both.
+overlay::FieldPlacement preview_placement(const Field& field, QSize size, double screen_width, double module_px) {
+    return overlay::centred_placement(field.width, field.height, size.width(), size.height(),
+                                      module_px * size.width() / screen_width);
 }
 
 }  // namespace
@@ -85,7 +85,9 @@ FieldPreview::FieldPreview(const QImage& screen, QSize size, QWidget* parent)
 }
 
 void FieldPreview::set_preset(const overlay::Preset& preset) {
+    const bool blur_changed = preset.blur != preset_.blur || preset.module_px != preset_.module_px;
     preset_ = preset;
+    if (blur_changed) blur_sample();
     tick();
 }
 
@@ -94,23 +96,32 @@ void FieldPreview::set_screen(const QImage& screen) {
     screen_width_ = source.width();
     sample_ = source.scaled(size_, Qt::IgnoreAspectRatio, Qt::SmoothTransformation)
                   .convertToFormat(QImage::Format_RGB32);
-    blurred_ = blurred(sample_);
+    blur_sample();
     tick();
+}
+
+void FieldPreview::blur_sample() {
+    // The screen's own blur at the preview's module size: the sample is the
+    // screen scaled down, so the blur's reach in modules, which is what the
+    // strength sets, is the same in both. Once per change, not per frame.
+    blurred_ = sample_;
+    if (!field_ || !(preset_.blur > 0.0)) return;
+    const auto placement = preview_placement(*field_, size_, screen_width_, preset_.module_px);
+    const overlay::PixelBuffer buffer{blurred_.bits(), blurred_.width(), blurred_.height(), blurred_.bytesPerLine(),
+                                      4, true};
+    // A half-edited preset (a module size of 0, say) is previewed unblurred.
+    if (!overlay::blur_under_field(buffer, field_->width, field_->height, placement, std::min(preset_.blur, 1.0)))
+        blurred_ = sample_;
 }
 
 QImage FieldPreview::frame(double t_s) const {
     QImage background = sample_;
-    if (preset_.blur > 0.0) {
-        QPainter p(&background);
-        p.setOpacity(preset_.blur);
-        p.drawImage(0, 0, blurred_);
-    }
     if (!field_) return background;
-    QImage mixed = background;
-    const double scale = size_.width() / screen_width_;
-    const double module_px = preset_.module_px * scale;
-    const auto placement =
-        overlay::centred_placement(field_->width, field_->height, mixed.width(), mixed.height(), module_px);
+    // The blur lies under the field only, so where a focus region hides the
+    // field the screen shows sharp.
+    QImage mixed = blurred_;
+    const auto placement = preview_placement(*field_, size_, screen_width_, preset_.module_px);
+    const double module_px = placement.module_px;
     overlay::PixelBuffer buffer{mixed.bits(), mixed.width(), mixed.height(), mixed.bytesPerLine(), 4, true};
     const double opacity = overlay::opacity_at(preset_, t_s);
     try {

@@ -31,11 +31,12 @@ public:
 
 private:
     void tick();
+    void blur_sample();
 
     QSize size_;
     double screen_width_ = 1920.0;  // what the preview's width stands for
     QImage sample_;                  // the screen scaled to size_
-    QImage blurred_;
+    QImage blurred_;                 // sample_ blurred under the field at the preset's blur
     std::optional<Field> field_;
     overlay::Preset preset_;
     QTimer* timer_;

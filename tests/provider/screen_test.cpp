@@ -197,8 +197,10 @@ TEST_F(Compose, WritesTheScreenAndItsMap) {
     EXPECT_FALSE(shown.isGrayscale());
 
     const nlohmann::json m = read_json(map);
-    const ScreenField field = screen_field_for(1280, 720);
     const overlay::Preset balanced = *overlay::find_preset(overlay::built_in_presets(), "balanced");
+    // The preset's module size, the field reaching past the smaller screen.
+    const ScreenField field = screen_field_for(1280, 720, balanced.module_px);
+    EXPECT_DOUBLE_EQ(field.placement.module_px, balanced.module_px);
     EXPECT_EQ(m["field"], fs::absolute(field.file).lexically_normal().string());
     EXPECT_TRUE(fs::is_regular_file(m["field"].get<std::string>()));
     EXPECT_EQ(m["field_id"], field.field.id);
