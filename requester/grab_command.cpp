@@ -15,6 +15,7 @@
 #include <opencv2/core.hpp>
 
 #include "cli.hpp"
+#include "aiming/aim.hpp"
 #include "detect/detector.hpp"
 #include "detect/tracker.hpp"
 #include "download.hpp"
@@ -115,27 +116,7 @@ int parse_camera(const std::string& text) {
     return std::stoi(text);
 }
 
-bool usable(const Eigen::Vector2d& pt) {
-    return std::isfinite(pt.x()) && std::isfinite(pt.y()) && std::abs(pt.x()) <= p::kMaxCoordinate &&
-           std::abs(pt.y()) <= p::kMaxCoordinate;
-}
-
-// The image corners in the field, for the provider's outline of the view;
-// none when a corner lies beyond the horizon (on the other side of the
-// homography's line at infinity than the image centre).
-std::optional<std::array<p::FieldPoint, 4>> view_quad(const Eigen::Matrix3d& image_to_field, int w, int h) {
-    const Eigen::Vector3d centre = image_to_field * Eigen::Vector3d(w / 2.0, h / 2.0, 1);
-    const Eigen::Vector2d corners[4] = {{0, 0}, {double(w), 0}, {double(w), double(h)}, {0, double(h)}};
-    std::array<p::FieldPoint, 4> quad;
-    for (int i = 0; i < 4; ++i) {
-        const Eigen::Vector3d q = image_to_field * Eigen::Vector3d(corners[i].x(), corners[i].y(), 1);
-        if (!(q.z() * centre.z() > 0) || std::abs(q.z()) < 1e-12 * std::abs(centre.z())) return std::nullopt;
-        const Eigen::Vector2d pt(q.x() / q.z(), q.y() / q.z());
-        if (!usable(pt)) return std::nullopt;
-        quad[i] = {pt.x(), pt.y()};
-    }
-    return quad;
-}
+using aiming::usable_point;
 
 Json point_json(const p::FieldPoint& pt) {
     // Thousandths of a module: the detector is not better than that.
@@ -184,13 +165,11 @@ private:
     p::RequestId next_id() { return p::RequestId{std::int64_t{id_++}}; }
 
     void send_aim(const Eigen::Vector2d& point, const Detection& d, int w, int h) {
-        p::Aim aim;
-        aim.id = next_id();
-        last_aim_id_ = aim.id;
-        aim.point = {point.x(), point.y()};
-        aim.quad = view_quad(d.image_to_field, w, h);
-        aim.confidence = std::clamp(std::isfinite(d.confidence) ? d.confidence : 0.0, 0.0, 1.0);
-        connection_.send(aim);
+        std::optional<p::Aim> aim = aiming::aim_message(point, d, w, h);
+        if (!aim) return;
+        aim->id = next_id();
+        last_aim_id_ = aim->id;
+        connection_.send(*aim);
     }
 
     // What the provider said about aims: the title for the preview; errors
@@ -222,7 +201,7 @@ private:
         if (!why.empty()) throw input_failure("cannot use " + frame.name + ": " + why);
         const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
         const Detection d = detector_->detect(view, centre);
-        if (!d.found || !usable(d.aim_field))
+        if (!d.found || !usable_point(d.aim_field))
             throw GrabFailure("not_found_in_view",
                               "the field was not found in " + frame.name +
                                   (d.failure.empty() ? std::string() : " (" + d.failure + ")") +
@@ -297,7 +276,7 @@ private:
 
             const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
             const TrackResult r = tracker.update(view, centre);
-            const bool locked = r.state == TrackState::locked && usable(r.aim_field);
+            const bool locked = r.state == TrackState::locked && usable_point(r.aim_field);
             take_replies();
             if (locked) {
                 if (!ever_locked) log("locked on the field");

@@ -7,6 +7,17 @@
 // The screens share one field (screen/desktop_layout.hpp), each showing its
 // own part, so a field point names the screen; mirrored screens, which
 // overlap, each show the field of their own size instead.
+//
+// Region::focus with a preset's blur: the screen under each focus circle is
+// grabbed without the overlay (the windows hidden for a moment), blurred and
+// given to the window, which then paints the pulse inside the circle itself
+// (OverlayWindow, "painted pulse"). A grab is made when the circle has no
+// backdrop near it: it moved by more than a quarter of its radius, grew out
+// of the grabbed area, or the grab is older than kBackdropMaxAgeMs while the
+// requester keeps aiming. Grabs run on the Qt thread without blocking it
+// (hide, a timer for the compositor to settle, capture, show), one at a
+// time, requests in the meantime coalesced, at most one started every
+// kMinGrabIntervalMs. Every other mode keeps the compositor's opacity.
 #pragma once
 
 #include <QElapsedTimer>
@@ -78,6 +89,20 @@ public:
     // changed size or density, or the preset's module size changed.
     void on_screens_changed(std::function<void()> callback) { screens_changed_ = std::move(callback); }
 
+    // The screen in `root_rect` (root-window pixels, within one screen) as it
+    // is without the overlay; a null image when it cannot be had. The default
+    // captures with X11 (content/x11_window.hpp) on the xcb platform and is
+    // empty elsewhere: without a grab function the blur is not applied to the
+    // overlay. Tests give a synthetic one. Setting it drops grabbed backdrops.
+    using GrabFunction = std::function<QImage(const QRect& root_rect)>;
+    void set_grab_function(GrabFunction grab);
+    static constexpr int kBackdropMaxAgeMs = 2000;
+    static constexpr int kMinGrabIntervalMs = 300;
+    // Whether a grab is scheduled or waiting for the compositor.
+    bool grab_pending() const { return grab_state_ != GrabState::idle; }
+    // Milliseconds the last grab's capture and blur took (not the settling).
+    double last_grab_cost_ms() const { return last_grab_cost_ms_; }
+
     // The windows, for tests and diagnostics.
     std::vector<OverlayWindow*> windows() const;
     // The opacity last given to the windows.
@@ -95,6 +120,17 @@ private:
     void apply_shown(double opacity);
     Entry* entry_for(int index);
     void notify();
+    // set_focus's work; `aimed` when a requester aimed just now (an old
+    // backdrop is then grabbed again).
+    void refocus(Entry& entry, bool aimed);
+    // Region::focus with a blur and a way to grab: the painted pulse.
+    bool backdrop_mode() const;
+    bool needs_grab(const Entry& entry, QPointF centre, double radius, bool aimed) const;
+    void request_grab();
+    void start_grab();
+    void finish_grab();
+    // The entry's raw grab blurred at the preset's strength, to its window.
+    void blur_backdrop(Entry& entry);
 
     overlay::Preset preset_;
     overlay::AdaptiveOverlay adaptive_;
@@ -109,6 +145,11 @@ private:
     bool visible_ = true;
     int snapshot_depth_ = 0;
     std::function<void()> screens_changed_;
+    GrabFunction grab_;
+    enum class GrabState { idle, scheduled, settling };
+    GrabState grab_state_ = GrabState::idle;
+    std::optional<qint64> last_grab_ms_;  // when the last grab was captured
+    double last_grab_cost_ms_ = 0.0;
 };
 
 }  // namespace umf::provider

@@ -66,8 +66,45 @@ void OverlayWindow::set_field(ScreenField field, const std::vector<std::string>&
 }
 
 void OverlayWindow::set_opacity(double opacity) {
-    setOpacity(std::clamp(opacity, 0.0, 1.0));
+    opacity = std::clamp(opacity, 0.0, 1.0);
+    if (painted_pulse_) {
+        if (opacity != pulse_) {
+            pulse_ = opacity;
+            // The circle alone changes; without one (never so from the
+            // manager) the whole field.
+            if (focus_centre_) update(logical_bounds(*focus_centre_, focus_radius_, 0));
+            else update();
+        }
+        return;
+    }
+    pulse_ = opacity;
+    setOpacity(opacity);
     flush_x11();
+}
+
+void OverlayWindow::set_painted_pulse(bool on) {
+    if (on == painted_pulse_) return;
+    painted_pulse_ = on;
+    if (!on) backdrop_ = QImage();
+    setOpacity(on ? 1.0 : pulse_);
+    flush_x11();
+    update();
+}
+
+void OverlayWindow::set_backdrop(QImage blurred, QPoint origin_px) {
+    if (!blurred.isNull() && blurred.format() != QImage::Format_RGB32)
+        blurred = blurred.convertToFormat(QImage::Format_RGB32);
+    const QRect before = backdrop_rect();
+    backdrop_ = std::move(blurred);
+    backdrop_origin_ = origin_px;
+    if (!painted_pulse_ || !focus_centre_) return;
+    // Only the circle can show it.
+    const QRect changed = before.united(backdrop_rect());
+    const double dpr = devicePixelRatio();
+    const QRect circle = logical_bounds(*focus_centre_, focus_radius_, 0);
+    update(circle.intersected(QRectF(QPointF(changed.topLeft()) / dpr, QSizeF(changed.size()) / dpr)
+                                  .toAlignedRect()
+                                  .adjusted(-1, -1, 1, 1)));
 }
 
 QRect OverlayWindow::logical_bounds(QPointF centre_px, double radius_px, double margin_px) const {
@@ -112,15 +149,114 @@ void OverlayWindow::set_pointer(std::optional<QPointF> point_px, QString title) 
 
 void OverlayWindow::paintEvent(QPaintEvent* event) {
     ++paint_count_;
-    const double dpr = devicePixelRatio();
     QPainter painter(this);
-    painter.setClipRegion(event->region());
+    paint_to(painter, event->region());
+}
+
+void OverlayWindow::paint_painted_focus(QPainter& painter) {
+    const double dpr = devicePixelRatio();
+    // The circle's pixels, physical, within the window and the layer.
+    const QRect bounds = logical_bounds(*focus_centre_, focus_radius_, 0).intersected(QRect(QPoint(), size()));
+    const QRect box = QRectF(QPointF(bounds.topLeft()) * dpr, QSizeF(bounds.size()) * dpr)
+                          .toAlignedRect()
+                          .intersected(layer_.rect());
+    if (box.isEmpty()) return;
+    // The mask, 0..255 a pixel: the soft circle where the layer holds the
+    // field (as the gradient mask of the compositor's pulse: 1 inside,
+    // falling linearly to 0 at the radius), 0 off it. Made again only when
+    // the circle, the field or the ratio changed; a pulse step reuses it.
+    if (mask_.box != box || mask_.centre != *focus_centre_ || mask_.radius != focus_radius_ ||
+        mask_.layer_key != layer_.cacheKey()) {
+        mask_ = {box, *focus_centre_, focus_radius_, layer_.cacheKey(), {}};
+        mask_.alpha.resize(static_cast<std::size_t>(box.width()) * box.height());
+        const double cx = focus_centre_->x(), cy = focus_centre_->y(), r = focus_radius_;
+        const double inner = r * (1.0 - kFocusSoftness);
+        for (int y = 0; y < box.height(); ++y) {
+            const auto* field = reinterpret_cast<const QRgb*>(layer_.constScanLine(box.y() + y)) + box.x();
+            const double dy = box.y() + y + 0.5 - cy;
+            std::uint8_t* out = &mask_.alpha[static_cast<std::size_t>(y) * box.width()];
+            for (int x = 0; x < box.width(); ++x) {
+                const double dx = box.x() + x + 0.5 - cx;
+                const double d = std::sqrt(dx * dx + dy * dy);
+                const double m = qAlpha(field[x]) == 0 || d >= r ? 0.0 : d <= inner ? 1.0 : (r - d) / (r - inner);
+                out[x] = static_cast<std::uint8_t>(std::lround(m * 255.0));
+            }
+        }
+    }
+    QImage out(box.size(), QImage::Format_ARGB32_Premultiplied);
+    // The pulse in 1/65536: the mix is then exact to a rounding.
+    const std::uint32_t a = static_cast<std::uint32_t>(std::lround(pulse_ * 65536.0));
+    const std::uint32_t a8 = static_cast<std::uint32_t>(std::lround(pulse_ * 255.0));
+    const QRect covered = backdrop_rect().intersected(box);
+    for (int y = 0; y < out.height(); ++y) {
+        const int sy = box.y() + y;
+        const auto* field = reinterpret_cast<const QRgb*>(layer_.constScanLine(sy)) + box.x();
+        const std::uint8_t* mask = &mask_.alpha[static_cast<std::size_t>(y) * box.width()];
+        auto* row = reinterpret_cast<QRgb*>(out.scanLine(y));
+        const bool backdrop_row = !covered.isEmpty() && sy >= covered.top() && sy <= covered.bottom();
+        // x in the box where the backdrop starts and ends on this row.
+        const int x0 = backdrop_row ? covered.left() - box.x() : out.width();
+        const int x1 = backdrop_row ? covered.right() + 1 - box.x() : out.width();
+        const QRgb* under = backdrop_row ? reinterpret_cast<const QRgb*>(backdrop_.constScanLine(sy - backdrop_origin_.y())) +
+                                               (box.x() - backdrop_origin_.x())
+                                         : nullptr;
+        for (int x = 0; x < out.width(); ++x) {
+            const std::uint32_t m = mask[x];
+            if (m == 0) {
+                row[x] = 0;
+                continue;
+            }
+            const QRgb c = field[x];
+            std::uint32_t red, green, blue, alpha;
+            if (x >= x0 && x < x1) {
+                // Opaque: the blurred content and the module mixed.
+                const QRgb b = under[x];
+                const auto mix = [a](std::uint32_t bv, std::uint32_t cv) { return (bv * (65536 - a) + cv * a + 32768) >> 16; };
+                red = mix(qRed(b), qRed(c));
+                green = mix(qGreen(b), qGreen(c));
+                blue = mix(qBlue(b), qBlue(c));
+                alpha = 255;
+            } else {
+                // Off the backdrop: the module at opacity a over the desktop.
+                red = (qRed(c) * a8 + 127) / 255;
+                green = (qGreen(c) * a8 + 127) / 255;
+                blue = (qBlue(c) * a8 + 127) / 255;
+                alpha = a8;
+            }
+            if (m != 255) {
+                // Premultiplied by the soft edge.
+                red = (red * m + 127) / 255;
+                green = (green * m + 127) / 255;
+                blue = (blue * m + 127) / 255;
+                alpha = (alpha * m + 127) / 255;
+            }
+            row[x] = qRgba(static_cast<int>(red), static_cast<int>(green), static_cast<int>(blue), static_cast<int>(alpha));
+        }
+    }
+    out.setDevicePixelRatio(dpr);
+    painter.save();
     painter.setCompositionMode(QPainter::CompositionMode_Source);
-    painter.fillRect(event->rect(), Qt::transparent);
+    painter.drawImage(QPointF(box.topLeft()) / dpr, out);
+    painter.restore();
+}
+
+void OverlayWindow::paint_to(QPainter& painter, const QRegion& region) {
+    const double dpr = devicePixelRatio();
+    painter.setClipRegion(region);
+    painter.setCompositionMode(QPainter::CompositionMode_Source);
+    painter.fillRect(region.boundingRect(), Qt::transparent);
     // The layer is in physical pixels: tagged with the ratio it maps one to
     // one onto the backing store.
     layer_.setDevicePixelRatio(dpr);
-    if (!focus_centre_) {
+    if (painted_pulse_ && !focus_centre_) {
+        // Never so from the manager: the whole field at the pulse.
+        painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
+        painter.setOpacity(pulse_);
+        painter.drawImage(QPointF(0, 0), layer_);
+        painter.setOpacity(1.0);
+    } else if (painted_pulse_) {
+        if (focus_radius_ > 0) paint_painted_focus(painter);
+    } else if (!focus_centre_) {
         painter.drawImage(QPointF(0, 0), layer_);
     } else if (focus_radius_ > 0) {
         const QRect bounds = logical_bounds(*focus_centre_, focus_radius_, 0);

@@ -4,16 +4,30 @@
 // compositor: changing it costs no repaint, which a full-screen ARGB window
 // at 60 Hz could not afford. A repaint happens only when what is drawn
 // changes: the layer, the focus circle or the pointer.
+//
+// One exception, the painted pulse (the manager's choice for Region::focus
+// with a preset's blur): the window is given the screen under the focus
+// circle, grabbed without the overlay and blurred (the backdrop), and draws
+// inside the circle an opaque mix (1 - a) * backdrop + a * module colour, a
+// being the pulse opacity. The window's own opacity then stays 1 and each
+// visible step of the pulse repaints the circle's bounding rectangle only.
+// Outside the circle the window stays transparent; at its soft edge the mix
+// fades to transparent, so the real desktop shows through. Where the circle
+// has moved off the backdrop (before the next grab) the field is painted
+// translucent at opacity a over the real desktop, as the compositor would.
 #pragma once
 
 #include <QImage>
 #include <QPointF>
 #include <QRasterWindow>
 #include <QString>
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "screen/screen_field.hpp"
 
+class QPainter;
 class QScreen;
 
 namespace umf::provider {
@@ -30,8 +44,23 @@ public:
     // Follows the screen's geometry (it may have moved or been resized).
     void cover_screen();
 
-    // 0..1, the compositor's opacity for the whole window; no repaint.
+    // 0..1, the pulse: the compositor's opacity for the whole window, no
+    // repaint; with the painted pulse a repaint of the focus circle instead.
     void set_opacity(double opacity);
+    // The pulse as last given to set_opacity.
+    double pulse_opacity() const { return pulse_; }
+
+    // The painted pulse (see the top of the file): on, the window's opacity is
+    // 1 and set_opacity repaints the circle; off (the default), the backdrop
+    // is dropped and the compositor's opacity pulses again.
+    void set_painted_pulse(bool on);
+    bool painted_pulse() const { return painted_pulse_; }
+    // The blurred screen content at `origin_px` (the screen's physical
+    // pixels), any format (kept as RGB32); a null image drops it. Used only
+    // with the painted pulse.
+    void set_backdrop(QImage blurred, QPoint origin_px);
+    // The screen's physical pixels the backdrop covers (empty without one).
+    QRect backdrop_rect() const { return backdrop_.isNull() ? QRect() : QRect(backdrop_origin_, backdrop_.size()); }
     // Only the field within `radius_px` of `centre_px` is shown; nullopt shows
     // all of it. Both in the screen's physical pixels, as the placement.
     void set_focus(std::optional<QPointF> centre_px, double radius_px);
@@ -43,6 +72,10 @@ public:
     // that the pulse does not repaint.
     int paint_count() const { return paint_count_; }
 
+    // What paintEvent draws within `region` (logical pixels), on a painter
+    // over the window or, in tests, over an image of the window's size.
+    void paint_to(QPainter& painter, const QRegion& region);
+
 protected:
     void paintEvent(QPaintEvent* event) override;
 
@@ -51,6 +84,9 @@ private:
     // pixels touches, with room for a soft edge or the title.
     QRect logical_bounds(QPointF centre_px, double radius_px, double margin_px) const;
     QRect pointer_bounds() const;
+    // The focus circle drawn as the painted pulse: the opaque mix over the
+    // backdrop, the translucent field beyond it.
+    void paint_painted_focus(QPainter& painter);
 
     ScreenField field_;
     QImage layer_;
@@ -59,6 +95,19 @@ private:
     std::optional<QPointF> pointer_;
     QString pointer_title_;
     int paint_count_ = 0;
+    double pulse_ = 0.0;
+    bool painted_pulse_ = false;
+    QImage backdrop_;  // Format_RGB32, physical pixels
+    QPoint backdrop_origin_;
+    // The painted circle's soft mask, kept while only the pulse moves.
+    struct Mask {
+        QRect box;  // physical pixels
+        QPointF centre;
+        double radius = -1.0;
+        qint64 layer_key = 0;
+        std::vector<std::uint8_t> alpha;
+    };
+    Mask mask_;
 };
 
 }  // namespace umf::provider

@@ -1,18 +1,24 @@
 // The overlay manager following its requesters, on the offscreen platform:
 // easy locks lower the field within the preset's range, a struggling
 // requester raises it again at once, the windows carry the opacity the
-// manager gives, and a larger module in the preset moves the field.
+// manager gives, and a larger module in the preset moves the field. With
+// Region::focus and a blur, the screen under the circle (a grab function
+// given by the test) is blurred and mixed into the circle by the window.
 #if defined(UMF_PROVIDER_TESTS) && defined(UMF_PROVIDER_OVERLAY)
 
 #include <gtest/gtest.h>
 
 #include <QCoreApplication>
 #include <QElapsedTimer>
+#include <QPainter>
 #include <chrono>
+#include <cmath>
 #include <thread>
 
+#include "overlay/background_blur.hpp"
 #include "overlay/overlay_manager.hpp"
 #include "provider/gui_test_app.hpp"
+#include "screen/board_window.hpp"
 
 namespace {
 
@@ -89,6 +95,184 @@ TEST(OverlayManager, APresetWithLargerModulesMovesTheField) {
     preset.opacity_max = 0.45;
     manager.set_preset(preset);
     EXPECT_EQ(changes, 1);
+}
+
+// Runs the event loop until `done` or the timeout.
+template <class Predicate>
+bool pump_until(Predicate done, int timeout_ms) {
+    QElapsedTimer clock;
+    clock.start();
+    while (!done()) {
+        if (clock.elapsed() > timeout_ms) return false;
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return true;
+}
+
+// Black and white squares of 3 root pixels: edges far finer than a module.
+QImage checkerboard(const QRect& root_rect) {
+    QImage image(root_rect.size(), QImage::Format_RGB32);
+    for (int y = 0; y < image.height(); ++y)
+        for (int x = 0; x < image.width(); ++x) {
+            const bool white = (((root_rect.x() + x) / 3) + ((root_rect.y() + y) / 3)) % 2 == 0;
+            image.setPixel(x, y, white ? qRgb(255, 255, 255) : qRgb(0, 0, 0));
+        }
+    return image;
+}
+
+QImage render(OverlayWindow& window) {
+    QImage image(window.size(), QImage::Format_ARGB32_Premultiplied);
+    image.fill(Qt::transparent);
+    QPainter painter(&image);
+    window.paint_to(painter, QRegion(image.rect()));
+    return image;
+}
+
+struct GrabLog {
+    std::vector<QRect> asked;
+    std::vector<QImage> given;
+};
+
+TEST(OverlayManager, FocusWithBlurMixesTheBlurredScreenIntoTheCircle) {
+    umf::test::ensure_gui_application();
+    umf::overlay::Preset preset = steady_preset();
+    preset.region = umf::overlay::Region::focus;
+    preset.focus_radius_modules = 4;
+    preset.blur = 1.0;
+    OverlayManager manager(preset);
+    ASSERT_EQ(manager.windows().size(), 1u);
+    auto log = std::make_shared<GrabLog>();
+    manager.set_grab_function([log](const QRect& rect) {
+        log->asked.push_back(rect);
+        log->given.push_back(checkerboard(rect));
+        return log->given.back();
+    });
+    OverlayWindow& window = *manager.windows()[0];
+    const OverlayScreen screen = manager.screens()[0];
+    ASSERT_EQ(window.devicePixelRatio(), 1.0) << "the offscreen platform's";
+    const double module = window.screen_field().placement.module_px;
+    const double radius = 4 * module;
+    ASSERT_GE(screen.root_rect.width(), 6 * radius) << "the screen is too small for the test";
+    const QImage layer = field_layer(window.screen_field(), preset.palette);
+
+    // The circle well inside the left part of the screen; two aims close by.
+    const QPointF centre(1.3 * radius, screen.root_rect.height() / 2.0);
+    manager.set_focus(screen.index, centre);
+    manager.set_focus(screen.index, centre + QPointF(module / 2, module / 3));
+    ASSERT_TRUE(pump_until([&] { return !log->asked.empty() && !manager.grab_pending(); }, 3000));
+    const QPointF aimed = centre + QPointF(module / 2, module / 3);
+    manager.set_focus(screen.index, aimed + QPointF(-module / 2, 0));  // and another, still near
+    pump_until([] { return false; }, 2 * OverlayManager::kMinGrabIntervalMs);
+    ASSERT_EQ(log->asked.size(), 1u) << "nearby aims grabbed again";
+    const QPointF now = aimed + QPointF(-module / 2, 0);
+    // The grab held the circle with room around it, from the screen's root.
+    const QRect asked = log->asked[0];
+    EXPECT_TRUE(asked.contains(QRectF(now.x() - radius, now.y() - radius, 2 * radius, 2 * radius).toAlignedRect().translated(screen.root_rect.topLeft())));
+    EXPECT_TRUE(window.painted_pulse());
+    EXPECT_EQ(window.opacity(), 1.0) << "the window's opacity stays 1 with the painted pulse";
+    EXPECT_FALSE(window.backdrop_rect().isEmpty());
+
+    // The reference: the same grab blurred as the preset says.
+    QImage blurred = log->given[0].copy();
+    ASSERT_TRUE(umf::overlay::blur_background({blurred.bits(), blurred.width(), blurred.height(), blurred.bytesPerLine(), 4, true},
+                                              {0, 0, blurred.width(), blurred.height()}, 1.0, module));
+    auto check_mix = [&](double a) {
+        const QImage shown = render(window);
+        int worst = 0, probed = 0, off_grey = 0;
+        const QPointF c = now;
+        for (int y = static_cast<int>(c.y() - 0.6 * radius); y <= c.y() + 0.6 * radius; y += 5)
+            for (int x = static_cast<int>(c.x() - 0.6 * radius); x <= c.x() + 0.6 * radius; x += 5) {
+                if (std::hypot(x + 0.5 - c.x(), y + 0.5 - c.y()) > 0.6 * radius) continue;
+                const QRgb field = layer.pixel(x, y);
+                if (qAlpha(field) != 255) continue;
+                const QRgb under = blurred.pixel(x + screen.root_rect.x() - asked.x(), y + screen.root_rect.y() - asked.y());
+                off_grey = std::max(off_grey, std::abs(qRed(under) - 128));
+                const QRgb got = shown.pixel(x, y);
+                EXPECT_EQ(qAlpha(got), 255) << "at " << x << "," << y;
+                const int pairs[3][3] = {{qRed(got), qRed(under), qRed(field)},
+                                         {qGreen(got), qGreen(under), qGreen(field)},
+                                         {qBlue(got), qBlue(under), qBlue(field)}};
+                for (const auto& [g, u, f] : pairs)
+                    worst = std::max(worst, std::abs(g - static_cast<int>(std::lround((1 - a) * u + a * f))));
+                ++probed;
+            }
+        EXPECT_GE(probed, 50);
+        EXPECT_LE(worst, 2) << "at opacity " << a;
+        // It is blurred: the checkerboard's squares are gone to a grey.
+        EXPECT_LE(off_grey, 12);
+        // Outside the circle nothing.
+        int outside = 0;
+        for (int y = 0; y < shown.height(); y += 7)
+            for (int x = 0; x < shown.width(); x += 7)
+                if (std::hypot(x + 0.5 - c.x(), y + 0.5 - c.y()) > radius + 1) outside = std::max(outside, qAlpha(shown.pixel(x, y)));
+        EXPECT_EQ(outside, 0);
+    };
+    EXPECT_NEAR(window.pulse_opacity(), manager.opacity(), 1e-9);
+    EXPECT_NEAR(window.pulse_opacity(), 0.5, 1.0 / 255);
+    check_mix(window.pulse_opacity());
+    // The pulse is painted: another opacity, another mix, the window still at 1.
+    window.set_opacity(0.25);
+    EXPECT_EQ(window.opacity(), 1.0);
+    check_mix(0.25);
+
+    // A far move: grabbed again, there.
+    const QPointF far = now + QPointF(2.5 * radius, 0);
+    manager.set_focus(screen.index, far);
+    ASSERT_TRUE(pump_until([&] { return log->asked.size() == 2 && !manager.grab_pending(); }, 3000))
+        << log->asked.size() << " grabs";
+    EXPECT_TRUE(log->asked[1].contains(QRectF(far.x() - radius, far.y() - radius, 2 * radius, 2 * radius).toAlignedRect().translated(screen.root_rect.topLeft())));
+    EXPECT_TRUE(window.backdrop_rect().contains(QRectF(far.x() - radius, far.y() - radius, 2 * radius, 2 * radius).toAlignedRect()));
+
+    // Another strength blurs the same grab again; no new grab.
+    preset.blur = 0.5;
+    manager.set_preset(preset);
+    pump_until([] { return false; }, 100);
+    EXPECT_EQ(log->asked.size(), 2u);
+    EXPECT_TRUE(window.painted_pulse());
+
+    // Blur 0, live: the compositor's pulse again, no backdrop, no grab.
+    preset.blur = 0;
+    manager.set_preset(preset);
+    EXPECT_FALSE(window.painted_pulse());
+    EXPECT_TRUE(window.backdrop_rect().isEmpty());
+    EXPECT_NEAR(window.opacity(), manager.opacity(), 1.0 / 255 + 1e-6);
+    manager.set_focus(screen.index, centre);
+    pump_until([] { return false; }, 2 * OverlayManager::kMinGrabIntervalMs);
+    EXPECT_EQ(log->asked.size(), 2u) << "grabbed without a blur";
+}
+
+TEST(OverlayManager, AimsDuringAGrabAreCoalesced) {
+    umf::test::ensure_gui_application();
+    umf::overlay::Preset preset = steady_preset();
+    preset.region = umf::overlay::Region::focus;
+    preset.focus_radius_modules = 3;
+    preset.blur = 1.0;
+    OverlayManager manager(preset);
+    auto asked = std::make_shared<std::vector<QRect>>();
+    manager.set_grab_function([asked](const QRect& rect) {
+        asked->push_back(rect);
+        return checkerboard(rect);
+    });
+    const OverlayScreen screen = manager.screens()[0];
+    const double radius = 3 * screen.field.placement.module_px;
+    // Far apart, one after the other before the grab is made: one grab, at the last.
+    const QPointF a(1.2 * radius, 1.2 * radius), b(screen.root_rect.width() - 1.2 * radius, 1.2 * radius);
+    manager.set_focus(screen.index, a);
+    manager.set_focus(screen.index, b);
+    ASSERT_TRUE(pump_until([&] { return !asked->empty() && !manager.grab_pending(); }, 3000));
+    pump_until([] { return false; }, 100);
+    ASSERT_EQ(asked->size(), 1u);
+    EXPECT_TRUE(asked->front().contains(b.toPoint() + screen.root_rect.topLeft()));
+    EXPECT_FALSE(asked->front().contains(a.toPoint() + screen.root_rect.topLeft()));
+
+    // Region full with a blur: not on a live desktop; no grab, the compositor's pulse.
+    preset.region = umf::overlay::Region::full;
+    manager.set_preset(preset);
+    manager.set_focus(screen.index, a);
+    pump_until([] { return false; }, 2 * OverlayManager::kMinGrabIntervalMs);
+    EXPECT_EQ(asked->size(), 1u);
+    EXPECT_FALSE(manager.windows()[0]->painted_pulse());
 }
 
 }  // namespace

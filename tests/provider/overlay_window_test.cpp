@@ -1,7 +1,9 @@
 // The overlay on a real, composited X desktop: Xvfb, openbox and xcompmgr,
 // with a flat grey window below. The field shows mixed at the window's
 // opacity, the pulse changes the screen without a repaint, clicks pass
-// through, the overlay takes no focus, and the compositor is detected.
+// through, the overlay takes no focus, and the compositor is detected. In
+// focus mode with a blur, over a fine checkerboard, the circle shows the
+// field over the blurred pattern and the pattern is untouched around it.
 //
 // The Qt half runs in a child process, this test binary run again for one
 // disabled test: other tests make an offscreen QGuiApplication, at most one
@@ -25,6 +27,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 
 #include "content/x11_window.hpp"
 #include "overlay/compositor.hpp"
@@ -245,6 +248,191 @@ TEST(OverlayWindow, MixesIntoACompositedDesktop) {
     ASSERT_TRUE(status) << "the child did not finish:\n" << log;
     EXPECT_EQ(*status, 0) << log;
     EXPECT_NE(log.find("[  PASSED  ] 1 test"), std::string::npos) << log;
+}
+
+// A checkerboard of 2-pixel squares in root coordinates: as much
+// high-frequency energy as a screen can hold.
+bool pattern_white(int root_x, int root_y) { return ((root_x / 2) + (root_y / 2)) % 2 == 0; }
+
+class PatternBackdrop : public QRasterWindow {
+public:
+    explicit PatternBackdrop(QSize root) : pattern_(root, QImage::Format_RGB32) {
+        for (int y = 0; y < root.height(); ++y) {
+            auto* row = reinterpret_cast<QRgb*>(pattern_.scanLine(y));
+            for (int x = 0; x < root.width(); ++x) row[x] = pattern_white(x, y) ? qRgb(255, 255, 255) : qRgb(0, 0, 0);
+        }
+    }
+
+protected:
+    // Drawn where the window lies, so the screen shows the root's pattern.
+    void paintEvent(QPaintEvent*) override {
+        QPainter(this).drawImage(QPoint(0, 0), pattern_, QRect(mapToGlobal(QPoint(0, 0)), size()));
+    }
+    void moveEvent(QMoveEvent*) override { update(); }
+
+private:
+    QImage pattern_;
+};
+
+// The green channel of a capture.
+int green(const Capture& shot, int x, int y) { return (shot.pixels[static_cast<std::size_t>(y) * shot.width + x] >> 8) & 255; }
+
+// Mean absolute difference of horizontal and vertical neighbours.
+double edge_energy(const Capture& shot) {
+    double sum = 0;
+    int n = 0;
+    for (int y = 0; y + 1 < shot.height; ++y)
+        for (int x = 0; x + 1 < shot.width; ++x) {
+            sum += std::abs(green(shot, x + 1, y) - green(shot, x, y)) + std::abs(green(shot, x, y + 1) - green(shot, x, y));
+            n += 2;
+        }
+    return n ? sum / n : 0;
+}
+
+// Pixels of `rect` off the pattern.
+int off_pattern(const X11Desktop& desktop, QRect rect) {
+    const Capture shot = desktop.capture({rect.x(), rect.y(), rect.width(), rect.height()});
+    if (shot.pixels.size() != static_cast<std::size_t>(rect.width()) * rect.height()) return rect.width() * rect.height();
+    int off = 0;
+    for (int y = 0; y < shot.height; ++y)
+        for (int x = 0; x < shot.width; ++x)
+            off += green(shot, x, y) != (pattern_white(rect.x() + x, rect.y() + y) ? 255 : 0);
+    return off;
+}
+
+// Only in the child: focus with a blur over the pattern.
+TEST(OverlayWindowOnX, DISABLED_BlurChild) {
+    if (!std::getenv(kChildVariable)) GTEST_SKIP() << "run by OverlayWindow.BlursTheDesktopUnderTheFocusCircle";
+    int argc = 1;
+    char name[] = "umf_overlay_child";
+    char* argv[] = {name, nullptr};
+    QGuiApplication app(argc, argv);
+    ASSERT_EQ(QGuiApplication::platformName(), "xcb");
+    const X11Desktop desktop(std::getenv("DISPLAY"));
+    QScreen* screen = QGuiApplication::primaryScreen();
+
+    PatternBackdrop backdrop(screen->geometry().size());
+    backdrop.setFlags(Qt::Window | Qt::FramelessWindowHint);
+    backdrop.setGeometry(screen->geometry());
+    backdrop.show();
+    const QRect probe(400, 300, 64, 64);
+    ASSERT_TRUE(pump_until([&] { return off_pattern(desktop, probe) == 0; }, 5000)) << "the pattern is not shown";
+
+    umf::overlay::Preset preset;
+    preset.period_s = 0;
+    preset.opacity_max = 0.5;
+    preset.activation = umf::overlay::Activation::always;
+    preset.region = umf::overlay::Region::focus;
+    preset.focus_radius_modules = 4;
+    preset.blur = 1.0;
+    OverlayManager manager(preset);
+    ASSERT_EQ(manager.screens().size(), 1u);
+    const OverlayScreen s = manager.screens()[0];
+    OverlayWindow& window = *manager.windows()[0];
+    const double module = s.field.placement.module_px;
+    const double radius = 4 * module;
+    const QPointF centre(700.5, 520.5);
+    manager.set_focus(s.index, centre);
+    ASSERT_TRUE(pump_until([&] { return !window.backdrop_rect().isEmpty() && !manager.grab_pending(); }, 5000))
+        << "no backdrop was grabbed";
+    std::printf("grab cost: capture and blur %.2f ms for a %.0f px radius (%.0f px modules), backdrop %dx%d\n",
+                manager.last_grab_cost_ms(), radius, module, window.backdrop_rect().width(),
+                window.backdrop_rect().height());
+    EXPECT_TRUE(window.painted_pulse());
+    EXPECT_EQ(window.opacity(), 1.0);
+
+    // Module centres well inside the circle, with their colours.
+    const QImage layer = field_layer(s.field, {});
+    std::vector<Probe> inside;
+    for (int i = 0; i < s.field.field.height; ++i)
+        for (int j = 0; j < s.field.field.width; ++j) {
+            const auto p = umf::overlay::field_to_screen(s.field.placement, j + 0.5, i + 0.5);
+            if (std::hypot(p.x - centre.x(), p.y - centre.y()) > 0.6 * radius) continue;
+            const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
+            if (qAlpha(layer.pixel(x, y)) == 255) inside.push_back({x, y, layer.pixel(x, y)});
+        }
+    ASSERT_GE(inside.size(), 12u);
+    bool both = false;
+    for (const Probe& p : inside) both |= p.colour != inside[0].colour;
+    EXPECT_TRUE(both) << "one colour only in the circle";
+
+    // The blurred checkerboard is its mean, 127.5: the field mixed into it.
+    auto mixed_error = [&](double a) {
+        int worst = 0;
+        for (const Probe& p : inside) {
+            const Capture shot = desktop.capture({p.x, p.y, 1, 1});
+            if (shot.pixels.empty()) return 255;
+            const std::uint32_t got = shot.pixels[0];
+            const int pairs[3][2] = {{static_cast<int>((got >> 16) & 255), qRed(p.colour)},
+                                     {static_cast<int>((got >> 8) & 255), qGreen(p.colour)},
+                                     {static_cast<int>(got & 255), qBlue(p.colour)}};
+            for (const auto& [screen_value, colour] : pairs)
+                worst = std::max(worst, static_cast<int>(std::lround(std::abs(screen_value - ((1 - a) * 127.5 + a * colour)))));
+        }
+        return worst;
+    };
+    int error = 255;
+    EXPECT_TRUE(pump_until([&] { return (error = mixed_error(0.5)) <= 4; }, 5000)) << "module centres off by " << error;
+
+    // Blurred: far less edge energy in the circle than in the pattern, what
+    // is left being the field's module edges.
+    const int half = static_cast<int>(0.55 * radius);
+    const QRect core(static_cast<int>(centre.x()) - half, static_cast<int>(centre.y()) - half, 2 * half, 2 * half);
+    const double pattern_energy = edge_energy(desktop.capture({probe.x(), probe.y(), probe.width(), probe.height()}));
+    const double circle_energy = edge_energy(desktop.capture({core.x(), core.y(), core.width(), core.height()}));
+    std::printf("edge energy: pattern %.1f, circle %.1f\n", pattern_energy, circle_energy);
+    EXPECT_GT(pattern_energy, 100.0);
+    EXPECT_LT(circle_energy, 0.1 * pattern_energy);
+
+    // Outside the circle the pattern, untouched: beside it and far away.
+    const int r = static_cast<int>(std::ceil(radius)) + 2;
+    for (const QRect rect : {QRect(static_cast<int>(centre.x()) + r, static_cast<int>(centre.y()) - 32, 64, 64),
+                             QRect(static_cast<int>(centre.x()) - r - 64, static_cast<int>(centre.y()) - 32, 64, 64),
+                             QRect(static_cast<int>(centre.x()) - 32, static_cast<int>(centre.y()) + r, 64, 64), probe,
+                             QRect(1500, 800, 64, 64)})
+        EXPECT_EQ(off_pattern(desktop, rect), 0) << "the pattern changed at " << rect.x() << "," << rect.y();
+
+    // The painted pulse: another opacity reaches the screen by a repaint of
+    // the circle, the window's own opacity still 1.
+    const int paints = window.paint_count();
+    window.set_opacity(0.25);
+    EXPECT_TRUE(pump_until([&] { return (error = mixed_error(0.25)) <= 4; }, 5000)) << "module centres off by " << error;
+    EXPECT_GT(window.paint_count(), paints);
+    EXPECT_EQ(window.opacity(), 1.0);
+    EXPECT_EQ(off_pattern(desktop, QRect(1500, 800, 64, 64)), 0);
+}
+
+TEST(OverlayWindow, BlursTheDesktopUnderTheFocusCircle) {
+    for (const char* program : {"Xvfb", "openbox", "xcompmgr"})
+        if (!find_program(program))
+            GTEST_SKIP() << program << " is not installed (Debian: apt-get install -y xvfb openbox xcompmgr)";
+    TempDir dir;
+    const XServer server = start_xvfb(dir.path / "xvfb.log", "1920x1080x24");
+    Process::Options options;
+    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}});
+    options.log = dir.path / "openbox.log";
+    Process openbox({"openbox"}, options);
+    const X11Desktop desktop(server.display);
+    ASSERT_TRUE(wait_until([&] { return desktop.has_ewmh(); }, 5s)) << "openbox did not start";
+    options.log = dir.path / "xcompmgr.log";
+    Process xcompmgr({"xcompmgr"}, options);
+    ASSERT_TRUE(wait_until([&] { return compositor_running(server.display, 0); }, 5s));
+
+    options.log = dir.path / "child.log";
+    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}, {kChildVariable, "1"}});
+    Process child({fs::read_symlink("/proc/self/exe").string(), "--gtest_also_run_disabled_tests",
+                   "--gtest_filter=OverlayWindowOnX.DISABLED_BlurChild"},
+                  options);
+    const auto status = child.wait_exit(30s);
+    std::ifstream in(dir.path / "child.log");
+    const std::string log(std::istreambuf_iterator<char>(in), {});
+    ASSERT_TRUE(status) << "the child did not finish:\n" << log;
+    EXPECT_EQ(*status, 0) << log;
+    EXPECT_NE(log.find("[  PASSED  ] 1 test"), std::string::npos) << log;
+    // The child's measurements, for the record.
+    for (const char* key : {"grab cost:", "edge energy:"})
+        if (const auto at = log.find(key); at != std::string::npos)
+            std::cout << log.substr(at, log.find('\n', at) - at) << "\n";
 }
 
 // Only in the child: screens come and go (RandR 1.5 monitors, which Qt
