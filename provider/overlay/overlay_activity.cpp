@@ -12,9 +12,27 @@ void OverlayActivity::set_screen_indices(std::vector<int> screen_indices) {
     screen_indices_ = std::move(screen_indices);
 }
 
-void OverlayActivity::seeking(std::uint64_t) {
+void OverlayActivity::seeking(std::uint64_t session) {
+    // A requester that seeks has lost its lock: its ring and circle go.
+    std::optional<int> previous;
+    {
+        std::lock_guard lock(mutex_);
+        if (auto it = pointer_screen_.find(session); it != pointer_screen_.end()) {
+            previous = it->second;
+            pointer_screen_.erase(it);
+        }
+    }
     OverlayManager* m = manager_;
-    QMetaObject::invokeMethod(m, [m] { m->report_seeking(); }, Qt::QueuedConnection);
+    QMetaObject::invokeMethod(
+        m,
+        [m, previous] {
+            if (previous) {
+                m->set_pointer(*previous, std::nullopt, {});
+                m->set_focus(*previous, std::nullopt);
+            }
+            m->report_seeking();
+        },
+        Qt::QueuedConnection);
 }
 
 void OverlayActivity::aimed(const AimActivity& aim) {

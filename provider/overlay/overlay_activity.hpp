@@ -1,7 +1,7 @@
 // The overlay hearing the requesters: a seeking or aiming requester brings an
 // on-demand field up, an aim moves the pointer ring (with the title of what a
 // grab would take) and the focus region to where it points, and a requester
-// that leaves takes its ring away. The service calls in from the server's
+// that seeks again (it lost its lock) or leaves takes its ring away. The service calls in from the server's
 // threads; everything is handed to the manager's (Qt) thread.
 #pragma once
 

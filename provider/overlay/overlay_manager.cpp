@@ -81,6 +81,10 @@ struct OverlayManager::Entry {
     int index = 0;
     std::unique_ptr<OverlayWindow> window;
     std::optional<QPointF> focus;
+    // The ring where a requester points, made at the first aim here.
+    std::unique_ptr<PointerWindow> pointer;
+    bool pointing = false;
+    qint64 pointed_ms = 0;
     // The backdrop under the focus circle (screen physical pixels): the raw
     // grab and where, the area its blur is good for, where the circle was.
     QImage raw;
@@ -107,9 +111,21 @@ OverlayManager::OverlayManager(overlay::Preset preset, QObject* parent)
         notify();
     });
     connect(&pulse_timer_, &QTimer::timeout, this, [this] { tick(); });
+    pointer_timer_.setSingleShot(true);
+    connect(&pointer_timer_, &QTimer::timeout, this, [this] { expire_pointers(); });
+    seeking_timer_.setSingleShot(true);
+    seeking_timer_.setTimerType(Qt::PreciseTimer);
+    connect(&seeking_timer_, &QTimer::timeout, this, [this] {
+        // A timer may fire a little early: wait out the rest.
+        const qint64 left = last_seeking_ms_ ? kSeekingHoldMs - (clock_.elapsed() - *last_seeking_ms_) : 0;
+        if (left > 0) return seeking_timer_.start(static_cast<int>(left) + 1);
+        if (circles_wanted() != circles_applied_) refocus_all();
+    });
     connect(&raise_timer_, &QTimer::timeout, this, [this] {
-        for (auto& entry : entries_)
+        for (auto& entry : entries_) {
             if (entry->window->isVisible()) entry->window->raise();
+            if (entry->pointer && entry->pointer->isVisible()) entry->pointer->raise();
+        }
     });
     raise_timer_.start(kRaiseIntervalMs);
     // Only an X server can be asked for the desktop under the overlay.
@@ -238,9 +254,20 @@ void OverlayManager::report_aim(double confidence) {
 void OverlayManager::report_seeking() {
     const double radius = adaptive_.focus_radius_modules();
     adaptive_.seeking(static_cast<double>(clock_.elapsed()) / 1000.0);
-    if (adaptive_.focus_radius_modules() != radius)
-        for (auto& entry : entries_) refocus(*entry, false);
+    last_seeking_ms_ = clock_.elapsed();
+    seeking_timer_.start(kSeekingHoldMs);
+    if (adaptive_.focus_radius_modules() != radius || circles_wanted() != circles_applied_) refocus_all();
     note_request();
+}
+
+bool OverlayManager::circles_wanted() const {
+    if (preset_.region != overlay::Region::focus) return false;
+    if (last_seeking_ms_ && clock_.elapsed() - *last_seeking_ms_ < kSeekingHoldMs) return false;
+    return std::any_of(entries_.begin(), entries_.end(), [](const auto& e) { return e->focus.has_value(); });
+}
+
+void OverlayManager::refocus_all() {
+    for (auto& entry : entries_) refocus(*entry, false);
 }
 
 void OverlayManager::tick() {
@@ -276,6 +303,7 @@ void OverlayManager::apply_shown(double opacity) {
         } else if (window.isVisible()) {
             window.hide();
         }
+        show_pointer(*entry);
     }
 }
 
@@ -289,7 +317,10 @@ void OverlayManager::set_focus(int index, std::optional<QPointF> centre_px) {
     Entry* entry = entry_for(index);
     if (!entry) return;
     entry->focus = centre_px;
-    refocus(*entry, true);
+    if (circles_wanted() != circles_applied_)
+        refocus_all();
+    else
+        refocus(*entry, true);
 }
 
 bool OverlayManager::backdrop_mode() const {
@@ -303,13 +334,15 @@ bool OverlayManager::backdrop_mode() const {
 }
 
 void OverlayManager::refocus(Entry& entry, bool aimed) {
-    const bool focused = preset_.region == overlay::Region::focus;
+    circles_applied_ = circles_wanted();
+    const bool circles = circles_applied_;
     const double module_px = entry.window->screen_field().placement.module_px;
     const double radius = adaptive_.focus_radius_modules() * module_px;
-    const bool painted = backdrop_mode();
+    const bool painted = backdrop_mode() && circles;
     entry.window->set_painted_pulse(painted);
-    // Focus without an aim point yet: nothing of the field is shown.
-    entry.window->set_focus(focused ? std::optional<QPointF>(entry.focus.value_or(QPointF(-1e6, -1e6)))
+    // Circles: this screen's, or none here (a requester is locked elsewhere).
+    // Otherwise the whole field, for the requesters still seeking a lock.
+    entry.window->set_focus(circles ? std::optional<QPointF>(entry.focus.value_or(QPointF(-1e6, -1e6)))
                                     : std::nullopt,
                             radius);
     if (!painted) {
@@ -434,7 +467,53 @@ void OverlayManager::set_grab_function(GrabFunction grab) {
 }
 
 void OverlayManager::set_pointer(int index, std::optional<QPointF> point_px, const QString& title) {
-    if (Entry* entry = entry_for(index)) entry->window->set_pointer(point_px, title);
+    Entry* entry = entry_for(index);
+    if (!entry) return;
+    entry->pointing = point_px.has_value();
+    if (point_px) {
+        if (!entry->pointer) entry->pointer = std::make_unique<PointerWindow>(entry->screen);
+        entry->pointer->point_at(*point_px, title);
+        entry->pointed_ms = clock_.elapsed();
+        pointer_timer_.start(kPointerHoldMs);
+    }
+    show_pointer(*entry);
+}
+
+void OverlayManager::show_pointer(Entry& entry) {
+    if (!entry.pointer) return;
+    // With the field: not in a snapshot, not while the overlay is off or faded out.
+    const bool shown = entry.pointing && visible_ && snapshot_depth_ == 0 && applied_opacity_ > 0;
+    if (shown) {
+        if (!entry.pointer->isVisible()) entry.pointer->show();
+        entry.pointer->raise();  // above the field's window, which may have been raised since
+    } else if (!shown && entry.pointer->isVisible()) {
+        entry.pointer->hide();
+    }
+}
+
+void OverlayManager::expire_pointers() {
+    // A requester that stopped aiming without seeking or leaving (a phone
+    // put down with the page open) leaves no ring behind.
+    const qint64 now = clock_.elapsed();
+    qint64 next = -1;
+    for (auto& entry : entries_) {
+        if (!entry->pointing) continue;
+        const qint64 left = kPointerHoldMs - (now - entry->pointed_ms);
+        if (left <= 0) {
+            entry->pointing = false;
+            show_pointer(*entry);
+        } else if (next < 0 || left < next) {
+            next = left;
+        }
+    }
+    if (next >= 0) pointer_timer_.start(static_cast<int>(next) + 1);
+}
+
+std::vector<PointerWindow*> OverlayManager::pointer_windows() const {
+    std::vector<PointerWindow*> out;
+    for (const auto& entry : entries_)
+        if (entry->pointer && entry->pointer->isVisible()) out.push_back(entry->pointer.get());
+    return out;
 }
 
 void OverlayManager::set_visible(bool visible) {

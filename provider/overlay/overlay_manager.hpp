@@ -33,6 +33,7 @@
 
 #include "overlay/adaptive.hpp"
 #include "overlay/overlay_window.hpp"
+#include "overlay/pointer_window.hpp"
 #include "overlay/preset.hpp"
 #include "screen/desktop_layout.hpp"
 
@@ -65,9 +66,22 @@ public:
     void report_aim(double confidence);
     void report_seeking();
     // With Region::focus, where the field is shown on screen `index`, in its
-    // physical pixels; nullopt hides the focus there. Ignored for Region::full.
+    // physical pixels; nullopt: no requester is locked there. Ignored for
+    // Region::full. A phone needs the field to lock at all, so a focus preset
+    // shows the whole field while no requester is locked anywhere and for
+    // kSeekingHoldMs after any report of seeking; otherwise only the circles,
+    // and nothing on screens without one.
     void set_focus(int index, std::optional<QPointF> centre_px);
+    static constexpr int kSeekingHoldMs = 1000;
+    // Whether focus circles are what is shown now (see set_focus).
+    bool circles_shown() const { return circles_applied_; }
+    // The ring and title where a requester points on screen `index`
+    // (physical pixels), in a window of its own that does not pulse; nullopt
+    // removes it. A ring not moved for kPointerHoldMs goes by itself.
     void set_pointer(int index, std::optional<QPointF> point_px, const QString& title);
+    static constexpr int kPointerHoldMs = 2000;
+    // The pointer windows shown now, for tests.
+    std::vector<PointerWindow*> pointer_windows() const;
 
     void set_visible(bool visible);
     bool visible() const { return visible_; }
@@ -123,6 +137,11 @@ private:
     // set_focus's work; `aimed` when a requester aimed just now (an old
     // backdrop is then grabbed again).
     void refocus(Entry& entry, bool aimed);
+    // Every screen's refocus, when circles_shown() changes.
+    void refocus_all();
+    void show_pointer(Entry& entry);
+    void expire_pointers();
+    bool circles_wanted() const;
     // Region::focus with a blur and a way to grab: the painted pulse.
     bool backdrop_mode() const;
     bool needs_grab(const Entry& entry, QPointF centre, double radius, bool aimed) const;
@@ -139,6 +158,10 @@ private:
     int next_index_ = 0;
     QElapsedTimer clock_;
     std::optional<qint64> last_request_ms_;
+    std::optional<qint64> last_seeking_ms_;
+    bool circles_applied_ = false;
+    QTimer seeking_timer_;
+    QTimer pointer_timer_;  // fires when kSeekingHoldMs has passed since the last seeking
     QTimer pulse_timer_;
     QTimer raise_timer_;
     double applied_opacity_ = -1.0;

@@ -22,9 +22,6 @@ namespace {
 // The soft edge of the focus circle: the field fades over the outer part of
 // the radius, so the mask's edge does not read as a border to a detector.
 constexpr double kFocusSoftness = 0.15;
-// The pointer ring in logical pixels: the same apparent size on any screen.
-constexpr double kRingRadius = 18.0;
-constexpr double kTitlePointSize = 11.0;
 
 // Qt's xcb plugin sends its requests when its event loop next sees an X
 // event; a property change alone would wait in the buffer until then, and
@@ -114,17 +111,6 @@ QRect OverlayWindow::logical_bounds(QPointF centre_px, double radius_px, double 
     return QRectF(c.x() - r, c.y() - r, 2 * r, 2 * r).toAlignedRect().adjusted(-1, -1, 1, 1);
 }
 
-QRect OverlayWindow::pointer_bounds() const {
-    if (!pointer_) return {};
-    const QPointF c = *pointer_ / devicePixelRatio();
-    QFont font;
-    font.setPointSizeF(kTitlePointSize);
-    const QRect text = QFontMetrics(font).boundingRect(pointer_title_);
-    const QRectF ring(c.x() - kRingRadius - 3, c.y() - kRingRadius - 3, 2 * kRingRadius + 6, 2 * kRingRadius + 6);
-    const QRectF label(c.x() + kRingRadius + 4, c.y() - text.height(), text.width() + 8, 2 * text.height());
-    return ring.united(label).toAlignedRect().adjusted(-2, -2, 2, 2);
-}
-
 void OverlayWindow::set_focus(std::optional<QPointF> centre_px, double radius_px) {
     if (centre_px == focus_centre_ && radius_px == focus_radius_) return;
     // Going from all to part of the field or back changes the whole window;
@@ -137,14 +123,6 @@ void OverlayWindow::set_focus(std::optional<QPointF> centre_px, double radius_px
     }
     focus_centre_ = centre_px;
     focus_radius_ = std::max(0.0, radius_px);
-}
-
-void OverlayWindow::set_pointer(std::optional<QPointF> point_px, QString title) {
-    if (point_px == pointer_ && title == pointer_title_) return;
-    if (pointer_) update(pointer_bounds());
-    pointer_ = point_px;
-    pointer_title_ = std::move(title);
-    if (pointer_) update(pointer_bounds());
 }
 
 void OverlayWindow::paintEvent(QPaintEvent* event) {
@@ -272,26 +250,6 @@ void OverlayWindow::paint_to(QPainter& painter, const QRegion& region) {
         painter.setCompositionMode(QPainter::CompositionMode_DestinationIn);
         painter.fillRect(bounds, mask);
         painter.restore();
-    }
-    if (pointer_) {
-        painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
-        painter.setRenderHint(QPainter::Antialiasing);
-        const QPointF c = *pointer_ / dpr;
-        // White on a dark outline: legible on light and dark content alike.
-        const QPen dark(QColor(0, 0, 0, 200), 4.0), light(Qt::white, 2.0);
-        painter.setBrush(Qt::NoBrush);
-        for (const QPen& pen : {dark, light}) {
-            painter.setPen(pen);
-            painter.drawEllipse(c, kRingRadius, kRingRadius);
-        }
-        if (!pointer_title_.isEmpty()) {
-            QFont font;
-            font.setPointSizeF(kTitlePointSize);
-            QPainterPath text;
-            text.addText(c + QPointF(kRingRadius + 8, QFontMetrics(font).ascent() / 2.0), font, pointer_title_);
-            painter.strokePath(text, QPen(QColor(0, 0, 0, 220), 3.0, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
-            painter.fillPath(text, Qt::white);
-        }
     }
 }
 

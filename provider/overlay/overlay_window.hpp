@@ -3,7 +3,8 @@
 // is the window's opacity (_NET_WM_WINDOW_OPACITY), applied by the
 // compositor: changing it costs no repaint, which a full-screen ARGB window
 // at 60 Hz could not afford. A repaint happens only when what is drawn
-// changes: the layer, the focus circle or the pointer.
+// changes: the layer or the focus circle. The pointer ring has a window of
+// its own (pointer_window.hpp).
 //
 // One exception, the painted pulse (the manager's choice for Region::focus
 // with a preset's blur): the window is given the screen under the focus
@@ -64,9 +65,6 @@ public:
     // Only the field within `radius_px` of `centre_px` is shown; nullopt shows
     // all of it. Both in the screen's physical pixels, as the placement.
     void set_focus(std::optional<QPointF> centre_px, double radius_px);
-    // A ring where the phone points and the requester's title beside it, in
-    // physical pixels; nullopt removes it.
-    void set_pointer(std::optional<QPointF> point_px, QString title);
 
     // Paint events handled since the window was made: tests use it to tell
     // that the pulse does not repaint.
@@ -83,7 +81,6 @@ private:
     // The window's (logical) rectangle a circle of the screen's physical
     // pixels touches, with room for a soft edge or the title.
     QRect logical_bounds(QPointF centre_px, double radius_px, double margin_px) const;
-    QRect pointer_bounds() const;
     // The focus circle drawn as the painted pulse: the opaque mix over the
     // backdrop, the translucent field beyond it.
     void paint_painted_focus(QPainter& painter);
@@ -92,8 +89,6 @@ private:
     QImage layer_;
     std::optional<QPointF> focus_centre_;
     double focus_radius_ = 0.0;
-    std::optional<QPointF> pointer_;
-    QString pointer_title_;
     int paint_count_ = 0;
     double pulse_ = 0.0;
     bool painted_pulse_ = false;

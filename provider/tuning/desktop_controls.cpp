@@ -54,7 +54,6 @@ void DesktopControls::show_tuning() {
             overlay_.set_preset(p);
             if (tray_) tray_->set_presets(names_of(store_), p.name);
         });
-        tuning_->setWindowTitle("umf overlay");
     }
     tuning_->show();
     tuning_->raise();

@@ -275,6 +275,111 @@ TEST(OverlayManager, AimsDuringAGrabAreCoalesced) {
     EXPECT_FALSE(manager.windows()[0]->painted_pulse());
 }
 
+// How many pixels of the rendered window are not transparent.
+int drawn_pixels(OverlayWindow& window) {
+    const QImage image = render(window);
+    int n = 0;
+    for (int y = 0; y < image.height(); y += 4)
+        for (int x = 0; x < image.width(); x += 4) n += qAlpha(image.pixel(x, y)) > 0;
+    return n;
+}
+
+TEST(OverlayManager, FocusShowsTheWholeFieldUntilARequesterLocks) {
+    umf::test::ensure_gui_application();
+    umf::overlay::Preset preset = steady_preset();
+    preset.region = umf::overlay::Region::focus;
+    preset.focus_radius_modules = 3;
+    OverlayManager manager(preset);
+    ASSERT_EQ(manager.windows().size(), 1u);
+    OverlayWindow& window = *manager.windows()[0];
+    const int index = manager.screens()[0].index;
+    const int everything = drawn_pixels(window);
+
+    // Nobody locked: the whole field, or a phone could never lock.
+    EXPECT_FALSE(manager.circles_shown());
+    EXPECT_GT(everything, 1000);
+
+    // A lock: only its circle.
+    const QPointF at(200, 200);
+    manager.set_focus(index, at);
+    EXPECT_TRUE(manager.circles_shown());
+    const int circle = drawn_pixels(window);
+    EXPECT_GT(circle, 0);
+    EXPECT_LT(circle, everything / 4);
+
+    // Another requester seeks: the whole field again, for as long as it seeks.
+    manager.report_seeking();
+    EXPECT_FALSE(manager.circles_shown());
+    EXPECT_EQ(drawn_pixels(window), everything);
+    EXPECT_TRUE(pump_until([&] { return manager.circles_shown(); }, OverlayManager::kSeekingHoldMs + 1000))
+        << "the circle did not come back after the seeking stopped";
+    // Larger now: a struggling requester grows the focus region.
+    const int grown = drawn_pixels(window);
+    EXPECT_GT(grown, circle);
+    EXPECT_LT(grown, everything / 2);
+
+    // The locked one leaves: nobody is locked, the whole field.
+    manager.set_focus(index, std::nullopt);
+    EXPECT_FALSE(manager.circles_shown());
+    EXPECT_EQ(drawn_pixels(window), everything);
+}
+
+TEST(OverlayManager, ThePointerRingHasAWindowOfItsOwnThatDoesNotPulse) {
+    umf::test::ensure_gui_application();
+    umf::overlay::Preset preset = steady_preset();
+    preset.opacity_min = preset.opacity_max = 0.2;  // a faint field
+    OverlayManager manager(preset);
+    const int index = manager.screens()[0].index;
+    EXPECT_TRUE(manager.pointer_windows().empty());
+
+    const QPointF at(300, 250);
+    manager.set_pointer(index, at, "report.pdf");
+    ASSERT_EQ(manager.pointer_windows().size(), 1u);
+    PointerWindow& ring = *manager.pointer_windows()[0];
+    EXPECT_EQ(ring.title(), "report.pdf");
+    EXPECT_EQ(ring.opacity(), 1.0) << "the ring must not fade with the field";
+    // The ring's centre is on the point (the offscreen screen's origin is 0, 0).
+    const QPointF centre = QPointF(ring.geometry().topLeft()) + ring.ring_centre();
+    EXPECT_NEAR(centre.x(), at.x(), 1.0);
+    EXPECT_NEAR(centre.y(), at.y(), 1.0);
+    // Drawn at full strength: white on the ring, dark just outside it, clear
+    // in the middle.
+    QImage image(ring.size(), QImage::Format_ARGB32_Premultiplied);
+    image.fill(Qt::transparent);
+    {
+        QPainter painter(&image);
+        ring.paint_to(painter);
+    }
+    const QPoint c = ring.ring_centre().toPoint();
+    const QRgb on_ring = image.pixel(c.x() + static_cast<int>(PointerWindow::kRingRadius), c.y());
+    EXPECT_GE(qAlpha(on_ring), 240);
+    EXPECT_GT(qGray(on_ring), 200);
+    EXPECT_EQ(qAlpha(image.pixel(c)), 0);
+    // The title makes the window wider than the ring.
+    EXPECT_GT(ring.width(), 2 * PointerWindow::kRingRadius + 40);
+
+    // A snapshot takes it away with the field, and brings it back.
+    manager.hide_for_snapshot();
+    EXPECT_TRUE(manager.pointer_windows().empty());
+    manager.show_after_snapshot();
+    EXPECT_EQ(manager.pointer_windows().size(), 1u);
+
+    // Moved: the same window follows.
+    manager.set_pointer(index, QPointF(900, 100), "");
+    ASSERT_EQ(manager.pointer_windows().size(), 1u);
+    EXPECT_NEAR(manager.pointer_windows()[0]->geometry().left() + manager.pointer_windows()[0]->ring_centre().x(),
+                900.0, 1.0);
+
+    // Not moved for a while: it goes by itself.
+    EXPECT_TRUE(pump_until([&] { return manager.pointer_windows().empty(); }, OverlayManager::kPointerHoldMs + 1000));
+
+    // Removed at once when told.
+    manager.set_pointer(index, at, "x");
+    EXPECT_EQ(manager.pointer_windows().size(), 1u);
+    manager.set_pointer(index, std::nullopt, {});
+    EXPECT_TRUE(manager.pointer_windows().empty());
+}
+
 }  // namespace
 
 #endif
