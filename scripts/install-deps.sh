@@ -19,7 +19,7 @@ packages=(
   # web/: WebAssembly build and browser tests
   emscripten chromium
   # headless desktop for overlay and window tests
-  xvfb xauth x11-utils x11-xserver-utils xdotool openbox mupdf xterm xcompmgr
+  xvfb xauth x11-utils x11-xserver-utils xdotool openbox mupdf xterm xcompmgr picom
 )
 
 # node and npm may come from another repository whose nodejs bundles npm
