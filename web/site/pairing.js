@@ -1,0 +1,61 @@
+// Pairing: the token and the certificate's fingerprint arrive in the URL's
+// fragment from the provider's QR code (https://host:port/#t=TOKEN&fp=HEX),
+// which browsers never send to a server. They are kept on the phone per
+// screen (origin), and the fragment is then taken out of the address bar so
+// the token does not linger in a shared screenshot or the history.
+const KEY = 'umf.pairings.v1';
+
+function loadAll() {
+  try {
+    const all = JSON.parse(localStorage.getItem(KEY) || '{}');
+    return all && typeof all === 'object' ? all : {};
+  } catch {
+    return {};
+  }
+}
+
+function saveAll(all) {
+  try {
+    localStorage.setItem(KEY, JSON.stringify(all));
+  } catch {
+    // Private browsing or storage full: the pairing works for this visit.
+  }
+}
+
+// {token, fingerprint} from a fragment "#t=...&fp=...", or null.
+export function parseFragment(hash) {
+  const params = new URLSearchParams(hash.replace(/^#/, ''));
+  const token = params.get('t');
+  if (!token) return null;
+  const fingerprint = (params.get('fp') || '').toLowerCase();
+  if (token.length > 128 || !/^[A-Za-z0-9_\-.~]+$/.test(token)) return null;
+  return { token, fingerprint: /^[0-9a-f:]{0,128}$/.test(fingerprint) ? fingerprint : '' };
+}
+
+// The pairing for this page: a fresh one from the fragment (kept, and the
+// fragment removed), else the one kept for this origin, else null.
+export function currentPairing(location = window.location) {
+  const fresh = parseFragment(location.hash);
+  const all = loadAll();
+  if (fresh) {
+    all[location.origin] = { ...all[location.origin], ...fresh, pairedAt: Date.now() };
+    saveAll(all);
+    history.replaceState(null, '', location.pathname + location.search);
+    return { ...all[location.origin], origin: location.origin };
+  }
+  const kept = all[location.origin];
+  return kept && kept.token ? { ...kept, origin: location.origin } : null;
+}
+
+export function rememberProviderName(origin, name) {
+  const all = loadAll();
+  if (!all[origin]) return;
+  all[origin].provider = name;
+  saveAll(all);
+}
+
+export function forget(origin) {
+  const all = loadAll();
+  delete all[origin];
+  saveAll(all);
+}

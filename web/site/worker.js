@@ -1,0 +1,83 @@
+// The detector's thread: frames from the camera (VideoFrame, or ImageBitmap
+// where the browser has no MediaStreamTrackProcessor) or one photo, turned
+// into RGBA and given to the same Tracker the native requester runs
+// (detector.js over umf-detector.wasm). One frame at a time: the page sends
+// the next only after this one's result, so nothing queues up.
+import { createDetector } from './detector.js';
+
+let detector = null;
+let canvas = null;
+let context = null;
+let rgba = null;
+let copyToRgba = typeof VideoFrame !== 'undefined';  // until a copyTo with a format conversion fails
+
+// A frame's RGBA pixels, at most maxSide on its longer side (photos).
+async function pixelsOf(source, maxSide = Infinity) {
+  const width0 = source.displayWidth ?? source.width;
+  const height0 = source.displayHeight ?? source.height;
+  const scale = Math.min(1, maxSide / Math.max(width0, height0));
+  const width = Math.round(width0 * scale), height = Math.round(height0 * scale);
+  if (copyToRgba && scale === 1 && typeof VideoFrame !== 'undefined' && source instanceof VideoFrame) {
+    try {
+      const bytes = width * height * 4;
+      if (!rgba || rgba.length !== bytes) rgba = new Uint8Array(bytes);
+      await source.copyTo(rgba, { format: 'RGBA', colorSpace: 'srgb' });
+      return { data: rgba, width, height };
+    } catch {
+      copyToRgba = false;  // an older browser: draw it instead
+    }
+  }
+  if (!canvas || canvas.width !== width || canvas.height !== height) {
+    canvas = new OffscreenCanvas(width, height);
+    context = canvas.getContext('2d', { willReadFrequently: true });
+  }
+  context.drawImage(source, 0, 0, width, height);
+  return { data: context.getImageData(0, 0, width, height).data, width, height };
+}
+
+function track(pixels) {
+  const t0 = performance.now();
+  const result = detector.track(pixels.data, pixels.width, pixels.height, { format: 'rgba' });
+  return { ...result, width: pixels.width, height: pixels.height, totalMs: performance.now() - t0 };
+}
+
+self.onmessage = async (event) => {
+  const message = event.data;
+  try {
+    if (message.type === 'field') {
+      detector?.destroy();
+      detector = null;
+      detector = await createDetector(message.field);
+      self.postMessage({ type: 'ready' });
+    } else if (message.type === 'frame') {
+      const frame = message.frame;
+      try {
+        if (!detector) throw new Error('no field yet');
+        const pixels = await pixelsOf(frame);
+        self.postMessage({ type: 'result', id: message.id, result: track(pixels) });
+      } finally {
+        frame.close?.();
+      }
+    } else if (message.type === 'still') {
+      // A photo: searched from scratch, at a size the detector reads well.
+      const bitmap = message.bitmap;
+      try {
+        if (!detector) throw new Error('no field yet');
+        detector.reset();
+        let result = null;
+        for (const side of [1920, 1280, 960]) {
+          result = track(await pixelsOf(bitmap, side));
+          if (result.found) break;
+          detector.reset();
+        }
+        self.postMessage({ type: 'still-result', id: message.id, result });
+      } finally {
+        bitmap.close?.();
+      }
+    } else if (message.type === 'reset') {
+      detector?.reset();
+    }
+  } catch (e) {
+    self.postMessage({ type: 'failure', id: message.id, message: String(e?.message || e) });
+  }
+};
