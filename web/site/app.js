@@ -64,6 +64,8 @@ function showError(code, detail) {
   $('error').dataset.code = code;
   $('error-title').textContent = title;
   $('error-text').textContent = detail ? `${text} (${detail})` : text;
+  // Only a new QR code helps an unpaired phone.
+  $('error-retry').hidden = code === 'unpaired';
   $('error').hidden = false;
   setState('error', title);
 }

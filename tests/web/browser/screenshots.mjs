@@ -1,0 +1,70 @@
+// The phone flow as pictures for the README: the page in a phone-sized
+// headless Chromium, its fake camera a simulated photo video of a board tile
+// (the web.browser.video_file fixture), against a headless provider.
+//
+//   node tests/web/browser/screenshots.mjs --provider build/X/bin/umf-provider --site build/X/web/site \
+//        --board tests/web/browser/board/board.json --video build/X/tests/web/browser/tile0.y4m \
+//        --modules build/X/tests/web/browser/node_modules --out docs/images
+//
+// Writes phone-locked.jpg (the lock ring and the title of what a grab would
+// take), phone-result.jpg (the file taken and checked) and phone-unpaired.jpg.
+import { spawn } from 'node:child_process';
+import fs from 'node:fs';
+import { createRequire } from 'node:module';
+import os from 'node:os';
+import path from 'node:path';
+
+const args = {};
+for (let i = 2; i + 1 < process.argv.length; i += 2) args[process.argv[i].replace(/^--/, '')] = process.argv[i + 1];
+for (const k of ['provider', 'site', 'board', 'video', 'modules', 'out'])
+  if (!args[k]) {
+    console.error(`screenshots.mjs: --${k} is needed`);
+    process.exit(2);
+  }
+const { chromium } = createRequire(path.join(path.resolve(args.modules), 'noop.js'))('playwright-core');
+const work = fs.mkdtempSync(path.join(os.tmpdir(), 'umf-phone-shots-'));
+fs.mkdirSync(args.out, { recursive: true });
+
+const provider = spawn(args.provider, ['serve', '--headless', '--board', path.resolve(args.board), '--screen', '1920x1080',
+                                       '--port', '0', '--bind', '127.0.0.1', '--config-dir', path.join(work, 'config'),
+                                       '--no-qr', '--web', args.site],
+                       { stdio: ['ignore', 'pipe', 'inherit'], env: { ...process.env, XDG_RUNTIME_DIR: work } });
+const pairing = await new Promise((resolve, reject) => {
+  let out = '';
+  const timer = setTimeout(() => reject(new Error(`no pairing URL from the provider:\n${out}`)), 20000);
+  provider.stdout.on('data', (d) => {
+    out += d;
+    const m = /^pairing URL: (\S+)$/m.exec(out);
+    if (m) {
+      clearTimeout(timer);
+      resolve(m[1]);
+    }
+  });
+});
+
+const browser = await chromium.launch({
+  executablePath: args.chromium ?? '/usr/bin/chromium', headless: true,
+  args: ['--ignore-certificate-errors', '--use-fake-device-for-media-stream', '--use-fake-ui-for-media-stream',
+         `--use-file-for-fake-video-capture=${path.resolve(args.video)}`, '--no-sandbox'],
+});
+try {
+  const phone = { viewport: { width: 390, height: 844 }, deviceScaleFactor: 1.5, isMobile: true, hasTouch: true,
+                  ignoreHTTPSErrors: true };
+  const page = await (await browser.newContext(phone)).newPage();
+  await page.goto(pairing);
+  await page.waitForSelector('body[data-state="locked"]', { timeout: 30000 });
+  await page.waitForFunction(() => document.getElementById('target-title').textContent.length > 0, null, { timeout: 10000 });
+  await page.screenshot({ path: path.join(args.out, 'phone-locked.jpg'), type: 'jpeg', quality: 80 });
+  await page.click('#grab');
+  await page.waitForSelector('#result[data-verified="true"]', { timeout: 20000 });
+  await page.screenshot({ path: path.join(args.out, 'phone-result.jpg'), type: 'jpeg', quality: 80 });
+
+  const fresh = await (await browser.newContext(phone)).newPage();
+  await fresh.goto(new URL(pairing).origin + '/');
+  await fresh.waitForSelector('body[data-state="unpaired"]', { timeout: 10000 });
+  await fresh.screenshot({ path: path.join(args.out, 'phone-unpaired.jpg'), type: 'jpeg', quality: 80 });
+  console.log(`wrote phone-locked.jpg, phone-result.jpg, phone-unpaired.jpg to ${args.out}`);
+} finally {
+  await browser.close();
+  provider.kill('SIGTERM');
+}
