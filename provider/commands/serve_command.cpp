@@ -188,9 +188,20 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         }
     }
 
+    // The web client: --web DIR, else the one this build made when it is
+    // there, else the built-in page (std::nullopt).
+    std::optional<std::filesystem::path> web_dir;
+    if (auto web = get(a, "web")) {
+        web_dir = *web;
+    } else {
+#ifdef UMF_WEB_SITE_DIR
+        std::error_code ec;
+        if (std::filesystem::is_directory(UMF_WEB_SITE_DIR, ec)) web_dir = UMF_WEB_SITE_DIR;
+#endif
+    }
     std::shared_ptr<const StaticSite> site;
     try {
-        if (auto web = get(a, "web")) site = std::make_shared<const StaticSite>(StaticSite::from_folder(*web));
+        if (web_dir) site = std::make_shared<const StaticSite>(StaticSite::from_folder(*web_dir));
     } catch (const std::exception& e) {
         std::cerr << "umf-provider: " << e.what() << "\n";
         return kConfigError;
@@ -246,7 +257,10 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
 
     const std::string url = pairing_url(host, server->port(), token, identity.fingerprint);
     std::cout << "umf-provider: listening on https://" << (bind.find(':') != std::string::npos ? "[" + bind + "]" : bind)
-              << ":" << server->port() << " (WebSocket at /ws)\n";
+              << ":" << server->port() << " (WebSocket at /ws, HTTPS transport under /api/)\n";
+    std::cout << "web client: " << (web_dir ? web_dir->string() + " (" + std::to_string(site->size()) + " files)"
+                                            : std::string("the built-in page"))
+              << "\n";
     if (board)
         std::cout << "board: " << board->items.size() << " items" << (board->title.empty() ? "" : " (" + board->title + ")")
                   << " from " << board_source.string() << "\n";

@@ -38,13 +38,14 @@ std::size_t SessionRegistry::size() const {
 
 Listener::Listener(net::io_context& io, net::ssl::context& tls, const tcp::endpoint& endpoint,
                    std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
-                   std::size_t max_connections)
+                   std::shared_ptr<HttpSessions> http_sessions, std::size_t max_connections)
     : io_(io),
       tls_(tls),
       strand_(net::make_strand(io)),
       acceptor_(strand_),
       service_(std::move(service)),
       registry_(std::move(registry)),
+      http_sessions_(std::move(http_sessions)),
       max_connections_(max_connections) {
     acceptor_.open(endpoint.protocol());
     acceptor_.set_option(net::socket_base::reuse_address(true));
@@ -84,7 +85,7 @@ void Listener::on_accept(beast::error_code ec, tcp::socket socket) {
         beast::error_code ignored;
         socket.close(ignored);
     } else {
-        std::make_shared<Session>(std::move(socket), tls_, service_, registry_)->run();
+        std::make_shared<Session>(std::move(socket), tls_, service_, registry_, http_sessions_)->run();
     }
     accept();
 }

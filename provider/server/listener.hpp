@@ -16,6 +16,7 @@
 
 namespace umf::provider {
 
+class HttpSessions;
 class Session;
 
 // The live sessions, by address. Sessions add themselves when they start and
@@ -38,7 +39,7 @@ public:
     // Binds and listens; throws boost::system::system_error.
     Listener(boost::asio::io_context& io, boost::asio::ssl::context& tls, const boost::asio::ip::tcp::endpoint& endpoint,
              std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
-             std::size_t max_connections = 1024);
+             std::shared_ptr<HttpSessions> http_sessions, std::size_t max_connections = 1024);
 
     void run();
     // From any thread: stops accepting.
@@ -56,6 +57,7 @@ private:
     boost::asio::ip::tcp::endpoint endpoint_;
     std::shared_ptr<const Service> service_;
     std::shared_ptr<SessionRegistry> registry_;
+    std::shared_ptr<HttpSessions> http_sessions_;
     std::size_t max_connections_;
     bool stopped_ = false;
 };

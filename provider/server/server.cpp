@@ -1,6 +1,7 @@
 #include "server/server.hpp"
 
 #include <boost/asio/ip/address.hpp>
+#include <boost/asio/strand.hpp>
 #include <stdexcept>
 
 #include "server/listener.hpp"
@@ -15,7 +16,8 @@ Server::Server(std::shared_ptr<const Service> service, const TlsIdentity& identi
       options_(std::move(options)),
       io_(options_.threads > 0 ? options_.threads : 1),
       tls_(net::ssl::context::tls_server),
-      registry_(std::make_shared<SessionRegistry>()) {
+      registry_(std::make_shared<SessionRegistry>()),
+      http_sessions_(HttpSessions::create(net::make_strand(io_), service_, options_.http_sessions)) {
     configure_server_context(tls_, identity);
 }
 
@@ -28,7 +30,8 @@ void Server::start() {
     if (ec) throw std::runtime_error("not an IP address: " + options_.bind_address);
     const net::ip::tcp::endpoint endpoint(address, options_.port);
     try {
-        listener_ = std::make_shared<Listener>(io_, tls_, endpoint, service_, registry_, options_.max_connections);
+        listener_ = std::make_shared<Listener>(io_, tls_, endpoint, service_, registry_, http_sessions_,
+                                               options_.max_connections);
     } catch (const boost::system::system_error& e) {
         throw std::runtime_error("cannot listen on " + options_.bind_address + " port " +
                                  std::to_string(options_.port) + ": " + e.code().message());
@@ -46,6 +49,8 @@ void Server::stop(std::chrono::milliseconds grace) {
     if (!running_) return;
     running_ = false;
     listener_->stop();
+    // Open polls are answered with "closed": 1001 and the HTTP sessions end.
+    http_sessions_->stop();
     for (const auto& session : registry_->sessions()) session->shutdown();
 
     // The io_context runs out of work once the listener and every session

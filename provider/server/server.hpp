@@ -11,6 +11,7 @@
 #include <thread>
 #include <vector>
 
+#include "server/http_sessions.hpp"
 #include "server/service.hpp"
 #include "server/tls_identity.hpp"
 
@@ -26,6 +27,8 @@ struct ServerOptions {
     // Connections at once (WebSocket sessions and HTTPS downloads); more are
     // closed as they arrive.
     std::size_t max_connections = 1024;
+    // The HTTPS transport's sessions (docs/PROTOCOL.md, "HTTPS transport").
+    HttpSessionOptions http_sessions;
 };
 
 class Server {
@@ -44,7 +47,10 @@ public:
     // and waits up to `grace` for the closing handshakes before dropping
     // what is left; returns when the threads have ended.
     void stop(std::chrono::milliseconds grace = std::chrono::milliseconds(2000));
+    // Connections open (WebSocket sessions, HTTPS requests and polls).
     std::size_t session_count() const;
+    // The HTTPS transport's sessions.
+    const HttpSessions& http_sessions() const { return *http_sessions_; }
 
 private:
     std::shared_ptr<const Service> service_;
@@ -52,6 +58,7 @@ private:
     boost::asio::io_context io_;
     boost::asio::ssl::context tls_;
     std::shared_ptr<SessionRegistry> registry_;
+    std::shared_ptr<HttpSessions> http_sessions_;
     std::shared_ptr<Listener> listener_;
     std::vector<std::thread> threads_;
     unsigned short port_ = 0;

@@ -90,9 +90,29 @@ Service::Service(ServiceConfig config, std::string token, std::vector<std::share
 void Service::set_screens(const DesktopLayout& layout) {
     ScreenMap next = screen_map_for(layout);
     if (next.field.screens.empty()) throw std::invalid_argument("a service needs screens");
-    std::lock_guard lock(screens_mutex_);
-    next.generation = screens_->generation + 1;
-    screens_ = std::make_shared<const ScreenMap>(std::move(next));
+    {
+        std::lock_guard lock(screens_mutex_);
+        next.generation = screens_->generation + 1;
+        screens_ = std::make_shared<const ScreenMap>(std::move(next));
+    }
+    std::vector<std::shared_ptr<std::function<void()>>> watchers;
+    {
+        std::lock_guard lock(watchers_mutex_);
+        std::erase_if(screen_watchers_, [&](const auto& weak) {
+            auto watcher = weak.lock();
+            if (watcher) watchers.push_back(std::move(watcher));
+            return !watcher;
+        });
+    }
+    for (const auto& watcher : watchers) (*watcher)();
+}
+
+std::shared_ptr<void> Service::watch_screens(std::function<void()> on_change) const {
+    auto watcher = std::make_shared<std::function<void()>>(std::move(on_change));
+    std::lock_guard lock(watchers_mutex_);
+    std::erase_if(screen_watchers_, [](const auto& weak) { return weak.expired(); });
+    screen_watchers_.push_back(watcher);
+    return watcher;
 }
 
 std::shared_ptr<const ScreenMap> Service::screens() const {

@@ -7,6 +7,7 @@
 #include <array>
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -126,6 +127,10 @@ public:
     // without screens.
     void set_screens(const DesktopLayout& layout);
     std::shared_ptr<const ScreenMap> screens() const;
+    // Calls `on_change` after each set_screens (on that caller's thread, the
+    // new map in place) for as long as the returned handle is held; it must
+    // not block. The HTTPS transport answers open polls with it.
+    std::shared_ptr<void> watch_screens(std::function<void()> on_change) const;
     const ServiceConfig& config() const { return config_; }
     DownloadTable& downloads() const { return *downloads_; }
     const StaticSite& site() const { return *site_; }
@@ -140,6 +145,8 @@ private:
     ServiceConfig config_;  // its screens are the first; screens_ holds the current
     mutable std::mutex screens_mutex_;
     std::shared_ptr<const ScreenMap> screens_;
+    mutable std::mutex watchers_mutex_;
+    mutable std::vector<std::weak_ptr<std::function<void()>>> screen_watchers_;
     std::vector<std::shared_ptr<const Resolver>> resolvers_;
     std::shared_ptr<DownloadTable> downloads_;
     std::shared_ptr<FileFactsCache> facts_;

@@ -4,6 +4,7 @@
 #include <boost/asio/write.hpp>
 #include <boost/beast/core/detect_ssl.hpp>
 #include <boost/asio/post.hpp>
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <limits>
@@ -25,33 +26,20 @@ namespace {
 
 constexpr auto kHandshakeTimeout = std::chrono::seconds(30);
 constexpr std::size_t kMaxRequestHeaderBytes = 8 * 1024;
-// GET and HEAD only for now; the HTTPS fallback of the protocol will carry
-// messages in bodies of at most max_message_bytes.
+// Bodies carry one message of the HTTPS transport (docs/PROTOCOL.md, "Limits").
 constexpr std::size_t kMaxRequestBodyBytes = 16 * 1024;
 // Replies waiting beyond this stop the reading until the peer takes them.
 constexpr std::size_t kMaxQueuedReplies = 64;
 
-std::string encode_reply(const protocol::Message& message) {
-    try {
-        return protocol::encode(message);
-    } catch (const std::exception& e) {
-        // A resolver produced something out of range; the requester gets an
-        // internal error with the request's id instead.
-        std::optional<protocol::RequestId> id;
-        std::visit(
-            [&](const auto& m) {
-                if constexpr (requires { m.id; }) id = m.id;
-            },
-            message);
-        return protocol::encode(protocol::Error{id, protocol::ErrorCode::internal, "cannot encode the reply"});
-    }
-}
-
 }  // namespace
 
 Session::Session(net::ip::tcp::socket&& socket, ssl::context& tls, std::shared_ptr<const Service> service,
-                 std::shared_ptr<SessionRegistry> registry)
-    : ws_(std::move(socket), tls), service_(std::move(service)), registry_(std::move(registry)) {
+                 std::shared_ptr<SessionRegistry> registry, std::shared_ptr<HttpSessions> http_sessions)
+    : ws_(std::move(socket), tls),
+      service_(std::move(service)),
+      registry_(std::move(registry)),
+      http_sessions_(std::move(http_sessions)),
+      timer_(ws_.get_executor()) {
     // Wrong pairing tokens are counted per address.
     beast::error_code ec;
     const auto remote = beast::get_lowest_layer(ws_).socket().remote_endpoint(ec);
@@ -59,6 +47,7 @@ Session::Session(net::ip::tcp::socket&& socket, ssl::context& tls, std::shared_p
 }
 
 Session::~Session() {
+    if (poll_pending_ && http_sessions_) http_sessions_->cancel_poll(poll_ticket_);
     service_->session_ended(state_);
     if (registry_) registry_->remove(this);
 }
@@ -120,7 +109,11 @@ void Session::on_request(beast::error_code ec, std::size_t) {
         // connection gone or timed out, nothing.
         if (ec == http::error::header_limit || ec == http::error::buffer_overflow)
             reject(http::status::request_header_fields_too_large, "request header too large\n");
-        else if (ec == http::error::body_limit)
+        else if (ec == http::error::body_limit && beast::string_view(request_->get().target()).starts_with(kApiPrefix)) {
+            beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+            api_error(http::status::payload_too_large, false, protocol::ErrorCode::too_large,
+                      "the body is larger than " + std::to_string(kMaxRequestBodyBytes) + " bytes");
+        } else if (ec == http::error::body_limit)
             reject(http::status::payload_too_large, "request body too large\n");
         else if (ec.category() == http::make_error_code(http::error::bad_method).category() &&
                  ec != http::error::end_of_stream && ec != http::error::partial_message)
@@ -177,13 +170,217 @@ std::string content_disposition(const std::string& name) {
     return "attachment; filename=\"" + ascii + "\"; filename*=UTF-8''" + encoded;
 }
 
+
+// For the web client's files: a page that runs WebAssembly in a module worker
+// and talks to its own origin over https: and wss:. 'self' covers wss: to the
+// same host and port only in browsers that follow CSP Level 3 on this point,
+// so the WebSocket's own origin is named as well, from the Host header the
+// page was loaded with (when it is a plain host[:port]).
+std::string content_security_policy(beast::string_view host) {
+    std::string connect = "'self'";
+    const bool plain_host = !host.empty() && host.size() <= 262 &&
+                            std::all_of(host.begin(), host.end(), [](char c) {
+                                return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ||
+                                       c == ':' || c == '[' || c == ']';
+                            });
+    if (plain_host) connect += " wss://" + std::string(host);
+    return "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; worker-src 'self' blob:; connect-src " +
+           connect +
+           "; img-src 'self' blob: data:; media-src 'self' blob:; style-src 'self'; object-src 'none'; "
+           "base-uri 'none'; frame-ancestors 'none'; form-action 'self'";
+}
+
+// A POST of the HTTPS transport must say its body is JSON: a page of another
+// origin cannot send that without a CORS preflight, which is never answered.
+bool is_json(beast::string_view content_type) {
+    const auto end = content_type.find(';');
+    beast::string_view type = content_type.substr(0, end);
+    while (!type.empty() && (type.back() == ' ' || type.back() == '\t')) type.remove_suffix(1);
+    while (!type.empty() && (type.front() == ' ' || type.front() == '\t')) type.remove_prefix(1);
+    return beast::iequals(type, "application/json");
+}
+
 }  // namespace
+
+void Session::serve_api(const http::request<http::string_body>& req) {
+    const bool keep_alive = req.keep_alive();
+    beast::string_view path = req.target();
+    path = path.substr(0, path.find('?'));
+    enum class Call { none, hello, message, events, close } call = Call::none;
+    beast::string_view id;
+    static constexpr beast::string_view kSessionPrefix = "/api/session/";
+    if (path == "/api/hello") {
+        call = Call::hello;
+    } else if (path.starts_with(kSessionPrefix)) {
+        beast::string_view rest = path.substr(kSessionPrefix.size());
+        const auto slash = rest.find('/');
+        id = rest.substr(0, slash);
+        const beast::string_view tail = slash == beast::string_view::npos ? beast::string_view() : rest.substr(slash);
+        if (!id.empty()) {
+            if (tail.empty())
+                call = Call::message;
+            else if (tail == "/events")
+                call = Call::events;
+            else if (tail == "/close")
+                call = Call::close;
+        }
+    }
+    if (call == Call::none) {
+        api_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found, "no such API path");
+        return;
+    }
+    const http::verb method = call == Call::events ? http::verb::get : http::verb::post;
+    if (req.method() != method) {
+        api_error(http::status::method_not_allowed, keep_alive, protocol::ErrorCode::bad_request,
+                  std::string("this path takes ") + (method == http::verb::get ? "GET" : "POST") + " only",
+                  method == http::verb::get ? "GET" : "POST");
+        return;
+    }
+    if (method == http::verb::post && !is_json(req[http::field::content_type])) {
+        api_error(http::status::unsupported_media_type, keep_alive, protocol::ErrorCode::bad_request,
+                  "the body must be sent as Content-Type: application/json");
+        return;
+    }
+    const std::string_view session(id.data(), id.size());
+    HttpSessions::Reply reply;
+    switch (call) {
+        case Call::hello:
+            reply = http_sessions_->hello(req.body(), state_.peer);
+            break;
+        case Call::message:
+            reply = http_sessions_->message(session, req.body());
+            break;
+        case Call::close:
+            reply = http_sessions_->close(session);
+            break;
+        case Call::events:
+            start_poll(session, keep_alive);
+            return;
+        case Call::none:
+            return;
+    }
+    api_response(reply.status, keep_alive, std::move(reply.body));
+}
+
+void Session::api_response(int status, bool keep_alive, std::string body, const char* allow) {
+    auto res = std::make_shared<http::response<http::string_body>>(static_cast<http::status>(status), 11);
+    set_common_headers(*res);
+    res->set(http::field::content_type, "application/json");
+    res->set(http::field::cache_control, "no-store");
+    if (allow) res->set(http::field::allow, allow);
+    res->keep_alive(keep_alive);
+    res->body() = std::move(body);
+    res->prepare_payload();
+    write_response(std::move(res));
+}
+
+void Session::api_error(http::status status, bool keep_alive, protocol::ErrorCode code, const std::string& message,
+                        const char* allow) {
+    api_response(static_cast<int>(status), keep_alive,
+                 api_body({protocol::encode(protocol::Error{std::nullopt, code, message})}), allow);
+}
+
+void Session::start_poll(std::string_view id, bool keep_alive) {
+    const std::uint64_t poll = ++poll_serial_;
+    // Called at most once, from any thread: the answer goes to this strand.
+    auto waiter = [weak = weak_from_this(), executor = ws_.get_executor(), poll](HttpSessions::Reply reply) {
+        net::post(executor, [weak, poll, reply = std::move(reply)]() mutable {
+            if (auto self = weak.lock()) self->finish_poll(poll, std::move(reply));
+        });
+    };
+    HttpSessions::PollStart start = http_sessions_->begin_poll(id, std::move(waiter));
+    if (start.now) {
+        api_response(start.now->status, keep_alive, std::move(start.now->body));
+        return;
+    }
+    poll_pending_ = true;
+    poll_ticket_ = start.ticket;
+    poll_keep_alive_ = keep_alive;
+    // The poll's own timer bounds it; the read below has no timeout.
+    beast::get_lowest_layer(ws_).expires_never();
+    arm_timer(std::chrono::duration_cast<std::chrono::milliseconds>(http_sessions_->options().poll_timeout),
+              &Session::on_poll_timer);
+    watch();
+}
+
+void Session::arm_timer(std::chrono::milliseconds after, void (Session::*handler)(beast::error_code, std::uint64_t)) {
+    const std::uint64_t serial = ++timer_serial_;
+    timer_.expires_after(after);
+    timer_.async_wait([self = shared_from_this(), handler, serial](beast::error_code ec) {
+        ((*self).*handler)(ec, serial);
+    });
+}
+
+void Session::on_poll_timer(beast::error_code ec, std::uint64_t serial) {
+    if (ec || serial != timer_serial_ || !poll_pending_) return;
+    // Nothing came: answered with no messages, unless an answer is already
+    // on its way to this strand.
+    if (auto reply = http_sessions_->end_poll(poll_ticket_)) finish_poll(poll_serial_, std::move(*reply));
+}
+
+void Session::on_idle_timer(beast::error_code ec, std::uint64_t serial) {
+    if (ec || serial != timer_serial_ || !watching_) return;
+    beast::get_lowest_layer(ws_).close();  // kept alive after a poll, but nothing came
+}
+
+void Session::finish_poll(std::uint64_t poll, HttpSessions::Reply reply) {
+    if (!poll_pending_ || poll != poll_serial_) return;
+    poll_pending_ = false;
+    ++timer_serial_;
+    timer_.cancel();
+    // The write gets the usual timeout (the watching read has none).
+    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+    api_response(reply.status, poll_keep_alive_ && !closing_, std::move(reply.body));
+}
+
+void Session::watch() {
+    // Reads whatever comes while the poll is open: nothing until the client
+    // goes away (an error), or the start of its next request.
+    if (buffer_.size() >= kMaxRequestHeaderBytes) return;  // a pipelining client waits for its answer
+    watching_ = true;
+    ws_.next_layer().async_read_some(buffer_.prepare(2048),
+                                     beast::bind_front_handler(&Session::on_watch, shared_from_this()));
+}
+
+void Session::on_watch(beast::error_code ec, std::size_t bytes) {
+    watching_ = false;
+    if (ec) {
+        // Gone (or closed by a timeout or a shutdown): the poll is dropped,
+        // its HTTP session stays until it expires or the client comes back.
+        if (poll_pending_) {
+            poll_pending_ = false;
+            http_sessions_->cancel_poll(poll_ticket_);
+        }
+        ++timer_serial_;
+        timer_.cancel();
+        beast::get_lowest_layer(ws_).close();
+        return;
+    }
+    buffer_.commit(bytes);
+    if (poll_pending_) {
+        watch();
+        return;
+    }
+    if (resume_after_watch_) {
+        // The poll is answered and written: on with the next request.
+        resume_after_watch_ = false;
+        ++timer_serial_;
+        timer_.cancel();
+        if (!closing_) read_request();
+    }
+    // Otherwise the answer is still being written; after_response goes on.
+}
+
 
 void Session::serve_http(const http::request<http::string_body>& req) {
     const bool keep_alive = req.keep_alive();
+    if (beast::string_view(req.target()).starts_with(kApiPrefix)) {
+        serve_api(req);
+        return;
+    }
     if (req.method() != http::verb::get && req.method() != http::verb::head) {
         http_error(http::status::method_not_allowed, keep_alive, protocol::ErrorCode::bad_request,
-                   "only GET and HEAD are served here");
+                   "only GET and HEAD are served here; POST only under /api/");
         return;
     }
     const beast::string_view target = req.target();
@@ -200,6 +397,7 @@ void Session::serve_http(const http::request<http::string_body>& req) {
     set_common_headers(*res);
     res->set(http::field::content_type, file->mime);
     res->set(http::field::cache_control, "no-cache");
+    res->set("Content-Security-Policy", content_security_policy(req[http::field::host]));
     res->keep_alive(keep_alive);
     if (req.method() == http::verb::get) res->body() = *file->bytes;
     res->prepare_payload();
@@ -281,6 +479,18 @@ void Session::write_response(std::shared_ptr<http::response<Body>> response) {
 }
 
 void Session::after_response(bool keep_alive) {
+    if (watching_) {
+        // After a long poll a read is under way already: it becomes the next
+        // request once the client sends one, within the idle timeout. TLS
+        // cannot shut down with a read outstanding, so an end is a plain close.
+        if (keep_alive && !closing_) {
+            resume_after_watch_ = true;
+            arm_timer(kHandshakeTimeout, &Session::on_idle_timer);
+        } else {
+            beast::get_lowest_layer(ws_).close();
+        }
+        return;
+    }
     if (keep_alive && !closing_) {
         read_request();
         return;
@@ -395,8 +605,15 @@ void Session::do_shutdown() {
     if (!websocket_) {
         // Still in the TLS handshake, the HTTP request or the upgrade: an
         // accept under way finishes and then closes (on_accept); anything
-        // earlier is simply dropped.
-        if (!request_ || !request_->is_done()) beast::get_lowest_layer(ws_).close();
+        // earlier is simply dropped. An open long poll is answered (the
+        // provider goes away: 1001), then the connection closes; one idle
+        // after a poll is dropped.
+        if (poll_pending_) {
+            http_sessions_->cancel_poll(poll_ticket_);
+            finish_poll(poll_serial_, {200, api_body({}, {}, kClosedGoingAway), false});
+        } else if (!request_ || !request_->is_done() || (watching_ && !response_)) {
+            beast::get_lowest_layer(ws_).close();
+        }
         return;
     }
     if (queue_.empty()) close(close_code_);

@@ -1,10 +1,13 @@
 // One connection: the TLS handshake, then HTTP requests (one-time downloads
-// under /dl/, the web client's files, kept alive between requests) until one
-// upgrades to the WebSocket session at /ws. All of a session's work runs on
-// its strand; at most one write is outstanding and replies wait in a queue.
+// under /dl/, the web client's files, the HTTPS transport under /api/ handed
+// to HttpSessions, kept alive between requests) until one upgrades to the
+// WebSocket session at /ws. All of a session's work runs on its strand; at
+// most one write is outstanding and replies wait in a queue. A long poll
+// waits on a timer of the strand while a read watches for the client leaving.
 #pragma once
 
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/asio/ssl/context.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
@@ -15,6 +18,7 @@
 #include <optional>
 #include <string>
 
+#include "server/http_sessions.hpp"
 #include "server/service.hpp"
 
 namespace umf::provider {
@@ -23,11 +27,14 @@ class SessionRegistry;
 
 // The WebSocket path (docs/PROTOCOL.md, "Transport").
 inline constexpr const char* kWebSocketPath = "/ws";
+// The HTTPS transport's paths start so (docs/PROTOCOL.md, "HTTPS transport").
+inline constexpr const char* kApiPrefix = "/api/";
 
 class Session : public std::enable_shared_from_this<Session> {
 public:
     Session(boost::asio::ip::tcp::socket&& socket, boost::asio::ssl::context& tls,
-            std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry);
+            std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
+            std::shared_ptr<HttpSessions> http_sessions);
     ~Session();
 
     void run();
@@ -46,6 +53,17 @@ private:
     void on_request(boost::beast::error_code ec, std::size_t);
     void serve_http(const boost::beast::http::request<boost::beast::http::string_body>& req);
     void serve_download(const boost::beast::http::request<boost::beast::http::string_body>& req);
+    void serve_api(const boost::beast::http::request<boost::beast::http::string_body>& req);
+    void api_response(int status, bool keep_alive, std::string body, const char* allow = nullptr);
+    void api_error(boost::beast::http::status status, bool keep_alive, protocol::ErrorCode code,
+                   const std::string& message, const char* allow = nullptr);
+    void start_poll(std::string_view id, bool keep_alive);
+    void on_poll_timer(boost::beast::error_code ec, std::uint64_t serial);
+    void finish_poll(std::uint64_t poll, HttpSessions::Reply reply);
+    void watch();
+    void on_watch(boost::beast::error_code ec, std::size_t bytes);
+    void arm_timer(std::chrono::milliseconds after, void (Session::*handler)(boost::beast::error_code, std::uint64_t));
+    void on_idle_timer(boost::beast::error_code ec, std::uint64_t serial);
     void reject(boost::beast::http::status status, const char* text);
     void http_error(boost::beast::http::status status, bool keep_alive, protocol::ErrorCode code,
                     const std::string& message);
@@ -66,6 +84,7 @@ private:
     boost::beast::websocket::stream<TlsStream> ws_;
     std::shared_ptr<const Service> service_;
     std::shared_ptr<SessionRegistry> registry_;
+    std::shared_ptr<HttpSessions> http_sessions_;
     boost::beast::flat_buffer buffer_;
     std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> request_;
     std::shared_ptr<void> response_;  // the response being written
@@ -77,6 +96,18 @@ private:
     bool close_after_queue_ = false;  // close once the queue is sent
     bool close_started_ = false;
     boost::beast::websocket::close_code close_code_ = boost::beast::websocket::close_code::normal;
+
+    // The long poll (GET /api/session/ID/events) and the read that watches
+    // for the client leaving meanwhile; that read becomes the start of the
+    // next request once the poll is answered.
+    boost::asio::steady_timer timer_;  // the poll's timeout, then the idle timeout after it
+    std::uint64_t timer_serial_ = 0;   // a handler of an older arming does nothing
+    std::uint64_t poll_serial_ = 0;    // this connection's polls
+    std::uint64_t poll_ticket_ = 0;    // HttpSessions' ticket for the open one
+    bool poll_pending_ = false;
+    bool poll_keep_alive_ = false;
+    bool watching_ = false;
+    bool resume_after_watch_ = false;  // answered: the watch read leads into the next request
 };
 
 }  // namespace umf::provider

@@ -10,16 +10,20 @@ namespace umf::provider {
 
 namespace {
 
+// No inline style: the pages are served with a Content-Security-Policy of
+// style-src 'self' (session.cpp).
 const char* kBuiltInPage = R"(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
-<title>umf</title></head>
-<body style="font-family: sans-serif; max-width: 36em; margin: 2em auto; padding: 0 1em">
+<title>umf</title><link rel="stylesheet" href="/umf-provider.css"></head>
+<body>
 <h1>umf provider</h1>
 <p>This provider serves its content to paired requesters. Point the webcam requester at the screen:</p>
 <pre>umf-requester grab --url 'PAIRING URL' --camera 0</pre>
 <p>The pairing URL comes from <code>umf-provider pair</code> on the desktop.</p>
 </body></html>
 )";
+
+const char* kBuiltInStyle = "body { font-family: sans-serif; max-width: 36em; margin: 2em auto; padding: 0 1em }\n";
 
 std::string mime_with_charset(const std::filesystem::path& file) {
     std::string mime = mime_for(file);
@@ -28,6 +32,8 @@ std::string mime_with_charset(const std::filesystem::path& file) {
     if (ext == ".wasm") mime = "application/wasm";
     if (ext == ".css") mime = "text/css";
     if (ext == ".webmanifest") mime = "application/manifest+json";
+    if (ext == ".ico") mime = "image/x-icon";
+    if (ext == ".map") mime = "application/json";
     if (mime.rfind("text/", 0) == 0 || mime == "application/json") mime += "; charset=utf-8";
     return mime;
 }
@@ -36,6 +42,7 @@ std::string mime_with_charset(const std::filesystem::path& file) {
 
 StaticSite::StaticSite() {
     files_["/index.html"] = {"text/html; charset=utf-8", std::make_shared<const std::string>(kBuiltInPage)};
+    files_["/umf-provider.css"] = {"text/css; charset=utf-8", std::make_shared<const std::string>(kBuiltInStyle)};
 }
 
 StaticSite StaticSite::from_folder(const std::filesystem::path& root) {
@@ -63,6 +70,11 @@ StaticSite StaticSite::from_folder(const std::filesystem::path& root) {
         if (total > kMaxTotalBytes) throw std::runtime_error("the web folder is larger than 64 MiB");
         site.files_["/" + rel.generic_string()] = {mime_with_charset(it->path()),
                                                    std::make_shared<const std::string>(std::move(bytes).str())};
+    }
+    if (!site.files_.count("/index.html")) {
+        // A web client still being built (the detector alone): "/" keeps the
+        // built-in page.
+        for (auto& [path, file] : StaticSite().files_) site.files_.emplace(path, file);
     }
     return site;
 }

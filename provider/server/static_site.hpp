@@ -26,8 +26,13 @@ public:
     // the web client.
     StaticSite();
     // Every regular file under `root` (no hidden ones), as "/relative/path";
-    // "/" serves "/index.html". Throws std::runtime_error when the folder
-    // cannot be read or exceeds the limits above.
+    // "/" serves "/index.html", the built-in page when the folder has none.
+    // Types: text/javascript (.js, .mjs), application/wasm, text/css,
+    // text/html, application/json, application/manifest+json
+    // (.webmanifest), image/svg+xml, image/png, image/x-icon and the rest of
+    // mime_for (content/file_facts.hpp); text and JSON in UTF-8. Throws
+    // std::runtime_error when the folder cannot be read or exceeds the limits
+    // above.
     static StaticSite from_folder(const std::filesystem::path& root);
 
     // The file for a request target (a query or fragment is ignored).

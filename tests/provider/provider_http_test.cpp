@@ -14,6 +14,7 @@
 #include "server/pairing.hpp"
 #include "server/server.hpp"
 #include "server/service.hpp"
+#include "server/static_site.hpp"
 #include "server/tls_identity.hpp"
 #include "support/process.hpp"
 #include "support/temp_dir.hpp"
@@ -125,6 +126,62 @@ TEST_F(ProviderHttp, NoClientPathReachesTheFileSystem) {
     EXPECT_EQ(curl("/", "-X DELETE").status, 405);
     EXPECT_EQ(curl("/", "-H 'X-Big: " + std::string(9000, 'a') + "'").status, 431);
     EXPECT_EQ(server->session_count() > 100, false);
+}
+
+TEST_F(ProviderHttp, PagesCarryAContentSecurityPolicyForAWasmWorker) {
+    const Response page = curl("/");
+    EXPECT_EQ(page.status, 200);
+    const auto at = page.headers.find("Content-Security-Policy: ");
+    ASSERT_NE(at, std::string::npos) << page.headers;
+    const std::string csp = page.headers.substr(at, page.headers.find('\r', at) - at);
+    for (const std::string& part :
+         {std::string("default-src 'self'"), std::string("script-src 'self' 'wasm-unsafe-eval'"),
+          std::string("worker-src 'self' blob:"),
+          "connect-src 'self' wss://127.0.0.1:" + std::to_string(server->port()), std::string("object-src 'none'"),
+          std::string("style-src 'self';"), std::string("frame-ancestors 'none'")})
+        EXPECT_NE(csp.find(part), std::string::npos) << part << "\n" << csp;
+    EXPECT_EQ(page.body.find("style="), std::string::npos) << "no inline style under style-src 'self'";
+    const Response style = curl("/umf-provider.css");
+    EXPECT_EQ(style.status, 200);
+    EXPECT_NE(style.headers.find("Content-Type: text/css; charset=utf-8"), std::string::npos) << style.headers;
+    // A Host that is not a plain host:port adds nothing to the policy.
+    const Response odd = curl("/", "-H 'Host: a b;script-src *'");
+    EXPECT_EQ(odd.headers.find("script-src *"), std::string::npos) << odd.headers;
+}
+
+TEST(StaticSite, TypesOfTheWebClientsFiles) {
+    TempDir site;
+    const std::vector<std::pair<std::string, std::string>> expected = {
+        {"app.js", "text/javascript; charset=utf-8"},
+        {"worker.mjs", "text/javascript; charset=utf-8"},
+        {"umf-detector.wasm", "application/wasm"},
+        {"fields/b4.json", "application/json; charset=utf-8"},
+        {"manifest.webmanifest", "application/manifest+json"},
+        {"icon.svg", "image/svg+xml"},
+        {"icon.png", "image/png"},
+        {"style.css", "text/css; charset=utf-8"},
+        {"about.html", "text/html; charset=utf-8"},
+        {"favicon.ico", "image/x-icon"}};
+    for (const auto& [name, mime] : expected) {
+        fs::create_directories((site.path / name).parent_path());
+        std::ofstream(site.path / name) << name;
+    }
+    std::ofstream(site.path / ".hidden") << "no";
+    const StaticSite from = StaticSite::from_folder(site.path);
+    for (const auto& [name, mime] : expected) {
+        const auto file = from.find("/" + name + "?v=1");
+        ASSERT_TRUE(file) << name;
+        EXPECT_EQ(file->mime, mime) << name;
+        EXPECT_EQ(*file->bytes, name);
+    }
+    EXPECT_FALSE(from.find("/.hidden"));
+    // No index.html of its own (a client still being built): "/" is the built-in page.
+    const auto index = from.find("/");
+    ASSERT_TRUE(index);
+    EXPECT_NE(index->bytes->find("umf provider"), std::string::npos);
+    std::ofstream(site.path / "index.html") << "the client";
+    EXPECT_EQ(*StaticSite::from_folder(site.path).find("/")->bytes, "the client");
+    EXPECT_FALSE(StaticSite::from_folder(site.path).find("/umf-provider.css"));
 }
 
 TEST_F(ProviderHttp, PlainHttpIsToldToUseHttps) {

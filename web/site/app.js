@@ -4,6 +4,7 @@
 // URL (pairing.js). docs/PROTOCOL.md has the messages.
 import { connect } from './transport.js';
 import { currentPairing, forget, rememberProviderName } from './pairing.js';
+import { Sha256 } from './sha256.js';
 
 const $ = (id) => document.getElementById(id);
 const params = new URLSearchParams(location.search);
@@ -322,19 +323,27 @@ async function download(content) {
   const reader = response.body.getReader();
   const chunks = [];
   let received = 0;
+  // Without crypto.subtle (a plain http page) the bytes are hashed as they come.
+  const ownHash = content.sha256 && !crypto.subtle ? new Sha256() : null;
   for (;;) {
     const { value, done } = await reader.read();
     if (done) break;
     chunks.push(value);
+    ownHash?.update(value);
     received += value.length;
     if (total > 0) $('status').textContent = `Receiving ${content.name}… ${Math.floor((100 * received) / total)} %`;
   }
   if (received !== total) throw new Error(`${received} of ${total} bytes arrived`);
   const blob = new Blob(chunks, { type: content.mime });
   let verified = null;
-  if (content.sha256 && crypto.subtle) {
-    const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', await blob.arrayBuffer()));
-    const hex = Array.from(digest, (b) => b.toString(16).padStart(2, '0')).join('');
+  if (content.sha256) {
+    let hex;
+    if (ownHash) {
+      hex = ownHash.hex();
+    } else {
+      const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', await blob.arrayBuffer()));
+      hex = Array.from(digest, (b) => b.toString(16).padStart(2, '0')).join('');
+    }
     if (hex !== content.sha256) throw new Error('the file arrived changed (SHA-256 differs)');
     verified = true;
   }

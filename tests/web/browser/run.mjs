@@ -9,7 +9,7 @@
 // --fixtures  where web.browser.video_* wrote tile0.y4m, tile1.y4m, tile2.png
 // --modules   the node_modules that web.browser.npm_install filled
 // Scenarios: camera_file, camera_url_http, photo, wrong_token, unreachable,
-// camera_denied, no_camera. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
+// camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
 // Chromium, playwright-core or a fixture is missing), 2 usage.
 import { spawn } from 'node:child_process';
 import crypto from 'node:crypto';
@@ -66,7 +66,8 @@ try {
 } catch (e) {
   skip(`playwright-core is not installed in ${opts.modules} (the test web.browser.npm_install installs it): ${e.message}`);
 }
-const SCENARIOS = ['camera_file', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera'];
+const SCENARIOS = ['camera_file', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
+                   'websocket_blocked', 'detection_failing', 'insecure_photo'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
 const boardFile = path.resolve(opts.board);
 const board = JSON.parse(fs.readFileSync(boardFile, 'utf8'));
@@ -397,6 +398,78 @@ const scenarios = {
     log(`states: ${await statesSeen(page)}; #error: ${JSON.stringify(e)}`);
     check(e && e.code === 'no-camera', `#error[data-code=no-camera] (${e?.code})`);
     check(e.visible && e.text.length > 0, '#error is visible and says why');
+  },
+
+  // (h) The WebSocket refused (as iOS Safari does with a self-signed
+  // certificate): the page falls back to HTTPS requests by itself.
+  async websocket_blocked() {
+    const expected = item(0);
+    const provider = await startProvider();
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    const context = await browser.newContext({ ignoreHTTPSErrors: true, viewport: { width: 412, height: 915 } });
+    let refused = 0;
+    await context.routeWebSocket(/\/ws$/, (ws) => {
+      refused += 1;
+      ws.close({ code: 1006 });
+    });
+    const page = await context.newPage();
+    current.page = page;
+    page.on('console', (m) => current.consoleLines.push(`${m.type()}: ${m.text()}`));
+    await page.goto(pageUrl(provider.pairing, { autograb: '1' }));
+    await waitForState(page, ['result'], 45000);
+    check(refused > 0, `the page tried the WebSocket first (${refused} refused)`);
+    await checkFileResult(page, expected);
+    const d = await debugOf(page);
+    check(d && d.transport === 'http', `it fell back to HTTPS requests (umfDebug.transport ${d?.transport})`);
+  },
+
+  // (i) A camera that never sees the field (Chromium's own test pattern):
+  // the page stays searching and says how to help the detector.
+  async detection_failing() {
+    const provider = await startProvider();
+    const browser = await launch();
+    const page = await openPage(browser, pageUrl(provider.pairing, {}));
+    await waitForState(page, ['searching'], 20000);
+    const h = await page.waitForFunction(() => {
+      const e = document.querySelector('#hint');
+      return e && !e.hidden && e.dataset.code ? { code: e.dataset.code, text: e.textContent } : null;
+    }, null, { timeout: 15000 }).then((handle) => handle.jsonValue()).catch(() => null);
+    log(`states: ${await statesSeen(page)}; #hint: ${JSON.stringify(h)}`);
+    check(h && h.code === 'detection-failing', `#hint[data-code=detection-failing] (${h?.code})`);
+    check(/closer|still|light/.test(h.text), `the hint says what to do ("${h.text}")`);
+    check((await stateOf(page)) === 'searching', 'the page keeps searching meanwhile');
+  },
+
+  // (j) An insecure context (plain http, where browsers allow no live
+  // camera): the page offers photo mode and grabs through HTTPS requests.
+  // The page is served at http://umf-insecure.test/ by a route that passes
+  // every request on to the provider.
+  async insecure_photo() {
+    const expected = item(2);
+    const still = fixture('tile2.png');
+    const provider = await startProvider();
+    const browser = await launch();
+    const origin = 'http://umf-insecure.test';
+    const route = async (r) => {
+      const u = new URL(r.request().url());
+      if (u.origin !== origin) return r.abort('connectionrefused');
+      try {
+        const response = await r.fetch({ url: provider.base + u.pathname + u.search });
+        await r.fulfill({ response });
+      } catch {
+        // The page went away (the test ended) while a poll was passed on.
+      }
+    };
+    const u = new URL(pageUrl(provider.pairing, { autograb: '1' }));
+    const page = await openPage(browser, `${origin}/${u.search}${u.hash}`, { route });
+    await waitForState(page, ['photo'], 20000);
+    check(!(await page.evaluate(() => window.isSecureContext)), 'the page is not a secure context');
+    const h = await page.evaluate(() => document.querySelector('#hint')?.dataset.code ?? null);
+    check(h === 'insecure-context', `#hint says why there is no live camera (${h})`);
+    await page.setInputFiles('#photo-input', still);
+    await waitForState(page, ['result'], 30000);
+    log(`states: ${await statesSeen(page)}`);
+    await checkFileResult(page, expected);
   },
 };
 
