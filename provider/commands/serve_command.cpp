@@ -23,6 +23,7 @@
 #include "content/x11_window.hpp"
 #include "overlay/compositor.hpp"
 #include "overlay/overlay_activity.hpp"
+#include "server/console_activity.hpp"
 #include "overlay/overlay_manager.hpp"
 #include "overlay/preset.hpp"
 #include "screen/desktop_layout.hpp"
@@ -223,7 +224,9 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
                                                                board_module_px);
         config.overlay = protocol::overlay_info(preset);
         config.public_mode = public_mode;
-        auto service = std::make_shared<Service>(std::move(config), token, resolvers, site, activity);
+        // Who connects and what they take, on the console; the overlay hears it all.
+        auto console = std::make_shared<ConsoleActivity>(std::cout, activity);
+        auto service = std::make_shared<Service>(std::move(config), token, resolvers, site, console);
         if (overlay_manager) {
             // Screens that come, go or change move the field: new sessions
             // get the new one, older ones are told to connect again.

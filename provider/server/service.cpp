@@ -206,6 +206,7 @@ Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime no
     out.close = false;
     const std::shared_ptr<const ScreenMap> map = screens();
     state.screens_generation = map->generation;
+    if (activity_) activity_->welcomed({state.id, hello.client, state.peer});
     out.replies.push_back(p::Welcome{hello.id, config_.provider, map->field, config_.overlay, config_.limits});
     return out;
 }
@@ -242,11 +243,15 @@ p::Message Service::grab(SessionState& state, const p::Grab& grab, SteadyTime no
     }
     const auto point = screen_point(grab.point);
     if (!point) return p::Error{grab.id, p::ErrorCode::not_found, "no screen shows field point " + point_text(grab.point)};
+    p::Message reply;
     try {
-        return content_for(grab, resolve(*point, Purpose::grab));
+        reply = content_for(grab, resolve(*point, Purpose::grab));
     } catch (const std::exception& e) {
         return p::Error{grab.id, p::ErrorCode::internal, e.what()};
     }
+    if (const auto* c = std::get_if<p::Content>(&reply); c && activity_)
+        activity_->grabbed({state.id, c->kind, c->title, c->name.value_or(""), c->size.value_or(0)});
+    return reply;
 }
 
 p::Message Service::content_for(const p::Grab& grab, const Resolved& resolved) const {

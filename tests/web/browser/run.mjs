@@ -275,6 +275,10 @@ const scenarios = {
     await waitForState(page, ['result'], 45000);
     log(`states: ${await statesSeen(page)}`);
     await checkFileResult(page, expected);
+    // And at the provider: the page's client name and the grab on its console.
+    check(/requester \d+ connected: umf-web\//.test(provider.output()), 'the provider saw the page connect');
+    check(provider.output().includes(`took "${expected.title}" (file ${expected.name}, ${expected.size} bytes)`),
+          `the provider says the file "${expected.title}" was taken`);
     const d = await reportTiming(page, loadStart);
     check(d && (d.transport === 'ws' || d.transport === 'http'), `umfDebug.transport is set (${d?.transport})`);
     check(typeof d.firstLockMs === 'number' && d.locks > 0, 'umfDebug counted a lock and its time');
@@ -296,6 +300,7 @@ const scenarios = {
     check(r.title === expected.title, `data-title is "${expected.title}" (${r.title})`);
     check(r.url === expected.url, `data-url is ${expected.url} (${r.url})`);
     check(new URL(page.url()).host === new URL(provider.base).host, 'the page stayed on the provider (no navigation to the URL)');
+    check(provider.output().includes(`took "${expected.title}" (url)`), `the provider says the link "${expected.title}" was taken`);
     const d = await reportTiming(page, loadStart);
     check(d && d.transport === 'http', `umfDebug.transport is http (${d?.transport})`);
   },
