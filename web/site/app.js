@@ -56,7 +56,6 @@ const ERRORS = {
   'unpaired': ['Not paired with a screen', 'Scan the QR code the screen shows (umf-provider prints it, and its tray menu shows it) to pair this phone.'],
   'token-rejected': ['This pairing is no longer valid', 'The screen did not accept this phone\'s pairing (it may have been renewed). Scan the screen\'s QR code again.'],
   'unreachable': ['Cannot reach the screen', 'The screen\'s computer did not answer. Check that the phone is on the same network and that umf-provider is running, then try again.'],
-  'certificate': ['Certificate not trusted', 'The browser did not accept the screen\'s certificate. Open the pairing link again and accept the certificate after comparing its fingerprint.'],
   'protocol': ['Unexpected answer', 'The screen answered in a way this page does not understand. Update umf-provider or reload this page.'],
 };
 

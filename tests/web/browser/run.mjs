@@ -9,7 +9,8 @@
 // --fixtures  where web.browser.video_* wrote tile0.y4m, tile1.y4m, tile2.png
 // --modules   the node_modules that web.browser.npm_install filled
 // Scenarios: camera_file, camera_url_http, photo, wrong_token, unreachable,
-// camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
+// camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo,
+// unpaired. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
 // Chromium, playwright-core or a fixture is missing), 2 usage.
 import { spawn } from 'node:child_process';
 import crypto from 'node:crypto';
@@ -67,7 +68,7 @@ try {
   skip(`playwright-core is not installed in ${opts.modules} (the test web.browser.npm_install installs it): ${e.message}`);
 }
 const SCENARIOS = ['camera_file', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
-                   'websocket_blocked', 'detection_failing', 'insecure_photo'];
+                   'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
 const boardFile = path.resolve(opts.board);
 const board = JSON.parse(fs.readFileSync(boardFile, 'utf8'));
@@ -403,6 +404,24 @@ const scenarios = {
     log(`states: ${await statesSeen(page)}; #error: ${JSON.stringify(e)}`);
     check(e && e.code === 'no-camera', `#error[data-code=no-camera] (${e?.code})`);
     check(e.visible && e.text.length > 0, '#error is visible and says why');
+  },
+
+  // The page opened without a pairing (no fragment, nothing kept): it says
+  // to scan the QR code and connects to nothing.
+  async unpaired() {
+    const provider = await startProvider();
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    const page = await openPage(browser, `${provider.base}/`);
+    await waitForState(page, ['unpaired'], 20000);
+    const e = await page.evaluate(() => {
+      const el = document.querySelector('#error');
+      return el ? { code: el.dataset.code, text: el.textContent.trim() } : null;
+    });
+    log(`states: ${await statesSeen(page)}; #error: ${JSON.stringify(e)}`);
+    check(e && e.code === 'unpaired', `#error[data-code=unpaired] (${e?.code})`);
+    check(/QR code/.test(e.text), 'it says to scan the QR code');
+    check((await stateOf(page)) === 'unpaired', 'body[data-state] is unpaired');
+    check(!/requester \d+ connected/.test(provider.output()), 'the page did not connect without a pairing');
   },
 
   // (h) The WebSocket refused (as iOS Safari does with a self-signed
