@@ -71,7 +71,10 @@ compose  writes the screen exactly as shown at time T (content, the board over
 --host        the host name or address put in the pairing URL (default: the
               bind address, or this machine's first non-loopback IPv4 address
               when binding to all addresses).
---web         serve the web client from DIR (default: a page saying how to pair).
+--web         serve the web client from DIR (default: the phone page this build
+              made, else a page saying how to pair). Phones use it over the
+              WebSocket at /ws, or over HTTPS requests under /api/ where the
+              browser refuses the WebSocket (docs/PROTOCOL.md).
 
 exit codes: 0 success; 2 wrong usage; 3 the configuration directory, TLS
             identity, token, board or an input could not be read or written;
