@@ -12,16 +12,18 @@ void OverlayActivity::set_screen_indices(std::vector<int> screen_indices) {
     screen_indices_ = std::move(screen_indices);
 }
 
+std::optional<int> OverlayActivity::take_pointer(std::uint64_t session) {
+    std::lock_guard lock(mutex_);
+    const auto it = pointer_screen_.find(session);
+    if (it == pointer_screen_.end()) return std::nullopt;
+    const int index = it->second;
+    pointer_screen_.erase(it);
+    return index;
+}
+
 void OverlayActivity::seeking(std::uint64_t session) {
     // A requester that seeks has lost its lock: its ring and circle go.
-    std::optional<int> previous;
-    {
-        std::lock_guard lock(mutex_);
-        if (auto it = pointer_screen_.find(session); it != pointer_screen_.end()) {
-            previous = it->second;
-            pointer_screen_.erase(it);
-        }
-    }
+    const std::optional<int> previous = take_pointer(session);
     OverlayManager* m = manager_;
     QMetaObject::invokeMethod(
         m,
@@ -67,21 +69,14 @@ void OverlayActivity::aimed(const AimActivity& aim) {
 }
 
 void OverlayActivity::left(std::uint64_t session) {
-    std::optional<int> previous;
-    {
-        std::lock_guard lock(mutex_);
-        if (auto it = pointer_screen_.find(session); it != pointer_screen_.end()) {
-            previous = it->second;
-            pointer_screen_.erase(it);
-        }
-    }
+    const std::optional<int> previous = take_pointer(session);
     if (!previous) return;
     OverlayManager* m = manager_;
     QMetaObject::invokeMethod(
         m,
-        [m, previous] {
-            m->set_pointer(*previous, std::nullopt, {});
-            m->set_focus(*previous, std::nullopt);
+        [m, index = *previous] {
+            m->set_pointer(index, std::nullopt, {});
+            m->set_focus(index, std::nullopt);
         },
         Qt::QueuedConnection);
 }

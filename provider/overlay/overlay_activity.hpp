@@ -7,6 +7,7 @@
 
 #include <map>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "overlay/overlay_manager.hpp"
@@ -29,6 +30,9 @@ public:
     void left(std::uint64_t session) override;
 
 private:
+    // The screen of the session's ring, which it no longer has.
+    std::optional<int> take_pointer(std::uint64_t session);
+
     OverlayManager* manager_;
     std::mutex mutex_;
     std::vector<int> screen_indices_;

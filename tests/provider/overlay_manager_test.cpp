@@ -18,11 +18,13 @@
 #include "overlay/background_blur.hpp"
 #include "overlay/overlay_manager.hpp"
 #include "provider/gui_test_app.hpp"
+#include "provider/qt_pump.hpp"
 #include "screen/board_window.hpp"
 
 namespace {
 
 using namespace umf::provider;
+using umf::test::pump_until;
 
 // Runs the event loop for `ms`, calling `each` every `step_ms`.
 template <class Each>
@@ -95,19 +97,6 @@ TEST(OverlayManager, APresetWithLargerModulesMovesTheField) {
     preset.opacity_max = 0.45;
     manager.set_preset(preset);
     EXPECT_EQ(changes, 1);
-}
-
-// Runs the event loop until `done` or the timeout.
-template <class Predicate>
-bool pump_until(Predicate done, int timeout_ms) {
-    QElapsedTimer clock;
-    clock.start();
-    while (!done()) {
-        if (clock.elapsed() > timeout_ms) return false;
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return true;
 }
 
 // Black and white squares of 3 root pixels: edges far finer than a module.

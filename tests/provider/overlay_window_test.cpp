@@ -35,6 +35,7 @@
 #include "overlay/overlay_window.hpp"
 #include "screen/board_window.hpp"
 #include "screen/screen_field.hpp"
+#include "provider/qt_pump.hpp"
 #include "support/temp_dir.hpp"
 #include "support/x11_session.hpp"
 
@@ -56,19 +57,6 @@ protected:
     void paintEvent(QPaintEvent*) override { QPainter(this).fillRect(QRect(QPoint(), size()), QColor(kGrey, kGrey, kGrey)); }
     void mousePressEvent(QMouseEvent*) override { ++presses; }
 };
-
-// Runs the event loop until `done` or the timeout.
-template <class Predicate>
-bool pump_until(Predicate done, int timeout_ms) {
-    QElapsedTimer clock;
-    clock.start();
-    while (!done()) {
-        if (clock.elapsed() > timeout_ms) return false;
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 10);
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    return true;
-}
 
 std::string active_window(const std::vector<std::string>& env) {
     const std::string line = run({"xprop", "-root", "_NET_ACTIVE_WINDOW"}, env);
@@ -216,40 +204,49 @@ TEST(OverlayWindowOnX, DISABLED_Child) {
     EXPECT_EQ(active_window(env), backdrop_id);
 }
 
-// The child's overlay over openbox and a compositing manager, `compositor`.
-void mixes_under(const std::vector<std::string>& compositor) {
-    for (const char* program : {"Xvfb", "openbox", "xdotool", "xprop"})
+// Runs the child test `child` (OverlayWindowOnX.DISABLED_...) on a fresh
+// Xvfb `screen` with openbox and `compositor` running, and checks that it
+// passed; `log` gets its output. With `check_detection` the compositor must
+// be seen as running only once it runs (test (e)).
+void run_child(const std::string& child, const std::string& screen, const std::vector<std::string>& compositor,
+               std::string& log, bool check_detection = false) {
+    for (const std::string& program : {std::string("Xvfb"), std::string("openbox"), compositor[0]})
         if (!find_program(program))
-            GTEST_SKIP() << program << " is not installed (Debian: apt-get install -y xvfb openbox xdotool x11-utils)";
-    if (!find_program(compositor[0]))
-        GTEST_SKIP() << compositor[0] << " is not installed (Debian: apt-get install -y " << compositor[0] << ")";
+            GTEST_SKIP() << program << " is not installed (Debian: apt-get install -y xvfb openbox " << compositor[0] << ")";
     TempDir dir;
-    const XServer server = start_xvfb(dir.path / "xvfb.log", "1920x1080x24");
+    const XServer server = start_xvfb(dir.path / "xvfb.log", screen);
     Process::Options options;
     options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}});
     options.log = dir.path / "openbox.log";
     Process openbox({"openbox"}, options);
     const X11Desktop desktop(server.display);
     ASSERT_TRUE(wait_until([&] { return desktop.has_ewmh(); }, 5s)) << "openbox did not start";
-
-    // (e) The compositor is seen when, and only when, it runs.
-    EXPECT_FALSE(compositor_running(server.display, 0));
+    if (check_detection) EXPECT_FALSE(compositor_running(server.display, 0));
     options.log = dir.path / "compositor.log";
     Process running(compositor, options);
-    EXPECT_TRUE(wait_until([&] { return compositor_running(server.display, 0); }, 5s));
-    EXPECT_FALSE(compositor_advice().empty());
+    ASSERT_TRUE(wait_until([&] { return compositor_running(server.display, 0); }, 5s));
+    if (check_detection) EXPECT_FALSE(compositor_advice().empty());
 
     options.log = dir.path / "child.log";
     options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}, {kChildVariable, "1"}});
-    Process child({fs::read_symlink("/proc/self/exe").string(), "--gtest_also_run_disabled_tests",
-                   "--gtest_filter=OverlayWindowOnX.DISABLED_Child"},
-                  options);
-    const auto status = child.wait_exit(30s);
+    Process process({fs::read_symlink("/proc/self/exe").string(), "--gtest_also_run_disabled_tests",
+                     "--gtest_filter=OverlayWindowOnX.DISABLED_" + child},
+                    options);
+    const auto status = process.wait_exit(30s);
     std::ifstream in(dir.path / "child.log");
-    const std::string log(std::istreambuf_iterator<char>(in), {});
+    log.assign(std::istreambuf_iterator<char>(in), {});
     ASSERT_TRUE(status) << "the child did not finish:\n" << log;
     EXPECT_EQ(*status, 0) << log;
     EXPECT_NE(log.find("[  PASSED  ] 1 test"), std::string::npos) << log;
+}
+
+// The child's overlay over openbox and a compositing manager, `compositor`.
+void mixes_under(const std::vector<std::string>& compositor) {
+    for (const char* program : {"xdotool", "xprop"})
+        if (!find_program(program))
+            GTEST_SKIP() << program << " is not installed (Debian: apt-get install -y xdotool x11-utils)";
+    std::string log;
+    run_child("Child", "1920x1080x24", compositor, log, true);
 }
 
 TEST(OverlayWindow, MixesIntoACompositedDesktop) { mixes_under({"xcompmgr"}); }
@@ -414,32 +411,8 @@ TEST(OverlayWindowOnX, DISABLED_BlurChild) {
 }
 
 TEST(OverlayWindow, BlursTheDesktopUnderTheFocusCircle) {
-    for (const char* program : {"Xvfb", "openbox", "xcompmgr"})
-        if (!find_program(program))
-            GTEST_SKIP() << program << " is not installed (Debian: apt-get install -y xvfb openbox xcompmgr)";
-    TempDir dir;
-    const XServer server = start_xvfb(dir.path / "xvfb.log", "1920x1080x24");
-    Process::Options options;
-    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}});
-    options.log = dir.path / "openbox.log";
-    Process openbox({"openbox"}, options);
-    const X11Desktop desktop(server.display);
-    ASSERT_TRUE(wait_until([&] { return desktop.has_ewmh(); }, 5s)) << "openbox did not start";
-    options.log = dir.path / "xcompmgr.log";
-    Process xcompmgr({"xcompmgr"}, options);
-    ASSERT_TRUE(wait_until([&] { return compositor_running(server.display, 0); }, 5s));
-
-    options.log = dir.path / "child.log";
-    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}, {kChildVariable, "1"}});
-    Process child({fs::read_symlink("/proc/self/exe").string(), "--gtest_also_run_disabled_tests",
-                   "--gtest_filter=OverlayWindowOnX.DISABLED_BlurChild"},
-                  options);
-    const auto status = child.wait_exit(30s);
-    std::ifstream in(dir.path / "child.log");
-    const std::string log(std::istreambuf_iterator<char>(in), {});
-    ASSERT_TRUE(status) << "the child did not finish:\n" << log;
-    EXPECT_EQ(*status, 0) << log;
-    EXPECT_NE(log.find("[  PASSED  ] 1 test"), std::string::npos) << log;
+    std::string log;
+    run_child("BlurChild", "1920x1080x24", {"xcompmgr"}, log);
     // The child's measurements, for the record.
     for (const char* key : {"grab cost:", "edge energy:"})
         if (const auto at = log.find(key); at != std::string::npos)
@@ -513,33 +486,9 @@ TEST(OverlayWindowOnX, DISABLED_ScreensChild) {
 }
 
 TEST(OverlayWindow, FollowsScreensAddedAndRemoved) {
-    for (const char* program : {"Xvfb", "openbox", "xrandr", "xcompmgr"})
-        if (!find_program(program))
-            GTEST_SKIP() << program << " is not installed (Debian: apt-get install -y xvfb openbox x11-xserver-utils "
-                                       "xcompmgr)";
-    TempDir dir;
-    const XServer server = start_xvfb(dir.path / "xvfb.log", "3840x1080x24");
-    Process::Options options;
-    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}});
-    options.log = dir.path / "openbox.log";
-    Process openbox({"openbox"}, options);
-    const X11Desktop desktop(server.display);
-    ASSERT_TRUE(wait_until([&] { return desktop.has_ewmh(); }, 5s)) << "openbox did not start";
-    options.log = dir.path / "xcompmgr.log";
-    Process xcompmgr({"xcompmgr"}, options);
-    ASSERT_TRUE(wait_until([&] { return compositor_running(server.display, 0); }, 5s));
-
-    options.log = dir.path / "child.log";
-    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}, {kChildVariable, "1"}});
-    Process child({fs::read_symlink("/proc/self/exe").string(), "--gtest_also_run_disabled_tests",
-                   "--gtest_filter=OverlayWindowOnX.DISABLED_ScreensChild"},
-                  options);
-    const auto status = child.wait_exit(30s);
-    std::ifstream in(dir.path / "child.log");
-    const std::string log(std::istreambuf_iterator<char>(in), {});
-    ASSERT_TRUE(status) << "the child did not finish:\n" << log;
-    EXPECT_EQ(*status, 0) << log;
-    EXPECT_NE(log.find("[  PASSED  ] 1 test"), std::string::npos) << log;
+    if (!find_program("xrandr")) GTEST_SKIP() << "xrandr is not installed (Debian: apt-get install -y x11-xserver-utils)";
+    std::string log;
+    run_child("ScreensChild", "3840x1080x24", {"xcompmgr"}, log);
 }
 
 }  // namespace
