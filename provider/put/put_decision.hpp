@@ -1,0 +1,61 @@
+// A put (docs/PROTOCOL.md, "Put") lands only when the person at the screen
+// agrees. The service offers each put to a PutDecider and acts on its answer:
+// the desktop prompt at the pointed place (put_prompt_window.hpp), the
+// answers given through the control socket (`umf-provider puts`, for
+// headless screens and scripts), or a fixed policy (`--puts always|never`).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "content/resolver.hpp"
+#include "protocol/messages.hpp"
+
+namespace umf::provider {
+
+struct PutOffer {
+    std::uint64_t id = 0;          // provider-wide, unique while the provider runs
+    std::string client;            // the hello's `client`, for the prompt
+    std::string device;            // the hello's `device` (may be empty): "always accept from this device"
+    protocol::ContentKind kind = protocol::ContentKind::file;  // url or file
+    std::string title;             // what the requester calls it (may be empty)
+    std::string url;               // kind url
+    std::string name, mime;        // kind file: the safe file name and type
+    std::int64_t size = 0;         // kind file, bytes
+    std::optional<ScreenPoint> at; // where the phone points, when a screen shows the point
+};
+
+enum class PutAnswer {
+    save,     // file: saved in the put folder; url: opened in the default browser
+    open,     // file: saved, then opened with the desktop's default application; url: as save
+    dismiss,  // refused
+};
+
+struct PutReply {
+    PutAnswer answer = PutAnswer::dismiss;
+    bool always_from_device = false;  // remember: accept this device's puts without asking
+};
+
+class PutDecider {
+public:
+    virtual ~PutDecider() = default;
+    // Called on a server thread; must not block. `answer` may be called later,
+    // from any thread, at most once; a second call is ignored.
+    virtual void ask(const PutOffer& offer, std::function<void(PutReply)> answer) = 0;
+    // The offer ended without an answer (it timed out, the requester left):
+    // take its prompt down. Called on any thread.
+    virtual void withdraw(std::uint64_t id) = 0;
+};
+
+struct PutSettings {
+    std::filesystem::path folder;                 // where files land (the XDG download folder by default)
+    std::int64_t max_bytes = std::int64_t{4} << 30;  // larger files are refused with too_large
+    std::chrono::seconds answer_timeout{30};      // then the offer is dismissed
+    std::chrono::seconds upload_ttl{60};          // an accepted file's upload link
+};
+
+}  // namespace umf::provider
