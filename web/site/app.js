@@ -175,6 +175,10 @@ function startWorker() {
 let busy = false;
 let frameId = 0;
 
+// No frames to the detector while a sheet asks for the user's attention: it
+// saves the phone's battery, and nothing would be done with them.
+const idle = () => ['result', 'error', 'unpaired'].includes(document.body.dataset.state);
+
 async function startCamera() {
   setState('camera', 'Starting the camera…');
   if (!navigator.mediaDevices?.getUserMedia) {
@@ -213,7 +217,7 @@ async function pumpFrames(track) {
   for (;;) {
     const { value: frame, done } = await reader.read();
     if (done) return;
-    if (busy || !workerReady || pendingGrab) {
+    if (busy || !workerReady || pendingGrab || idle()) {
       frame.close();
       continue;
     }
@@ -226,7 +230,7 @@ async function pumpFrames(track) {
 function pumpVideo(video) {
   const next = () => (video.requestVideoFrameCallback ? video.requestVideoFrameCallback(step) : requestAnimationFrame(step));
   const step = async () => {
-    if (!busy && workerReady && !pendingGrab && video.videoWidth > 0) {
+    if (!busy && workerReady && !pendingGrab && !idle() && video.videoWidth > 0) {
       busy = true;
       try {
         const bitmap = await createImageBitmap(video);
