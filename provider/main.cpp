@@ -30,9 +30,12 @@ usage:
   umf-provider [serve] [--board BOARD.json] [--preset NAME] [--port P] [--headless]
                [--screen WxH] [--public] [--bind ADDR] [--host HOST] [--web DIR]
                [--config-dir DIR] [--no-qr] [--no-overlay] [--tune]
+               [--puts ask|always|never] [--put-dir DIR]
   umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate] [--no-qr]
   umf-provider share FILE|URL --rect X,Y,W,H [--title T] [--screen N] [--port P]
   umf-provider share --list | --remove ID [--port P]
+  umf-provider puts [--json] [--port P]
+  umf-provider puts --accept ID [--open] [--always] | --dismiss ID [--port P]
   umf-provider compose --content SCREEN.png [--board BOARD.json] --preset NAME
                        --time T --out OUT.png --map MAP.json [--screen WxH]
                        [preset settings, as for serve: --module-px P --blur B ...]
@@ -54,6 +57,11 @@ pair     prints the pairing URL and its QR code; --rotate makes a new token
          old token until it restarts).
 share    pins a file or URL to a region of the running provider's screen, so
          pointing there takes it; --list and --remove ID manage what is shared.
+puts     lists the puts (a phone giving the screen a URL or a file) waiting for
+         an answer at the running provider, or answers one: --accept ID saves
+         the file in the put folder (a URL: opens it), --open also opens the
+         file, --always accepts that phone's puts from now on without asking;
+         --dismiss ID refuses it. --json prints the list as JSON.
 compose  writes the screen exactly as shown at time T (content, the board over
          it, the field at the preset's opacity then) and the map from field to
          screen pixels.
@@ -71,6 +79,12 @@ compose  writes the screen exactly as shown at time T (content, the board over
 --host        the host name or address put in the pairing URL (default: the
               bind address, or this machine's first non-loopback IPv4 address
               when binding to all addresses).
+--puts        what happens to puts (a phone giving this screen a URL or a file at
+              the place it points): ask (the default: a prompt there on a desktop,
+              and `umf-provider puts`), always (accepted without asking), never.
+              --public takes no puts unless --puts is given.
+--put-dir     where accepted files are saved (default: the XDG download folder,
+              else ~/Downloads).
 --web         serve the web client from DIR (default: the phone page this build
               made, else a page saying how to pair). Phones use it over the
               WebSocket at /ws, or over HTTPS requests under /api/ where the
@@ -78,7 +92,7 @@ compose  writes the screen exactly as shown at time T (content, the board over
 
 exit codes: 0 success; 2 wrong usage; 3 the configuration directory, TLS
             identity, token, board or an input could not be read or written;
-            4 the server could not start, or (share) no provider is running.
+            4 the server could not start, or (share, puts) no provider is running.
 )";
 
 std::vector<std::string> names(const char* const* list) {
@@ -130,6 +144,8 @@ int dispatch(int argc, char** argv) {
         return run_pair(parse_command_args(argc, argv, first, {"port", "host", "config-dir"}, {"rotate", "no-qr"}));
     if (command == "share")
         return run_share(parse_command_args(argc, argv, first, {"rect", "title", "screen", "port", "remove"}, {"list"}, 1));
+    if (command == "puts")
+        return run_puts(parse_command_args(argc, argv, first, {"port", "accept", "dismiss"}, {"open", "always", "json"}));
     if (command == "compose") {
         std::vector<std::string> options = {"content", "board", "preset", "time", "out", "map", "screen", "config-dir"};
         for (const auto& o : umf::provider::preset_setting_options()) options.push_back(o);

@@ -1,10 +1,14 @@
 #include "commands/pair_command.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "commands/common_options.hpp"
+#include "put/put_text.hpp"
 #include "server/control_socket.hpp"
 #include "server/pairing.hpp"
 #include "server/pairing_qr.hpp"
@@ -78,6 +82,96 @@ int run_share(const cli::Args& a) {
     std::cout << answer << "\n";
     const json parsed = json::parse(answer, nullptr, false);
     return parsed.is_object() && parsed.value("ok", false) ? kOk : kConfigError;
+}
+
+namespace {
+
+std::string age_text(long long seconds) {
+    if (seconds < 60) return std::to_string(seconds) + " s";
+    return std::to_string(seconds / 60) + " min " + std::to_string(seconds % 60) + " s";
+}
+
+// The waiting puts as a table, one line each.
+void print_put_table(const nlohmann::json& puts, std::ostream& out) {
+    if (puts.empty()) {
+        out << "no puts are waiting for an answer\n";
+        return;
+    }
+    std::vector<std::vector<std::string>> rows{{"ID", "KIND", "WHAT", "SIZE", "FROM", "AGE"}};
+    for (const auto& p : puts) {
+        const bool url = p.value("kind", "") == "url";
+        std::string what = url ? p.value("url", "") : p.value("name", "");
+        if (url && !p.value("title", "").empty()) what = p.value("title", "") + " <" + what + ">";
+        rows.push_back({std::to_string(p.value("id", 0ull)), p.value("kind", ""), printable_text(what),
+                        url ? "-" : human_size(p.value("size", 0ll)), printable_text(p.value("client", "")),
+                        age_text(p.value("age_s", 0ll))});
+    }
+    // Columns as wide as their widest cell (in bytes: names are mostly ASCII),
+    // the last one unpadded.
+    std::vector<std::size_t> width(rows[0].size(), 0);
+    for (const auto& row : rows)
+        for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], row[c].size());
+    for (const auto& row : rows) {
+        std::string line;
+        for (std::size_t c = 0; c < row.size(); ++c) {
+            line += row[c];
+            if (c + 1 < row.size()) line += std::string(width[c] - row[c].size() + 2, ' ');
+        }
+        out << line << "\n";
+    }
+}
+
+}  // namespace
+
+int run_puts(const cli::Args& a, std::ostream& out, std::ostream& err) {
+    using json = nlohmann::json;
+    const auto accept = get(a, "accept");
+    const auto dismiss = get(a, "dismiss");
+    if (accept && dismiss) throw UsageError("puts takes --accept ID or --dismiss ID, not both");
+    if (!accept && (has_flag(a, "open") || has_flag(a, "always")))
+        throw UsageError("--open and --always go with --accept ID");
+    if (!a.positional.empty()) throw UsageError("puts takes no words; --accept ID or --dismiss ID answers one");
+    json request;
+    if (accept || dismiss) {
+        const auto id = cli::to_integer(accept ? "accept" : "dismiss", accept ? *accept : *dismiss, 1,
+                                        (1ll << 53) - 1);
+        request = {{"cmd", "put_answer"},
+                   {"id", id},
+                   {"answer", dismiss ? "dismiss" : has_flag(a, "open") ? "open" : "save"},
+                   {"always", has_flag(a, "always")}};
+    } else {
+        request = {{"cmd", "puts"}};
+    }
+    std::string answer;
+    try {
+        answer = control_request(control_socket_path(port_option(a)), request.dump());
+    } catch (const std::exception& e) {
+        err << "umf-provider: " << e.what() << "\n";
+        return kServeError;
+    }
+    const json parsed = json::parse(answer, nullptr, false);
+    if (!parsed.is_object()) {
+        err << "umf-provider: the provider answered something else than JSON: " << printable_text(answer) << "\n";
+        return kServeError;
+    }
+    if (!parsed.value("ok", false)) {
+        err << "umf-provider: " << printable_text(parsed.value("error", std::string("the provider refused"))) << "\n";
+        return kConfigError;
+    }
+    if (has_flag(a, "json")) {
+        out << answer << "\n";
+        return kOk;
+    }
+    if (parsed.contains("puts") && parsed["puts"].is_array()) {
+        print_put_table(parsed["puts"], out);
+    } else {
+        const std::string what = printable_text(parsed.value("name", std::string()));
+        const std::string how = parsed.value("answer", std::string());
+        out << "put " << parsed.value("id", 0ull) << (what.empty() ? "" : " (" + what + ")") << ": "
+            << (how == "dismiss" ? "dismissed" : how == "open" ? "accepted, to be opened" : "accepted")
+            << (request.value("always", false) ? "; its device's puts are accepted from now on" : "") << "\n";
+    }
+    return kOk;
 }
 
 }  // namespace umf::provider

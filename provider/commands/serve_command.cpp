@@ -23,6 +23,10 @@
 #include "content/x11_window.hpp"
 #include "overlay/compositor.hpp"
 #include "overlay/overlay_activity.hpp"
+#include "put/put_deciders.hpp"
+#include "put/put_folder.hpp"
+#include "put/put_prompt_window.hpp"
+#include "put/trusted_devices.hpp"
 #include "server/console_activity.hpp"
 #include "overlay/overlay_manager.hpp"
 #include "overlay/preset.hpp"
@@ -44,7 +48,8 @@ namespace umf::provider {
 const char* const kServeOptions[] = {"port",         "bind",        "host",   "config-dir", "board",
                                      "preset",       "screen",      "web",    "opacity-min", "opacity-max",
                                      "period",       "waveform",    "module-px", "blur",     "region",
-                                     "focus-radius", "activation",  "fade",   "palette",     nullptr};
+                                     "focus-radius", "activation",  "fade",   "palette",     "puts",
+                                     "put-dir",      nullptr};
 const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", nullptr};
 
 namespace {
@@ -84,6 +89,22 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     const auto dir = config_dir_option(a);
     const bool headless = has_flag(a, "headless") || !have_display();
     const bool public_mode = has_flag(a, "public");
+    // Puts: a phone giving this screen a URL or a file. Kiosks take none
+    // unless told (a shared-photo wall: --public --puts always).
+    const std::string puts_mode = get(a, "puts").value_or(public_mode ? "never" : "ask");
+    if (puts_mode != "ask" && puts_mode != "always" && puts_mode != "never")
+        throw UsageError("--puts takes ask, always or never, not '" + puts_mode + "'");
+    PutSettings put_settings;
+    put_settings.folder = get(a, "put-dir") ? std::filesystem::path(*get(a, "put-dir")) : default_put_folder();
+    put_settings.trusted_devices = dir / kTrustedDevicesFile;
+    if (puts_mode != "never") {
+        std::error_code ec;
+        std::filesystem::create_directories(put_settings.folder, ec);
+        if (!std::filesystem::is_directory(put_settings.folder, ec)) {
+            std::cerr << "umf-provider: the put folder " << put_settings.folder.string() << " cannot be made\n";
+            return kConfigError;
+        }
+    }
 
     TlsIdentity identity;
     std::string token;
@@ -216,6 +237,34 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     sigaddset(&signals, SIGTERM);
     pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
+    // Who answers puts. Made before the server and released after it, on
+    // this (the Qt) thread.
+    std::shared_ptr<ControlPutDecider> put_answers;  // `umf-provider puts`
+    std::shared_ptr<PutPromptDecider> put_prompt;     // the card at the pointed place
+    std::shared_ptr<PutDecider> put_decider;          // null: no puts, and no "put" in the welcome
+    if (puts_mode == "always") {
+        put_decider = std::make_shared<FixedPutDecider>(PutAnswer::save);
+    } else if (puts_mode == "ask") {
+        put_answers = std::make_shared<ControlPutDecider>();
+        put_decider = put_answers;
+        if (!headless) {
+            // The welcome's screen i is the manager's screen layout_indices()[i]; one screen otherwise.
+            put_prompt = std::make_shared<PutPromptDecider>(
+                std::chrono::duration_cast<std::chrono::seconds>(put_settings.answer_timeout), [m = overlay_manager.get()](int index) -> QScreen* {
+                    if (!m) return QGuiApplication::primaryScreen();
+                    const auto indices = m->layout_indices();
+                    if (index < 0 || index >= static_cast<int>(indices.size())) return nullptr;
+                    for (const OverlayScreen& s : m->screens())
+                        if (s.index == indices[index])
+                            for (QScreen* q : QGuiApplication::screens())
+                                if (q->name() == s.name) return q;
+                    return nullptr;
+                });
+            put_decider = std::make_shared<FirstAnswerDecider>(
+                std::vector<std::shared_ptr<PutDecider>>{put_prompt, put_answers});
+        }
+    }
+
     std::unique_ptr<Server> server;
     std::unique_ptr<ControlSocket> control;
     try {
@@ -224,6 +273,8 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
                                                                board_module_px);
         config.overlay = protocol::overlay_info(preset);
         config.public_mode = public_mode;
+        config.put_decider = put_decider;
+        config.puts = put_settings;
         // Who connects and what they take, on the console; the overlay hears it all.
         auto console = std::make_shared<ConsoleActivity>(std::cout, activity);
         auto service = std::make_shared<Service>(std::move(config), token, resolvers, site, console);
@@ -252,7 +303,9 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         options.threads = 2;
         server = std::make_unique<Server>(service, identity, options);
         server->start();
-        if (!public_mode) control = std::make_unique<ControlSocket>(control_socket_path(server->port()), shared_items);
+        if (!public_mode || put_answers)
+            control = std::make_unique<ControlSocket>(control_socket_path(server->port()),
+                                                      public_mode ? nullptr : shared_items, put_answers);
     } catch (const std::exception& e) {
         std::cerr << "umf-provider: " << e.what() << "\n";
         return kServeError;
@@ -269,7 +322,12 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
                   << " from " << board_source.string() << "\n";
     std::cout << (headless ? "headless: a virtual " : "screen: ") << width << "x" << height << ", preset "
               << preset.name << (public_mode ? ", public mode (board items only, no pairing needed)" : "") << "\n";
-    if (control) std::cout << "share with: umf-provider share FILE|URL --rect x,y,w,h\n";
+    if (control && !public_mode) std::cout << "share with: umf-provider share FILE|URL --rect x,y,w,h\n";
+    std::cout << "puts: "
+              << (put_decider ? puts_mode + ", files to " + put_settings.folder.string() +
+                                    (put_answers ? " (answer with: umf-provider puts)" : "")
+                              : std::string("off"))
+              << "\n";
     std::cout << "certificate fingerprint (SHA-256): " << identity.fingerprint << "\n";
     if (!has_flag(a, "no-qr")) std::cout << qr_text(url);
     std::cout << "pairing URL: " << url << "\n" << std::flush;

@@ -54,8 +54,13 @@ public:
 struct PutSettings {
     std::filesystem::path folder;                 // where files land (the XDG download folder by default)
     std::int64_t max_bytes = std::int64_t{4} << 30;  // larger files are refused with too_large
-    std::chrono::seconds answer_timeout{30};      // then the offer is dismissed
-    std::chrono::seconds upload_ttl{60};          // an accepted file's upload link
+    // Milliseconds so tests can wait a fraction of a second; std::chrono::seconds still assign.
+    std::chrono::milliseconds answer_timeout{30'000};  // then the offer is dismissed
+    std::chrono::milliseconds upload_ttl{60'000};      // an accepted file's upload link
+    // The devices whose puts are accepted without asking ("always from this
+    // device"), kept across runs: normally <config dir>/trusted-devices.json
+    // (kTrustedDevicesFile). Empty: remembered only while the provider runs.
+    std::filesystem::path trusted_devices;
 };
 
 }  // namespace umf::provider

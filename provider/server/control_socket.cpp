@@ -8,10 +8,13 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+
+#include "put/put_text.hpp"
 
 namespace umf::provider {
 
@@ -43,6 +46,51 @@ PixelRect rect_of(const json& j) {
     return {v[0], v[1], v[2], v[3]};
 }
 
+std::uint64_t put_id_of(const json& request) {
+    if (!request.contains("id") || !request["id"].is_number_integer() || request["id"].get<long long>() < 1)
+        throw std::invalid_argument("\"id\" must be a put's id, a positive integer");
+    return request["id"].get<std::uint64_t>();
+}
+
+std::string put_list_answer(const ControlPutDecider& puts) {
+    json list = json::array();
+    for (const auto& [offer, age] : puts.pending()) {
+        json j{{"id", offer.id},
+               {"kind", protocol::to_string(offer.kind)},
+               {"title", offer.title},
+               {"client", offer.client},
+               {"device", offer.device},
+               {"age_s", std::chrono::duration_cast<std::chrono::seconds>(age).count()}};
+        if (offer.kind == protocol::ContentKind::url) {
+            j["url"] = offer.url;
+        } else {
+            j["name"] = offer.name;
+            j["mime"] = offer.mime;
+            j["size"] = offer.size;
+        }
+        list.push_back(std::move(j));
+    }
+    return json{{"ok", true}, {"puts", std::move(list)}}.dump();
+}
+
+std::string put_answer_answer(const json& request, ControlPutDecider& puts) {
+    const std::uint64_t id = put_id_of(request);
+    if (!request.contains("answer") || !request["answer"].is_string())
+        return error_answer("\"answer\" must be \"save\", \"open\" or \"dismiss\"");
+    const auto answer = put_answer_from_string(request["answer"].get<std::string>());
+    if (!answer) return error_answer("\"answer\" must be \"save\", \"open\" or \"dismiss\"");
+    PutReply reply{*answer, false};
+    if (request.contains("always")) {
+        if (!request["always"].is_boolean()) return error_answer("\"always\" must be true or false");
+        reply.always_from_device = request["always"].get<bool>() && *answer != PutAnswer::dismiss;
+    }
+    const auto offer = puts.answer(id, reply);
+    if (!offer)
+        return error_answer("no put " + std::to_string(id) +
+                            " is waiting for an answer (it was answered, withdrawn or timed out, or never was)");
+    return json{{"ok", true}, {"id", id}, {"answer", to_string(*answer)}, {"name", put_offer_name(*offer)}}.dump();
+}
+
 }  // namespace
 
 std::filesystem::path control_socket_path(unsigned short port) {
@@ -53,11 +101,24 @@ std::filesystem::path control_socket_path(unsigned short port) {
 }
 
 std::string handle_control_request(const std::string& line, SharedItems& items) {
+    return handle_control_request(line, &items, nullptr);
+}
+
+std::string handle_control_request(const std::string& line, SharedItems* shared, ControlPutDecider* puts) {
     try {
         const json request = json::parse(line);
         if (!request.is_object() || !request.contains("cmd") || !request["cmd"].is_string())
             return error_answer("a request is an object with \"cmd\"");
         const std::string cmd = request["cmd"];
+        if (cmd == "puts" || cmd == "put_answer") {
+            if (!puts)
+                return error_answer("this provider does not take answers about puts here (it was started with "
+                                    "--puts always or never, or takes no puts)");
+            if (cmd == "puts") return put_list_answer(*puts);
+            return put_answer_answer(request, *puts);
+        }
+        if (!shared) return error_answer("this provider shares nothing (public mode)");
+        SharedItems& items = *shared;
         if (cmd == "share") {
             SharedItem item;
             if (request.contains("file")) item.file = request.at("file").get<std::string>();
@@ -89,8 +150,9 @@ std::string handle_control_request(const std::string& line, SharedItems& items) 
     }
 }
 
-ControlSocket::ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items)
-    : path_(std::move(path)), items_(std::move(items)) {
+ControlSocket::ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items,
+                             std::shared_ptr<ControlPutDecider> puts)
+    : path_(std::move(path)), items_(std::move(items)), puts_(std::move(puts)) {
     const auto dir = path_.parent_path();
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
@@ -172,7 +234,7 @@ void ControlSocket::answer(int fd) {
     std::string reply = line.size() > kMaxLine ? error_answer("request too long")
                         : line.find('\n') == std::string::npos
                             ? error_answer("a request ends with a newline")
-                            : handle_control_request(line.substr(0, line.find('\n')), *items_);
+                            : handle_control_request(line.substr(0, line.find('\n')), items_.get(), puts_.get());
     reply += '\n';
     [[maybe_unused]] auto n = ::write(fd, reply.data(), reply.size());
 }

@@ -6,6 +6,11 @@
 //       -> {"ok":true,"id":3}
 //   {"cmd":"unshare","id":3} -> {"ok":true}
 //   {"cmd":"list"} -> {"ok":true,"items":[{"id":3,"title":"...","file":...,"rect":[...],"screen":0}]}
+// and, when the provider asks about puts here (`umf-provider puts`):
+//   {"cmd":"puts"} -> {"ok":true,"puts":[{"id":7,"kind":"file","name":"report.pdf","mime":"application/pdf",
+//                      "size":2411724,"title":"","client":"...","device":"...","age_s":4}]}   (a URL: "url")
+//   {"cmd":"put_answer","id":7,"answer":"save"|"open"|"dismiss","always":false}
+//       -> {"ok":true,"id":7,"answer":"save","name":"report.pdf"}
 //   anything wrong -> {"ok":false,"error":"what is wrong"}
 #pragma once
 
@@ -16,6 +21,7 @@
 #include <thread>
 
 #include "content/shared_items.hpp"
+#include "put/put_deciders.hpp"
 
 namespace umf::provider {
 
@@ -25,12 +31,16 @@ std::filesystem::path control_socket_path(unsigned short port);
 // One request line's answer (what the socket thread does per line; tests
 // call it directly).
 std::string handle_control_request(const std::string& line, SharedItems& items);
+// The same with either part missing (nullptr): a provider in public mode
+// shares nothing, one started with `--puts always|never` asks nothing.
+std::string handle_control_request(const std::string& line, SharedItems* items, ControlPutDecider* puts);
 
 class ControlSocket {
 public:
     // Binds (replacing a stale socket file) and starts answering. Throws
     // std::runtime_error naming the path when it cannot.
-    ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items);
+    ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items,
+                  std::shared_ptr<ControlPutDecider> puts = nullptr);
     ~ControlSocket();
     ControlSocket(const ControlSocket&) = delete;
     ControlSocket& operator=(const ControlSocket&) = delete;
@@ -42,6 +52,7 @@ private:
 
     std::filesystem::path path_;
     std::shared_ptr<SharedItems> items_;
+    std::shared_ptr<ControlPutDecider> puts_;
     int listen_fd_ = -1;
     int wake_[2] = {-1, -1};
     std::thread thread_;

@@ -129,6 +129,10 @@ HttpSessions::Reply HttpSessions::hello(std::string_view body, const std::string
     }
     auto entry = std::make_shared<Entry>();
     entry->state.peer = peer;
+    // What the service pushes to the session (a put's answer) waits for its poll.
+    entry->state.outbox = [weak = weak_from_this()](std::uint64_t session, std::string message) {
+        if (auto self = weak.lock()) self->push(session, std::move(message));
+    };
     Outcome out;
     try {
         out = service_->handle_text(entry->state, body);

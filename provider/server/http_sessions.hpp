@@ -89,8 +89,8 @@ public:
 
     // A message for one session (by the number its welcome gave it,
     // SessionState::id), delivered to its poll; false when there is no such
-    // session. Version 1 pushes nothing yet (docs/PROTOCOL.md): this is
-    // where a provider's own messages will go.
+    // session. A put's later answers (put_status, refused, interrupted) come
+    // this way: each session's SessionState::outbox calls it.
     bool push(std::uint64_t session, std::string encoded_message);
 
     // Ends every session (their open polls hear 1001) and stops the expiry

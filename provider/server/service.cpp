@@ -76,6 +76,7 @@ Service::Service(ServiceConfig config, std::string token, std::vector<std::share
       resolvers_(std::move(resolvers)),
       downloads_(std::make_shared<DownloadTable>(std::chrono::milliseconds(
           static_cast<std::int64_t>(config_.limits.download_ttl_s * 1000.0)))),
+      puts_(PutDesk::create(config_.put_decider, config_.puts)),
       facts_(std::make_shared<FileFactsCache>()),
       site_(site ? std::move(site) : std::make_shared<const StaticSite>()),
       activity_(std::move(activity)),
@@ -123,7 +124,9 @@ std::shared_ptr<const ScreenMap> Service::screens() const {
 void Service::prepare_files(const std::vector<std::filesystem::path>& files) const { facts_->prepare(files); }
 
 void Service::session_ended(const SessionState& state) const {
-    if (state.welcomed && activity_) activity_->left(state.id);
+    if (!state.welcomed) return;
+    puts_->session_ended(state.id);
+    if (activity_) activity_->left(state.id);
 }
 
 void Service::set_token(std::string token) {
@@ -206,8 +209,16 @@ Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime no
     out.close = false;
     const std::shared_ptr<const ScreenMap> map = screens();
     state.screens_generation = map->generation;
+    state.client = hello.client;
+    state.device = hello.device.value_or("");
+    if (state.outbox)
+        puts_->attach(state.id, [outbox = state.outbox, id = state.id](std::string message) {
+            outbox(id, std::move(message));
+        });
     if (activity_) activity_->welcomed({state.id, hello.client, state.peer});
-    out.replies.push_back(p::Welcome{hello.id, config_.provider, map->field, config_.overlay, config_.limits});
+    p::Welcome welcome{hello.id, config_.provider, map->field, config_.overlay, config_.limits};
+    if (puts_->enabled()) welcome.features.push_back(p::kFeaturePut);
+    out.replies.push_back(std::move(welcome));
     return out;
 }
 
@@ -252,6 +263,18 @@ p::Message Service::grab(SessionState& state, const p::Grab& grab, SteadyTime no
     if (const auto* c = std::get_if<p::Content>(&reply); c && activity_)
         activity_->grabbed({state.id, c->kind, c->title, c->name.value_or(""), c->size.value_or(0)});
     return reply;
+}
+
+p::Message Service::put(SessionState& state, const p::Put& put, SteadyTime now) const {
+    if (!puts_->enabled()) return p::Error{put.id, p::ErrorCode::refused, "this provider takes no puts"};
+    if (!state.grabs.take(now)) {
+        char text[96];
+        std::snprintf(text, sizeof text, "more than %g grabs and puts a minute", config_.limits.grabs_per_min);
+        return p::Error{put.id, p::ErrorCode::rate_limited, text};
+    }
+    const auto point = screen_point(put.point);
+    if (!point) return p::Error{put.id, p::ErrorCode::not_found, "no screen shows field point " + point_text(put.point)};
+    return puts_->offer({state.id, state.client, state.device}, put, point);
 }
 
 p::Message Service::content_for(const p::Grab& grab, const Resolved& resolved) const {
@@ -335,6 +358,8 @@ Outcome Service::handle(SessionState& state, const p::ParseResult& parsed, Stead
                 if (auto reply = aim(state, m, now)) out.replies.push_back(std::move(*reply));
             } else if constexpr (std::is_same_v<T, p::Grab>) {
                 out.replies.push_back(grab(state, m, now));
+            } else if constexpr (std::is_same_v<T, p::Put>) {
+                out.replies.push_back(put(state, m, now));
             } else if constexpr (std::is_same_v<T, p::Hello>) {
                 out.replies.push_back(p::Error{m.id, p::ErrorCode::bad_request, "this session is already welcomed"});
             } else {

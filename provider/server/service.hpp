@@ -23,6 +23,8 @@
 #include "server/activity.hpp"
 #include "overlay/placement.hpp"
 #include "protocol/messages.hpp"
+#include "put/put_decision.hpp"
+#include "put/put_desk.hpp"
 #include "server/rate_limit.hpp"
 #include "server/static_site.hpp"
 
@@ -51,6 +53,10 @@ struct ServiceConfig {
     // Kiosks: any token is welcome; the resolvers (chosen by whoever builds
     // the Service) are the board's only.
     bool public_mode = false;
+    // Puts (docs/PROTOCOL.md, "Put"): who decides at the screen. Null: no
+    // puts; the welcome names no "put" feature and a put is refused.
+    std::shared_ptr<PutDecider> put_decider;
+    PutSettings puts;
 };
 
 // The screens and the field of a desktop layout, the `balanced` preset, the
@@ -71,6 +77,13 @@ struct SessionState {
     TokenBucket grabs;
     std::optional<SteadyTime> last_rate_error;  // when dropped aims were last reported
     std::uint64_t screens_generation = 0;       // the ScreenMap its welcome described
+    std::string client;  // the hello's, for the screen's put prompt
+    std::string device;  // the hello's `device`, empty when none
+    // Where the provider's own messages for this session go (a put's answer
+    // comes later, on any thread): set by the connection before the hello,
+    // called with the session's id and an encoded message; must not block.
+    // Unset: the session hears nothing pushed.
+    std::function<void(std::uint64_t session, std::string encoded_message)> outbox;
 };
 
 struct Outcome {
@@ -133,6 +146,8 @@ public:
     std::shared_ptr<void> watch_screens(std::function<void()> on_change) const;
     const ServiceConfig& config() const { return config_; }
     DownloadTable& downloads() const { return *downloads_; }
+    // Puts: offers, their answers pushed to sessions, the upload links.
+    PutDesk& puts() const { return *puts_; }
     const StaticSite& site() const { return *site_; }
 
 private:
@@ -141,6 +156,7 @@ private:
     std::optional<protocol::Message> aim(SessionState& state, const protocol::Aim& aim, SteadyTime now) const;
     protocol::Message grab(SessionState& state, const protocol::Grab& grab, SteadyTime now) const;
     protocol::Message content_for(const protocol::Grab& grab, const Resolved& resolved) const;
+    protocol::Message put(SessionState& state, const protocol::Put& put, SteadyTime now) const;
 
     ServiceConfig config_;  // its screens are the first; screens_ holds the current
     mutable std::mutex screens_mutex_;
@@ -149,6 +165,7 @@ private:
     mutable std::vector<std::weak_ptr<std::function<void()>>> screen_watchers_;
     std::vector<std::shared_ptr<const Resolver>> resolvers_;
     std::shared_ptr<DownloadTable> downloads_;
+    std::shared_ptr<PutDesk> puts_;
     std::shared_ptr<FileFactsCache> facts_;
     std::shared_ptr<const StaticSite> site_;
     std::shared_ptr<ActivityListener> activity_;

@@ -5,6 +5,7 @@
 #include <boost/beast/core/detect_ssl.hpp>
 #include <boost/asio/post.hpp>
 #include <algorithm>
+#include <cstdio>
 #include <cctype>
 #include <chrono>
 #include <limits>
@@ -30,6 +31,8 @@ constexpr std::size_t kMaxRequestHeaderBytes = 8 * 1024;
 constexpr std::size_t kMaxRequestBodyBytes = 16 * 1024;
 // Replies waiting beyond this stop the reading until the peer takes them.
 constexpr std::size_t kMaxQueuedReplies = 64;
+// An upload's body goes to its file in chunks of this size.
+constexpr std::size_t kUploadChunkBytes = 64 * 1024;
 
 }  // namespace
 
@@ -48,12 +51,25 @@ Session::Session(net::ip::tcp::socket&& socket, ssl::context& tls, std::shared_p
 
 Session::~Session() {
     if (poll_pending_ && http_sessions_) http_sessions_->cancel_poll(poll_ticket_);
+    if (upload_entry_) {
+        // Torn down mid-upload without a handler to hear it (the server stopping).
+        upload_sink_.reset();
+        service_->puts().upload_failed(*upload_entry_, protocol::ErrorCode::interrupted,
+                                       "the upload was cut off: the provider closed the connection");
+    }
     service_->session_ended(state_);
     if (registry_) registry_->remove(this);
 }
 
 void Session::run() {
     registry_->add(this, weak_from_this());
+    // What the service pushes to this session (a put's answer) comes on any
+    // thread and is sent from the strand.
+    state_.outbox = [weak = weak_from_this(), executor = ws_.get_executor()](std::uint64_t, std::string message) {
+        net::post(executor, [weak, message = std::move(message)]() mutable {
+            if (auto self = weak.lock()) self->push_message(std::move(message));
+        });
+    };
     net::dispatch(ws_.get_executor(), [self = shared_from_this()] {
         if (self->closing_) return;
         beast::get_lowest_layer(self->ws_).expires_after(kHandshakeTimeout);
@@ -94,10 +110,59 @@ void Session::on_tls_handshake(beast::error_code ec) {
 void Session::read_request() {
     // Also the idle timeout of a kept-alive connection.
     beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
-    request_.emplace();
-    request_->header_limit(kMaxRequestHeaderBytes);
-    request_->body_limit(kMaxRequestBodyBytes);
+    request_.reset();
+    header_.emplace();
+    header_->header_limit(kMaxRequestHeaderBytes);
+    // The body's limit depends on the path: an upload's is its put's size,
+    // anything else's kMaxRequestBodyBytes (on_header). Not boost::none:
+    // Beast 1.74 compares the length with the optional, and none is less
+    // than every length.
+    header_->body_limit(std::numeric_limits<std::uint64_t>::max());
     buffer_.max_size(kMaxRequestHeaderBytes + kMaxRequestBodyBytes);
+    http::async_read_header(ws_.next_layer(), buffer_, *header_,
+                            beast::bind_front_handler(&Session::on_header, shared_from_this()));
+}
+
+void Session::request_failed(beast::error_code ec, beast::string_view target) {
+    // A request that is not HTTP or too large gets its status; a
+    // connection gone or timed out, nothing.
+    if (ec == http::error::header_limit || ec == http::error::buffer_overflow)
+        reject(http::status::request_header_fields_too_large, "request header too large\n");
+    else if (ec == http::error::body_limit && target.starts_with(kApiPrefix)) {
+        beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+        api_error(http::status::payload_too_large, false, protocol::ErrorCode::too_large,
+                  "the body is larger than " + std::to_string(kMaxRequestBodyBytes) + " bytes");
+    } else if (ec == http::error::body_limit)
+        reject(http::status::payload_too_large, "request body too large\n");
+    else if (ec.category() == http::make_error_code(http::error::bad_method).category() &&
+             ec != http::error::end_of_stream && ec != http::error::partial_message)
+        reject(http::status::bad_request, "bad request\n");
+}
+
+void Session::on_header(beast::error_code ec, std::size_t) {
+    if (closing_) return;
+    if (ec) {
+        request_failed(ec, header_->get().target());
+        return;
+    }
+    const beast::string_view target = header_->get().target();
+    if (target.starts_with(kUploadPrefix)) {
+        start_upload();
+        return;
+    }
+    // A declared length is checked here; a chunked body chunk by chunk.
+    if (const auto length = header_->content_length(); length && *length > kMaxRequestBodyBytes) {
+        request_failed(http::error::body_limit, target);
+        return;
+    }
+    request_.emplace(std::move(*header_));
+    header_.reset();
+    request_->body_limit(kMaxRequestBodyBytes);
+    if (request_->is_done()) {
+        // No body: nothing more to read.
+        net::post(ws_.get_executor(), [self = shared_from_this()] { self->on_request({}, 0); });
+        return;
+    }
     http::async_read(ws_.next_layer(), buffer_, *request_,
                      beast::bind_front_handler(&Session::on_request, shared_from_this()));
 }
@@ -105,19 +170,7 @@ void Session::read_request() {
 void Session::on_request(beast::error_code ec, std::size_t) {
     if (closing_) return;
     if (ec) {
-        // A request that is not HTTP or too large gets its status; a
-        // connection gone or timed out, nothing.
-        if (ec == http::error::header_limit || ec == http::error::buffer_overflow)
-            reject(http::status::request_header_fields_too_large, "request header too large\n");
-        else if (ec == http::error::body_limit && beast::string_view(request_->get().target()).starts_with(kApiPrefix)) {
-            beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
-            api_error(http::status::payload_too_large, false, protocol::ErrorCode::too_large,
-                      "the body is larger than " + std::to_string(kMaxRequestBodyBytes) + " bytes");
-        } else if (ec == http::error::body_limit)
-            reject(http::status::payload_too_large, "request body too large\n");
-        else if (ec.category() == http::make_error_code(http::error::bad_method).category() &&
-                 ec != http::error::end_of_stream && ec != http::error::partial_message)
-            reject(http::status::bad_request, "bad request\n");
+        request_failed(ec, request_->get().target());
         return;
     }
     buffer_.max_size(std::numeric_limits<std::size_t>::max());
@@ -371,6 +424,154 @@ void Session::on_watch(beast::error_code ec, std::size_t bytes) {
     // Otherwise the answer is still being written; after_response goes on.
 }
 
+
+void Session::start_upload() {
+    http::request_parser<http::empty_body>& header = *header_;
+    const auto& req = header.get();
+    const beast::string_view target = req.target();
+    if (req.method() != http::verb::put) {
+        api_error(http::status::method_not_allowed, false, protocol::ErrorCode::bad_request,
+                  "an upload is a PUT", "PUT");
+        return;
+    }
+    // The link is used up by this request, whatever follows.
+    auto entry = service_->puts().take_upload(std::string_view(target.data(), target.size()));
+    if (!entry) {
+        api_error(http::status::not_found, false, protocol::ErrorCode::not_found, "unknown, used or expired upload link");
+        return;
+    }
+    upload_entry_ = std::move(*entry);
+    const std::int64_t size = upload_entry_->size;
+    const auto length = header.content_length();
+    if (!length || header.chunked()) {
+        const std::string why = "an upload needs a Content-Length of " + std::to_string(size);
+        service_->puts().upload_failed(*upload_entry_, protocol::ErrorCode::interrupted, why);
+        upload_entry_.reset();
+        api_error(http::status::length_required, false, protocol::ErrorCode::bad_request, why);
+        return;
+    }
+    if (*length != static_cast<std::uint64_t>(size)) {
+        const std::string why = "the upload's Content-Length is " + std::to_string(*length) + ", the put's size " +
+                                std::to_string(size);
+        service_->puts().upload_failed(*upload_entry_, protocol::ErrorCode::interrupted, why);
+        upload_entry_.reset();
+        api_error(http::status::bad_request, false, protocol::ErrorCode::bad_request, why);
+        return;
+    }
+    try {
+        upload_sink_ = std::make_unique<UploadSink>(upload_entry_->folder, size, upload_entry_->sha256);
+    } catch (const UploadError& e) {
+        fail_upload(e.code(), e.what(), true);
+        return;
+    } catch (const std::exception& e) {
+        fail_upload(protocol::ErrorCode::internal, e.what(), true);
+        return;
+    }
+    const bool expect_continue = beast::iequals(req[http::field::expect], "100-continue");
+    upload_.emplace(std::move(header));
+    header_.reset();
+    upload_->body_limit(static_cast<std::uint64_t>(size));
+    buffer_.max_size(std::numeric_limits<std::size_t>::max());
+    upload_chunk_.resize(kUploadChunkBytes);
+    // A slow sender gets a minute plus a second per megabyte, as downloads.
+    beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(60 + size / (1 << 20)));
+    if (expect_continue) {
+        auto res = std::make_shared<http::response<http::empty_body>>(http::status::continue_, 11);
+        auto& r = *res;
+        response_ = std::move(res);
+        http::async_write(ws_.next_layer(), r, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+            self->response_.reset();
+            if (ec) {
+                self->fail_upload(protocol::ErrorCode::interrupted, "the upload broke off: " + ec.message(), false);
+                return;
+            }
+            self->read_upload();
+        });
+        return;
+    }
+    read_upload();
+}
+
+void Session::read_upload() {
+    if (upload_->is_done()) {
+        finish_upload();
+        return;
+    }
+    auto& body = upload_->get().body();
+    body.data = upload_chunk_.data();
+    body.size = upload_chunk_.size();
+    http::async_read(ws_.next_layer(), buffer_, *upload_,
+                     beast::bind_front_handler(&Session::on_upload, shared_from_this()));
+}
+
+void Session::on_upload(beast::error_code ec, std::size_t) {
+    if (!upload_ || !upload_sink_) return;
+    if (ec == http::error::need_buffer) ec = {};
+    const std::size_t got = upload_chunk_.size() - upload_->get().body().size;
+    if (got > 0) {
+        try {
+            upload_sink_->write(upload_chunk_.data(), got);
+        } catch (const UploadError& e) {
+            fail_upload(e.code(), e.what(), !ec);
+            return;
+        }
+    }
+    if (ec) {
+        fail_upload(protocol::ErrorCode::interrupted,
+                    "the upload broke off after " + std::to_string(upload_sink_->received()) + " of " +
+                        std::to_string(upload_entry_->size) + " bytes: " + ec.message(),
+                    false);
+        return;
+    }
+    if (closing_) {
+        fail_upload(protocol::ErrorCode::interrupted, "the provider is stopping", false);
+        return;
+    }
+    read_upload();
+}
+
+void Session::finish_upload() {
+    std::string stored;
+    try {
+        stored = upload_sink_->store(upload_entry_->name);
+    } catch (const UploadError& e) {
+        fail_upload(e.code(), e.what(), true);
+        return;
+    }
+    upload_sink_.reset();
+    const bool keep_alive = upload_->get().keep_alive();
+    const UploadEntry entry = std::move(*upload_entry_);
+    upload_entry_.reset();
+    upload_.reset();
+    upload_chunk_ = {};
+    const protocol::Message done = service_->puts().upload_done(entry, stored);
+    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+    api_response(200, keep_alive && !closing_, encode_reply(done));
+}
+
+void Session::fail_upload(protocol::ErrorCode code, const std::string& message, bool answer) {
+    upload_sink_.reset();  // the temporary file goes with it
+    upload_.reset();
+    upload_chunk_ = {};
+    if (!upload_entry_) return;
+    const protocol::Error error = service_->puts().upload_failed(*upload_entry_, code, message);
+    upload_entry_.reset();
+    if (!answer) {
+        beast::get_lowest_layer(ws_).close();
+        return;
+    }
+    const auto status = code == protocol::ErrorCode::too_large  ? http::status::payload_too_large
+                        : code == protocol::ErrorCode::internal ? http::status::internal_server_error
+                                                                : http::status::bad_request;
+    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+    api_response(static_cast<int>(status), false, encode_reply(error));
+}
+
+void Session::push_message(std::string text) {
+    // Only a WebSocket session is welcomed here (HTTPS ones live in HttpSessions).
+    if (!websocket_ || closing_) return;
+    send(std::move(text));
+}
 
 void Session::serve_http(const http::request<http::string_body>& req) {
     const bool keep_alive = req.keep_alive();

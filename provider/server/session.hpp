@@ -1,7 +1,9 @@
 // One connection: the TLS handshake, then HTTP requests (one-time downloads
-// under /dl/, the web client's files, the HTTPS transport under /api/ handed
-// to HttpSessions, kept alive between requests) until one upgrades to the
-// WebSocket session at /ws. All of a session's work runs on its strand; at
+// under /dl/, uploads of accepted puts under /up/, the web client's files,
+// the HTTPS transport under /api/ handed to HttpSessions, kept alive between
+// requests) until one upgrades to the WebSocket session at /ws. A request's
+// header is read first: an upload's body then streams to a file in chunks,
+// any other body is read whole (at most 16 KiB). All of a session's work runs on its strand; at
 // most one write is outstanding and replies wait in a queue. A long poll
 // waits on a timer of the strand while a read watches for the client leaving.
 #pragma once
@@ -17,7 +19,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "put/upload_sink.hpp"
+#include "put/upload_table.hpp"
 #include "server/http_sessions.hpp"
 #include "server/service.hpp"
 
@@ -50,7 +55,19 @@ private:
     void on_detect(boost::beast::error_code ec, bool tls);
     void on_tls_handshake(boost::beast::error_code ec);
     void read_request();
+    void on_header(boost::beast::error_code ec, std::size_t);
+    void request_failed(boost::beast::error_code ec, boost::beast::string_view target);
     void on_request(boost::beast::error_code ec, std::size_t);
+    // PUT /up/<token> (docs/PROTOCOL.md, "Upload").
+    void start_upload();
+    void read_upload();
+    void on_upload(boost::beast::error_code ec, std::size_t);
+    void finish_upload();
+    // The upload failed: its file removed, the put's session told; answered
+    // with `status` while the connection is there (`answer`), else closed.
+    void fail_upload(protocol::ErrorCode code, const std::string& message, bool answer);
+    // A message the service pushes to this WebSocket session (on the strand).
+    void push_message(std::string text);
     void serve_http(const boost::beast::http::request<boost::beast::http::string_body>& req);
     void serve_download(const boost::beast::http::request<boost::beast::http::string_body>& req);
     void serve_api(const boost::beast::http::request<boost::beast::http::string_body>& req);
@@ -86,7 +103,14 @@ private:
     std::shared_ptr<SessionRegistry> registry_;
     std::shared_ptr<HttpSessions> http_sessions_;
     boost::beast::flat_buffer buffer_;
+    std::optional<boost::beast::http::request_parser<boost::beast::http::empty_body>> header_;
     std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> request_;
+    // An upload under way: its parser (the body in chunks), the accepted put
+    // and the file the bytes go to.
+    std::optional<boost::beast::http::request_parser<boost::beast::http::buffer_body>> upload_;
+    std::optional<UploadEntry> upload_entry_;
+    std::unique_ptr<UploadSink> upload_sink_;
+    std::vector<char> upload_chunk_;
     std::shared_ptr<void> response_;  // the response being written
     SessionState state_;
     std::deque<std::string> queue_;

@@ -114,10 +114,19 @@ bool is_download_path(std::string_view path) {
     return true;
 }
 
+bool is_printable_ascii(std::string_view s) {
+    for (char c : s)
+        if (c < 0x20 || c > 0x7e) return false;
+    return true;
+}
+
 Hello read_hello(MemberReader& r) {
     Hello m;
     m.token = r.text("token", 1, kMaxTokenBytes);
     m.client = r.text("client", 0, kMaxNameBytes);
+    m.device = r.optional_text("device", 1, kMaxDeviceBytes);
+    if (r.ok() && m.device && !is_printable_ascii(*m.device))
+        r.fail("\"device\" must be printable ASCII, 1 to " + std::to_string(kMaxDeviceBytes) + " bytes");
     return m;
 }
 
@@ -209,6 +218,19 @@ Welcome read_welcome(MemberReader& r) {
         m.limits.download_ttl_s = l.number("download_ttl_s", 1.0, 3600.0);
         if (!l.ok()) r.fail(l.problem());
     }
+    if (r.ok() && r.has("features")) {
+        if (const json* features = r.array("features", 0, kMaxFeatures); features && r.ok()) {
+            for (const json& f : *features) {
+                if (!f.is_string() || f.get_ref<const std::string&>().empty() ||
+                    f.get_ref<const std::string&>().size() > kMaxFeatureBytes) {
+                    r.fail("\"features\" must be an array of at most " + std::to_string(kMaxFeatures) +
+                           " strings of 1 to " + std::to_string(kMaxFeatureBytes) + " bytes");
+                    break;
+                }
+                m.features.push_back(f.get<std::string>());
+            }
+        }
+    }
     return m;
 }
 
@@ -234,24 +256,46 @@ Grab read_grab(MemberReader& r) {
     return m;
 }
 
-Content read_content(MemberReader& r) {
-    Content m;
-    m.kind = read_kind(r);
-    m.title = r.text("title", 0, kMaxTitleBytes);
-    m.url = r.optional_text("url", 1, kMaxUrlBytes);
-    if (r.ok() && m.url && !is_http_url(*m.url))
+std::optional<std::string> read_url(MemberReader& r) {
+    auto url = r.optional_text("url", 1, kMaxUrlBytes);
+    if (r.ok() && url && !is_http_url(*url))
         r.fail("\"url\" must be an http: or https: URL without spaces or control characters");
-    m.name = r.optional_text("name", 1, kMaxFileNameBytes);
-    if (r.ok() && m.name && !is_file_name(*m.name))
+    return url;
+}
+
+std::optional<std::string> read_file_name(MemberReader& r) {
+    auto name = r.optional_text("name", 1, kMaxFileNameBytes);
+    if (r.ok() && name && !is_file_name(*name))
         r.fail("\"name\" must be a file name: no '/', '\\' or control characters, not \".\" or \"..\"");
+    return name;
+}
+
+// name, mime, size and sha256 of a content or a put, each optional here.
+template <class M>
+void read_file_members(MemberReader& r, M& m) {
+    m.name = read_file_name(r);
     m.mime = r.optional_text("mime", 3, kMaxMimeBytes);
     if (r.ok() && m.mime && !is_mime_type(*m.mime)) r.fail("\"mime\" must be a media type such as \"text/plain\"");
     m.size = r.optional_integer("size", 0, kMaxSafeInteger);
     m.sha256 = r.optional_text("sha256", 64, 64);
     if (r.ok() && m.sha256 && !is_lower_hex(*m.sha256)) r.fail("\"sha256\" must be 64 lowercase hex digits");
-    m.download = r.optional_text("download", 2, kMaxDownloadPathBytes);
-    if (r.ok() && m.download && !is_download_path(*m.download))
-        r.fail("\"download\" must be a path such as \"/dl/abc\": '/' then letters, digits, '-', '_', '.', '~', '/'");
+}
+
+std::optional<std::string> read_path(MemberReader& r, const char* key) {
+    auto path = r.optional_text(key, 2, kMaxDownloadPathBytes);
+    if (r.ok() && path && !is_download_path(*path))
+        r.fail(r.name(key) +
+               " must be a path such as \"/dl/abc\": '/' then letters, digits, '-', '_', '.', '~', '/'");
+    return path;
+}
+
+Content read_content(MemberReader& r) {
+    Content m;
+    m.kind = read_kind(r);
+    m.title = r.text("title", 0, kMaxTitleBytes);
+    m.url = read_url(r);
+    read_file_members(r, m);
+    m.download = read_path(r, "download");
     if (!r.ok()) return m;
     auto need = [&](bool present, const char* member) {
         if (!present && r.ok()) r.fail(std::string("a ") + to_string(m.kind) + " content needs \"" + member + "\"");
@@ -263,6 +307,60 @@ Content read_content(MemberReader& r) {
         need(m.size.has_value(), "size");
         need(m.download.has_value(), "download");
     }
+    return m;
+}
+
+Put read_put(MemberReader& r) {
+    Put m;
+    m.point = read_point(r, "point");
+    m.kind = read_kind(r);
+    if (r.ok() && m.kind != ContentKind::url && m.kind != ContentKind::file)
+        r.fail("\"kind\" of a put must be \"url\" or \"file\"");
+    m.title = r.optional_text("title", 0, kMaxTitleBytes).value_or("");
+    m.url = read_url(r);
+    read_file_members(r, m);
+    if (!r.ok()) return m;
+    auto need = [&](bool present, const char* member) {
+        if (!present && r.ok()) r.fail(std::string("a ") + to_string(m.kind) + " put needs \"" + member + "\"");
+    };
+    if (m.kind == ContentKind::url) need(m.url.has_value(), "url");
+    if (m.kind == ContentKind::file) {
+        need(m.name.has_value(), "name");
+        need(m.mime.has_value(), "mime");
+        need(m.size.has_value(), "size");
+        need(m.sha256.has_value(), "sha256");
+    }
+    return m;
+}
+
+PutStatus read_put_status(MemberReader& r) {
+    PutStatus m;
+    const std::string status = r.text("status", 1, 16);
+    if (r.ok()) {
+        if (status == "asking")
+            m.status = PutState::asking;
+        else if (status == "upload")
+            m.status = PutState::upload;
+        else if (status == "done")
+            m.status = PutState::done;
+        else
+            r.fail("\"status\" must be \"asking\", \"upload\" or \"done\"");
+    }
+    m.upload = read_path(r, "upload");
+    const auto outcome = r.optional_text("outcome", 1, 16);
+    if (r.ok() && outcome) {
+        if (*outcome == "saved")
+            m.outcome = PutOutcome::saved;
+        else if (*outcome == "opened")
+            m.outcome = PutOutcome::opened;
+        else
+            r.fail("\"outcome\" must be \"saved\" or \"opened\"");
+    }
+    m.name = read_file_name(r);
+    if (!r.ok()) return m;
+    if (m.status == PutState::upload && !m.upload) r.fail("an upload put_status needs \"upload\"");
+    if (m.status == PutState::done && !m.outcome) r.fail("a done put_status needs \"outcome\"");
+    if (r.ok() && m.outcome == PutOutcome::saved && !m.name) r.fail("a saved put_status needs \"name\"");
     return m;
 }
 
@@ -288,15 +386,19 @@ std::optional<Message> read_body(const std::string& type, MemberReader& r) {
     if (type == "grab") return read_grab(r);
     if (type == "content") return read_content(r);
     if (type == "error") return read_error(r);
+    if (type == "put") return read_put(r);
+    if (type == "put_status") return read_put_status(r);
     return std::nullopt;
 }
 
-// Every message type but Seeking has an id; Grab and Content must.
+// Every message type but Seeking has an id; Grab, Content, Put and PutStatus must.
 struct SetId {
     std::optional<RequestId> id;
     void operator()(Seeking&) const {}
     void operator()(Grab& m) const { m.id = *id; }
     void operator()(Content& m) const { m.id = *id; }
+    void operator()(Put& m) const { m.id = *id; }
+    void operator()(PutStatus& m) const { m.id = *id; }
     template <class M>
     void operator()(M& m) const {
         m.id = id;
@@ -351,7 +453,7 @@ ParseResult parse_document(std::string_view text, const ParseLimits& limits) {
     auto message = read_body(type, r);
     if (!message) return problem(ErrorCode::bad_request, "unknown type \"" + clip_text(type, 32) + "\"", id.id);
     if (!r.ok()) return problem(ErrorCode::bad_request, r.problem(), id.id);
-    if ((type == "grab" || type == "content") && !id.id)
+    if ((type == "grab" || type == "content" || type == "put" || type == "put_status") && !id.id)
         return problem(ErrorCode::bad_request, "a " + type + " needs an \"id\"");
     std::visit(SetId{id.id}, *message);
     return *message;
@@ -387,6 +489,7 @@ struct Writer {
         auto o = header("hello", m.id);
         o["token"] = m.token;
         o["client"] = clip_text(m.client, kMaxNameBytes);
+        if (m.device) o["device"] = *m.device;
         return o;
     }
     ordered_json operator()(const Welcome& m) const {
@@ -422,6 +525,7 @@ struct Writer {
         limits["grabs_per_min"] = m.limits.grabs_per_min;
         limits["download_ttl_s"] = m.limits.download_ttl_s;
         o["limits"] = std::move(limits);
+        if (!m.features.empty()) o["features"] = m.features;
         return o;
     }
     ordered_json operator()(const Seeking&) const { return header("seeking", std::nullopt); }
@@ -460,6 +564,26 @@ struct Writer {
         if (m.download) o["download"] = *m.download;
         return o;
     }
+    ordered_json operator()(const Put& m) const {
+        auto o = header("put", m.id);
+        o["point"] = point_json(m.point);
+        o["kind"] = to_string(m.kind);
+        if (!m.title.empty()) o["title"] = clip_text(m.title, kMaxTitleBytes);
+        if (m.url) o["url"] = *m.url;
+        if (m.name) o["name"] = *m.name;
+        if (m.mime) o["mime"] = *m.mime;
+        if (m.size) o["size"] = *m.size;
+        if (m.sha256) o["sha256"] = *m.sha256;
+        return o;
+    }
+    ordered_json operator()(const PutStatus& m) const {
+        auto o = header("put_status", m.id);
+        o["status"] = to_string(m.status);
+        if (m.upload) o["upload"] = *m.upload;
+        if (m.outcome) o["outcome"] = to_string(*m.outcome);
+        if (m.name) o["name"] = *m.name;
+        return o;
+    }
     ordered_json operator()(const Error& m) const {
         auto o = header("error", m.id);
         o["code"] = to_string(m.code);
@@ -494,20 +618,38 @@ std::optional<ContentKind> content_kind_from_string(std::string_view name) {
     return std::nullopt;
 }
 
+const char* to_string(PutState state) {
+    switch (state) {
+        case PutState::asking: return "asking";
+        case PutState::upload: return "upload";
+        case PutState::done: return "done";
+    }
+    return "asking";
+}
+
+const char* to_string(PutOutcome outcome) {
+    switch (outcome) {
+        case PutOutcome::saved: return "saved";
+        case PutOutcome::opened: return "opened";
+    }
+    return "saved";
+}
+
 OverlayInfo overlay_info(const overlay::Preset& p) {
     return OverlayInfo{p.name, p.opacity_min, p.opacity_max, p.period_s, p.waveform};
 }
 
 const char* type_name(const Message& message) {
-    static constexpr const char* kNames[] = {"hello",  "welcome", "seeking", "aim",
-                                             "target", "grab",    "content", "error"};
+    static constexpr const char* kNames[] = {"hello", "welcome", "seeking", "aim", "target",
+                                             "grab",  "content", "error",   "put", "put_status"};
     static_assert(std::size(kNames) == std::variant_size_v<Message>);
     return kNames[message.index()];
 }
 
 bool is_request(const Message& message) {
     return std::holds_alternative<Hello>(message) || std::holds_alternative<Seeking>(message) ||
-           std::holds_alternative<Aim>(message) || std::holds_alternative<Grab>(message);
+           std::holds_alternative<Aim>(message) || std::holds_alternative<Grab>(message) ||
+           std::holds_alternative<Put>(message);
 }
 
 std::optional<std::string> try_encode(const Message& message, std::string* problem) {

@@ -43,6 +43,11 @@ inline constexpr std::size_t kMaxMimeBytes = 255;
 inline constexpr std::size_t kMaxDownloadPathBytes = 256;
 inline constexpr std::size_t kMaxErrorMessageBytes = 1024;
 inline constexpr std::size_t kMaxScreens = 16;
+inline constexpr std::size_t kMaxDeviceBytes = 64;   // a hello's device: printable ASCII
+inline constexpr std::size_t kMaxFeatures = 32;      // a welcome's features, each 1..kMaxFeatureBytes
+inline constexpr std::size_t kMaxFeatureBytes = 64;
+// The feature a provider that takes puts names in its welcome.
+inline constexpr const char* kFeaturePut = "put";
 // |u| and |v| of any field point: far outside any field, yet small enough that
 // the provider's arithmetic on them stays exact to a fraction of a pixel.
 inline constexpr double kMaxCoordinate = 1e6;
@@ -83,6 +88,9 @@ struct Hello {
     std::optional<RequestId> id;
     std::string token;   // the pairing token, 1..kMaxTokenBytes
     std::string client;  // display text: "umf-web/0.1 (Android; Chrome 120)"
+    // A name the requester keeps, 1..kMaxDeviceBytes of printable ASCII, so
+    // the screen can accept its puts without asking each time.
+    std::optional<std::string> device{};
     bool operator==(const Hello&) const = default;
 };
 
@@ -142,6 +150,9 @@ struct Welcome {
     FieldInfo field;
     OverlayInfo overlay;
     Limits limits;
+    // What the provider offers beyond version 1's core: "put". Left out of the
+    // text when empty; unknown names are kept (a requester ignores them).
+    std::vector<std::string> features{};
     bool operator==(const Welcome&) const = default;
 };
 
@@ -201,12 +212,46 @@ struct Error {
     bool operator==(const Error&) const = default;
 };
 
-using Message = std::variant<Hello, Welcome, Seeking, Aim, Target, Grab, Content, Error>;
+// requester -> provider: give the screen a URL or a file at the point
+// (docs/PROTOCOL.md, "Put"). kind url needs `url`; kind file needs name,
+// mime, size and sha256.
+struct Put {
+    RequestId id;
+    FieldPoint point;
+    ContentKind kind = ContentKind::url;  // url or file only
+    std::string title;                    // display text, may be empty (then left out of the text)
+    std::optional<std::string> url;
+    std::optional<std::string> name;
+    std::optional<std::string> mime;
+    std::optional<std::int64_t> size;
+    std::optional<std::string> sha256;
+    bool operator==(const Put&) const = default;
+};
+
+enum class PutState { asking, upload, done };
+const char* to_string(PutState state);
+enum class PutOutcome { saved, opened };
+const char* to_string(PutOutcome outcome);
+
+// provider -> requester: how a put goes on. upload needs `upload` (the path
+// to PUT the bytes to); done needs `outcome`, and `name` with outcome saved
+// (the name the file was stored under; opened may carry it for a file).
+struct PutStatus {
+    RequestId id;  // the put's
+    PutState status = PutState::asking;
+    std::optional<std::string> upload;
+    std::optional<PutOutcome> outcome;
+    std::optional<std::string> name;
+    bool operator==(const PutStatus&) const = default;
+};
+
+// New types go at the end: the index is part of type_name's table.
+using Message = std::variant<Hello, Welcome, Seeking, Aim, Target, Grab, Content, Error, Put, PutStatus>;
 
 // "hello", "welcome", ...: the message's "type".
 const char* type_name(const Message& message);
-// hello, seeking, aim and grab: what a requester sends. A provider answers
-// anything else with bad_request.
+// hello, seeking, aim, grab and put: what a requester sends. A provider
+// answers anything else with bad_request.
 bool is_request(const Message& message);
 
 // The JSON text of a message. Display text is made valid UTF-8 and clipped to

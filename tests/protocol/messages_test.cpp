@@ -74,6 +74,34 @@ std::vector<Message> samples() {
     out.push_back(none);
     for (ErrorCode code : kAllErrorCodes) out.push_back(Error{std::nullopt, code, std::string("because ") + to_string(code)});
     out.push_back(Error{RequestId{std::string("g-7")}, ErrorCode::not_found, "nothing there"});
+    // Puts (docs/PROTOCOL.md, "Put"), and the members they added to hello and welcome.
+    Hello with_device{RequestId{std::int64_t{1}}, "tok", "umf-web/0.2", std::string("phone-7f3a ~ A")};
+    out.push_back(with_device);
+    Welcome with_features = sample_welcome();
+    with_features.features = {"put", "later-feature"};
+    out.push_back(with_features);
+    Put url_put;
+    url_put.id = RequestId{std::string("p1")};
+    url_put.point = {31.5, 17.1};
+    url_put.kind = ContentKind::url;
+    url_put.url = "https://example.org/talk";
+    url_put.title = "Talk page";
+    out.push_back(url_put);
+    Put file_put;
+    file_put.id = RequestId{std::int64_t{2}};
+    file_put.point = {-3, 1e6};
+    file_put.kind = ContentKind::file;
+    file_put.name = "report (draft).pdf";
+    file_put.mime = "application/pdf";
+    file_put.size = 2411724;
+    file_put.sha256 = std::string(64, 'f');
+    out.push_back(file_put);
+    out.push_back(PutStatus{RequestId{std::string("p2")}, PutState::asking, std::nullopt, std::nullopt, std::nullopt});
+    out.push_back(PutStatus{RequestId{std::string("p2")}, PutState::upload, std::string("/up/Qm9vdGggYW5kIHdpbmRvdw"),
+                            std::nullopt, std::nullopt});
+    out.push_back(PutStatus{RequestId{std::string("p2")}, PutState::done, std::nullopt, PutOutcome::saved,
+                            std::string("report (1).pdf")});
+    out.push_back(PutStatus{RequestId{std::int64_t{1}}, PutState::done, std::nullopt, PutOutcome::opened, std::nullopt});
     return out;
 }
 
@@ -119,6 +147,27 @@ TEST(ProtocolMessages, EveryTypeRoundTrips) {
     EXPECT_EQ(types.size(), std::variant_size_v<Message>);
 }
 
+TEST(ProtocolMessages, WelcomeFeaturesAreAnOptionalListOfStrings) {
+    std::string text = encode(sample_welcome());
+    EXPECT_EQ(text.find("features"), std::string::npos) << "no features: left out";
+    text.pop_back();
+    auto with = [&](const std::string& features) { return text + ",\"features\":" + features + "}"; };
+    EXPECT_EQ(std::get<Welcome>(parsed(parse_message(with("null"), kRequesterLimits))).features,
+              std::vector<std::string>{});
+    EXPECT_EQ(std::get<Welcome>(parsed(parse_message(with("[]"), kRequesterLimits))).features,
+              std::vector<std::string>{});
+    EXPECT_EQ(std::get<Welcome>(parsed(parse_message(with(R"(["put","x"])"), kRequesterLimits))).features,
+              (std::vector<std::string>{"put", "x"}));
+    expect_refused(with(R"("put")"), ErrorCode::bad_request, "\"features\"");
+    expect_refused(with(R"([1])"), ErrorCode::bad_request, "\"features\"");
+    expect_refused(with(R"([""])"), ErrorCode::bad_request, "\"features\"");
+    expect_refused(with("[\"" + std::string(kMaxFeatureBytes + 1, 'f') + "\"]"), ErrorCode::bad_request,
+                   "\"features\"");
+    std::string many = "[";
+    for (std::size_t i = 0; i <= kMaxFeatures; ++i) many += std::string(i ? "," : "") + "\"f\"";
+    expect_refused(with(many + "]"), ErrorCode::bad_request, "\"features\"");
+}
+
 TEST(ProtocolMessages, TextIsAVersionedObjectWithTypeFirst) {
     for (const Message& m : samples()) {
         std::string text = encode(m);
@@ -131,7 +180,7 @@ TEST(ProtocolMessages, TextIsAVersionedObjectWithTypeFirst) {
 TEST(ProtocolMessages, RequestsAreTheRequesterSide) {
     for (const Message& m : samples()) {
         std::string type = type_name(m);
-        bool request = type == "hello" || type == "seeking" || type == "aim" || type == "grab";
+        bool request = type == "hello" || type == "seeking" || type == "aim" || type == "grab" || type == "put";
         EXPECT_EQ(is_request(m), request) << type;
     }
 }

@@ -1,0 +1,283 @@
+#include "put/put_desk.hpp"
+
+#include <cstdio>
+#include <exception>
+#include <vector>
+
+#include "put/desktop_open.hpp"
+#include "put/upload_sink.hpp"
+
+namespace umf::provider {
+
+namespace p = protocol;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+std::string seconds_text(std::chrono::milliseconds ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g s", static_cast<double>(ms.count()) / 1000.0);
+    return text;
+}
+
+}  // namespace
+
+std::shared_ptr<PutDesk> PutDesk::create(std::shared_ptr<PutDecider> decider, PutSettings settings) {
+    return std::shared_ptr<PutDesk>(new PutDesk(std::move(decider), std::move(settings)));
+}
+
+PutDesk::PutDesk(std::shared_ptr<PutDecider> decider, PutSettings settings)
+    : decider_(std::move(decider)),
+      settings_(std::move(settings)),
+      trusted_(settings_.trusted_devices),
+      uploads_(settings_.upload_ttl) {}
+
+PutDesk::~PutDesk() { stop(); }
+
+void PutDesk::stop() {
+    std::vector<std::uint64_t> withdrawn;
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+        for (const auto& [id, pending] : pending_) withdrawn.push_back(id);
+        pending_.clear();
+    }
+    wake_.notify_all();
+    if (watcher_.joinable() && watcher_.get_id() != std::this_thread::get_id()) watcher_.join();
+    if (decider_)
+        for (std::uint64_t id : withdrawn) decider_->withdraw(id);
+}
+
+std::size_t PutDesk::offers_waiting() const {
+    std::lock_guard lock(mutex_);
+    return pending_.size();
+}
+
+void PutDesk::attach(std::uint64_t session, Outbox outbox) {
+    if (!outbox) return;
+    std::lock_guard lock(outbox_mutex_);
+    outboxes_[session] = std::move(outbox);
+}
+
+bool PutDesk::push(std::uint64_t session, const p::Message& message) {
+    Outbox outbox;
+    {
+        std::lock_guard lock(outbox_mutex_);
+        const auto it = outboxes_.find(session);
+        if (it == outboxes_.end()) return false;
+        outbox = it->second;
+    }
+    std::string text;
+    try {
+        text = p::encode(message);
+    } catch (const std::exception&) {
+        std::optional<p::RequestId> id;
+        std::visit(
+            [&](const auto& m) {
+                if constexpr (requires { m.id; }) id = m.id;
+            },
+            message);
+        text = p::encode(p::Error{id, p::ErrorCode::internal, "cannot encode the put's answer"});
+    }
+    outbox(std::move(text));
+    return true;
+}
+
+void PutDesk::session_ended(std::uint64_t session) {
+    {
+        std::lock_guard lock(outbox_mutex_);
+        outboxes_.erase(session);
+    }
+    std::vector<std::uint64_t> withdrawn;
+    {
+        std::lock_guard lock(mutex_);
+        for (auto it = pending_.begin(); it != pending_.end();) {
+            if (it->second.session == session) {
+                withdrawn.push_back(it->first);
+                it = pending_.erase(it);
+            } else {
+                ++it;
+            }
+        }
+    }
+    for (std::uint64_t id : withdrawn) decider_->withdraw(id);
+}
+
+p::Message PutDesk::offer(const PutRequester& who, const p::Put& put, std::optional<ScreenPoint> at) {
+    if (!decider_) return p::Error{put.id, p::ErrorCode::refused, "this provider takes no puts"};
+    Pending pending;
+    pending.session = who.session;
+    pending.id = put.id;
+    PutOffer& offer = pending.offer;
+    offer.client = who.client;
+    offer.device = who.device;
+    offer.kind = put.kind;
+    offer.title = put.title;
+    offer.at = at;
+    if (put.kind == p::ContentKind::url) {
+        if (!put.url) return p::Error{put.id, p::ErrorCode::bad_request, "a url put needs \"url\""};
+        offer.url = *put.url;
+    } else if (put.kind == p::ContentKind::file) {
+        if (!put.name || !put.mime || !put.size || !put.sha256)
+            return p::Error{put.id, p::ErrorCode::bad_request, "a file put needs name, mime, size and sha256"};
+        offer.name = p::safe_file_name(*put.name);
+        offer.mime = *put.mime;
+        offer.size = *put.size;
+        pending.sha256 = *put.sha256;
+        // Before anyone is asked: a file that cannot land is refused now.
+        if (offer.size > settings_.max_bytes)
+            return p::Error{put.id, p::ErrorCode::too_large,
+                            offer.name + " is " + std::to_string(offer.size) + " bytes, more than the limit of " +
+                                std::to_string(settings_.max_bytes)};
+        std::error_code ec;
+        std::filesystem::create_directories(settings_.folder, ec);
+        const auto room = free_bytes(settings_.folder);
+        if (!room) return p::Error{put.id, p::ErrorCode::internal, "the provider cannot use its put folder"};
+        if (static_cast<std::uintmax_t>(offer.size) > *room)
+            return p::Error{put.id, p::ErrorCode::too_large,
+                            offer.name + " is " + std::to_string(offer.size) + " bytes; the provider's folder has " +
+                                std::to_string(*room) + " bytes free"};
+    } else {
+        return p::Error{put.id, p::ErrorCode::bad_request, "a put is a url or a file"};
+    }
+
+    {
+        std::lock_guard lock(mutex_);
+        if (stopping_) return p::Error{put.id, p::ErrorCode::refused, "the provider is stopping"};
+        offer.id = next_offer_++;
+    }
+    if (trusted_.contains(offer.device)) return act(pending, PutReply{PutAnswer::save, false});
+
+    const std::uint64_t id = offer.id;
+    {
+        std::lock_guard lock(mutex_);
+        pending.deadline = Clock::now() + settings_.answer_timeout;
+        pending.in_ask = true;
+        pending_.emplace(id, pending);
+        start_watch_locked();
+    }
+    std::weak_ptr<PutDesk> weak = weak_from_this();
+    try {
+        decider_->ask(offer, [weak, id](PutReply reply) {
+            if (auto self = weak.lock()) self->answered(id, reply);
+        });
+    } catch (const std::exception& e) {
+        std::lock_guard lock(mutex_);
+        pending_.erase(id);
+        return p::Error{put.id, p::ErrorCode::internal, std::string("the screen cannot ask: ") + e.what()};
+    }
+    std::optional<PutReply> early;
+    {
+        std::lock_guard lock(mutex_);
+        const auto it = pending_.find(id);
+        if (it != pending_.end()) {
+            it->second.in_ask = false;
+            early = it->second.early;
+            if (early) pending_.erase(it);
+        }
+    }
+    wake_.notify_all();
+    // Answered before ask returned (a fixed policy): the answer is the reply
+    // itself, so it cannot overtake an "asking".
+    if (early) return act(pending, *early);
+    return p::PutStatus{put.id, p::PutState::asking, std::nullopt, std::nullopt, std::nullopt};
+}
+
+void PutDesk::answered(std::uint64_t offer, PutReply reply) {
+    Pending pending;
+    {
+        std::lock_guard lock(mutex_);
+        const auto it = pending_.find(offer);
+        if (it == pending_.end()) return;  // withdrawn, timed out, or answered before
+        if (it->second.in_ask) {
+            if (!it->second.early) it->second.early = reply;
+            return;
+        }
+        pending = std::move(it->second);
+        pending_.erase(it);
+    }
+    push(pending.session, act(pending, reply));
+}
+
+p::Message PutDesk::act(const Pending& pending, const PutReply& reply) {
+    const PutOffer& offer = pending.offer;
+    if (reply.answer == PutAnswer::dismiss)
+        return p::Error{pending.id, p::ErrorCode::refused, "the person at the screen declined it"};
+    if (reply.always_from_device && !offer.device.empty()) trusted_.add(offer.device);
+    if (offer.kind == p::ContentKind::url) {
+        std::string problem;
+        if (!open_with_desktop(offer.url, &problem)) return p::Error{pending.id, p::ErrorCode::internal, problem};
+        return p::PutStatus{pending.id, p::PutState::done, std::nullopt, p::PutOutcome::opened, std::nullopt};
+    }
+    UploadEntry entry;
+    entry.session = pending.session;
+    entry.id = pending.id;
+    entry.offer = offer.id;
+    entry.name = offer.name;
+    entry.mime = offer.mime;
+    entry.size = offer.size;
+    entry.sha256 = pending.sha256;
+    entry.open = reply.answer == PutAnswer::open;
+    entry.folder = settings_.folder;
+    std::string link;
+    try {
+        link = uploads_.add(std::move(entry));
+    } catch (const std::exception& e) {
+        return p::Error{pending.id, p::ErrorCode::internal, e.what()};
+    }
+    return p::PutStatus{pending.id, p::PutState::upload, link, std::nullopt, std::nullopt};
+}
+
+std::optional<UploadEntry> PutDesk::take_upload(std::string_view target) { return uploads_.take(target); }
+
+p::Message PutDesk::upload_done(const UploadEntry& entry, const std::string& stored_name) {
+    p::PutStatus done{entry.id, p::PutState::done, std::nullopt, p::PutOutcome::saved, stored_name};
+    if (entry.open && open_with_desktop((entry.folder / stored_name).string())) done.outcome = p::PutOutcome::opened;
+    push(entry.session, done);
+    return done;
+}
+
+p::Error PutDesk::upload_failed(const UploadEntry& entry, p::ErrorCode code, const std::string& message) {
+    p::Error error{entry.id, code, message};
+    push(entry.session, error);
+    return error;
+}
+
+void PutDesk::start_watch_locked() {
+    if (watcher_.joinable() || stopping_) return;
+    watcher_ = std::thread([this] { watch_deadlines(); });
+}
+
+void PutDesk::watch_deadlines() {
+    std::unique_lock lock(mutex_);
+    while (!stopping_) {
+        std::optional<Clock::time_point> next;
+        for (const auto& [id, pending] : pending_)
+            if (!pending.in_ask && (!next || pending.deadline < *next)) next = pending.deadline;
+        if (next)
+            wake_.wait_until(lock, *next);
+        else
+            wake_.wait(lock);
+        if (stopping_) break;
+        const auto now = Clock::now();
+        std::vector<Pending> expired;
+        for (auto it = pending_.begin(); it != pending_.end();) {
+            if (!it->second.in_ask && it->second.deadline <= now) {
+                expired.push_back(std::move(it->second));
+                it = pending_.erase(it);
+            } else {
+                ++it;
+            }
+        }
+        if (expired.empty()) continue;
+        lock.unlock();
+        for (const Pending& pending : expired) {
+            decider_->withdraw(pending.offer.id);
+            push(pending.session, p::Error{pending.id, p::ErrorCode::refused,
+                                           "no answer at the screen within " + seconds_text(settings_.answer_timeout)});
+        }
+        lock.lock();
+    }
+}
+
+}  // namespace umf::provider

@@ -1,0 +1,114 @@
+// The provider's side of puts (docs/PROTOCOL.md, "Put"), free of sockets: a
+// put already validated, rate-limited and mapped to the screen is checked
+// against the size limit and the folder's free space, then accepted at once
+// for a trusted device or offered to the PutDecider; its answer (any
+// thread, any time) becomes a message PUSHED to the requester's session
+// through the outbox that session attached: an upload link, "done opened"
+// or "refused". Offers not answered within answer_timeout are withdrawn and
+// refused (a thread of its own watches the deadlines); a session that ends
+// withdraws its offers. The upload itself (Session, PUT /up/...) reports
+// back through upload_done and upload_failed.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <thread>
+
+#include "content/resolver.hpp"
+#include "protocol/messages.hpp"
+#include "put/put_decision.hpp"
+#include "put/trusted_devices.hpp"
+#include "put/upload_table.hpp"
+
+namespace umf::provider {
+
+// Who puts: the session and what its hello said.
+struct PutRequester {
+    std::uint64_t session = 0;  // SessionState::id
+    std::string client;
+    std::string device;  // empty: none given
+};
+
+class PutDesk : public std::enable_shared_from_this<PutDesk> {
+public:
+    // Takes an encoded message for the session; called on any thread, must
+    // not block (a connection posts it to its strand).
+    using Outbox = std::function<void(std::string encoded_message)>;
+
+    // No decider: puts are refused (and the welcome names no "put" feature).
+    static std::shared_ptr<PutDesk> create(std::shared_ptr<PutDecider> decider, PutSettings settings);
+    ~PutDesk();
+    PutDesk(const PutDesk&) = delete;
+    PutDesk& operator=(const PutDesk&) = delete;
+
+    bool enabled() const { return decider_ != nullptr; }
+    const PutSettings& settings() const { return settings_; }
+
+    // The immediate reply to a put: put_status asking (the answer is pushed
+    // later), upload or done (a trusted device, or a decider that answered
+    // within ask), or an error (refused, too_large, internal).
+    protocol::Message offer(const PutRequester& who, const protocol::Put& put, std::optional<ScreenPoint> at);
+
+    // Where a session's pushed messages go, from its welcome on.
+    void attach(std::uint64_t session, Outbox outbox);
+    // The session is gone: its outbox is dropped and its open offers withdrawn.
+    void session_ended(std::uint64_t session);
+    // Sends a message to a session's outbox; false when it has none.
+    bool push(std::uint64_t session, const protocol::Message& message);
+
+    // PUT /up/...: the accepted put behind the link, taken out (single use).
+    std::optional<UploadEntry> take_upload(std::string_view target);
+    // The upload is stored as `stored_name`: put_status done (saved, or opened
+    // after xdg-open for an `open` answer), pushed to the session and returned
+    // for the HTTP answer.
+    protocol::Message upload_done(const UploadEntry& entry, const std::string& stored_name);
+    // The upload failed: the error, pushed to the session and returned.
+    protocol::Error upload_failed(const UploadEntry& entry, protocol::ErrorCode code, const std::string& message);
+
+    TrustedDevices& trusted() { return trusted_; }
+    std::size_t offers_waiting() const;
+    std::size_t uploads_waiting() const { return uploads_.size(); }
+    // Withdraws every open offer and stops the deadline thread (the destructor does too).
+    void stop();
+
+private:
+    struct Pending {
+        PutOffer offer;
+        std::uint64_t session = 0;
+        protocol::RequestId id;
+        std::string sha256;
+        std::chrono::steady_clock::time_point deadline;
+        bool in_ask = false;                // decider->ask has not returned yet
+        std::optional<PutReply> early;      // answered within ask
+    };
+
+    PutDesk(std::shared_ptr<PutDecider> decider, PutSettings settings);
+    void answered(std::uint64_t offer, PutReply reply);
+    protocol::Message act(const Pending& pending, const PutReply& reply);
+    void watch_deadlines();
+    void start_watch_locked();
+
+    std::shared_ptr<PutDecider> decider_;
+    PutSettings settings_;
+    TrustedDevices trusted_;
+    UploadTable uploads_;
+
+    mutable std::mutex mutex_;
+    std::condition_variable wake_;
+    std::map<std::uint64_t, Pending> pending_;
+    std::uint64_t next_offer_ = 1;
+    std::thread watcher_;
+    bool stopping_ = false;
+
+    mutable std::mutex outbox_mutex_;
+    std::map<std::uint64_t, Outbox> outboxes_;
+};
+
+}  // namespace umf::provider

@@ -1,0 +1,183 @@
+#include "put/upload_sink.hpp"
+
+#include <fcntl.h>
+#include <openssl/evp.h>
+#include <stdio.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+namespace umf::provider {
+
+namespace fs = std::filesystem;
+using protocol::ErrorCode;
+
+namespace {
+
+constexpr std::size_t kMaxStoredNameBytes = 255;
+
+std::string errno_text() { return std::strerror(errno); }
+
+std::string_view clip_utf8(std::string_view s, std::size_t bytes) {
+    if (s.size() <= bytes) return s;
+    std::size_t end = bytes;
+    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0) == 0x80) --end;
+    return s.substr(0, end);
+}
+
+std::size_t extension_start(std::string_view name) {
+    const auto dot = name.rfind('.');
+    if (dot == std::string_view::npos || dot == 0 || dot + 1 == name.size()) return name.size();
+    if (name.find_first_not_of('.') >= dot) return name.size();
+    return dot;
+}
+
+// The umask without changing it (umask(2) would, for a moment, for every
+// thread of the server): Linux reports it in /proc/self/status.
+mode_t process_umask() {
+    FILE* f = std::fopen("/proc/self/status", "re");
+    mode_t mask = 022;
+    if (!f) return mask;
+    char line[256];
+    while (std::fgets(line, sizeof line, f)) {
+        unsigned value = 0;
+        if (std::sscanf(line, "Umask: %o", &value) == 1) {
+            mask = static_cast<mode_t>(value & 0777);
+            break;
+        }
+    }
+    std::fclose(f);
+    return mask;
+}
+
+}  // namespace
+
+std::string numbered_name(std::string_view name, int n) {
+    if (n <= 0) return std::string(name);
+    std::size_t ext_at = extension_start(name);
+    std::string_view ext = name.substr(ext_at);
+    const std::string suffix = " (" + std::to_string(n) + ")";
+    if (ext.size() + suffix.size() + 1 > kMaxStoredNameBytes) {
+        ext_at = name.size();
+        ext = {};
+    }
+    const std::size_t room = kMaxStoredNameBytes - suffix.size() - ext.size();
+    return std::string(clip_utf8(name.substr(0, ext_at), room)) + suffix + std::string(ext);
+}
+
+std::string store_without_overwriting(const fs::path& temp, const fs::path& dir, const std::string& name) {
+    for (int n = 0; n < 10000; ++n) {
+        const std::string candidate = numbered_name(name, n);
+        const fs::path target = dir / candidate;
+        // Both refuse an existing target atomically: a file that appears
+        // between a check and the rename is never replaced.
+        if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_NOREPLACE) == 0) return candidate;
+        if (errno == EEXIST) continue;
+        if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP)
+            throw UploadError(ErrorCode::internal, "cannot store " + candidate + ": " + errno_text());
+        if (::link(temp.c_str(), target.c_str()) == 0) {
+            ::unlink(temp.c_str());
+            return candidate;
+        }
+        if (errno == EEXIST) continue;
+        throw UploadError(ErrorCode::internal, "cannot store " + candidate + ": " + errno_text());
+    }
+    throw UploadError(ErrorCode::internal, "10000 files named like " + name + " exist already");
+}
+
+std::optional<std::uintmax_t> free_bytes(const fs::path& dir) {
+    struct statvfs st {};
+    if (::statvfs(dir.c_str(), &st) != 0) return std::nullopt;
+    return static_cast<std::uintmax_t>(st.f_bavail) * st.f_frsize;
+}
+
+struct UploadSink::Hash {
+    Hash() : ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free) {
+        if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
+            throw UploadError(ErrorCode::internal, "OpenSSL cannot compute SHA-256");
+    }
+    std::string hex() {
+        unsigned char md[EVP_MAX_MD_SIZE];
+        unsigned int len = 0;
+        EVP_DigestFinal_ex(ctx.get(), md, &len);
+        std::string out;
+        for (unsigned int i = 0; i < len; ++i) {
+            out += "0123456789abcdef"[md[i] >> 4];
+            out += "0123456789abcdef"[md[i] & 15];
+        }
+        return out;
+    }
+    std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> ctx;
+};
+
+UploadSink::UploadSink(const fs::path& folder, std::int64_t size, std::string sha256)
+    : folder_(folder), size_(size), sha256_(std::move(sha256)), hash_(std::make_unique<Hash>()) {
+    std::error_code ec;
+    fs::create_directories(folder_, ec);
+    const auto room = free_bytes(folder_);
+    if (!room) throw UploadError(ErrorCode::internal, "cannot use the folder " + folder_.string() + ": " + errno_text());
+    if (size_ < 0 || static_cast<std::uintmax_t>(size_) > *room)
+        throw UploadError(ErrorCode::too_large, std::to_string(size_) + " bytes do not fit: " + std::to_string(*room) +
+                                                    " bytes are free");
+    std::string tmpl = (folder_ / (std::string(kUploadTempPrefix) + "XXXXXX")).string();
+    fd_ = ::mkostemp(tmpl.data(), O_CLOEXEC);  // O_EXCL, 0600
+    if (fd_ < 0) throw UploadError(ErrorCode::internal, "cannot create a file in " + folder_.string() + ": " + errno_text());
+    temp_ = tmpl;
+}
+
+UploadSink::~UploadSink() { discard(); }
+
+void UploadSink::discard() {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
+    if (!done_ && !temp_.empty()) ::unlink(temp_.c_str());
+    done_ = true;
+}
+
+void UploadSink::write(const void* data, std::size_t size) {
+    if (done_) throw UploadError(ErrorCode::internal, "the upload is over");
+    if (static_cast<std::int64_t>(size) > size_ - received_)
+        throw UploadError(ErrorCode::interrupted, "more bytes than the put's size");
+    EVP_DigestUpdate(hash_->ctx.get(), data, size);
+    const char* p = static_cast<const char*>(data);
+    std::size_t left = size;
+    while (left > 0) {
+        const ssize_t n = ::write(fd_, p, left);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) throw UploadError(ErrorCode::internal, "cannot write the upload: " + errno_text());
+        p += n;
+        left -= static_cast<std::size_t>(n);
+    }
+    received_ += static_cast<std::int64_t>(size);
+}
+
+std::string UploadSink::store(const std::string& name) {
+    if (done_) throw UploadError(ErrorCode::internal, "the upload is over");
+    struct Discard {
+        UploadSink* sink;
+        ~Discard() { sink->discard(); }
+    } discard_on_exit{this};
+    if (received_ != size_)
+        throw UploadError(ErrorCode::interrupted, "the upload ended after " + std::to_string(received_) + " of " +
+                                                      std::to_string(size_) + " bytes");
+    const std::string digest = hash_->hex();
+    if (digest != sha256_)
+        throw UploadError(ErrorCode::interrupted,
+                          "the bytes' SHA-256 is " + digest + ", not the put's " + sha256_ + "; nothing was kept");
+    // The permissions of a file the user saved: 0600 only kept others out
+    // while it was incomplete.
+    if (::fchmod(fd_, 0666 & ~process_umask()) != 0 || ::fsync(fd_) != 0)
+        throw UploadError(ErrorCode::internal, "cannot finish the upload: " + errno_text());
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) throw UploadError(ErrorCode::internal, "cannot finish the upload: " + errno_text());
+    std::string stored = store_without_overwriting(temp_, folder_, name);
+    done_ = true;  // the temporary name is gone: nothing to remove
+    return stored;
+}
+
+}  // namespace umf::provider

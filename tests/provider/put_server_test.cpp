@@ -1,0 +1,456 @@
+// Puts against a real server on 127.0.0.1 (docs/PROTOCOL.md, "Put" and
+// "Upload"): a TLS WebSocket requester puts, a scripted decider answers for
+// the person at the screen, curl (an independent client) or a raw TLS client
+// uploads, a fake xdg-open records what the desktop was asked to open, and
+// the put folder is checked for exactly what should be there, hidden
+// temporary files included.
+#ifdef UMF_PROVIDER_TESTS
+
+#include <gtest/gtest.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/executor_work_guard.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/asio/ssl.hpp>
+#include <boost/asio/strand.hpp>
+#include <boost/asio/write.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
+#include <boost/beast/websocket.hpp>
+#include <boost/beast/websocket/ssl.hpp>
+#include <future>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "content/file_facts.hpp"
+#include "protocol/messages.hpp"
+#include "server/server.hpp"
+#include "server/service.hpp"
+#include "server/tls_identity.hpp"
+#include "support/pinned_client.hpp"
+#include "support/process.hpp"
+#include "support/temp_dir.hpp"
+#include "put_test_support.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace net = boost::asio;
+namespace ssl = boost::asio::ssl;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+namespace p = umf::protocol;
+using namespace umf::provider;
+using umf::test::FakeXdgOpen;
+using umf::test::folder_names;
+using umf::test::run_command;
+using umf::test::ScriptedDecider;
+using umf::test::TempDir;
+
+constexpr const char* kToken = "put-server-token-0123456789ab";
+constexpr auto kOpTimeout = std::chrono::seconds(5);
+
+// A TLS WebSocket requester on its own io_context thread; every operation
+// waited for with a timeout.
+class Requester {
+public:
+    Requester(unsigned short port, const std::string& fingerprint)
+        : port_(port),
+          tls_(umf::test::pinned_client_context(fingerprint)),
+          ws_(net::make_strand(io_), tls_),
+          work_(io_.get_executor()) {
+        ws_.read_message_max(p::kMaxReplyBytes);
+        thread_ = std::thread([this] { io_.run(); });
+    }
+    ~Requester() {
+        net::post(ws_.get_executor(), [this] { beast::get_lowest_layer(ws_).close(); });
+        work_.reset();
+        thread_.join();
+    }
+    beast::error_code connect() {
+        const net::ip::tcp::endpoint endpoint(net::ip::make_address("127.0.0.1"), port_);
+        if (auto ec = run([&](auto h) { beast::get_lowest_layer(ws_).async_connect(endpoint, h); })) return ec;
+        if (auto ec = run([&](auto h) { ws_.next_layer().async_handshake(ssl::stream_base::client, h); })) return ec;
+        return run([&](auto h) { ws_.async_handshake("127.0.0.1:" + std::to_string(port_), "/ws", h); });
+    }
+    beast::error_code send(const std::string& text) {
+        return run([&](auto h) { ws_.async_write(net::buffer(text), h); });
+    }
+    beast::error_code send(const p::Message& m) { return send(p::encode(m)); }
+    p::Message read() {
+        beast::flat_buffer buffer;
+        auto ec = run([&](auto h) { ws_.async_read(buffer, h); });
+        EXPECT_FALSE(ec) << ec.message();
+        if (ec) return p::Error{std::nullopt, p::ErrorCode::internal, "read failed: " + ec.message()};
+        auto parsed = p::parse_message(beast::buffers_to_string(buffer.data()), p::kRequesterLimits);
+        if (const auto* e = std::get_if<p::ProtocolError>(&parsed)) {
+            ADD_FAILURE() << "does not parse: " << e->message;
+            return p::Error{};
+        }
+        return std::get<p::Message>(parsed);
+    }
+    // Hello (with a device when given); the welcome.
+    p::Welcome hello(const std::optional<std::string>& device = std::nullopt, const std::string& token = kToken) {
+        EXPECT_FALSE(connect());
+        EXPECT_FALSE(send(p::Hello{p::RequestId{std::int64_t{1}}, token, "put_server_test", device}));
+        const p::Message m = read();
+        const auto* w = std::get_if<p::Welcome>(&m);
+        EXPECT_NE(w, nullptr) << p::type_name(m);
+        return w ? *w : p::Welcome{};
+    }
+
+private:
+    template <class Init>
+    beast::error_code run(Init init) {
+        auto promise = std::make_shared<std::promise<beast::error_code>>();
+        auto future = promise->get_future();
+        net::post(ws_.get_executor(), [&, promise] {
+            init([promise](beast::error_code ec, auto&&...) { promise->set_value(ec); });
+        });
+        if (future.wait_for(kOpTimeout) != std::future_status::ready) {
+            ADD_FAILURE() << "operation timed out";
+            net::post(ws_.get_executor(), [this] { beast::get_lowest_layer(ws_).close(); });
+            future.wait();
+        }
+        return future.get();
+    }
+
+    unsigned short port_;
+    net::io_context io_;
+    ssl::context tls_;
+    websocket::stream<beast::ssl_stream<beast::tcp_stream>> ws_;
+    net::executor_work_guard<net::io_context::executor_type> work_;
+    std::thread thread_;
+};
+
+// Raw HTTP over TLS, blocking with a receive timeout: for what curl will not
+// send (half a body, then gone; a wrong Content-Length).
+class RawTls {
+public:
+    RawTls(unsigned short port, const std::string& fingerprint)
+        : tls_(umf::test::pinned_client_context(fingerprint)), stream_(io_, tls_) {
+        beast::get_lowest_layer(stream_).connect(net::ip::tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
+        timeval tv{5, 0};
+        ::setsockopt(beast::get_lowest_layer(stream_).native_handle(), SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+        stream_.handshake(ssl::stream_base::client);
+    }
+    void write(const std::string& bytes) { net::write(stream_, net::buffer(bytes)); }
+    // The answer's status, 0 when none came.
+    int read_status(std::string* body = nullptr) {
+        beast::flat_buffer buffer;
+        http::response<http::string_body> res;
+        beast::error_code ec;
+        http::read(stream_, buffer, res, ec);
+        if (ec) return 0;
+        if (body) *body = res.body();
+        return static_cast<int>(res.result_int());
+    }
+    // Gone without a word: no TLS close, no FIN before the bytes promised.
+    void drop() { beast::get_lowest_layer(stream_).close(); }
+
+private:
+    net::io_context io_;
+    ssl::context tls_;
+    ssl::stream<net::ip::tcp::socket> stream_;
+};
+
+std::string random_bytes(std::size_t n, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::string s(n, '\0');
+    for (auto& c : s) c = static_cast<char>(rng());
+    return s;
+}
+
+p::Put file_put(const std::string& bytes, const std::string& id, const std::string& name = "report.pdf") {
+    p::Put put;
+    put.id = p::RequestId{id};
+    put.point = {20, 10};
+    put.kind = p::ContentKind::file;
+    put.name = name;
+    put.mime = "application/pdf";
+    put.size = static_cast<std::int64_t>(bytes.size());
+    put.sha256 = sha256_hex(bytes);
+    return put;
+}
+
+struct Response {
+    int status = 0;
+    std::string body;
+};
+
+class PutServer : public ::testing::Test {
+protected:
+    TempDir dir;
+    fs::path folder = dir.path / "Downloads";
+    FakeXdgOpen xdg{dir.path / "bin"};
+    std::shared_ptr<ScriptedDecider> decider = std::make_shared<ScriptedDecider>();
+    TlsIdentity identity;
+    std::shared_ptr<Service> service;
+    std::unique_ptr<Server> server;
+
+    static void SetUpTestSuite() {
+        if (run_command("curl --version >/dev/null 2>&1").exit_code != 0) GTEST_SKIP() << "curl is not installed";
+    }
+    void SetUp() override {
+        identity = load_or_create_tls_identity(dir.path / "cfg");
+        start();
+    }
+    void start(std::chrono::milliseconds timeout = std::chrono::seconds(30),
+               std::int64_t max_bytes = std::int64_t{4} << 30) {
+        server.reset();
+        ServiceConfig config = default_service_config();
+        config.put_decider = decider;
+        config.puts.folder = folder;
+        config.puts.answer_timeout = timeout;
+        config.puts.max_bytes = max_bytes;
+        config.puts.trusted_devices = dir.path / "cfg" / "trusted-devices.json";
+        service = std::make_shared<Service>(std::move(config), kToken);
+        server = std::make_unique<Server>(service, identity);
+        server->start();
+    }
+    std::unique_ptr<Requester> requester(const std::optional<std::string>& device = std::nullopt) {
+        auto r = std::make_unique<Requester>(server->port(), identity.fingerprint);
+        const p::Welcome w = r->hello(device);
+        EXPECT_EQ(w.features, std::vector<std::string>{"put"});
+        return r;
+    }
+    // Puts a file, has it accepted; the upload path.
+    std::string accepted_upload(Requester& r, const std::string& bytes, const std::string& id,
+                                PutAnswer answer = PutAnswer::save, const std::string& name = "report.pdf") {
+        const std::size_t asked = decider->offers(0).size();
+        EXPECT_FALSE(r.send(file_put(bytes, id, name)));
+        const p::Message asking = r.read();
+        EXPECT_TRUE(std::holds_alternative<p::PutStatus>(asking)) << p::type_name(asking);
+        const auto offers = decider->offers(asked + 1);
+        EXPECT_EQ(offers.size(), asked + 1);
+        if (offers.size() <= asked) return "";
+        decider->answer(offers.back().id, {answer, false});
+        const p::Message m = r.read();
+        const auto* s = std::get_if<p::PutStatus>(&m);
+        EXPECT_TRUE(s && s->status == p::PutState::upload && s->upload) << p::type_name(m);
+        EXPECT_TRUE(s && s->id == p::RequestId{id});
+        return s && s->upload ? *s->upload : "";
+    }
+    Response curl_upload(const std::string& path, const std::string& bytes) {
+        const fs::path source = dir.path / "upload.bin", body = dir.path / "answer.json";
+        std::ofstream(source, std::ios::binary) << bytes;
+        fs::remove(body);
+        const auto r = run_command("curl -s -k --max-time 20 -T '" + source.string() + "' -o '" + body.string() +
+                                   "' -w '%{http_code}' 'https://127.0.0.1:" + std::to_string(server->port()) + path +
+                                   "'");
+        return {std::atoi(r.out.c_str()), umf::test::file_text(body)};
+    }
+    std::string request_head(const std::string& path, std::size_t length) {
+        return "PUT " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/octet-stream\r\n" +
+               "Content-Length: " + std::to_string(length) + "\r\n\r\n";
+    }
+};
+
+p::ErrorCode code_of(const p::Message& m) {
+    const auto* e = std::get_if<p::Error>(&m);
+    EXPECT_NE(e, nullptr) << p::type_name(m);
+    return e ? e->code : p::ErrorCode::internal;
+}
+
+TEST_F(PutServer, AnAcceptedUrlOpensInTheBrowser) {
+    auto r = requester();
+    p::Put put;
+    put.id = p::RequestId{std::string("p1")};
+    put.point = {31.5, 17.1};
+    put.kind = p::ContentKind::url;
+    put.url = "https://example.org/talk?a=1&b=2";
+    ASSERT_FALSE(r->send(put));
+    EXPECT_EQ(std::get<p::PutStatus>(r->read()).status, p::PutState::asking);
+    decider->answer(decider->offers(1).at(0).id, {PutAnswer::save, false});
+    const p::Message done = r->read();
+    const auto& s = std::get<p::PutStatus>(done);
+    EXPECT_EQ(s.status, p::PutState::done);
+    EXPECT_EQ(s.outcome, p::PutOutcome::opened);
+    EXPECT_EQ(s.id, p::RequestId{std::string("p1")});
+    EXPECT_EQ(xdg.opened(), std::vector<std::string>{"https://example.org/talk?a=1&b=2"});
+}
+
+TEST_F(PutServer, AnAcceptedFileIsUploadedAndSavedAndNeverOverwrites) {
+    auto r = requester();
+    const std::string bytes = random_bytes(3 * 1024 * 1024 + 17, 1);  // above every 16 KiB and 1 MiB limit
+    const std::string path = accepted_upload(*r, bytes, "p2");
+    const Response answer = curl_upload(path, bytes);
+    EXPECT_EQ(answer.status, 200) << answer.body;
+    const auto json = nlohmann::json::parse(answer.body, nullptr, false);
+    EXPECT_EQ(json.value("type", ""), "put_status");
+    EXPECT_EQ(json.value("outcome", ""), "saved");
+    EXPECT_EQ(json.value("name", ""), "report.pdf");
+    const p::Message pushed = r->read();
+    const auto& s = std::get<p::PutStatus>(pushed);
+    EXPECT_EQ(s.status, p::PutState::done);
+    EXPECT_EQ(s.outcome, p::PutOutcome::saved);
+    EXPECT_EQ(s.name, "report.pdf");
+    EXPECT_EQ(folder_names(folder), std::vector<std::string>{"report.pdf"});
+    EXPECT_TRUE(umf::test::file_text(folder / "report.pdf") == bytes);
+
+    // The same name again: stored beside it, the first untouched.
+    const std::string other = random_bytes(1000, 2);
+    const Response second = curl_upload(accepted_upload(*r, other, "p3"), other);
+    EXPECT_EQ(second.status, 200);
+    EXPECT_EQ(std::get<p::PutStatus>(r->read()).name, "report (1).pdf");
+    EXPECT_EQ(folder_names(folder), (std::vector<std::string>{"report (1).pdf", "report.pdf"}));
+    EXPECT_TRUE(umf::test::file_text(folder / "report.pdf") == bytes);
+    EXPECT_EQ(umf::test::file_text(folder / "report (1).pdf"), other);
+    // The link was used.
+    EXPECT_EQ(curl_upload(path, bytes).status, 404);
+    EXPECT_TRUE(xdg.opened(1, std::chrono::milliseconds(100)).empty()) << "save opens nothing";
+}
+
+TEST_F(PutServer, AnOpenAnswerSavesThenOpensTheFile) {
+    auto r = requester();
+    const std::string bytes = "a small file\n";
+    const Response answer = curl_upload(accepted_upload(*r, bytes, "p4", PutAnswer::open, "notes.txt"), bytes);
+    EXPECT_EQ(answer.status, 200);
+    const p::PutStatus s = std::get<p::PutStatus>(r->read());
+    EXPECT_EQ(s.outcome, p::PutOutcome::opened);
+    EXPECT_EQ(s.name, "notes.txt");
+    EXPECT_EQ(xdg.opened(), std::vector<std::string>{(folder / "notes.txt").string()});
+}
+
+TEST_F(PutServer, ADismissIsRefusedAndNothingLands) {
+    auto r = requester();
+    ASSERT_FALSE(r->send(file_put("bytes", "p5")));
+    r->read();  // asking
+    decider->answer(decider->offers(1).at(0).id, {PutAnswer::dismiss, false});
+    const p::Message m = r->read();
+    EXPECT_EQ(code_of(m), p::ErrorCode::refused);
+    EXPECT_EQ(std::get<p::Error>(m).id, p::RequestId{std::string("p5")});
+    EXPECT_TRUE(folder_names(folder).empty());
+}
+
+TEST_F(PutServer, NoAnswerInTimeIsRefusedAndTheOfferWithdrawn) {
+    start(std::chrono::milliseconds(200));
+    auto r = requester();
+    ASSERT_FALSE(r->send(file_put("bytes", "p6")));
+    r->read();  // asking
+    const p::Message m = r->read();
+    EXPECT_EQ(code_of(m), p::ErrorCode::refused);
+    EXPECT_TRUE(decider->withdrawn(decider->offers(1).at(0).id));
+}
+
+TEST_F(PutServer, AFileAboveTheLimitIsTooLargeBeforeAnyoneIsAsked) {
+    start(std::chrono::seconds(30), 1024);
+    auto r = requester();
+    ASSERT_FALSE(r->send(file_put(std::string(1025, 'x'), "p7")));
+    EXPECT_EQ(code_of(r->read()), p::ErrorCode::too_large);
+    EXPECT_TRUE(decider->offers(0).empty());
+}
+
+TEST_F(PutServer, BytesThatDoNotMatchAreInterruptedAndNothingIsLeft) {
+    auto r = requester();
+    const std::string promised = random_bytes(100'000, 3);
+    std::string sent = promised;
+    sent[50'000] ^= 1;
+    const Response answer = curl_upload(accepted_upload(*r, promised, "p8"), sent);
+    EXPECT_EQ(answer.status, 400);
+    EXPECT_NE(answer.body.find("interrupted"), std::string::npos) << answer.body;
+    const p::Message m = r->read();
+    EXPECT_EQ(code_of(m), p::ErrorCode::interrupted);
+    EXPECT_EQ(std::get<p::Error>(m).id, p::RequestId{std::string("p8")});
+    EXPECT_TRUE(folder_names(folder).empty()) << "no file, no hidden temporary file";
+}
+
+TEST_F(PutServer, AnUploadCutHalfWayIsInterruptedAndNothingIsLeft) {
+    auto r = requester();
+    const std::string bytes = random_bytes(2'000'000, 4);
+    const std::string path = accepted_upload(*r, bytes, "p9");
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(path, bytes.size()) + bytes.substr(0, bytes.size() / 2));
+        // Give the provider time to write what came, so the cut is mid-file.
+        for (int i = 0; i < 200; ++i) {
+            bool temp = false;
+            for (const auto& name : folder_names(folder)) temp |= name.rfind(".umf-put-", 0) == 0;
+            if (temp) break;
+            std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+        raw.drop();
+    }
+    const p::Message m = r->read();
+    EXPECT_EQ(code_of(m), p::ErrorCode::interrupted);
+    EXPECT_EQ(std::get<p::Error>(m).id, p::RequestId{std::string("p9")});
+    EXPECT_TRUE(folder_names(folder).empty());
+}
+
+TEST_F(PutServer, AWrongOrMissingLengthIsRefusedAndUsesTheLink) {
+    auto r = requester();
+    const std::string bytes = "twelve bytes";
+    const std::string path = accepted_upload(*r, bytes, "p10");
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(path, bytes.size() + 1) + bytes);
+        EXPECT_EQ(raw.read_status(), 400);
+    }
+    EXPECT_EQ(code_of(r->read()), p::ErrorCode::interrupted);
+    EXPECT_EQ(curl_upload(path, bytes).status, 404) << "the link is used";
+
+    const std::string chunked_path = accepted_upload(*r, bytes, "p11");
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write("PUT " + chunked_path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\nc\r\n" +
+                  bytes + "\r\n0\r\n\r\n");
+        EXPECT_EQ(raw.read_status(), 411);
+    }
+    EXPECT_EQ(code_of(r->read()), p::ErrorCode::interrupted);
+    EXPECT_TRUE(folder_names(folder).empty());
+}
+
+TEST_F(PutServer, UnknownLinksAreNotFoundAndOtherMethodsRefused) {
+    EXPECT_EQ(curl_upload("/up/AAAAAAAAAAAAAAAAAAAAAA", "x").status, 404);
+    EXPECT_EQ(curl_upload("/up/", "x").status, 404);
+    const auto r = run_command("curl -s -k --max-time 10 -o /dev/null -w '%{http_code}' 'https://127.0.0.1:" +
+                               std::to_string(server->port()) + "/up/AAAAAAAAAAAAAAAAAAAAAA'");
+    EXPECT_EQ(std::atoi(r.out.c_str()), 405);
+    EXPECT_TRUE(folder_names(folder).empty());
+}
+
+TEST_F(PutServer, AWrongTokenSessionCannotPut) {
+    Requester r(server->port(), identity.fingerprint);
+    ASSERT_FALSE(r.connect());
+    ASSERT_FALSE(r.send(p::Hello{std::nullopt, "wrong-token-0123456789abcdef", "x", std::nullopt}));
+    EXPECT_EQ(code_of(r.read()), p::ErrorCode::unauthorized);
+    r.send(file_put("x", "p12"));
+    EXPECT_TRUE(decider->offers(0).empty());
+}
+
+TEST_F(PutServer, ATrustedDeviceIsNotAskedTheSecondTime) {
+    auto r = requester("phone-42");
+    ASSERT_FALSE(r->send(file_put("one", "p13")));
+    r->read();  // asking
+    decider->answer(decider->offers(1).at(0).id, {PutAnswer::save, true});
+    EXPECT_EQ(std::get<p::PutStatus>(r->read()).status, p::PutState::upload);
+    ASSERT_FALSE(r->send(file_put("two", "p14")));
+    const p::Message m = r->read();
+    EXPECT_EQ(std::get<p::PutStatus>(m).status, p::PutState::upload) << "no asking";
+    EXPECT_EQ(decider->offers(0).size(), 1u);
+    // After a restart too: the device is kept in the config dir.
+    start();
+    auto again = requester("phone-42");
+    ASSERT_FALSE(again->send(file_put("three", "p15")));
+    EXPECT_EQ(std::get<p::PutStatus>(again->read()).status, p::PutState::upload);
+    EXPECT_EQ(decider->offers(0).size(), 1u);
+}
+
+TEST_F(PutServer, ASessionThatLeavesWhileAskingWithdrawsTheOffer) {
+    auto r = requester();
+    ASSERT_FALSE(r->send(file_put("bytes", "p16")));
+    r->read();  // asking
+    const auto id = decider->offers(1).at(0).id;
+    r.reset();
+    EXPECT_TRUE(decider->withdrawn(id));
+}
+
+}  // namespace
+
+#endif  // UMF_PROVIDER_TESTS
