@@ -18,7 +18,7 @@
 #include "cli.hpp"
 #include "grab_failure.hpp"
 #include "protocol/messages.hpp"
-#include "unique_name.hpp"
+#include "io/unique_name.hpp"
 
 namespace umf::requester {
 
@@ -126,7 +126,7 @@ std::string seconds(std::chrono::milliseconds ms) { return std::to_string(ms.cou
 
 std::string store_without_overwriting(const fs::path& temp, const fs::path& dir, const std::string& name) {
     for (int n = 0; n < 10000; ++n) {
-        const std::string candidate = numbered_name(name, n);
+        const std::string candidate = io::numbered_name(name, n);
         const fs::path target = dir / candidate;
         // Both refuse an existing target atomically, so a file appearing
         // between a check and the rename can never be replaced.

@@ -15,6 +15,8 @@
 #include <string>
 #include <string_view>
 
+#include "server/one_time_links.hpp"
+
 namespace umf::provider {
 
 inline constexpr const char* kDownloadPrefix = "/dl/";
@@ -29,33 +31,11 @@ struct DownloadEntry {
     std::shared_ptr<const std::string> bytes;
 };
 
-class DownloadTable {
+class DownloadTable : public OneTimeLinks<DownloadEntry> {
 public:
-    using Clock = std::chrono::steady_clock;
-
     explicit DownloadTable(std::chrono::milliseconds ttl = std::chrono::seconds(60),
-                           std::size_t max_entries = 4096);
-
-    // The link path ("/dl/<22 base64url characters>"). When the table is
-    // full the oldest entry makes room.
-    std::string add(DownloadEntry entry, Clock::time_point now = Clock::now());
-    // The entry for a request target ("/dl/..."; a query is ignored), taken
-    // out; nullopt when unknown, used or expired.
-    std::optional<DownloadEntry> take(std::string_view target, Clock::time_point now = Clock::now());
-    std::size_t size() const;
-    std::chrono::milliseconds ttl() const { return ttl_; }
-
-private:
-    struct Slot {
-        DownloadEntry entry;
-        Clock::time_point expires;
-    };
-    void drop_expired(Clock::time_point now);
-
-    std::chrono::milliseconds ttl_;
-    std::size_t max_entries_;
-    mutable std::mutex mutex_;
-    std::map<std::string, Slot, std::less<>> slots_;
+                           std::size_t max_entries = 4096)
+        : OneTimeLinks(kDownloadPrefix, ttl, max_entries) {}
 };
 
 }  // namespace umf::provider

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "io/unique_name.hpp"
+
 namespace umf::provider {
 
 namespace fs = std::filesystem;
@@ -18,23 +20,7 @@ using protocol::ErrorCode;
 
 namespace {
 
-constexpr std::size_t kMaxStoredNameBytes = 255;
-
 std::string errno_text() { return std::strerror(errno); }
-
-std::string_view clip_utf8(std::string_view s, std::size_t bytes) {
-    if (s.size() <= bytes) return s;
-    std::size_t end = bytes;
-    while (end > 0 && (static_cast<unsigned char>(s[end]) & 0xC0) == 0x80) --end;
-    return s.substr(0, end);
-}
-
-std::size_t extension_start(std::string_view name) {
-    const auto dot = name.rfind('.');
-    if (dot == std::string_view::npos || dot == 0 || dot + 1 == name.size()) return name.size();
-    if (name.find_first_not_of('.') >= dot) return name.size();
-    return dot;
-}
 
 // The umask without changing it (umask(2) would, for a moment, for every
 // thread of the server): Linux reports it in /proc/self/status.
@@ -56,22 +42,9 @@ mode_t process_umask() {
 
 }  // namespace
 
-std::string numbered_name(std::string_view name, int n) {
-    if (n <= 0) return std::string(name);
-    std::size_t ext_at = extension_start(name);
-    std::string_view ext = name.substr(ext_at);
-    const std::string suffix = " (" + std::to_string(n) + ")";
-    if (ext.size() + suffix.size() + 1 > kMaxStoredNameBytes) {
-        ext_at = name.size();
-        ext = {};
-    }
-    const std::size_t room = kMaxStoredNameBytes - suffix.size() - ext.size();
-    return std::string(clip_utf8(name.substr(0, ext_at), room)) + suffix + std::string(ext);
-}
-
 std::string store_without_overwriting(const fs::path& temp, const fs::path& dir, const std::string& name) {
     for (int n = 0; n < 10000; ++n) {
-        const std::string candidate = numbered_name(name, n);
+        const std::string candidate = io::numbered_name(name, n);
         const fs::path target = dir / candidate;
         // Both refuse an existing target atomically: a file that appears
         // between a check and the rename is never replaced.

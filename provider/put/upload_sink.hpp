@@ -30,10 +30,6 @@ private:
 
 inline constexpr const char* kUploadTempPrefix = ".umf-put-";
 
-// "name" for n == 0, "stem (n).ext" after, as browsers name downloads (the
-// requester's unique_name.hpp does the same; provider/ may not include it).
-std::string numbered_name(std::string_view name, int n);
-
 // Links `temp` (in `dir`) under the first free numbered name and removes the
 // temporary name; returns the name used. Never replaces a file. Throws
 // UploadError (internal).

@@ -15,6 +15,8 @@
 
 #include "protocol/messages.hpp"
 
+#include "server/one_time_links.hpp"
+
 namespace umf::provider {
 
 inline constexpr const char* kUploadPrefix = "/up/";
@@ -31,29 +33,11 @@ struct UploadEntry {
     std::filesystem::path folder;
 };
 
-class UploadTable {
+class UploadTable : public OneTimeLinks<UploadEntry> {
 public:
-    using Clock = std::chrono::steady_clock;
-
-    explicit UploadTable(std::chrono::milliseconds ttl = std::chrono::seconds(60), std::size_t max_entries = 256);
-
-    // The link path ("/up/<22 base64url characters>"); the oldest entry makes
-    // room when the table is full.
-    std::string add(UploadEntry entry, Clock::time_point now = Clock::now());
-    // The entry of a request target ("/up/..."; a query is ignored), taken
-    // out; nullopt when unknown, used or expired.
-    std::optional<UploadEntry> take(std::string_view target, Clock::time_point now = Clock::now());
-    std::size_t size() const;
-
-private:
-    struct Slot {
-        UploadEntry entry;
-        Clock::time_point expires;
-    };
-    std::chrono::milliseconds ttl_;
-    std::size_t max_entries_;
-    mutable std::mutex mutex_;
-    std::map<std::string, Slot, std::less<>> slots_;
+    explicit UploadTable(std::chrono::milliseconds ttl = std::chrono::seconds(60),
+                           std::size_t max_entries = 256)
+        : OneTimeLinks(kUploadPrefix, ttl, max_entries) {}
 };
 
 }  // namespace umf::provider

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "io/unique_name.hpp"
+
 #include <boost/asio/io_context.hpp>
 #include <nlohmann/json.hpp>
 
@@ -389,9 +391,9 @@ TEST(PutUploadSink, StoresOnlyWhatMatchesAndNeverOverwrites) {
     EXPECT_EQ(folder_names(dir.path), (std::vector<std::string>{"notes (1).txt", "notes.txt"}));
     EXPECT_EQ(umf::test::file_text(dir.path / "notes.txt"), bytes);
     EXPECT_THROW(UploadSink(dir.path, p::kMaxSafeInteger, std::string(64, '0')), UploadError);
-    EXPECT_EQ(numbered_name("report.pdf", 2), "report (2).pdf");
-    EXPECT_EQ(numbered_name(".bashrc", 1), ".bashrc (1)");
-    EXPECT_EQ(numbered_name(std::string(300, 'a') + ".txt", 1).size(), 255u);
+    EXPECT_EQ(umf::io::numbered_name("report.pdf", 2), "report (2).pdf");
+    EXPECT_EQ(umf::io::numbered_name(".bashrc", 1), ".bashrc (1)");
+    EXPECT_EQ(umf::io::numbered_name(std::string(300, 'a') + ".txt", 1).size(), 255u);
 }
 
 TEST(PutHttpSessions, APushedAnswerReachesTheLongPoll) {

@@ -9,11 +9,11 @@
 
 #include "../../requester/download_dir.hpp"
 #include "../../requester/pairing_url.hpp"
-#include "../../requester/unique_name.hpp"
+#include "io/unique_name.hpp"
 
 namespace {
 
-using umf::requester::numbered_name;
+using umf::io::numbered_name;
 using umf::requester::PairingUrl;
 using umf::requester::PairingUrlError;
 using umf::requester::parse_pairing_url;

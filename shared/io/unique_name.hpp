@@ -1,6 +1,7 @@
-// The names a download may take when its own is already used in the
+// The names a received file may take when its own is already used in the
 // directory: "report.pdf", then "report (1).pdf", "report (2).pdf"... as
-// browsers do, so a grab never replaces a file the user already has.
+// browsers do, so neither a grab (the requester) nor a put (the provider)
+// ever replaces a file the user already has.
 // Header-only and free of I/O, so the tests check it directly.
 #pragma once
 
@@ -8,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-namespace umf::requester {
+namespace umf::io {
 
 // Longest file name most Linux file systems take, in bytes.
 inline constexpr std::size_t kMaxStoredNameBytes = 255;
@@ -55,4 +56,4 @@ inline std::string numbered_name(std::string_view name, int n) {
     return std::string(stem) + suffix + std::string(ext);
 }
 
-}  // namespace umf::requester
+}  // namespace umf::io

@@ -1,0 +1,17 @@
+#include "server/one_time_links.hpp"
+
+#include <openssl/rand.h>
+
+#include <stdexcept>
+
+#include "server/pairing.hpp"
+
+namespace umf::provider {
+
+std::string random_link_key() {
+    unsigned char random[16];
+    if (RAND_bytes(random, sizeof random) != 1) throw std::runtime_error("the random generator failed");
+    return base64url(random, sizeof random);
+}
+
+}  // namespace umf::provider
