@@ -18,7 +18,7 @@
 #include "cli.hpp"
 #include "grab_failure.hpp"
 #include "protocol/messages.hpp"
-#include "io/unique_name.hpp"
+#include "io/store_file.hpp"
 
 namespace umf::requester {
 
@@ -125,25 +125,11 @@ std::string seconds(std::chrono::milliseconds ms) { return std::to_string(ms.cou
 }  // namespace
 
 std::string store_without_overwriting(const fs::path& temp, const fs::path& dir, const std::string& name) {
-    for (int n = 0; n < 10000; ++n) {
-        const std::string candidate = io::numbered_name(name, n);
-        const fs::path target = dir / candidate;
-        // Both refuse an existing target atomically, so a file appearing
-        // between a check and the rename can never be replaced.
-        if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_NOREPLACE) == 0) return candidate;
-        if (errno == EEXIST) continue;
-        if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP)
-            throw output_failure("cannot store " + target.string() + ": " + errno_text());
-        // The file system has no RENAME_NOREPLACE: a hard link fails on an
-        // existing name just the same.
-        if (::link(temp.c_str(), target.c_str()) == 0) {
-            ::unlink(temp.c_str());
-            return candidate;
-        }
-        if (errno == EEXIST) continue;
-        throw output_failure("cannot store " + target.string() + ": " + errno_text());
+    try {
+        return io::store_under_free_name(temp, dir, name);
+    } catch (const std::runtime_error& e) {
+        throw output_failure(e.what());
     }
-    throw output_failure("cannot store " + name + " in " + dir.string() + ": 10000 files of that name exist");
 }
 
 SavedFile download_file(const PairingUrl& provider, const DownloadRequest& request, const fs::path& dir_in,

@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "io/unique_name.hpp"
+#include "io/store_file.hpp"
 
 namespace umf::provider {
 
@@ -43,23 +43,11 @@ mode_t process_umask() {
 }  // namespace
 
 std::string store_without_overwriting(const fs::path& temp, const fs::path& dir, const std::string& name) {
-    for (int n = 0; n < 10000; ++n) {
-        const std::string candidate = io::numbered_name(name, n);
-        const fs::path target = dir / candidate;
-        // Both refuse an existing target atomically: a file that appears
-        // between a check and the rename is never replaced.
-        if (::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_NOREPLACE) == 0) return candidate;
-        if (errno == EEXIST) continue;
-        if (errno != EINVAL && errno != ENOSYS && errno != ENOTSUP)
-            throw UploadError(ErrorCode::internal, "cannot store " + candidate + ": " + errno_text());
-        if (::link(temp.c_str(), target.c_str()) == 0) {
-            ::unlink(temp.c_str());
-            return candidate;
-        }
-        if (errno == EEXIST) continue;
-        throw UploadError(ErrorCode::internal, "cannot store " + candidate + ": " + errno_text());
+    try {
+        return io::store_under_free_name(temp, dir, name);
+    } catch (const std::runtime_error& e) {
+        throw UploadError(ErrorCode::internal, e.what());
     }
-    throw UploadError(ErrorCode::internal, "10000 files named like " + name + " exist already");
 }
 
 std::optional<std::uintmax_t> free_bytes(const fs::path& dir) {
