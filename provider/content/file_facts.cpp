@@ -1,7 +1,6 @@
 #include "content/file_facts.hpp"
 
 #include <fcntl.h>
-#include <openssl/evp.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -14,6 +13,8 @@
 #include <optional>
 #include <stdexcept>
 #include <vector>
+
+#include "content/sha256.hpp"
 
 namespace umf::provider {
 
@@ -37,37 +38,17 @@ constexpr MimeEntry kMimeTypes[] = {
     {".pptx", "application/vnd.openxmlformats-officedocument.presentationml.presentation"},
 };
 
-std::string to_hex(const unsigned char* data, unsigned int size) {
-    static constexpr char kDigits[] = "0123456789abcdef";
-    std::string out;
-    out.reserve(size * 2);
-    for (unsigned int i = 0; i < size; ++i) {
-        out += kDigits[data[i] >> 4];
-        out += kDigits[data[i] & 15];
-    }
-    return out;
-}
-
-struct DigestDeleter {
-    void operator()(EVP_MD_CTX* c) const { EVP_MD_CTX_free(c); }
-};
-
 std::string hash_fd(int fd, const std::string& what) {
-    std::unique_ptr<EVP_MD_CTX, DigestDeleter> ctx(EVP_MD_CTX_new());
-    if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
-        throw std::runtime_error("cannot start a SHA-256 of " + what);
+    Sha256 hash;
     std::vector<char> buffer(1 << 20);
     for (;;) {
         const ssize_t n = ::read(fd, buffer.data(), buffer.size());
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) throw std::runtime_error("cannot read " + what + ": " + std::strerror(errno));
         if (n == 0) break;
-        EVP_DigestUpdate(ctx.get(), buffer.data(), static_cast<std::size_t>(n));
+        hash.update(buffer.data(), static_cast<std::size_t>(n));
     }
-    unsigned char digest[EVP_MAX_MD_SIZE];
-    unsigned int size = 0;
-    EVP_DigestFinal_ex(ctx.get(), digest, &size);
-    return to_hex(digest, size);
+    return hash.hex();
 }
 
 }  // namespace
@@ -81,11 +62,9 @@ std::string mime_for(const std::filesystem::path& file) {
 }
 
 std::string sha256_hex(const std::string& bytes) {
-    unsigned char digest[EVP_MAX_MD_SIZE];
-    unsigned int size = 0;
-    if (EVP_Digest(bytes.data(), bytes.size(), digest, &size, EVP_sha256(), nullptr) != 1)
-        throw std::runtime_error("SHA-256 failed");
-    return to_hex(digest, size);
+    Sha256 hash;
+    hash.update(bytes.data(), bytes.size());
+    return hash.hex();
 }
 
 namespace {

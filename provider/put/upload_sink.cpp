@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "content/sha256.hpp"
 #include "io/store_file.hpp"
 
 namespace umf::provider {
@@ -56,24 +57,7 @@ std::optional<std::uintmax_t> free_bytes(const fs::path& dir) {
     return static_cast<std::uintmax_t>(st.f_bavail) * st.f_frsize;
 }
 
-struct UploadSink::Hash {
-    Hash() : ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free) {
-        if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
-            throw UploadError(ErrorCode::internal, "OpenSSL cannot compute SHA-256");
-    }
-    std::string hex() {
-        unsigned char md[EVP_MAX_MD_SIZE];
-        unsigned int len = 0;
-        EVP_DigestFinal_ex(ctx.get(), md, &len);
-        std::string out;
-        for (unsigned int i = 0; i < len; ++i) {
-            out += "0123456789abcdef"[md[i] >> 4];
-            out += "0123456789abcdef"[md[i] & 15];
-        }
-        return out;
-    }
-    std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> ctx;
-};
+struct UploadSink::Hash : Sha256 {};
 
 UploadSink::UploadSink(const fs::path& folder, std::int64_t size, std::string sha256)
     : folder_(folder), size_(size), sha256_(std::move(sha256)), hash_(std::make_unique<Hash>()) {
@@ -103,7 +87,7 @@ void UploadSink::write(const void* data, std::size_t size) {
     if (done_) throw UploadError(ErrorCode::internal, "the upload is over");
     if (static_cast<std::int64_t>(size) > size_ - received_)
         throw UploadError(ErrorCode::interrupted, "more bytes than the put's size");
-    EVP_DigestUpdate(hash_->ctx.get(), data, size);
+    hash_->update(data, size);
     const char* p = static_cast<const char*>(data);
     std::size_t left = size;
     while (left > 0) {
