@@ -33,6 +33,10 @@ constexpr std::size_t kMaxRequestBodyBytes = 16 * 1024;
 constexpr std::size_t kMaxQueuedReplies = 64;
 // An upload's body goes to its file in chunks of this size.
 constexpr std::size_t kUploadChunkBytes = 64 * 1024;
+// The web client's share target (its manifest): a share is taken by the
+// page's service worker; one that reaches the provider found none active.
+constexpr const char* kSharePath = "/share";
+constexpr const char* kShareUnavailable = "/?share=unavailable";
 
 }  // namespace
 
@@ -148,6 +152,20 @@ void Session::on_header(beast::error_code ec, std::size_t) {
     const beast::string_view target = header_->get().target();
     if (target.starts_with(kUploadPrefix)) {
         start_upload();
+        return;
+    }
+    // Sent back to the page, which says to open it once first. The body (the
+    // shared files) is not read: the connection closes after the answer.
+    if (header_->get().method() == http::verb::post && target.substr(0, target.find('?')) == kSharePath) {
+        auto res = std::make_shared<http::response<http::string_body>>(http::status::see_other, 11);
+        res->set(http::field::server, "umf-provider");
+        res->set(http::field::location, kShareUnavailable);
+        res->set(http::field::cache_control, "no-store");
+        res->set("Referrer-Policy", "no-referrer");
+        res->keep_alive(false);
+        res->prepare_payload();
+        beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+        write_response(std::move(res));
         return;
     }
     // A declared length is checked here; a chunked body chunk by chunk.

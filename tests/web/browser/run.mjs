@@ -10,18 +10,20 @@
 // --modules   the node_modules that web.browser.npm_install filled
 // Scenarios: camera_file, camera_url_http, photo, wrong_token, unreachable,
 // camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo,
-// unpaired. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
+// unpaired, put_file, put_url_http, put_refused, put_carry, share_target. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
 // Chromium, playwright-core or a fixture is missing), 2 usage.
 import { spawn } from 'node:child_process';
 import crypto from 'node:crypto';
 import fs from 'node:fs';
+import https from 'node:https';
 import { createRequire } from 'node:module';
 import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
 
 const SKIP = 77;
-const STATES = ['unpaired', 'connecting', 'camera', 'searching', 'locked', 'grabbing', 'result', 'photo', 'error'];
+const STATES = ['unpaired', 'connecting', 'camera', 'searching', 'locked', 'grabbing', 'result', 'photo', 'error',
+                'put-choose', 'putting', 'put-result'];
 
 // ---------------------------------------------------------------- options
 const opts = { chromium: '/usr/bin/chromium', headed: false, keep: false };
@@ -68,7 +70,8 @@ try {
   skip(`playwright-core is not installed in ${opts.modules} (the test web.browser.npm_install installs it): ${e.message}`);
 }
 const SCENARIOS = ['camera_file', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
-                   'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired'];
+                   'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
+                   'put_file', 'put_url_http', 'put_refused', 'put_carry', 'share_target'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
 const boardFile = path.resolve(opts.board);
 const board = JSON.parse(fs.readFileSync(boardFile, 'utf8'));
@@ -96,11 +99,12 @@ const current = { page: null, consoleLines: [], provider: null };
 const work = fs.mkdtempSync(path.join(os.tmpdir(), `umf-browser-${opts.scenario}-`));
 const cleanups = [];
 
-async function startProvider() {
+// extra: more serve arguments (--puts ...); env: more environment.
+async function startProvider({ extra = [], env = {} } = {}) {
   const args = ['serve', '--headless', '--board', boardFile, '--screen', '1920x1080', '--port', '0',
-                '--bind', '127.0.0.1', '--config-dir', path.join(work, 'config'), '--no-qr', '--web', opts.site];
+                '--bind', '127.0.0.1', '--config-dir', path.join(work, 'config'), '--no-qr', '--web', opts.site, ...extra];
   const child = spawn(opts.provider, args, { stdio: ['ignore', 'pipe', 'pipe'],
-                                             env: { ...process.env, XDG_RUNTIME_DIR: work } });
+                                             env: { ...process.env, XDG_RUNTIME_DIR: work, ...env } });
   let out = '';
   child.stderr.on('data', (d) => { out += d; });
   const stopped = new Promise((resolve) => child.on('exit', (code, signal) => resolve({ code, signal })));
@@ -129,7 +133,22 @@ async function startProvider() {
   if (!found) throw new Failure(`the provider printed no pairing URL:\n${out}`);
   current.provider = () => out;
   log(`provider on ${found.base}, pairing URL ${found.pairing.replace(/t=[^&]+/, 't=…')}`);
-  return { ...found, output: () => out };
+  return { ...found, port: Number(new URL(found.base).port), output: () => out };
+}
+
+// `umf-provider ARGS --port P` against the running provider (its control
+// socket is in XDG_RUNTIME_DIR, the work folder): {code, stdout, stderr}.
+function providerCommand(provider, args) {
+  return new Promise((resolve) => {
+    const child = spawn(opts.provider, [...args, '--port', String(provider.port)],
+                        { stdio: ['ignore', 'pipe', 'pipe'], env: { ...process.env, XDG_RUNTIME_DIR: work } });
+    let stdout = '';
+    let stderr = '';
+    child.stdout.on('data', (d) => { stdout += d; });
+    child.stderr.on('data', (d) => { stderr += d; });
+    child.on('error', (e) => resolve({ code: -1, stdout, stderr: e.message }));
+    child.on('exit', (code) => resolve({ code, stdout, stderr }));
+  });
 }
 
 // The pairing URL with test options in the query, before the fragment.
@@ -168,6 +187,13 @@ async function openPage(browser, url, { permissions, route } = {}) {
       if (s && (!last || last[1] !== s)) window.__umfStates.push([Math.round(performance.now()), s]);
     };
     new MutationObserver(note).observe(document, { subtree: true, attributes: true, attributeFilter: ['data-state'], childList: true });
+    // Every #put-status[data-status] shown, in order.
+    window.__umfPutStatuses = [];
+    new MutationObserver(() => {
+      const s = document.getElementById('put-status')?.dataset.status;
+      const all = window.__umfPutStatuses;
+      if (s && all[all.length - 1] !== s) all.push(s);
+    }).observe(document, { subtree: true, attributes: true, attributeFilter: ['data-status'], childList: true });
   });
   const page = await context.newPage();
   const consoleLines = [];
@@ -263,6 +289,90 @@ async function reportTiming(page, loadStart) {
   return d;
 }
 
+// ---------------------------------------------------------------- shared by the puts
+// A file of `size` random bytes in the work folder: {path, name, bytes, sha256}.
+function testFile(name, size) {
+  const bytes = crypto.randomBytes(size);
+  const file = path.join(work, 'phone', name);
+  fs.mkdirSync(path.dirname(file), { recursive: true });
+  fs.writeFileSync(file, bytes);
+  return { path: file, name, bytes, size, sha256: crypto.createHash('sha256').update(bytes).digest('hex') };
+}
+
+function putDir() {
+  const dir = path.join(work, 'puts');
+  fs.mkdirSync(dir, { recursive: true });
+  return dir;
+}
+
+// The put folder holds exactly `name` with exactly `bytes`.
+function checkPutFolder(dir, name, bytes) {
+  const entries = fs.readdirSync(dir);
+  check(entries.length === 1 && entries[0] === name, `the put folder holds ${name} only (${JSON.stringify(entries)})`);
+  const got = fs.readFileSync(path.join(dir, name));
+  check(got.equals(bytes), `${name} has exactly the ${bytes.length} bytes the phone had (${got.length} bytes, ` +
+                           `sha256 ${crypto.createHash('sha256').update(got).digest('hex').slice(0, 12)}…)`);
+}
+
+// Waits for the page to aim, then opens the Put chooser as a user would.
+async function openPutChooser(page) {
+  await waitForState(page, ['searching', 'locked'], 30000);
+  const offered = await page.waitForSelector('#show-put', { state: 'visible', timeout: 5000 }).then(() => true, () => false);
+  check(offered, '#show-put is offered (the welcome lists the feature "put")');
+  await page.click('#show-put');
+  await waitForState(page, ['put-choose'], 5000);
+}
+
+const putStatusOf = (page) => page.evaluate(() => {
+  const e = document.querySelector('#put-status');
+  if (!e) return null;
+  const words = ['#put-status-title', '#put-status-text'].map((q) => e.querySelector(q)?.textContent.trim() ?? '');
+  return { ...e.dataset, text: words.join(' — '),
+           visible: !e.hidden && getComputedStyle(e).display !== 'none' };
+});
+
+async function waitForPutResult(page, timeoutMs) {
+  await waitForState(page, ['put-result'], timeoutMs);
+  const r = await putStatusOf(page);
+  log(`states: ${await statesSeen(page)}`);
+  log(`#put-status: ${JSON.stringify(r)}`);
+  check(r && r.visible, '#put-status is visible');
+  return r;
+}
+
+// `umf-provider puts --json` until a put waits, then `puts ANSWER ID`.
+// Returns the waiting put as listed.
+async function answerPut(provider, answer, timeoutMs) {
+  const deadline = Date.now() + timeoutMs;
+  let last = null;
+  while (Date.now() < deadline) {
+    last = await providerCommand(provider, ['puts', '--json']);
+    if (last.code !== 0) throw new Failure(`umf-provider puts --json failed (${last.code}): ${last.stderr}`);
+    let listed;
+    try {
+      listed = JSON.parse(last.stdout);
+    } catch {
+      throw new Failure(`umf-provider puts --json printed no JSON: ${last.stdout}`);
+    }
+    const puts = Array.isArray(listed) ? listed : Object.values(listed).find(Array.isArray) ?? [];
+    if (puts.length) {
+      const waiting = puts[0];
+      log(`waiting at the screen: ${JSON.stringify(waiting)}`);
+      const done = await providerCommand(provider, ['puts', answer, String(waiting.id)]);
+      check(done.code === 0, `umf-provider puts ${answer} ${waiting.id} succeeded (${done.code}: ${done.stderr.trim()})`);
+      return waiting;
+    }
+    await new Promise((r) => setTimeout(r, 150));
+  }
+  throw new Failure(`no put waited at the provider within ${timeoutMs} ms (last list: ${last?.stdout.trim()})`);
+}
+
+// The provider's lines about puts, for the log (their wording is not part of the contract).
+function logPutLines(provider) {
+  const lines = provider.output().split('\n').filter((l) => /\bput/i.test(l));
+  if (lines.length) log(`provider:\n    ${lines.join('\n    ')}`);
+}
+
 // ---------------------------------------------------------------- scenarios
 const scenarios = {
   // (a) The camera film of a file tile, grabbed as soon as the lock holds.
@@ -288,7 +398,7 @@ const scenarios = {
   // (b) The film of a URL tile over the HTTPS transport.
   async camera_url_http() {
     const expected = item(1);
-    const provider = await startProvider();
+    const provider = await startProvider({ extra: ['--puts', 'never'] });
     const browser = await launch({ video: fixture('tile1.y4m') });
     const loadStart = Date.now();
     const page = await openPage(browser, pageUrl(provider.pairing, { autograb: '1', transport: 'http' }));
@@ -302,6 +412,7 @@ const scenarios = {
     check(r.url === expected.url, `data-url is ${expected.url} (${r.url})`);
     check(new URL(page.url()).host === new URL(provider.base).host, 'the page stayed on the provider (no navigation to the URL)');
     check(provider.output().includes(`took "${expected.title}" (url)`), `the provider says the link "${expected.title}" was taken`);
+    check(await page.$eval('#show-put', (e) => e.hidden), 'no Put is offered by a provider started with --puts never');
     const d = await reportTiming(page, loadStart);
     check(d && d.transport === 'http', `umfDebug.transport is http (${d?.transport})`);
   },
@@ -496,6 +607,221 @@ const scenarios = {
     await checkFileResult(page, expected);
   },
 };
+
+// The scenarios of Put mode (phone → screen). Files are random bytes, checked
+// byte for byte where the provider stored them.
+Object.assign(scenarios, {
+  // A chosen file, put where the camera points (?autoput=1); the screen asks
+  // and `umf-provider puts --accept` answers.
+  async put_file() {
+    const file = testFile('field-notes.bin', 300 * 1024 + 17);
+    const dir = putDir();
+    const provider = await startProvider({ extra: ['--puts', 'ask', '--put-dir', dir] });
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    const page = await openPage(browser, pageUrl(provider.pairing, { autoput: '1' }));
+    await openPutChooser(page);
+    await page.setInputFiles('#put-file', file.path);
+    log(`set ${file.name} (${file.size} bytes) on #put-file`);
+    check(await page.evaluate(() => document.body.dataset.mode) === 'put', 'body[data-mode] is put');
+    await waitForState(page, ['putting'], 30000);
+    const waiting = await answerPut(provider, '--accept', 20000);
+    const d = await debugOf(page);
+    check(/^umf-web-[0-9a-f]{16}$/.test(d.device ?? ''), `the page named itself in its hello (device ${d.device})`);
+    if (waiting.device !== undefined) check(waiting.device === d.device, `the screen knows the put came from ${d.device}`);
+    const asked = await page.evaluate(() => window.__umfPutStatuses ?? []);
+    check(asked.includes('asking'), `the page said it waits for the screen (statuses: ${asked.join(' → ')})`);
+    const r = await waitForPutResult(page, 20000);
+    check(r.status === 'done' && r.outcome === 'saved', `#put-status done, saved (${r.status}, ${r.outcome})`);
+    check(r.name === file.name, `saved as ${file.name} (${r.name})`);
+    check(/saved/i.test(r.text) && r.text.includes(file.name), `it says where it was saved ("${r.text}")`);
+    const statuses = await page.evaluate(() => window.__umfPutStatuses ?? []);
+    check(statuses.includes('upload'), `the page showed the upload (statuses: ${statuses.join(' → ')})`);
+    checkPutFolder(dir, file.name, file.bytes);
+    logPutLines(provider);
+  },
+
+  // A typed link over the HTTPS transport, taken without asking (--puts
+  // always): the provider opens it with xdg-open, here a script that notes it.
+  async put_url_http() {
+    const url = 'https://example.org/talks/umf?from=phone&n=1';
+    const bin = path.join(work, 'bin');
+    const opened = path.join(work, 'xdg-open.log');
+    fs.mkdirSync(bin, { recursive: true });
+    fs.writeFileSync(path.join(bin, 'xdg-open'), `#!/bin/sh\nprintf '%s\\n' "$*" >> '${opened}'\n`, { mode: 0o755 });
+    const dir = putDir();
+    const provider = await startProvider({ extra: ['--puts', 'always', '--put-dir', dir],
+                                           env: { PATH: `${bin}:${process.env.PATH}` } });
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    const page = await openPage(browser, pageUrl(provider.pairing, { autoput: '1', transport: 'http' }));
+    await openPutChooser(page);
+    await page.fill('#put-url', 'javascript:alert(1)');
+    await page.click('#put-url-use');
+    check(await page.isVisible('#put-url-error'), 'a link that is not http(s) is refused on the phone (#put-url-error)');
+    check(await stateOf(page) === 'put-choose', 'and the page stays in the chooser');
+    await page.fill('#put-url', url);
+    await page.click('#put-url-use');
+    const r = await waitForPutResult(page, 30000);
+    check(r.status === 'done' && r.outcome === 'opened', `#put-status done, opened (${r.status}, ${r.outcome})`);
+    const d = await debugOf(page);
+    check(d.transport === 'http', `over HTTPS requests (umfDebug.transport ${d.transport})`);
+    let got = '';
+    for (const until = Date.now() + 5000; Date.now() < until && !got.includes(url);) {
+      got = fs.existsSync(opened) ? fs.readFileSync(opened, 'utf8') : '';
+      await new Promise((res) => setTimeout(res, 100));
+    }
+    check(got.trim() === url, `the screen opened ${url} (xdg-open got "${got.trim()}")`);
+    check(fs.readdirSync(dir).length === 0, 'nothing was saved in the put folder');
+    check(new URL(page.url()).host === new URL(provider.base).host, 'the page stayed on the provider');
+    logPutLines(provider);
+  },
+
+  // The person at the screen dismisses the put; over HTTPS requests, so the
+  // answer comes through the long poll.
+  async put_refused() {
+    const file = testFile('not-wanted.bin', 20 * 1024);
+    const dir = putDir();
+    const provider = await startProvider({ extra: ['--puts', 'ask', '--put-dir', dir] });
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    const page = await openPage(browser, pageUrl(provider.pairing, { autoput: '1', transport: 'http' }));
+    await openPutChooser(page);
+    await page.setInputFiles('#put-file', file.path);
+    await waitForState(page, ['putting'], 30000);
+    await answerPut(provider, '--dismiss', 20000);
+    check((await debugOf(page)).transport === 'http', 'over HTTPS requests');
+    const r = await waitForPutResult(page, 20000);
+    check(r.status === 'error' && r.code === 'refused', `#put-status[data-code=refused] (${r.status}, ${r.code})`);
+    check(/said no|dismissed/i.test(r.text), `it says the screen said no ("${r.text}")`);
+    check(await page.isVisible('#put-again'), 'it offers to try again');
+    check(fs.readdirSync(dir).length === 0, `nothing in the put folder (${JSON.stringify(fs.readdirSync(dir))})`);
+    logPutLines(provider);
+  },
+
+  // Grab a file (as camera_file, with a tap), then put it back from the
+  // carry list with one tap.
+  async put_carry() {
+    const expected = item(0);
+    const dir = putDir();
+    const provider = await startProvider({ extra: ['--puts', 'always', '--put-dir', dir] });
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    const page = await openPage(browser, pageUrl(provider.pairing, { autoput: '1' }));
+    await waitForState(page, ['locked'], 30000);
+    await page.click('#grab');
+    await waitForState(page, ['result'], 20000);
+    await checkFileResult(page, expected);
+    await page.click('#result-close');
+    await openPutChooser(page);
+    const entry = `#carry-list li[data-kind="file"][data-name="${expected.name}"]`;
+    const listed = await page.waitForSelector(entry, { timeout: 5000 }).then(() => true, () => false);
+    check(listed, `the carry list holds ${expected.name} (${entry})`);
+    const size = await page.getAttribute(entry, 'data-size');
+    check(Number(size) === expected.size, `with its size ${expected.size} (${size})`);
+    await page.click(`${entry} .carry-put`);
+    const r = await waitForPutResult(page, 30000);
+    check(r.status === 'done' && r.outcome === 'saved', `#put-status done, saved (${r.status}, ${r.outcome})`);
+    checkPutFolder(dir, expected.name, fs.readFileSync(expected.path));
+    // Remove: the item leaves the list.
+    await page.click('#put-finish');
+    await openPutChooser(page);
+    await page.click(`${entry} .carry-remove`);
+    const gone = await page.waitForSelector(entry, { state: 'detached', timeout: 5000 }).then(() => true, () => false);
+    check(gone, 'Remove takes it off the carry list');
+  },
+
+  // "Share → umf": the manifest's share target, a multipart POST to its
+  // action, taken by the service worker; the page opens in Put mode with the
+  // shared file.
+  async share_target() {
+    const file = testFile('shared-report.pdf', 200 * 1024 + 5);
+    const dir = putDir();
+    const provider = await startProvider({ extra: ['--puts', 'always', '--put-dir', dir] });
+    // Without a service worker (none yet) a share reaches the provider,
+    // which sends it back to the page to say so.
+    const bare = await fetchInsecure(`${provider.base}/share`, { method: 'POST', body: 'title=x',
+                                                                 headers: { 'content-type': 'application/x-www-form-urlencoded' } });
+    check(bare.status === 303 && bare.location === '/?share=unavailable',
+          `a share without the service worker: 303 to /?share=unavailable (${bare.status} ${bare.location})`);
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    const page = await openPage(browser, pageUrl(provider.pairing, {}));
+    await waitForState(page, ['searching', 'locked'], 30000);
+    const manifest = await page.evaluate(async () => {
+      const href = document.querySelector('link[rel="manifest"]').href;
+      const r = await fetch(href);
+      return { url: r.url, type: r.headers.get('content-type'), text: await r.text() };
+    });
+    let m;
+    try {
+      m = JSON.parse(manifest.text);
+    } catch (e) {
+      throw new Failure(`the manifest is not JSON: ${e.message}`);
+    }
+    check(manifest.type.startsWith('application/manifest+json'), `the manifest is served as ${manifest.type}`);
+    const st = m.share_target ?? {};
+    const action = new URL(st.action ?? '', manifest.url);
+    check(st.method === 'POST' && st.enctype === 'multipart/form-data',
+          `share_target takes multipart POSTs (${st.method}, ${st.enctype})`);
+    check(action.origin === new URL(provider.base).origin && action.pathname === '/share', `its action is /share (${action})`);
+    const fileParam = st.params?.files?.[0]?.name;
+    check(fileParam && st.params.title && st.params.url && st.params.text, `it takes files (${fileParam}), title, text and url`);
+    const sw = await page.waitForFunction(() => window.umfDebug?.serviceWorker, null, { timeout: 15000 })
+      .then((h) => h.jsonValue(), () => null);
+    check(sw === 'active', `the service worker is active (umfDebug.serviceWorker: ${sw})`);
+    // What Android does for "Share → umf": a form POST to the action.
+    log(`sharing ${file.name} (${file.size} bytes) to ${action}`);
+    await page.evaluate(({ action, fields, name, b64 }) => {
+      const form = document.createElement('form');
+      form.method = 'POST';
+      form.enctype = 'multipart/form-data';
+      form.action = action;
+      const input = document.createElement('input');
+      input.type = 'file';
+      input.name = fields.file;
+      const dt = new DataTransfer();
+      dt.items.add(new File([Uint8Array.from(atob(b64), (c) => c.charCodeAt(0))], name, { type: 'application/pdf' }));
+      input.files = dt.files;
+      const title = document.createElement('input');
+      title.name = fields.title;
+      title.value = 'Quarterly report';
+      form.append(input, title);
+      document.body.append(form);
+      form.submit();
+    }, { action: action.href, fields: { file: fileParam, title: st.params.title }, name: file.name,
+         b64: file.bytes.toString('base64') });
+    let shared = null;
+    for (const until = Date.now() + 20000; Date.now() < until && !shared;) {
+      shared = await page.evaluate(() => (window.umfDebug?.share && window.umfDebug.put
+        ? { share: window.umfDebug.share, put: window.umfDebug.put, mode: document.body.dataset.mode, url: location.href }
+        : null)).catch(() => null);
+      if (!shared) await page.waitForTimeout(100);
+    }
+    log(`after the share: ${JSON.stringify(shared)}`);
+    check(shared && shared.share.kind === 'file', `the page opened with the share (${JSON.stringify(shared?.share)})`);
+    check(shared.mode === 'put' && shared.put.name === file.name && shared.put.size === file.size,
+          `in Put mode with ${file.name}, ${file.size} bytes`);
+    check(!/share=/.test(shared.url), `the share's id left the address bar (${shared.url.replace(/#.*/, '')})`);
+    await waitForState(page, ['locked'], 30000);
+    await page.click('#grab');
+    const r = await waitForPutResult(page, 30000);
+    check(r.status === 'done' && r.outcome === 'saved', `#put-status done, saved (${r.status}, ${r.outcome})`);
+    checkPutFolder(dir, file.name, file.bytes);
+    // Where the provider sent a share back: the page says what to do.
+    await page.goto(`${provider.base}/?share=unavailable`);
+    const u = await waitForPutResult(page, 15000);
+    check(u.status === 'error' && u.code === 'share-unavailable', `?share=unavailable: #put-status[data-code=share-unavailable] (${u.code})`);
+    check(/open umf once/i.test(u.text), `it says to open umf once ("${u.text}")`);
+  },
+});
+
+// A request to the provider, whose certificate is self-signed: {status, location}.
+function fetchInsecure(url, { method, body, headers }) {
+  return new Promise((resolve, reject) => {
+    const req = https.request(url, { method, headers, rejectUnauthorized: false }, (res) => {
+      res.resume();
+      resolve({ status: res.statusCode, location: res.headers.location });
+    });
+    req.on('error', reject);
+    req.end(body);
+  });
+}
 
 async function diagnose() {
   const page = current.page;

@@ -7,8 +7,10 @@
 //        --modules build/X/tests/web/browser/node_modules --out docs/images
 //
 // Writes phone-locked.jpg (the lock ring and the title of what a grab would
-// take), phone-result.jpg (the file taken and checked) and phone-unpaired.jpg.
-import { spawn } from 'node:child_process';
+// take), phone-result.jpg (the file taken and checked), phone-put-asking.jpg
+// (a file put on the screen, waiting for the person there to accept it),
+// phone-put-done.jpg (accepted and saved) and phone-unpaired.jpg.
+import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import os from 'node:os';
@@ -27,7 +29,7 @@ fs.mkdirSync(args.out, { recursive: true });
 
 const provider = spawn(args.provider, ['serve', '--headless', '--board', path.resolve(args.board), '--screen', '1920x1080',
                                        '--port', '0', '--bind', '127.0.0.1', '--config-dir', path.join(work, 'config'),
-                                       '--no-qr', '--web', args.site],
+                                       '--no-qr', '--web', args.site, '--puts', 'ask', '--put-dir', path.join(work, 'puts')],
                        { stdio: ['ignore', 'pipe', 'inherit'], env: { ...process.env, XDG_RUNTIME_DIR: work } });
 const pairing = await new Promise((resolve, reject) => {
   let out = '';
@@ -41,6 +43,13 @@ const pairing = await new Promise((resolve, reject) => {
     }
   });
 });
+// `umf-provider puts ...` at this provider: the person at the screen answering.
+const puts = (...more) => {
+  const r = spawnSync(args.provider, ['puts', ...more, '--port', new URL(pairing).port],
+                      { encoding: 'utf8', env: { ...process.env, XDG_RUNTIME_DIR: work } });
+  if (r.status !== 0) throw new Error(`umf-provider puts ${more.join(' ')}: ${r.stderr}`);
+  return r.stdout;
+};
 
 const browser = await chromium.launch({
   executablePath: args.chromium ?? '/usr/bin/chromium', headless: true,
@@ -59,11 +68,33 @@ try {
   await page.waitForSelector('#result[data-verified="true"]', { timeout: 20000 });
   await page.screenshot({ path: path.join(args.out, 'phone-result.jpg'), type: 'jpeg', quality: 80 });
 
+  // Put: a file from the phone to where it points, asked at the screen.
+  const slides = path.join(work, 'Project review slides.pdf');
+  fs.writeFileSync(slides, Buffer.alloc(2_400_000, 0x25));
+  await page.click('#result-close');
+  await page.click('#show-put');
+  await page.setInputFiles('#put-file', slides);
+  await page.waitForSelector('body[data-state="locked"]', { timeout: 30000 });
+  await page.click('#grab');
+  await page.waitForSelector('#put-status[data-status="asking"]', { timeout: 20000 });
+  let waiting = [];
+  for (let i = 0; i < 100 && !waiting.length; ++i) {
+    const listed = JSON.parse(puts('--json'));
+    waiting = Array.isArray(listed) ? listed : Object.values(listed).find(Array.isArray) ?? [];
+    if (!waiting.length) await page.waitForTimeout(100);
+  }
+  await page.waitForTimeout(1200);  // the countdown has begun
+  await page.screenshot({ path: path.join(args.out, 'phone-put-asking.jpg'), type: 'jpeg', quality: 80 });
+  puts('--accept', String(waiting[0].id));
+  await page.waitForSelector('#put-status[data-status="done"]', { timeout: 20000 });
+  await page.screenshot({ path: path.join(args.out, 'phone-put-done.jpg'), type: 'jpeg', quality: 80 });
+
   const fresh = await (await browser.newContext(phone)).newPage();
   await fresh.goto(new URL(pairing).origin + '/');
   await fresh.waitForSelector('body[data-state="unpaired"]', { timeout: 10000 });
   await fresh.screenshot({ path: path.join(args.out, 'phone-unpaired.jpg'), type: 'jpeg', quality: 80 });
-  console.log(`wrote phone-locked.jpg, phone-result.jpg, phone-unpaired.jpg to ${args.out}`);
+  console.log(`wrote phone-locked.jpg, phone-result.jpg, phone-put-asking.jpg, phone-put-done.jpg, phone-unpaired.jpg ` +
+              `to ${args.out}`);
 } finally {
   await browser.close();
   provider.kill('SIGTERM');
