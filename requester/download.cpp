@@ -1,7 +1,6 @@
 #include "download.hpp"
 
 #include <fcntl.h>
-#include <openssl/evp.h>
 #include <stdio.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -19,6 +18,7 @@
 #include "grab_failure.hpp"
 #include "protocol/messages.hpp"
 #include "io/store_file.hpp"
+#include "sha256.hpp"
 
 namespace umf::requester {
 
@@ -82,26 +82,6 @@ private:
     fs::path path_;
     int fd_ = -1;
     bool kept_ = false;
-};
-
-struct Sha256 {
-    Sha256() : ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free) {
-        if (!ctx || EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr) != 1)
-            throw std::runtime_error("OpenSSL cannot compute SHA-256");
-    }
-    void update(const void* data, std::size_t size) { EVP_DigestUpdate(ctx.get(), data, size); }
-    std::string hex() {
-        unsigned char md[EVP_MAX_MD_SIZE];
-        unsigned int len = 0;
-        EVP_DigestFinal_ex(ctx.get(), md, &len);
-        std::string out;
-        for (unsigned int i = 0; i < len; ++i) {
-            out += "0123456789abcdef"[md[i] >> 4];
-            out += "0123456789abcdef"[md[i] & 15];
-        }
-        return out;
-    }
-    std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> ctx;
 };
 
 // One step on the stream with the idle timeout; the error it ended with.

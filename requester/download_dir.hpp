@@ -64,16 +64,17 @@ inline std::string home_directory() {
     return "/";
 }
 
+// $XDG_CONFIG_HOME when it is an absolute path, else ~/.config.
+inline std::filesystem::path config_home() {
+    if (const char* x = std::getenv("XDG_CONFIG_HOME"); x && *x == '/') return x;
+    return std::filesystem::path(home_directory()) / ".config";
+}
+
 // The default --out: $XDG_CONFIG_HOME/user-dirs.dirs (~/.config/...) says
 // where, else ~/Downloads. Not created here.
 inline std::filesystem::path default_download_dir() {
     const std::string home = home_directory();
-    std::filesystem::path config;
-    if (const char* x = std::getenv("XDG_CONFIG_HOME"); x && *x == '/')
-        config = x;
-    else
-        config = std::filesystem::path(home) / ".config";
-    std::ifstream in(config / "user-dirs.dirs");
+    std::ifstream in(config_home() / "user-dirs.dirs");
     if (in) {
         std::ostringstream text;
         text << in.rdbuf();

@@ -9,24 +9,16 @@
 #include <optional>
 #include <string>
 
-#include "pairing_url.hpp"
+#include "aiming_session.hpp"
 
 namespace umf::requester {
 
 extern const char* const kGrabUsage;
 
-enum class GrabInput { camera, video, image };
-
 struct GrabOptions {
-    PairingUrl url;
-    GrabInput input = GrabInput::camera;
-    int camera_index = 0;
-    std::string path;                // the video or image file
+    PointingOptions pointing;
     std::optional<std::string> out;  // download directory; the desktop's default when empty
     bool open = false;               // open a link with xdg-open
-    bool auto_grab = false;          // grab on a steady lock, no key needed
-    bool window = false;             // show the preview (decided from --no-window and $DISPLAY)
-    std::optional<double> timeout_s; // give up after this long (camera: 30 s by default)
 };
 
 // argv[first..] of "umf-requester grab ...". Throws UsageError.

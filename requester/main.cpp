@@ -13,6 +13,7 @@
 #include "field/field_io.hpp"
 #include "grab_command.hpp"
 #include "locate_command.hpp"
+#include "put_command.hpp"
 
 namespace {
 
@@ -24,6 +25,8 @@ usage:
   umf-requester locate --field F.json [--sequence] [--aim X,Y] IMAGE... | --video FILE
   umf-requester grab --url URL [--camera I | --video FILE | --image FILE]
                      [--out DIR] [--open] [--auto] [--no-window] [--timeout S]
+  umf-requester put FILE|LINK --url URL [--title TEXT]
+                    [--camera I | --video FILE | --image FILE] [--auto] [--no-window] [--timeout S]
   umf-requester help [COMMAND]
   umf-requester COMMAND --help
 
@@ -33,12 +36,15 @@ locate    finds the field in image files or the frames of a video and prints one
 grab      connects to a provider (its pairing URL), finds its field in the camera,
           a video or a photo, and takes what the screen shows under the image
           centre: prints a link, downloads a file. One JSON line at the end.
+put       the other way round: gives the screen a file or a link where the camera
+          points; the person at the screen accepts it. One JSON line at the end.
 
 exit codes: 0 the command ran (locate: frames without the field are reported, not
-            failed; grab: something was grabbed); 2 wrong usage; 3 an input could
-            not be read, or the output could not be written; grab only: 4 the
-            provider could not be reached, its certificate or token did not match,
-            or the exchange failed; 5 nothing was grabbed.
+            failed; grab and put: something was grabbed or put); 2 wrong usage;
+            3 an input could not be read, or the output could not be written;
+            grab and put only: 4 the provider could not be reached, its
+            certificate or token did not match, or the exchange failed; 5 nothing
+            was grabbed or put (no field in view, nothing there, refused).
 )";
 
 struct Command {
@@ -49,7 +55,7 @@ struct Command {
 
 int locate(int argc, char** argv) { return run_locate(parse_locate_args(argc, argv, 2), stdout); }
 
-// grab promises a JSON line on stdout whatever happens, wrong usage included.
+// grab and put promise a JSON line on stdout whatever happens, wrong usage included.
 int grab(int argc, char** argv) {
     GrabOptions options;
     try {
@@ -61,9 +67,21 @@ int grab(int argc, char** argv) {
     return run_grab(options, stdout);
 }
 
+int put(int argc, char** argv) {
+    PutOptions options;
+    try {
+        options = parse_put_args(argc, argv, 2);
+    } catch (const UsageError& e) {
+        write_usage_failure(stdout, e.what());
+        throw;
+    }
+    return run_put(options, stdout);
+}
+
 const Command kCommands[] = {
     {"locate", kLocateUsage, locate},
     {"grab", kGrabUsage, grab},
+    {"put", kPutUsage, put},
 };
 
 const Command* find_command(const std::string& name) {

@@ -111,18 +111,19 @@ cv::Mat Preview::render(const cv::Mat& frame, const PreviewStatus& status) {
             cv::circle(img, centre, ring, kGreen, 3, cv::LINE_AA);
             std::string what = status.target_kind.empty() ? "locked" : status.target_kind;
             if (!status.target_title.empty()) what += ": " + status.target_title;
-            if (status.target_kind == "none") what = "locked - nothing to take here";
+            if (status.target_kind == "none")
+                what = status.verb == "put" ? "locked - puts go here" : "locked - nothing to take here";
             banner(img, ascii(what, 80), kGreen, true);
             break;
         }
-        case PreviewState::grabbing:
+        case PreviewState::acting:
             crosshair(img, kAmber);
             cv::circle(img, centre, ring, kAmber, 3, cv::LINE_AA);
-            banner(img, "grabbing...", kAmber, true);
+            banner(img, status.verb == "put" ? "putting..." : "grabbing...", kAmber, true);
             break;
     }
-    const std::string hint = status.auto_grab ? "hold steady to grab - q / Esc quits"
-                                              : "space / Enter grabs - q / Esc quits";
+    const std::string hint = status.auto_act ? "hold steady to " + status.verb + " - q / Esc quits"
+                                             : "space / Enter " + status.verb + "s - q / Esc quits";
     banner(img, ascii((status.provider.empty() ? "" : status.provider + " - ") + hint, 100), cv::Scalar(60, 60, 60),
            false);
     return img;
@@ -139,7 +140,7 @@ PreviewKey Preview::show(const cv::Mat& frame, const PreviewStatus& status, int 
         case ' ':
         case '\r':
         case '\n':
-            return PreviewKey::grab;
+            return PreviewKey::act;
         case 'q':
         case 'Q':
         case 27:

@@ -1,7 +1,8 @@
-// The camera preview while grabbing: the frame, a crosshair at its centre
-// (the point a grab takes), and whether the field is locked, in a way nobody
-// can miss: a red banner while searching, a green ring and what a grab would
-// take once locked. Keys: space or Enter grabs, q or Esc quits.
+// The camera preview while grabbing or putting: the frame, a crosshair at
+// its centre (the point a grab takes or a put gives to), and whether the
+// field is locked, in a way nobody can miss: a red banner while searching, a
+// green ring and what is there once locked. Keys: space or Enter grabs (or
+// puts), q or Esc quits.
 #pragma once
 
 #include <string>
@@ -10,16 +11,17 @@
 
 namespace umf::requester {
 
-enum class PreviewState { searching, locked, grabbing };
+enum class PreviewState { searching, locked, acting };
 
-enum class PreviewKey { none, grab, quit };
+enum class PreviewKey { none, act, quit };
 
 struct PreviewStatus {
     PreviewState state = PreviewState::searching;
-    std::string target_title;  // what a grab would take, when the provider said
+    std::string target_title;  // what is at the aim, when the provider said
     std::string target_kind;   // "url", "file", "snapshot", "none" or empty
     std::string provider;      // "desk-1", shown in the corner
-    bool auto_grab = false;    // the hint line says a steady aim grabs
+    bool auto_act = false;     // the hint line says a steady aim grabs (puts)
+    std::string verb = "grab";  // "grab" or "put"
 };
 
 class Preview {

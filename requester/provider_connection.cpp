@@ -32,6 +32,7 @@ std::optional<p::RequestId> reply_id(const p::Message& m) {
     if (const auto* t = std::get_if<p::Target>(&m)) return t->id;
     if (const auto* c = std::get_if<p::Content>(&m)) return c->id;
     if (const auto* e = std::get_if<p::Error>(&m)) return e->id;
+    if (const auto* s = std::get_if<p::PutStatus>(&m)) return s->id;
     return std::nullopt;
 }
 
@@ -56,7 +57,7 @@ void ProviderConnection::check_alive() const {
     if (!failure_code_.empty()) throw GrabFailure(failure_code_, failure_message_, failure_exit_);
 }
 
-p::Welcome ProviderConnection::open(const std::string& client) {
+p::Welcome ProviderConnection::open(const std::string& client, const std::optional<std::string>& device) {
     ws_ = std::make_unique<Ws>(io_.get_executor(), tls_);
     connect_pinned(io_, ws_->next_layer(), url_, timeouts_);
 
@@ -85,7 +86,9 @@ p::Welcome ProviderConnection::open(const std::string& client) {
     start_read();
 
     const p::RequestId hello_id{std::int64_t{1}};
-    send(p::Hello{hello_id, url_.token, client});
+    p::Hello hello{hello_id, url_.token, client};
+    hello.device = device;
+    send(hello);
     const auto deadline = Clock::now() + timeouts_.reply;
     while (inbox_.empty() && failure_code_.empty() && Clock::now() < deadline) io_.run_one_until(deadline);
     if (inbox_.empty()) {
@@ -196,7 +199,11 @@ std::vector<p::Message> ProviderConnection::poll() {
 }
 
 p::Message ProviderConnection::wait_reply(const p::RequestId& id, const char* what) {
-    const auto deadline = Clock::now() + timeouts_.reply;
+    return wait_reply(id, what, timeouts_.reply);
+}
+
+p::Message ProviderConnection::wait_reply(const p::RequestId& id, const char* what, std::chrono::milliseconds timeout) {
+    const auto deadline = Clock::now() + timeout;
     for (;;) {
         for (auto it = inbox_.begin(); it != inbox_.end(); ++it) {
             if (reply_id(*it) == id) {
@@ -209,7 +216,7 @@ p::Message ProviderConnection::wait_reply(const p::RequestId& id, const char* wh
         if (Clock::now() >= deadline)
             throw GrabFailure("timeout",
                               std::string("the provider did not answer the ") + what + " within " +
-                                  seconds(timeouts_.reply),
+                                  seconds(timeout),
                               kConnection);
         if (io_.stopped()) io_.restart();
         io_.run_one_until(deadline);

@@ -11,7 +11,9 @@
 #include <boost/beast/core/flat_buffer.hpp>
 #include <boost/beast/websocket/stream.hpp>
 #include <deque>
+#include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,10 +30,12 @@ public:
     ProviderConnection(const ProviderConnection&) = delete;
     ProviderConnection& operator=(const ProviderConnection&) = delete;
 
-    // Connects, sends hello with the URL's token and returns the welcome.
-    // Throws GrabFailure: "connection", "certificate", "unauthorized" (a
-    // wrong or revoked token), "protocol" or the code of the provider's error.
-    protocol::Welcome open(const std::string& client);
+    // Connects, sends hello with the URL's token (and `device`, the name
+    // the provider may remember "always accept from") and returns the
+    // welcome. Throws GrabFailure: "connection", "certificate",
+    // "unauthorized" (a wrong or revoked token), "protocol" or the code of
+    // the provider's error.
+    protocol::Welcome open(const std::string& client, const std::optional<std::string>& device = {});
 
     // Queues a message; it is written while the caller polls or waits.
     // Throws GrabFailure "connection" once the session has ended.
@@ -46,6 +50,9 @@ public:
     // Waits up to timeouts.reply for the reply carrying `id`; other messages
     // received meanwhile are kept for poll(). Throws GrabFailure.
     protocol::Message wait_reply(const protocol::RequestId& id, const char* what);
+    // The same with its own deadline: a put's later replies wait for a
+    // person at the screen, longer than any reply of the provider itself.
+    protocol::Message wait_reply(const protocol::RequestId& id, const char* what, std::chrono::milliseconds timeout);
 
     // A normal WebSocket close, waited for briefly. Never throws.
     void close();

@@ -15,28 +15,11 @@
 #include <vector>
 
 #include "content/sha256.hpp"
+#include "protocol/media_types.hpp"
 
 namespace umf::provider {
 
 namespace {
-
-struct MimeEntry {
-    const char* extension;
-    const char* mime;
-};
-constexpr MimeEntry kMimeTypes[] = {
-    {".pdf", "application/pdf"},   {".png", "image/png"},       {".jpg", "image/jpeg"},
-    {".jpeg", "image/jpeg"},       {".gif", "image/gif"},       {".webp", "image/webp"},
-    {".svg", "image/svg+xml"},     {".txt", "text/plain"},      {".md", "text/markdown"},
-    {".csv", "text/csv"},          {".html", "text/html"},      {".htm", "text/html"},
-    {".json", "application/json"}, {".zip", "application/zip"}, {".mp4", "video/mp4"},
-    {".webm", "video/webm"},       {".mp3", "audio/mpeg"},      {".odt", "application/vnd.oasis.opendocument.text"},
-    {".ods", "application/vnd.oasis.opendocument.spreadsheet"},
-    {".odp", "application/vnd.oasis.opendocument.presentation"},
-    {".docx", "application/vnd.openxmlformats-officedocument.wordprocessingml.document"},
-    {".xlsx", "application/vnd.openxmlformats-officedocument.spreadsheetml.sheet"},
-    {".pptx", "application/vnd.openxmlformats-officedocument.presentationml.presentation"},
-};
 
 std::string hash_fd(int fd, const std::string& what) {
     Sha256 hash;
@@ -53,13 +36,7 @@ std::string hash_fd(int fd, const std::string& what) {
 
 }  // namespace
 
-std::string mime_for(const std::filesystem::path& file) {
-    std::string ext = file.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    for (const auto& m : kMimeTypes)
-        if (ext == m.extension) return m.mime;
-    return "application/octet-stream";
-}
+std::string mime_for(const std::filesystem::path& file) { return protocol::media_type_for(file.filename().string()); }
 
 std::string sha256_hex(const std::string& bytes) {
     Sha256 hash;

@@ -87,6 +87,30 @@ public:
         }
     }
     const std::string& output() const { return output_; }
+    pid_t pid() const { return pid_; }
+
+    // Reads stdout to its end and waits for the child to exit on its own:
+    // its exit code, or -1 when a signal ended it or it outlasted `timeout`
+    // (then it is killed).
+    int wait(std::chrono::milliseconds timeout = std::chrono::seconds(60)) {
+        read_until([](const std::string&) { return false; }, timeout);
+        if (!pending_.empty()) output_ += pending_;
+        pending_.clear();
+        if (pid_ <= 0) return exit_code_;
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        int status = 0;
+        while (::waitpid(pid_, &status, WNOHANG) == 0) {
+            if (std::chrono::steady_clock::now() > deadline) {
+                ::kill(pid_, SIGKILL);
+                ::waitpid(pid_, &status, 0);
+                pid_ = 0;
+                return exit_code_ = -1;
+            }
+            ::usleep(10000);
+        }
+        pid_ = 0;
+        return exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    }
 
     // SIGTERM, then the exit code (or -1 when it had to be killed).
     int stop(std::chrono::milliseconds grace = std::chrono::seconds(10)) {

@@ -1,0 +1,116 @@
+// Pointing at a provider's screen, what grab and put have in common:
+// connect to the provider of the pairing URL, find its field in a camera, a
+// video or one photo, aim (the provider shows the ring), wait for a steady
+// aim or a key, and then act at the field point under the image centre. The
+// act itself (take what is there, or give the screen something) is the
+// caller's.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "cli.hpp"
+#include "detect/detector.hpp"
+#include "frame_source.hpp"
+#include "pairing_url.hpp"
+#include "preview.hpp"
+#include "protocol/messages.hpp"
+#include "provider_connection.hpp"
+
+namespace umf::requester {
+
+enum class FrameInput { camera, video, image };
+
+struct PointingOptions {
+    PairingUrl url;
+    FrameInput input = FrameInput::camera;
+    int camera_index = 0;
+    std::string path;                 // the video or image file
+    bool auto_act = false;            // act on a steady lock, no key needed
+    bool window = false;              // show the preview (decided from --no-window and $DISPLAY)
+    std::optional<double> timeout_s;  // give up after this long (camera: 30 s by default)
+};
+
+// The options grab and put share: --url, --camera, --video, --image,
+// --auto, --no-window and --timeout, already parsed into `a` (which must
+// have accepted them). `verb` names the command in messages. Throws
+// UsageError.
+PointingOptions parse_pointing_args(const Args& a, const std::string& verb);
+
+// The option names parse_pointing_args reads, for parse_args.
+extern const std::vector<std::string> kPointingOptionNames;
+extern const std::vector<std::string> kPointingFlagNames;
+
+using Json = nlohmann::ordered_json;
+
+// What to do once aimed: `verb` ("grab", "put") for the preview and the
+// log; `at` runs at the aimed point and returns the JSON line's object.
+struct PointAction {
+    std::string verb;
+    std::function<Json(const protocol::FieldPoint&)> at;
+};
+
+class AimingSession {
+public:
+    // `device`: the hello's device name, when the command has one.
+    AimingSession(const PointingOptions& options, std::string client, std::optional<std::string> device = {});
+    ~AimingSession();
+    AimingSession(const AimingSession&) = delete;
+    AimingSession& operator=(const AimingSession&) = delete;
+
+    // Opens the input and the connection, calls `welcomed` with the welcome
+    // (it may throw to stop before any aiming, e.g. when the provider lacks
+    // a feature), aims until the action's moment and returns what the
+    // action returned. Throws GrabFailure for everything that ends it early.
+    Json run(const std::function<void(const protocol::Welcome&)>& welcomed, const PointAction& action);
+
+    // The session, for the action's own messages.
+    ProviderConnection& connection() { return connection_; }
+    // The point the action ran at, once it has.
+    std::optional<protocol::FieldPoint> acted_point() const { return acted_point_; }
+
+private:
+    protocol::RequestId next_id();
+    void send_aim(const Eigen::Vector2d& point, const Detection& d, int w, int h);
+    void take_replies();
+    Json act_on_still(const Frame& frame, const PointAction& action);
+    Json act_from(FrameSource& source, const PointAction& action);
+    PreviewKey show(Preview& preview, const cv::Mat& frame, int wait_ms);
+    [[noreturn]] void end_without_act(const PointAction& action, bool ever_locked, bool ever_steady, bool timed_out,
+                                      double timeout) const;
+    Json act_at(const Eigen::Vector2d& point, const PointAction& action);
+
+    const PointingOptions& o_;
+    std::string client_;
+    std::optional<std::string> device_;
+    ProviderConnection connection_;
+    protocol::Welcome welcome_;
+    std::unique_ptr<Detector> detector_;
+    std::int64_t id_ = 2;  // 1 is the hello's
+    std::optional<protocol::RequestId> last_aim_id_;
+    std::optional<protocol::FieldPoint> acted_point_;
+    PreviewStatus status_;
+    std::string last_logged_title_ = "\x01";
+    std::string last_logged_error_;
+};
+
+// "[u, v]" rounded to thousandths of a module: the detector is not better.
+Json point_json(const protocol::FieldPoint& point);
+
+// The command's one line on stdout.
+void write_line(std::FILE* out, const Json& j);
+Json failure_json(const std::string& code, const std::string& message);
+
+// Runs `body` and writes its JSON line, or the failure's line with the
+// point acted at, when `point` holds one by then (the body sets it as the
+// failure passes); returns the exit code.
+int run_and_report(const std::function<Json()>& body, const std::optional<protocol::FieldPoint>& point,
+                   std::FILE* out);
+
+// Progress and failures on stderr: "umf-requester: ...".
+void log(const std::string& line);
+
+}  // namespace umf::requester

@@ -1,0 +1,56 @@
+#include "device_name.hpp"
+
+#include <fstream>
+#include <random>
+#include <system_error>
+
+#include "download_dir.hpp"
+#include "io/atomic_file.hpp"
+#include "protocol/messages.hpp"
+
+namespace umf::requester {
+
+namespace {
+
+constexpr const char* kPrefix = "umf-requester-";
+
+bool well_formed(const std::string& name) {
+    if (name.size() <= std::char_traits<char>::length(kPrefix) || name.size() > protocol::kMaxDeviceBytes) return false;
+    for (char c : name)
+        if (c < 0x21 || c > 0x7e) return false;
+    return true;
+}
+
+std::string fresh_name() {
+    std::random_device random;
+    std::string name = kPrefix;
+    for (int i = 0; i < 4; ++i) {
+        const std::uint32_t x = random();
+        for (int b = 0; b < 8; ++b) name += "0123456789abcdef"[(x >> (4 * b)) & 15];
+    }
+    return name;
+}
+
+}  // namespace
+
+std::filesystem::path default_device_file() { return config_home() / "umf" / "requester-device"; }
+
+std::string device_name(const std::filesystem::path& file, std::string& note) {
+    {
+        std::ifstream in(file);
+        std::string kept;
+        if (in && std::getline(in, kept) && well_formed(kept)) return kept;
+    }
+    std::string name = fresh_name();
+    try {
+        std::error_code ec;
+        std::filesystem::create_directories(file.parent_path(), ec);
+        write_file_atomically(file.string(), name + "\n");
+    } catch (const std::exception& e) {
+        note = std::string("this device's name cannot be kept (") + e.what() +
+               "): screens will ask again next time";
+    }
+    return name;
+}
+
+}  // namespace umf::requester

@@ -1,0 +1,280 @@
+#include "put_command.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <stdexcept>
+#include <vector>
+
+#include "cli.hpp"
+#include "device_name.hpp"
+#include "grab_failure.hpp"
+#include "protocol/media_types.hpp"
+#include "protocol/messages.hpp"
+#include "sha256.hpp"
+#include "upload.hpp"
+
+namespace umf::requester {
+
+const char* const kPutUsage = R"(umf-requester put: give a provider's screen a file or a link where the camera points
+
+usage:
+  umf-requester put FILE|LINK --url URL [--title TEXT]
+                    [--camera I | --video FILE | --image FILE]
+                    [--auto] [--no-window] [--timeout S]
+
+Connects to the provider of the pairing URL (the certificate must have the URL's
+fingerprint), finds the provider's marker field in the camera image and puts FILE
+or LINK (an http: or https: URL) at the point under the image centre. The person
+at the screen sees a prompt there and accepts or dismisses it (30 s); an accepted
+file is sent over a one-time HTTPS link and stored in the screen's download folder
+under a name that replaces nothing; a link opens in the screen's browser. The
+preview window and its keys are those of grab: space or Enter puts, q or Esc quits.
+
+options:
+  --url URL       the pairing URL, https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT
+  --title TEXT    shown in the screen's prompt (at most 512 bytes)
+  --camera I      camera number I (/dev/videoI); camera 0 when no input is given
+  --video FILE    the frames of a video file instead of a camera
+  --image FILE    one photo: detect once and put at once (implies --auto)
+  --auto          put as soon as the aim holds steady (half a second within half
+                  a module) instead of waiting for a key
+  --no-window     no preview (also when there is no display); needs --auto
+  --timeout S     give up finding the screen after S seconds; camera default 30
+
+This requester names itself to screens with a random device name kept in
+$XDG_CONFIG_HOME/umf/requester-device, so a screen told "always accept from this
+device" does not ask again.
+
+Prints one JSON line at the end, progress goes to stderr:
+  {"ok":true,"kind":"url","point":[u,v],"url":"...","outcome":"opened"}
+  {"ok":true,"kind":"file","point":[u,v],"outcome":"saved","name":"report (1).pdf",
+   "size":n,"sha256":"..."}              (outcome "opened": saved and opened)
+  {"ok":false,"error":{"code":"...","message":"..."}}
+error codes: usage, input, connection, certificate, unauthorized, timeout, protocol,
+  no_puts, not_found_in_view, no_steady_lock, no_put, cancelled, upload, and the
+  provider's own (refused, too_large, interrupted, not_found, rate_limited,
+  bad_request, internal, unsupported_version).
+
+exit codes: 0 the screen took it; 2 wrong usage; 3 the file could not be read;
+            4 the provider could not be reached, its certificate did not match,
+            it refused the token, or the exchange or the upload broke off
+            (interrupted); 5 nothing was put (the provider takes no puts, no
+            field in view, no steady aim, no screen at that point, the person
+            dismissed it or did not answer, the file is too large for the screen,
+            or cancelled).
+)";
+
+namespace {
+
+namespace p = protocol;
+namespace fs = std::filesystem;
+
+constexpr const char* kClient = "umf-requester/" UMF_VERSION;
+// The screen's answer comes within 30 s (docs/PROTOCOL.md, "put_status");
+// the provider refuses by itself then, so this only catches one that went quiet.
+constexpr std::chrono::seconds kAnswerWait{45};
+
+bool starts_with_scheme(const std::string& text) {
+    std::string head = text.substr(0, 8);
+    std::transform(head.begin(), head.end(), head.begin(), [](unsigned char c) { return std::tolower(c); });
+    return head.rfind("http://", 0) == 0 || head.rfind("https://", 0) == 0;
+}
+
+std::string megabytes(std::int64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f MB", static_cast<double>(bytes) / 1e6);
+    return text;
+}
+
+// Why a put ended: the provider's error codes in words, with their exit code.
+[[noreturn]] void fail_with(const p::Error& e) {
+    const std::string code = p::to_string(e.code);
+    switch (e.code) {
+        case p::ErrorCode::refused:
+            throw GrabFailure(code, "the screen did not take it: " + e.message, kNothing);
+        case p::ErrorCode::too_large:
+            throw GrabFailure(code, "the file is too large for the screen: " + e.message, kNothing);
+        case p::ErrorCode::not_found:
+            throw GrabFailure(code, "no screen shows that point: " + e.message, kNothing);
+        case p::ErrorCode::rate_limited:
+            throw GrabFailure(code, "too many grabs and puts; wait a little: " + e.message, kNothing);
+        case p::ErrorCode::interrupted:
+            throw GrabFailure(code, "the upload did not arrive whole; nothing was kept: " + e.message, kConnection);
+        default:
+            throw GrabFailure(code, "the provider refused the put: " + e.message, kConnection);
+    }
+}
+
+struct FileToPut {
+    fs::path path;
+    std::string name;
+    std::string mime;
+    FileDigest digest;
+};
+
+class PutSession {
+public:
+    PutSession(const PutOptions& o, std::string device) : o_(o), session_(o.pointing, kClient, std::move(device)) {}
+
+    Json run() {
+        if (o_.file) file_ = prepare_file(*o_.file);
+        return session_.run(
+            [&](const p::Welcome& w) {
+                const auto& f = w.features;
+                if (std::find(f.begin(), f.end(), p::kFeaturePut) == f.end())
+                    throw GrabFailure("no_puts",
+                                      "the provider at " + o_.pointing.url.authority() +
+                                          " takes no puts (it runs with --puts never, or in public mode)",
+                                      kNothing);
+            },
+            {"put", [&](const p::FieldPoint& at) { return put_at(at); }});
+    }
+
+    std::optional<p::FieldPoint> point() const { return session_.acted_point(); }
+
+private:
+    static FileToPut prepare_file(const fs::path& path) {
+        FileToPut f;
+        f.path = path;
+        f.name = p::safe_file_name(path.filename().string());
+        f.mime = p::media_type_for(f.name);
+        try {
+            f.digest = digest_file(path);
+        } catch (const std::runtime_error& e) {
+            throw GrabFailure("input", e.what(), kInputError);
+        }
+        log("putting " + f.name + " (" + std::to_string(f.digest.size) + " bytes, " + f.mime + ")");
+        return f;
+    }
+
+    Json put_at(const p::FieldPoint& at) {
+        p::Put put;
+        put.id = p::RequestId{std::string("p1")};
+        put.point = at;
+        put.title = o_.title;
+        if (file_) {
+            put.kind = p::ContentKind::file;
+            put.name = file_->name;
+            put.mime = file_->mime;
+            put.size = file_->digest.size;
+            put.sha256 = file_->digest.sha256;
+        } else {
+            put.kind = p::ContentKind::url;
+            put.url = *o_.url;
+        }
+        ProviderConnection& connection = session_.connection();
+        connection.send(put);
+        log("putting at (" + std::to_string(at.u) + ", " + std::to_string(at.v) + ")");
+
+        p::Message reply = connection.wait_reply(put.id, "put");
+        for (;;) {
+            if (const auto* e = std::get_if<p::Error>(&reply)) fail_with(*e);
+            const auto* status = std::get_if<p::PutStatus>(&reply);
+            if (!status)
+                throw GrabFailure("protocol", std::string("the provider answered the put with a ") + p::type_name(reply),
+                                  kConnection);
+            switch (status->status) {
+                case p::PutState::asking:
+                    log("waiting for the person at the screen to accept it (up to 30 s)");
+                    reply = connection.wait_reply(put.id, "put", kAnswerWait);
+                    continue;
+                case p::PutState::upload: {
+                    if (!file_ || !status->upload)
+                        throw GrabFailure("protocol", "the provider asked for an upload without a file or a link",
+                                          kConnection);
+                    log("accepted; sending " + megabytes(file_->digest.size));
+                    return done(at, upload(*status->upload));
+                }
+                case p::PutState::done:
+                    return done(at, *status);
+            }
+        }
+    }
+
+    p::PutStatus upload(const std::string& link) {
+        auto last = std::chrono::steady_clock::now();
+        const auto progress = [&](std::int64_t sent, std::int64_t size) {
+            const auto now = std::chrono::steady_clock::now();
+            if (sent < size && now - last < std::chrono::seconds(1)) return;
+            last = now;
+            log("sent " + megabytes(sent) + " of " + megabytes(size));
+        };
+        return upload_file(o_.pointing.url, {link, file_->path, file_->digest.size}, progress);
+    }
+
+    Json done(const p::FieldPoint& at, const p::PutStatus& status) {
+        if (status.status != p::PutState::done || !status.outcome)
+            throw GrabFailure("protocol", "the provider ended the put without an outcome", kConnection);
+        Json j;
+        j["ok"] = true;
+        j["kind"] = file_ ? "file" : "url";
+        j["point"] = point_json(at);
+        if (!file_) j["url"] = *o_.url;
+        j["outcome"] = p::to_string(*status.outcome);
+        if (status.name) j["name"] = *status.name;
+        if (file_) {
+            j["size"] = file_->digest.size;
+            j["sha256"] = file_->digest.sha256;
+        }
+        log(*status.outcome == p::PutOutcome::opened
+                ? "the screen opened it" + (status.name ? " (" + *status.name + ")" : std::string())
+                : "the screen saved it as " + status.name.value_or("?"));
+        return j;
+    }
+
+    const PutOptions& o_;
+    AimingSession session_;
+    std::optional<FileToPut> file_;
+};
+
+}  // namespace
+
+PutOptions parse_put_args(int argc, char** argv, int first) {
+    std::vector<std::string> options = kPointingOptionNames, flags = kPointingFlagNames;
+    options.push_back("title");
+    const Args a = parse_args(argc, argv, first, options, flags);
+    if (a.positional.size() != 1)
+        throw UsageError(a.positional.empty() ? "put needs what to put: a FILE or an http(s) LINK"
+                                              : "put takes one FILE or LINK at a time");
+    PutOptions o;
+    o.pointing = parse_pointing_args(a, "put");
+    const std::string& what = a.positional.front();
+    if (starts_with_scheme(what)) {
+        if (!p::is_http_url(what) || what.size() > p::kMaxUrlBytes)
+            throw UsageError("'" + what + "' is not a link a screen can open (http: or https:, no spaces, at most " +
+                             std::to_string(p::kMaxUrlBytes) + " bytes)");
+        o.url = what;
+    } else {
+        if (what.empty()) throw UsageError("put needs a FILE or an http(s) LINK, not an empty name");
+        o.file = what;
+    }
+    if (auto t = a.get("title")) {
+        if (t->size() > p::kMaxTitleBytes)
+            throw UsageError("--title has " + std::to_string(t->size()) + " bytes; at most " +
+                             std::to_string(p::kMaxTitleBytes));
+        o.title = *t;
+    }
+    o.device_file = default_device_file();
+    return o;
+}
+
+int run_put(const PutOptions& o, std::FILE* out) {
+    std::optional<p::FieldPoint> point;
+    return run_and_report(
+        [&] {
+            std::string note;
+            const std::string device = device_name(o.device_file, note);
+            if (!note.empty()) log(note);
+            PutSession session(o, device);
+            try {
+                return session.run();
+            } catch (...) {
+                point = session.point();
+                throw;
+            }
+        },
+        point, out);
+}
+
+}  // namespace umf::requester

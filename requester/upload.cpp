@@ -1,0 +1,181 @@
+#include "upload.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <boost/asio/ssl.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
+#include <cerrno>
+#include <cstring>
+#include <optional>
+
+#include "cli.hpp"
+#include "grab_failure.hpp"
+
+namespace umf::requester {
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace net = boost::asio;
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace p = protocol;
+using Clock = std::chrono::steady_clock;
+
+constexpr std::size_t kPieceBytes = 64 * 1024;
+// The answer is one short JSON message.
+constexpr std::size_t kMaxAnswerBytes = 64 * 1024;
+// After a write failed, how long the provider may take to say why.
+constexpr std::chrono::milliseconds kLateAnswerWait{3000};
+
+GrabFailure input_failure(const std::string& message) { return {"input", message, kInputError}; }
+GrabFailure upload_failure(const std::string& message) { return {"upload", message, kConnection}; }
+
+class ReadOnlyFile {
+public:
+    explicit ReadOnlyFile(const fs::path& path) : path_(path) {
+        fd_ = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd_ < 0) throw input_failure("cannot open " + path.string() + ": " + std::strerror(errno));
+    }
+    ~ReadOnlyFile() { ::close(fd_); }
+    ReadOnlyFile(const ReadOnlyFile&) = delete;
+    ReadOnlyFile& operator=(const ReadOnlyFile&) = delete;
+
+    // Up to `size` bytes; fewer only at the end of the file.
+    std::size_t read(char* data, std::size_t size) {
+        std::size_t got = 0;
+        while (got < size) {
+            const ssize_t n = ::read(fd_, data + got, size - got);
+            if (n < 0 && errno == EINTR) continue;
+            if (n < 0) throw input_failure("cannot read " + path_.string() + ": " + std::strerror(errno));
+            if (n == 0) break;
+            got += static_cast<std::size_t>(n);
+        }
+        return got;
+    }
+
+private:
+    fs::path path_;
+    int fd_ = -1;
+};
+
+// One step on the stream with a deadline; the error it ended with.
+template <class Start>
+beast::error_code step(net::io_context& io, TlsStream& stream, std::chrono::milliseconds timeout, Start start) {
+    bool done = false;
+    beast::error_code ec;
+    beast::get_lowest_layer(stream).expires_after(timeout);
+    start([&](beast::error_code e, std::size_t) {
+        ec = e;
+        done = true;
+    });
+    if (!run_until(io, done, Clock::now() + timeout + std::chrono::seconds(1),
+                   [&] { beast::get_lowest_layer(stream).close(); }))
+        return beast::error::timeout;
+    return ec;
+}
+
+std::string seconds(std::chrono::milliseconds ms) { return std::to_string(ms.count() / 1000) + " s"; }
+
+// The provider's answer: 200 with the put_status done, or an error it explains.
+std::optional<http::response<http::string_body>> read_answer(net::io_context& io, TlsStream& stream,
+                                                             std::chrono::milliseconds timeout,
+                                                             beast::error_code& ec) {
+    beast::flat_buffer buffer;
+    http::response_parser<http::string_body> parser;
+    parser.body_limit(kMaxAnswerBytes);
+    ec = step(io, stream, timeout, [&](auto h) { http::async_read(stream, buffer, parser, h); });
+    if (ec) return std::nullopt;
+    return parser.release();
+}
+
+p::PutStatus interpret(const http::response<http::string_body>& answer) {
+    const auto parsed = p::parse_message(answer.body(), p::kRequesterLimits);
+    const auto* m = std::get_if<p::Message>(&parsed);
+    const unsigned status = answer.result_int();
+    if (status == 200) {
+        const auto* done = m ? std::get_if<p::PutStatus>(m) : nullptr;
+        if (!done || done->status != p::PutState::done)
+            throw GrabFailure("protocol", "the provider's answer to the upload is not a put_status done", kConnection);
+        return *done;
+    }
+    const auto* e = m ? std::get_if<p::Error>(m) : nullptr;
+    const std::string why = e ? e->message : "HTTP status " + std::to_string(status);
+    if (status == 404)
+        throw GrabFailure("not_found", "the upload link is unknown, used or expired (" + why + "); put again",
+                          kNothing);
+    if (e && e->code == p::ErrorCode::too_large)
+        throw GrabFailure("too_large", "the screen has no room for the file: " + why, kNothing);
+    throw GrabFailure(e ? p::to_string(e->code) : "upload", "the upload failed: " + why, kConnection);
+}
+
+}  // namespace
+
+p::PutStatus upload_file(const PairingUrl& provider, const UploadRequest& request, const UploadProgress& progress,
+                         const NetTimeouts& timeouts) {
+    if (request.size < 0) throw input_failure("a negative size cannot be uploaded");
+    ReadOnlyFile file(request.file);
+    net::io_context io;
+    auto tls = make_pinned_client_context();
+    TlsStream stream(io.get_executor(), tls);
+    connect_pinned(io, stream, provider, timeouts);
+
+    http::request<http::buffer_body> req(http::verb::put, request.path, 11);
+    req.set(http::field::host, provider.authority());
+    req.set(http::field::user_agent, "umf-requester/" UMF_VERSION);
+    req.set(http::field::content_type, "application/octet-stream");
+    req.set(http::field::connection, "close");
+    req.content_length(static_cast<std::uint64_t>(request.size));
+    req.body().data = nullptr;
+    req.body().more = true;
+    http::request_serializer<http::buffer_body> serializer(req);
+
+    const auto idle = timeouts.download_idle;
+    auto ec = step(io, stream, idle, [&](auto h) { http::async_write_header(stream, serializer, h); });
+    std::array<char, kPieceBytes> piece{};
+    std::int64_t sent = 0;
+    while (!ec) {
+        const auto want = static_cast<std::size_t>(
+            std::min<std::int64_t>(static_cast<std::int64_t>(piece.size()), request.size - sent));
+        const std::size_t n = file.read(piece.data(), want);
+        if (n < want)
+            throw input_failure(request.file.string() + " became shorter while it was being sent (" +
+                                std::to_string(sent + static_cast<std::int64_t>(n)) + " of " +
+                                std::to_string(request.size) + " bytes); put it again");
+        const bool last = sent + static_cast<std::int64_t>(n) >= request.size;
+        req.body().data = n ? piece.data() : nullptr;
+        req.body().size = n;
+        req.body().more = !last;
+        ec = step(io, stream, idle, [&](auto h) { http::async_write(stream, serializer, h); });
+        if (ec == http::error::need_buffer) ec = {};
+        if (ec) break;
+        sent += static_cast<std::int64_t>(n);
+        if (progress) progress(sent, request.size);
+        if (last) break;
+    }
+
+    beast::error_code read_ec;
+    // A provider that refuses early (no room, a used link) answers and
+    // closes while the bytes still flow: its answer says more than the
+    // broken write.
+    auto answer = read_answer(io, stream, ec ? kLateAnswerWait : idle + std::chrono::seconds(30), read_ec);
+    beast::error_code ignored;
+    beast::get_lowest_layer(stream).socket().close(ignored);
+    if (answer) return interpret(*answer);
+    if (ec == beast::error::timeout)
+        throw upload_failure("the upload stalled: the provider took nothing for " + seconds(idle));
+    if (ec)
+        throw upload_failure("the upload broke off after " + std::to_string(sent) + " of " +
+                             std::to_string(request.size) + " bytes: " + ec.message());
+    if (read_ec == beast::error::timeout)
+        throw upload_failure("the provider did not answer the upload");
+    throw upload_failure("cannot read the provider's answer to the upload: " + read_ec.message());
+}
+
+}  // namespace umf::requester
