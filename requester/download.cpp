@@ -84,22 +84,6 @@ private:
     bool kept_ = false;
 };
 
-// One step on the stream with the idle timeout; the error it ended with.
-template <class Start>
-beast::error_code step(net::io_context& io, TlsStream& stream, std::chrono::milliseconds timeout, Start start) {
-    bool done = false;
-    beast::error_code ec;
-    beast::get_lowest_layer(stream).expires_after(timeout);
-    start([&](beast::error_code e, std::size_t) {
-        ec = e;
-        done = true;
-    });
-    if (!run_until(io, done, Clock::now() + timeout + std::chrono::seconds(1),
-                   [&] { beast::get_lowest_layer(stream).close(); }))
-        return beast::error::timeout;
-    return ec;
-}
-
 std::string seconds(std::chrono::milliseconds ms) { return std::to_string(ms.count() / 1000) + " s"; }
 
 }  // namespace
@@ -133,13 +117,13 @@ SavedFile download_file(const PairingUrl& provider, const DownloadRequest& reque
     req.set(http::field::host, provider.authority());
     req.set(http::field::user_agent, "umf-requester/" UMF_VERSION);
     req.set(http::field::connection, "close");
-    auto ec = step(io, stream, timeouts.download_idle, [&](auto h) { http::async_write(stream, req, h); });
+    auto ec = run_step(io, stream, timeouts.download_idle, [&](auto h) { http::async_write(stream, req, h); });
     if (ec) throw download_failure("cannot request " + request.path + ": " + ec.message());
 
     beast::flat_buffer buffer;
     http::response_parser<http::buffer_body> parser;
     parser.body_limit(std::max<std::uint64_t>(static_cast<std::uint64_t>(request.size), kMaxErrorBodyBytes));
-    ec = step(io, stream, timeouts.download_idle,
+    ec = run_step(io, stream, timeouts.download_idle,
               [&](auto h) { http::async_read_header(stream, buffer, parser, h); });
     if (ec == beast::error::timeout)
         throw download_failure("the provider sent no answer to the download within " + seconds(timeouts.download_idle));
@@ -162,7 +146,7 @@ SavedFile download_file(const PairingUrl& provider, const DownloadRequest& reque
     while (!parser.is_done()) {
         parser.get().body().data = chunk.data();
         parser.get().body().size = chunk.size();
-        ec = step(io, stream, timeouts.download_idle, [&](auto h) { http::async_read(stream, buffer, parser, h); });
+        ec = run_step(io, stream, timeouts.download_idle, [&](auto h) { http::async_read(stream, buffer, parser, h); });
         if (ec == http::error::need_buffer) ec = {};
         const std::size_t n = chunk.size() - parser.get().body().size;
         if (ec == beast::error::timeout)

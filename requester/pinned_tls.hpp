@@ -7,6 +7,7 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ssl/context.hpp>
+#include <boost/beast/core/error.hpp>
 #include <boost/beast/core/tcp_stream.hpp>
 #include <boost/beast/ssl/ssl_stream.hpp>
 #include <chrono>
@@ -41,6 +42,25 @@ boost::asio::ssl::context make_pinned_client_context();
 // The caller's operation must be outstanding, or io have a work guard.
 bool run_until(boost::asio::io_context& io, const bool& done, std::chrono::steady_clock::time_point deadline,
                const std::function<void()>& cancel);
+
+// One read or write on `stream` with a deadline of `timeout` (the socket's
+// own expiry, and run_until's as a backstop): `start(handler)` begins it.
+// Returns the error it ended with, beast::error::timeout when it did not end.
+template <class Start>
+boost::beast::error_code run_step(boost::asio::io_context& io, TlsStream& stream, std::chrono::milliseconds timeout,
+                                  Start start) {
+    bool done = false;
+    boost::beast::error_code ec;
+    boost::beast::get_lowest_layer(stream).expires_after(timeout);
+    start([&](boost::beast::error_code e, std::size_t) {
+        ec = e;
+        done = true;
+    });
+    if (!run_until(io, done, std::chrono::steady_clock::now() + timeout + std::chrono::seconds(1),
+                   [&] { boost::beast::get_lowest_layer(stream).close(); }))
+        return boost::beast::error::timeout;
+    return ec;
+}
 
 // Resolves the URL's host, connects (timeouts.connect) and completes the TLS
 // handshake (timeouts.handshake) with SNI for host names, accepting the peer

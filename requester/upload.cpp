@@ -65,22 +65,6 @@ private:
     int fd_ = -1;
 };
 
-// One step on the stream with a deadline; the error it ended with.
-template <class Start>
-beast::error_code step(net::io_context& io, TlsStream& stream, std::chrono::milliseconds timeout, Start start) {
-    bool done = false;
-    beast::error_code ec;
-    beast::get_lowest_layer(stream).expires_after(timeout);
-    start([&](beast::error_code e, std::size_t) {
-        ec = e;
-        done = true;
-    });
-    if (!run_until(io, done, Clock::now() + timeout + std::chrono::seconds(1),
-                   [&] { beast::get_lowest_layer(stream).close(); }))
-        return beast::error::timeout;
-    return ec;
-}
-
 std::string seconds(std::chrono::milliseconds ms) { return std::to_string(ms.count() / 1000) + " s"; }
 
 // The provider's answer: 200 with the put_status done, or an error it explains.
@@ -90,7 +74,7 @@ std::optional<http::response<http::string_body>> read_answer(net::io_context& io
     beast::flat_buffer buffer;
     http::response_parser<http::string_body> parser;
     parser.body_limit(kMaxAnswerBytes);
-    ec = step(io, stream, timeout, [&](auto h) { http::async_read(stream, buffer, parser, h); });
+    ec = run_step(io, stream, timeout, [&](auto h) { http::async_read(stream, buffer, parser, h); });
     if (ec) return std::nullopt;
     return parser.release();
 }
@@ -137,7 +121,7 @@ p::PutStatus upload_file(const PairingUrl& provider, const UploadRequest& reques
     http::request_serializer<http::buffer_body> serializer(req);
 
     const auto idle = timeouts.download_idle;
-    auto ec = step(io, stream, idle, [&](auto h) { http::async_write_header(stream, serializer, h); });
+    auto ec = run_step(io, stream, idle, [&](auto h) { http::async_write_header(stream, serializer, h); });
     std::array<char, kPieceBytes> piece{};
     std::int64_t sent = 0;
     while (!ec) {
@@ -152,7 +136,7 @@ p::PutStatus upload_file(const PairingUrl& provider, const UploadRequest& reques
         req.body().data = n ? piece.data() : nullptr;
         req.body().size = n;
         req.body().more = !last;
-        ec = step(io, stream, idle, [&](auto h) { http::async_write(stream, serializer, h); });
+        ec = run_step(io, stream, idle, [&](auto h) { http::async_write(stream, serializer, h); });
         if (ec == http::error::need_buffer) ec = {};
         if (ec) break;
         sent += static_cast<std::int64_t>(n);

@@ -16,6 +16,7 @@
 
 #include "board/board.hpp"
 #include "sim/camera.hpp"
+#include "support/files.hpp"
 #include "support/process.hpp"
 #include "support/temp_dir.hpp"
 
@@ -26,32 +27,10 @@ using umf::test::TempDir;
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 using umf::test::ChildProcess;
+using umf::test::read_file;
 using umf::test::run_command;
-
-std::string read_file(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-void write_file(const fs::path& p, const std::string& bytes) {
-    std::ofstream out(p, std::ios::binary);
-    out << bytes;
-}
-
-// Bytes that differ per item and are not all text.
-std::string item_bytes(int i, std::size_t size) {
-    std::string s(size, '\0');
-    std::uint32_t x = 2463534242u + i;
-    for (auto& c : s) {
-        x ^= x << 13;
-        x ^= x >> 17;
-        x ^= x << 5;
-        c = static_cast<char>(x & 0xff);
-    }
-    return s;
-}
+using umf::test::seeded_bytes;
+using umf::test::write_file;
 
 class GrabEndToEnd : public ::testing::Test {
 protected:
@@ -65,7 +44,7 @@ protected:
             {"notes.txt", 700}, {"diagram.png", 50'000}, {"report.pdf", 300'000}, {"table.csv", 1}};
         board_json = {{"format", "umf-board/1"}, {"title", "End-to-end board"}, {"columns", 3}, {"items", json::array()}};
         for (std::size_t i = 0; i < files.size(); ++i) {
-            write_file(dir.path / files[i].first, item_bytes(static_cast<int>(i), files[i].second));
+            write_file(dir.path / files[i].first, seeded_bytes(2463534242u + static_cast<std::uint32_t>(i), files[i].second));
             board_json["items"].push_back({{"title", "Item " + std::to_string(i)}, {"file", files[i].first}});
         }
         board_json["items"].push_back({{"title", "Project site"}, {"url", "https://example.org/umf?a=1&b=2"}});

@@ -97,7 +97,20 @@ public:
         if (!pending_.empty()) output_ += pending_;
         pending_.clear();
         if (pid_ <= 0) return exit_code_;
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        return reap(std::chrono::seconds(5));
+    }
+
+    // SIGTERM, then the exit code (or -1 when it had to be killed).
+    int stop(std::chrono::milliseconds grace = std::chrono::seconds(10)) {
+        if (pid_ <= 0) return exit_code_;
+        ::kill(pid_, SIGTERM);
+        return reap(grace);
+    }
+
+private:
+    // Waits up to `grace` for the exit, then kills: the exit code, or -1.
+    int reap(std::chrono::milliseconds grace) {
+        const auto deadline = std::chrono::steady_clock::now() + grace;
         int status = 0;
         while (::waitpid(pid_, &status, WNOHANG) == 0) {
             if (std::chrono::steady_clock::now() > deadline) {
@@ -112,26 +125,6 @@ public:
         return exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     }
 
-    // SIGTERM, then the exit code (or -1 when it had to be killed).
-    int stop(std::chrono::milliseconds grace = std::chrono::seconds(10)) {
-        if (pid_ <= 0) return exit_code_;
-        ::kill(pid_, SIGTERM);
-        const auto deadline = std::chrono::steady_clock::now() + grace;
-        int status = 0;
-        while (::waitpid(pid_, &status, WNOHANG) == 0) {
-            if (std::chrono::steady_clock::now() > deadline) {
-                ::kill(pid_, SIGKILL);
-                ::waitpid(pid_, &status, 0);
-                pid_ = 0;
-                return exit_code_ = -1;
-            }
-            ::usleep(20000);
-        }
-        pid_ = 0;
-        return exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    }
-
-private:
     pid_t pid_ = 0;
     int out_fd_ = -1;
     int exit_code_ = -1;
