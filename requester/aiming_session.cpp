@@ -236,8 +236,7 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
     std::optional<double> timeout = o_.timeout_s;
     if (!timeout && live) timeout = kDefaultCameraTimeoutS;
 
-    std::unique_ptr<Preview> preview;
-    if (o_.window) preview = std::make_unique<Preview>("umf-requester " + action.verb + " - " + welcome_.provider.name);
+    if (o_.window) preview_ = std::make_unique<Preview>("umf-requester " + action.verb + " - " + welcome_.provider.name);
     status_.provider = welcome_.provider.name;
     status_.auto_act = o_.auto_act;
     status_.verb = action.verb;
@@ -311,23 +310,32 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
 
         PreviewKey key = PreviewKey::none;
         status_.state = locked ? PreviewState::locked : PreviewState::searching;
-        if (preview) {
+        if (preview_) {
             // A recording plays at its own pace for whoever watches it.
             const int wait_ms = !live && fps > 0 ? std::max(1, static_cast<int>(1000 / fps)) : 1;
-            key = show(*preview, frame->pixels, wait_ms);
+            key = show(*preview_, frame->pixels, wait_ms);
         }
         if (key == PreviewKey::quit) throw GrabFailure("cancelled", "cancelled before a " + action.verb, kNothing);
         if (key == PreviewKey::act && !locked) log("not locked on the field yet: point at the screen");
         if (locked && ((o_.auto_act && steady) || key == PreviewKey::act)) {
-            if (preview) {
+            if (preview_) {
+                last_frame_ = frame->pixels.clone();
                 status_.state = PreviewState::acting;
-                show(*preview, frame->pixels, 1);
+                show(*preview_, last_frame_, 1);
             }
             return act_at(r.aim_field, action);
         }
     }
     if (frames == 0) throw input_failure("the video " + o_.path + " has no frames OpenCV can read");
     end_without_act(action, ever_locked, ever_steady, false, 0);
+}
+
+void AimingSession::show_progress(const std::string& message) {
+    if (!preview_ || last_frame_.empty()) return;
+    status_.state = PreviewState::acting;
+    status_.message = message;
+    if (show(*preview_, last_frame_, 1) == PreviewKey::quit)
+        throw GrabFailure("cancelled", "cancelled while " + message, kNothing);
 }
 
 PreviewKey AimingSession::show(Preview& preview, const cv::Mat& frame, int wait_ms) {

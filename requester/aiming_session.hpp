@@ -72,6 +72,11 @@ public:
     // The point the action ran at, once it has.
     std::optional<protocol::FieldPoint> acted_point() const { return acted_point_; }
 
+    // While the action waits (for a person, an upload): the preview, if
+    // any, shows the last frame with `message` and stays responsive. Throws
+    // GrabFailure "cancelled" when the user quits meanwhile.
+    void show_progress(const std::string& message);
+
 private:
     protocol::RequestId next_id();
     void send_aim(const Eigen::Vector2d& point, const Detection& d, int w, int h);
@@ -93,6 +98,8 @@ private:
     std::optional<protocol::RequestId> last_aim_id_;
     std::optional<protocol::FieldPoint> acted_point_;
     PreviewStatus status_;
+    std::unique_ptr<Preview> preview_;
+    cv::Mat last_frame_;
     std::string last_logged_title_ = "\x01";
     std::string last_logged_error_;
 };

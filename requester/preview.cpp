@@ -119,11 +119,16 @@ cv::Mat Preview::render(const cv::Mat& frame, const PreviewStatus& status) {
         case PreviewState::acting:
             crosshair(img, kAmber);
             cv::circle(img, centre, ring, kAmber, 3, cv::LINE_AA);
-            banner(img, status.verb == "put" ? "putting..." : "grabbing...", kAmber, true);
+            banner(img,
+                   !status.message.empty() ? ascii(status.message, 80)
+                   : status.verb == "put"  ? "putting..."
+                                           : "grabbing...",
+                   kAmber, true);
             break;
     }
-    const std::string hint = status.auto_act ? "hold steady to " + status.verb + " - q / Esc quits"
-                                             : "space / Enter " + status.verb + "s - q / Esc quits";
+    const std::string hint = status.state == PreviewState::acting ? std::string("q / Esc cancels")
+                             : status.auto_act ? "hold steady to " + status.verb + " - q / Esc quits"
+                                               : "space / Enter " + status.verb + "s - q / Esc quits";
     banner(img, ascii((status.provider.empty() ? "" : status.provider + " - ") + hint, 100), cv::Scalar(60, 60, 60),
            false);
     return img;

@@ -22,6 +22,7 @@ struct PreviewStatus {
     std::string provider;      // "desk-1", shown in the corner
     bool auto_act = false;     // the hint line says a steady aim grabs (puts)
     std::string verb = "grab";  // "grab" or "put"
+    std::string message;        // while acting: what is happening ("waiting for the screen...")
 };
 
 class Preview {

@@ -177,7 +177,7 @@ private:
             switch (status->status) {
                 case p::PutState::asking:
                     log("waiting for the person at the screen to accept it (up to 30 s)");
-                    reply = connection.wait_reply(put.id, "put", kAnswerWait);
+                    reply = wait_for_answer(put.id);
                     continue;
                 case p::PutState::upload: {
                     if (!file_ || !status->upload)
@@ -192,10 +192,36 @@ private:
         }
     }
 
+    // The screen's answer, the preview kept alive meanwhile (q quits: the
+    // session closes and the screen takes its prompt down).
+    p::Message wait_for_answer(const p::RequestId& id) {
+        using Clock = std::chrono::steady_clock;
+        const auto start = Clock::now();
+        for (;;) {
+            const auto waited = std::chrono::duration_cast<std::chrono::seconds>(Clock::now() - start);
+            const long left = std::max<long>(0, 30 - static_cast<long>(waited.count()));
+            session_.show_progress("waiting for the screen to accept (" + std::to_string(left) + " s)");
+            try {
+                return session_.connection().wait_reply(id, "put", std::chrono::milliseconds(100));
+            } catch (const GrabFailure& f) {
+                if (f.code != "timeout") throw;
+                if (Clock::now() - start >= kAnswerWait)
+                    throw GrabFailure("timeout",
+                                      "the screen sent no answer within " + std::to_string(kAnswerWait.count()) + " s",
+                                      kConnection);
+            }
+        }
+    }
+
     p::PutStatus upload(const std::string& link) {
         auto last = std::chrono::steady_clock::now();
+        auto shown = last;
         const auto progress = [&](std::int64_t sent, std::int64_t size) {
             const auto now = std::chrono::steady_clock::now();
+            if (sent == size || now - shown >= std::chrono::milliseconds(100)) {
+                shown = now;
+                session_.show_progress("sending " + std::to_string(size ? sent * 100 / size : 100) + " %");
+            }
             if (sent < size && now - last < std::chrono::seconds(1)) return;
             last = now;
             log("sent " + megabytes(sent) + " of " + megabytes(size));
