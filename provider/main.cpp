@@ -30,7 +30,7 @@ usage:
   umf-provider [serve] [--board BOARD.json] [--preset NAME] [--port P] [--headless]
                [--screen WxH] [--public] [--bind ADDR] [--host HOST] [--web DIR]
                [--config-dir DIR] [--no-qr] [--no-overlay] [--tune]
-               [--puts ask|always|never] [--put-dir DIR]
+               [--puts ask|always|never] [--put-dir DIR] [--put-max-mb N]
   umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate] [--no-qr]
   umf-provider share FILE|URL --rect X,Y,W,H [--title T] [--screen N] [--port P]
   umf-provider share --list | --remove ID [--port P]
@@ -85,6 +85,9 @@ compose  writes the screen exactly as shown at time T (content, the board over
               --public takes no puts unless --puts is given.
 --put-dir     where accepted files are saved (default: the XDG download folder,
               else ~/Downloads).
+--put-max-mb  the largest file a put may bring, in megabytes (default 4295, 4 GiB);
+              larger ones, and any beyond the folder's free space, are refused
+              with too_large before anyone is asked.
 --web         serve the web client from DIR (default: the phone page this build
               made, else a page saying how to pair). Phones use it over the
               WebSocket at /ws, or over HTTPS requests under /api/ where the

@@ -9,9 +9,10 @@
 #
 # Writes overlay-desktop.png (the field over the desktop), overlay-focus.png
 # (the field only around a requester's aim, with the pointer ring and title),
+# put-prompt.png (the card asking whether to take a file a phone puts),
 # tuning-window.png (umf-provider --tune) and, when trayer is installed,
-# tray-menu.png (the tray icon's menu). The aim comes from a small Python
-# client speaking docs/PROTOCOL.md to the provider on 127.0.0.1.
+# tray-menu.png (the tray icon's menu). The aim and the put come from small
+# Python clients speaking docs/PROTOCOL.md to the provider on 127.0.0.1.
 #
 # Needs: xvfb openbox xcompmgr xterm mupdf xdotool imagemagick (import,
 # convert) python3 with python3-websockets; trayer for the tray menu.
@@ -232,6 +233,43 @@ async def main():
 asyncio.run(main())
 EOF
 
+# The put: hello with a device name (so the card offers "always"), an aim at
+# the field point given, then a file put there; writes the put's first
+# answer to the file given once the provider is asking the screen, and
+# keeps aiming (so the ring stays) until killed. Nothing is uploaded.
+cat >"$work/put.py" <<'EOF'
+import asyncio, json, ssl, sys
+import websockets
+
+url, token, u, v, ready = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4]), sys.argv[5]
+
+async def main():
+    tls = ssl.SSLContext(ssl.PROTOCOL_TLS_CLIENT)
+    tls.check_hostname = False
+    tls.verify_mode = ssl.CERT_NONE  # a screenshot tool on 127.0.0.1: the provider's certificate is self-signed
+    async with websockets.connect(url, ssl=tls, max_size=1 << 20) as ws:
+        await ws.send(json.dumps({"type": "hello", "v": 1, "id": 1, "token": token, "client": "Pixel 7",
+                                  "device": "screenshots-pixel-7"}))
+        welcome = json.loads(await ws.recv())
+        if welcome.get("type") != "welcome" or "put" not in welcome.get("features", []):
+            sys.exit(f"put.py: no welcome with puts: {welcome}")
+        await ws.send(json.dumps({"type": "aim", "v": 1, "id": 2, "point": [u, v], "confidence": 0.9}))
+        await ws.recv()
+        await ws.send(json.dumps({"type": "put", "v": 1, "id": "p1", "point": [u, v], "kind": "file",
+                                  "name": "q3-report-final.pdf", "mime": "application/pdf", "size": 2411724,
+                                  "sha256": "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08"}))
+        reply = json.loads(await ws.recv())
+        with open(ready, "w") as f:
+            f.write(f'{reply.get("type")}: {reply.get("status", reply.get("message", ""))}\n')
+        n = 2
+        while True:
+            await asyncio.sleep(0.3)
+            n += 1
+            await ws.send(json.dumps({"type": "aim", "v": 1, "id": n, "point": [u, v], "confidence": 0.9}))
+
+asyncio.run(main())
+EOF
+
 # --- The desktop --------------------------------------------------------------
 # Xvfb picks a free display and writes its number once it accepts clients.
 mkfifo "$work/display"
@@ -312,7 +350,35 @@ echo "aimed at: $(cat "$work/aimed")"
 stop "$aim_pid"
 stop_provider
 
-# 3. The tuning window. Without a tray: the screen it grabs for its preview
+# 3. A put: the card at the pointed place asks whether to take the file.
+# Taken as soon as the card shows, while its countdown bar is still whole
+# (it shrinks once a quarter second). The put folder is the script's own.
+start_provider --preset visible --period 0 --opacity-min 0.35 --opacity-max 0.35 --put-dir "$work/put"
+# A field point over the PDF's text, at pixel (420, 330).
+: >"$work/put-ready"
+spawn "$python" "$work/put.py" "wss://127.0.0.1:$port/ws" "$token" 14 11 "$work/put-ready" 2>"$work/put.log"
+put_pid=${pids[0]}
+wait_for "test -s '$work/put-ready'" 10 || { cat "$work/put.log" >&2; die "the put got no answer"; }
+grep -q '^put_status: asking' "$work/put-ready" || die "the put was not asked about: $(cat "$work/put-ready")"
+# The card: a window of umf-provider's the size of a card (the overlay
+# covers the screen, the ring is smaller).
+find_card() {
+    local w
+    for w in $(xdotool search --onlyvisible --class umf-provider); do
+        eval "$(xdotool getwindowgeometry --shell "$w")"
+        ((WIDTH >= 300 && WIDTH <= 460 && HEIGHT >= 80 && HEIGHT <= 300)) && { echo "$w"; return 0; }
+    done
+    return 1
+}
+wait_for find_card 5 || die "the put card did not show"
+sleep 0.05  # a frame for the compositor
+import -window root "$work/root.png"
+convert "$work/root.png" -crop 960x540+60+120 +repage -strip -colors 256 "PNG8:$out/put-prompt.png"
+written+=(put-prompt.png)
+stop "$put_pid"
+stop_provider
+
+# 4. The tuning window. Without a tray: the screen it grabs for its preview
 # would show the tray icon or not, as the race between the two went.
 # A preset of the user's own, static so that the window's preview, which
 # pulses with the preset, looks the same on every run; on demand, so the
@@ -349,7 +415,7 @@ written+=(tuning-window.png)
 
 stop_provider
 
-# 4. The tray menu.
+# 5. The tray menu.
 if ((tray)); then
     spawn trayer --edge bottom --align right --widthtype request --height 28 --SetDockType true \
         --transparent false --tint 0x2b3a48 >"$work/trayer.log" 2>&1

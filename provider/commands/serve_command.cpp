@@ -49,7 +49,7 @@ const char* const kServeOptions[] = {"port",         "bind",        "host",   "c
                                      "preset",       "screen",      "web",    "opacity-min", "opacity-max",
                                      "period",       "waveform",    "module-px", "blur",     "region",
                                      "focus-radius", "activation",  "fade",   "palette",     "puts",
-                                     "put-dir",      nullptr};
+                                     "put-dir",      "put-max-mb",  nullptr};
 const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", nullptr};
 
 namespace {
@@ -57,6 +57,21 @@ namespace {
 using cli::get;
 using cli::has_flag;
 using cli::UsageError;
+
+// PREFIX/share/umf/web for an installed provider (found from the program's
+// own place, so any prefix works), else the build tree's web/site.
+std::optional<std::filesystem::path> default_web_dir() {
+    std::error_code ec;
+    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const auto installed = self.parent_path().parent_path() / "share" / "umf" / "web";
+        if (std::filesystem::is_regular_file(installed / "index.html", ec)) return installed;
+    }
+#ifdef UMF_WEB_SITE_DIR
+    if (std::filesystem::is_directory(UMF_WEB_SITE_DIR, ec)) return std::filesystem::path(UMF_WEB_SITE_DIR);
+#endif
+    return std::nullopt;
+}
 
 bool have_display() {
     const char* x = std::getenv("DISPLAY");
@@ -97,6 +112,13 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     PutSettings put_settings;
     put_settings.folder = get(a, "put-dir") ? std::filesystem::path(*get(a, "put-dir")) : default_put_folder();
     put_settings.trusted_devices = dir / kTrustedDevicesFile;
+    if (const auto mb = get(a, "put-max-mb")) {
+        // Whole megabytes (10^6 bytes), up to 1 TB: a wall of photos wants a few, a desk gigabytes.
+        if (mb->empty() || mb->size() > 7 || mb->find_first_not_of("0123456789") != std::string::npos ||
+            std::stoll(*mb) < 1 || std::stoll(*mb) > 1'000'000)
+            throw UsageError("--put-max-mb takes a whole number of megabytes from 1 to 1000000, not '" + *mb + "'");
+        put_settings.max_bytes = std::stoll(*mb) * 1'000'000;
+    }
     if (puts_mode != "never") {
         std::error_code ec;
         std::filesystem::create_directories(put_settings.folder, ec);
@@ -169,74 +191,6 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         }
     }
 
-    std::vector<std::shared_ptr<const Resolver>> resolvers;
-    auto shared_items = std::make_shared<SharedItems>();
-    QImage screen_image(width, height, QImage::Format_RGB32);
-    screen_image.fill(Qt::black);
-    if (board) {
-        auto tiles = layout_board(*board, width, height);
-        screen_image = paint_board(*board, tiles, QSize(width, height));
-        resolvers.push_back(std::make_shared<BoardResolver>(*board, std::move(tiles)));
-    }
-    if (!public_mode) {
-        resolvers.push_back(shared_items);
-        if (headless) {
-            resolvers.push_back(std::make_shared<ImageSnapshotResolver>(screen_image));
-        } else if (const char* x = std::getenv("DISPLAY"); x && *x) {
-            // The windows under the point, never the provider's own.
-            try {
-                auto desktop = std::make_shared<const X11Desktop>();
-                X11WindowOptions options;
-                options.filter.own_pids.insert(static_cast<int>(::getpid()));
-                resolvers.push_back(std::make_shared<X11WindowResolver>(desktop, options));
-                auto snapshots = std::make_shared<X11SnapshotResolver>(desktop, options.filter, true);
-                if (overlay_manager) {
-                    // A snapshot shows the screen without the field. Called
-                    // from a server thread; the server stops before the Qt
-                    // loop does, so the blocking call always returns.
-                    OverlayManager* m = overlay_manager.get();
-                    snapshots->set_around_capture(
-                        [m] {
-                            QMetaObject::invokeMethod(m, [m] { m->hide_for_snapshot(); }, Qt::BlockingQueuedConnection);
-                            std::this_thread::sleep_for(std::chrono::milliseconds(OverlayManager::kSnapshotSettleMs));
-                        },
-                        [m] { QMetaObject::invokeMethod(m, [m] { m->show_after_snapshot(); }, Qt::QueuedConnection); });
-                }
-                resolvers.push_back(std::move(snapshots));
-            } catch (const std::exception& e) {
-                std::cerr << "umf-provider: windows cannot be looked up (" << e.what()
-                          << "); serving board and shared items only\n";
-            }
-        }
-    }
-
-    // The web client: --web DIR, else the one this build made when it is
-    // there, else the built-in page (std::nullopt).
-    std::optional<std::filesystem::path> web_dir;
-    if (auto web = get(a, "web")) {
-        web_dir = *web;
-    } else {
-#ifdef UMF_WEB_SITE_DIR
-        std::error_code ec;
-        if (std::filesystem::is_directory(UMF_WEB_SITE_DIR, ec)) web_dir = UMF_WEB_SITE_DIR;
-#endif
-    }
-    std::shared_ptr<const StaticSite> site;
-    try {
-        if (web_dir) site = std::make_shared<const StaticSite>(StaticSite::from_folder(*web_dir));
-    } catch (const std::exception& e) {
-        std::cerr << "umf-provider: " << e.what() << "\n";
-        return kConfigError;
-    }
-
-    // SIGINT and SIGTERM are taken with sigwait below; blocked before any
-    // thread starts, so none of the server's threads receives them.
-    sigset_t signals;
-    sigemptyset(&signals);
-    sigaddset(&signals, SIGINT);
-    sigaddset(&signals, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-
     // Who answers puts. Made before the server and released after it, on
     // this (the Qt) thread.
     std::shared_ptr<ControlPutDecider> put_answers;  // `umf-provider puts`
@@ -264,6 +218,88 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
                 std::vector<std::shared_ptr<PutDecider>>{put_prompt, put_answers});
         }
     }
+
+    std::vector<std::shared_ptr<const Resolver>> resolvers;
+    auto shared_items = std::make_shared<SharedItems>();
+    QImage screen_image(width, height, QImage::Format_RGB32);
+    screen_image.fill(Qt::black);
+    if (board) {
+        auto tiles = layout_board(*board, width, height);
+        screen_image = paint_board(*board, tiles, QSize(width, height));
+        resolvers.push_back(std::make_shared<BoardResolver>(*board, std::move(tiles)));
+    }
+    if (!public_mode) {
+        resolvers.push_back(shared_items);
+        if (headless) {
+            resolvers.push_back(std::make_shared<ImageSnapshotResolver>(screen_image));
+        } else if (const char* x = std::getenv("DISPLAY"); x && *x) {
+            // The windows under the point, never the provider's own.
+            try {
+                auto desktop = std::make_shared<const X11Desktop>();
+                X11WindowOptions options;
+                options.filter.own_pids.insert(static_cast<int>(::getpid()));
+                resolvers.push_back(std::make_shared<X11WindowResolver>(desktop, options));
+                auto snapshots = std::make_shared<X11SnapshotResolver>(desktop, options.filter, true);
+                if (overlay_manager || put_prompt) {
+                    // A snapshot shows the screen without the field and
+                    // without the put cards. Called from a server thread; the
+                    // server stops before the Qt loop does, so the blocking
+                    // call always returns.
+                    OverlayManager* m = overlay_manager.get();
+                    PutPromptDecider* cards = put_prompt.get();
+                    QObject* qt = QGuiApplication::instance();
+                    snapshots->set_around_capture(
+                        [m, cards, qt] {
+                            QMetaObject::invokeMethod(
+                                qt,
+                                [m, cards] {
+                                    if (m) m->hide_for_snapshot();
+                                    if (cards) cards->hide_for_snapshot();
+                                },
+                                Qt::BlockingQueuedConnection);
+                            std::this_thread::sleep_for(std::chrono::milliseconds(OverlayManager::kSnapshotSettleMs));
+                        },
+                        [m, cards, qt] {
+                            QMetaObject::invokeMethod(
+                                qt,
+                                [m, cards] {
+                                    if (m) m->show_after_snapshot();
+                                    if (cards) cards->show_after_snapshot();
+                                },
+                                Qt::QueuedConnection);
+                        });
+                }
+                resolvers.push_back(std::move(snapshots));
+            } catch (const std::exception& e) {
+                std::cerr << "umf-provider: windows cannot be looked up (" << e.what()
+                          << "); serving board and shared items only\n";
+            }
+        }
+    }
+
+    // The web client: --web DIR, else the installed one beside this program,
+    // else the one this build made, else the built-in page (std::nullopt).
+    std::optional<std::filesystem::path> web_dir;
+    if (auto web = get(a, "web")) {
+        web_dir = *web;
+    } else {
+        web_dir = default_web_dir();
+    }
+    std::shared_ptr<const StaticSite> site;
+    try {
+        if (web_dir) site = std::make_shared<const StaticSite>(StaticSite::from_folder(*web_dir));
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: " << e.what() << "\n";
+        return kConfigError;
+    }
+
+    // SIGINT and SIGTERM are taken with sigwait below; blocked before any
+    // thread starts, so none of the server's threads receives them.
+    sigset_t signals;
+    sigemptyset(&signals);
+    sigaddset(&signals, SIGINT);
+    sigaddset(&signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
     std::unique_ptr<Server> server;
     std::unique_ptr<ControlSocket> control;

@@ -546,4 +546,7 @@ std::optional<Resolved> X11WindowResolver::resolve(const ScreenPoint& point, Pur
     return resolved;
 }
 
+void ignore_x11_errors(Display* display) { ErrorHandlerRegistry::instance().add(display); }
+void forget_x11_errors(Display* display) { ErrorHandlerRegistry::instance().remove(display); }
+
 }  // namespace umf::provider

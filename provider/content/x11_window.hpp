@@ -60,6 +60,13 @@ struct Capture {
     std::vector<std::uint32_t> pixels;
 };
 
+// Xlib's error handler is process-wide and its default exits the process
+// (a window closed while it is looked at gives BadWindow). A connection of
+// the provider's own is registered so that its errors are ignored, since
+// each call's result tells of its failure; forget it before or as it closes.
+void ignore_x11_errors(struct _XDisplay* display);
+void forget_x11_errors(struct _XDisplay* display);
+
 // One connection to an X server, shared by the X11 resolvers; calls are
 // serialised on it, so it is thread-safe.
 class X11Desktop {

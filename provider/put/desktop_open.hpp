@@ -1,16 +1,21 @@
 // Opening a URL or a file with the desktop's default application: `xdg-open
 // TARGET`, found on PATH and started without a shell (posix_spawnp), fire and
 // forget; a thread of its own reaps the child when it ends. Tests put a fake
-// xdg-open first on PATH that records its argument.
+// xdg-open first on PATH that records its argument. With a place, the window
+// it brings up is moved there (window_placement.hpp), best effort.
 #pragma once
 
+#include <optional>
 #include <string>
+
+#include "put/window_placement.hpp"
 
 namespace umf::provider {
 
 // True when xdg-open was started (not whether it found an application);
 // false with the reason in `problem` otherwise. The target goes as the one
 // argument; one that starts with '-' is refused, so it is never an option.
-bool open_with_desktop(const std::string& target, std::string* problem = nullptr);
+bool open_with_desktop(const std::string& target, std::string* problem = nullptr,
+                       std::optional<WindowPlacement> place = std::nullopt);
 
 }  // namespace umf::provider

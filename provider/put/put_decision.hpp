@@ -37,7 +37,9 @@ enum class PutAnswer {
 
 struct PutReply {
     PutAnswer answer = PutAnswer::dismiss;
-    bool always_from_device = false;  // remember: accept this device's puts without asking
+    // Remember: accept this device's puts without asking, its files saved or
+    // opened as this answer says (trusted_devices.hpp).
+    bool always_from_device = false;
 };
 
 class PutDecider {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "put/desktop_open.hpp"
+#include "put/put_deciders.hpp"
 #include "put/upload_sink.hpp"
 
 namespace umf::provider {
@@ -22,15 +23,58 @@ std::string seconds_text(std::chrono::milliseconds ms) {
 
 }  // namespace
 
-std::shared_ptr<PutDesk> PutDesk::create(std::shared_ptr<PutDecider> decider, PutSettings settings) {
-    return std::shared_ptr<PutDesk>(new PutDesk(std::move(decider), std::move(settings)));
+std::shared_ptr<PutDesk> PutDesk::create(std::shared_ptr<PutDecider> decider, PutSettings settings,
+                                         std::shared_ptr<ActivityListener> activity) {
+    return std::shared_ptr<PutDesk>(new PutDesk(std::move(decider), std::move(settings), std::move(activity)));
 }
 
-PutDesk::PutDesk(std::shared_ptr<PutDecider> decider, PutSettings settings)
+PutDesk::PutDesk(std::shared_ptr<PutDecider> decider, PutSettings settings, std::shared_ptr<ActivityListener> activity)
     : decider_(std::move(decider)),
       settings_(std::move(settings)),
       trusted_(settings_.trusted_devices),
-      uploads_(settings_.upload_ttl) {}
+      uploads_(settings_.upload_ttl),
+      activity_(std::move(activity)) {}
+
+PutActivity PutDesk::activity_of(const PutOffer& offer, std::uint64_t session, PutStage stage) {
+    PutActivity a;
+    a.session = session;
+    a.stage = stage;
+    a.kind = offer.kind;
+    a.name = offer.kind == p::ContentKind::url ? offer.title : offer.name;
+    a.url = offer.url;
+    a.size = offer.size;
+    a.device = offer.device;
+    return a;
+}
+
+void PutDesk::report(const PutOffer& offer, std::uint64_t session, PutStage stage, std::string detail,
+                     bool asked) const {
+    if (!activity_) return;
+    PutActivity a = activity_of(offer, session, stage);
+    a.detail = std::move(detail);
+    a.asked = asked;
+    activity_->put(a);
+}
+
+void PutDesk::report(const UploadEntry& entry, PutStage stage, std::string path, std::string detail) const {
+    if (!activity_) return;
+    PutActivity a;
+    a.session = entry.session;
+    a.stage = stage;
+    a.kind = p::ContentKind::file;
+    a.name = entry.name;
+    a.size = entry.size;
+    a.path = std::move(path);
+    a.detail = std::move(detail);
+    activity_->put(a);
+}
+
+std::optional<WindowPlacement> PutDesk::placement(const std::optional<ScreenPoint>& at) const {
+    if (!at || !screen_rects_) return std::nullopt;
+    const auto screen = screen_rects_(at->screen);
+    if (!screen) return std::nullopt;
+    return WindowPlacement{at->root_x, at->root_y, *screen};
+}
 
 PutDesk::~PutDesk() { stop(); }
 
@@ -88,19 +132,22 @@ void PutDesk::session_ended(std::uint64_t session) {
         std::lock_guard lock(outbox_mutex_);
         outboxes_.erase(session);
     }
-    std::vector<std::uint64_t> withdrawn;
+    std::vector<Pending> withdrawn;
     {
         std::lock_guard lock(mutex_);
         for (auto it = pending_.begin(); it != pending_.end();) {
             if (it->second.session == session) {
-                withdrawn.push_back(it->first);
+                withdrawn.push_back(std::move(it->second));
                 it = pending_.erase(it);
             } else {
                 ++it;
             }
         }
     }
-    for (std::uint64_t id : withdrawn) decider_->withdraw(id);
+    for (const Pending& pending : withdrawn) {
+        decider_->withdraw(pending.offer.id);
+        report(pending.offer, pending.session, PutStage::withdrawn);
+    }
 }
 
 p::Message PutDesk::offer(const PutRequester& who, const p::Put& put, std::optional<ScreenPoint> at) {
@@ -125,18 +172,22 @@ p::Message PutDesk::offer(const PutRequester& who, const p::Put& put, std::optio
         offer.size = *put.size;
         pending.sha256 = *put.sha256;
         // Before anyone is asked: a file that cannot land is refused now.
+        const auto refuse = [&](p::ErrorCode code, std::string why) -> p::Message {
+            report(offer, who.session, PutStage::refused, why, false);
+            return p::Error{put.id, code, std::move(why)};
+        };
         if (offer.size > settings_.max_bytes)
-            return p::Error{put.id, p::ErrorCode::too_large,
-                            offer.name + " is " + std::to_string(offer.size) + " bytes, more than the limit of " +
-                                std::to_string(settings_.max_bytes)};
+            return refuse(p::ErrorCode::too_large, offer.name + " is " + std::to_string(offer.size) +
+                                                       " bytes, more than the limit of " +
+                                                       std::to_string(settings_.max_bytes));
         std::error_code ec;
         std::filesystem::create_directories(settings_.folder, ec);
         const auto room = free_bytes(settings_.folder);
-        if (!room) return p::Error{put.id, p::ErrorCode::internal, "the provider cannot use its put folder"};
+        if (!room) return refuse(p::ErrorCode::internal, "the provider cannot use its put folder");
         if (static_cast<std::uintmax_t>(offer.size) > *room)
-            return p::Error{put.id, p::ErrorCode::too_large,
-                            offer.name + " is " + std::to_string(offer.size) + " bytes; the provider's folder has " +
-                                std::to_string(*room) + " bytes free"};
+            return refuse(p::ErrorCode::too_large, offer.name + " is " + std::to_string(offer.size) +
+                                                       " bytes; the provider's folder has " + std::to_string(*room) +
+                                                       " bytes free");
     } else {
         return p::Error{put.id, p::ErrorCode::bad_request, "a put is a url or a file"};
     }
@@ -146,7 +197,8 @@ p::Message PutDesk::offer(const PutRequester& who, const p::Put& put, std::optio
         if (stopping_) return p::Error{put.id, p::ErrorCode::refused, "the provider is stopping"};
         offer.id = next_offer_++;
     }
-    if (trusted_.contains(offer.device)) return act(pending, PutReply{PutAnswer::save, false});
+    // A trusted device's files do what was chosen with "always"; its URLs open.
+    if (const auto files = trusted_.files_answer(offer.device)) return act(pending, PutReply{*files, false}, Via::trusted);
 
     const std::uint64_t id = offer.id;
     {
@@ -164,6 +216,7 @@ p::Message PutDesk::offer(const PutRequester& who, const p::Put& put, std::optio
     } catch (const std::exception& e) {
         std::lock_guard lock(mutex_);
         pending_.erase(id);
+        report(offer, who.session, PutStage::failed, std::string("the screen cannot ask: ") + e.what(), false);
         return p::Error{put.id, p::ErrorCode::internal, std::string("the screen cannot ask: ") + e.what()};
     }
     std::optional<PutReply> early;
@@ -173,13 +226,18 @@ p::Message PutDesk::offer(const PutRequester& who, const p::Put& put, std::optio
         if (it != pending_.end()) {
             it->second.in_ask = false;
             early = it->second.early;
-            if (early) pending_.erase(it);
+            if (early)
+                pending_.erase(it);
+            else
+                // Under the lock: an answer from another thread waits for
+                // this line, so the console never tells the answer first.
+                report(offer, who.session, PutStage::asking);
         }
     }
     wake_.notify_all();
     // Answered before ask returned (a fixed policy): the answer is the reply
     // itself, so it cannot overtake an "asking".
-    if (early) return act(pending, *early);
+    if (early) return act(pending, *early, Via::at_once);
     return p::PutStatus{put.id, p::PutState::asking, std::nullopt, std::nullopt, std::nullopt};
 }
 
@@ -196,17 +254,36 @@ void PutDesk::answered(std::uint64_t offer, PutReply reply) {
         pending = std::move(it->second);
         pending_.erase(it);
     }
-    push(pending.session, act(pending, reply));
+    push(pending.session, act(pending, reply, Via::asked));
 }
 
-p::Message PutDesk::act(const Pending& pending, const PutReply& reply) {
+p::Message PutDesk::act(const Pending& pending, const PutReply& reply, Via via) {
     const PutOffer& offer = pending.offer;
-    if (reply.answer == PutAnswer::dismiss)
+    const bool asked = via == Via::asked;
+    if (reply.answer == PutAnswer::dismiss) {
+        report(offer, pending.session, PutStage::refused, asked ? "declined at the screen" : "the provider takes no puts",
+               asked);
         return p::Error{pending.id, p::ErrorCode::refused, "the person at the screen declined it"};
-    if (reply.always_from_device && !offer.device.empty()) trusted_.add(offer.device);
-    if (offer.kind == p::ContentKind::url) {
+    }
+    const bool url = offer.kind == p::ContentKind::url;
+    const bool always = reply.always_from_device && !offer.device.empty();
+    // A URL's "always" says nothing of files: a known device keeps its choice.
+    if (always) trusted_.add(offer.device, url ? std::nullopt : std::optional<PutAnswer>(reply.answer));
+    if (activity_) {
+        PutActivity a = activity_of(offer, pending.session, PutStage::accepted);
+        a.answer = url ? "open" : to_string(reply.answer);
+        a.asked = asked;
+        a.trusted = via == Via::trusted;
+        a.always = always;
+        activity_->put(a);
+    }
+    if (url) {
         std::string problem;
-        if (!open_with_desktop(offer.url, &problem)) return p::Error{pending.id, p::ErrorCode::internal, problem};
+        if (!open_with_desktop(offer.url, &problem, placement(offer.at))) {
+            report(offer, pending.session, PutStage::failed, problem);
+            return p::Error{pending.id, p::ErrorCode::internal, problem};
+        }
+        report(offer, pending.session, PutStage::opened);
         return p::PutStatus{pending.id, p::PutState::done, std::nullopt, p::PutOutcome::opened, std::nullopt};
     }
     UploadEntry entry;
@@ -219,10 +296,12 @@ p::Message PutDesk::act(const Pending& pending, const PutReply& reply) {
     entry.sha256 = pending.sha256;
     entry.open = reply.answer == PutAnswer::open;
     entry.folder = settings_.folder;
+    entry.at = offer.at;
     std::string link;
     try {
         link = uploads_.add(std::move(entry));
     } catch (const std::exception& e) {
+        report(offer, pending.session, PutStage::failed, e.what());
         return p::Error{pending.id, p::ErrorCode::internal, e.what()};
     }
     return p::PutStatus{pending.id, p::PutState::upload, link, std::nullopt, std::nullopt};
@@ -232,13 +311,16 @@ std::optional<UploadEntry> PutDesk::take_upload(std::string_view target) { retur
 
 p::Message PutDesk::upload_done(const UploadEntry& entry, const std::string& stored_name) {
     p::PutStatus done{entry.id, p::PutState::done, std::nullopt, p::PutOutcome::saved, stored_name};
-    if (entry.open && open_with_desktop((entry.folder / stored_name).string())) done.outcome = p::PutOutcome::opened;
+    const std::string path = (entry.folder / stored_name).string();
+    if (entry.open && open_with_desktop(path, nullptr, placement(entry.at))) done.outcome = p::PutOutcome::opened;
+    report(entry, done.outcome == p::PutOutcome::opened ? PutStage::opened : PutStage::stored, path);
     push(entry.session, done);
     return done;
 }
 
 p::Error PutDesk::upload_failed(const UploadEntry& entry, p::ErrorCode code, const std::string& message) {
     p::Error error{entry.id, code, message};
+    report(entry, PutStage::failed, {}, p::to_string(code) + std::string(": ") + message);
     push(entry.session, error);
     return error;
 }
@@ -273,6 +355,8 @@ void PutDesk::watch_deadlines() {
         lock.unlock();
         for (const Pending& pending : expired) {
             decider_->withdraw(pending.offer.id);
+            report(pending.offer, pending.session, PutStage::timed_out,
+                   "no answer within " + seconds_text(settings_.answer_timeout));
             push(pending.session, p::Error{pending.id, p::ErrorCode::refused,
                                            "no answer at the screen within " + seconds_text(settings_.answer_timeout)});
         }

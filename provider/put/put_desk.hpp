@@ -1,13 +1,17 @@
 // The provider's side of puts (docs/PROTOCOL.md, "Put"), free of sockets: a
 // put already validated, rate-limited and mapped to the screen is checked
 // against the size limit and the folder's free space, then accepted at once
-// for a trusted device or offered to the PutDecider; its answer (any
+// for a trusted device (its files saved or opened as chosen with "always")
+// or offered to the PutDecider; its answer (any
 // thread, any time) becomes a message PUSHED to the requester's session
 // through the outbox that session attached: an upload link, "done opened"
 // or "refused". Offers not answered within answer_timeout are withdrawn and
 // refused (a thread of its own watches the deadlines); a session that ends
 // withdraws its offers. The upload itself (Session, PUT /up/...) reports
-// back through upload_done and upload_failed.
+// back through upload_done and upload_failed. Each step (asked, accepted,
+// refused, timed out, withdrawn, stored, opened, failed) goes to the
+// activity listener (the console). What is opened is placed at the pointed
+// place when the screen's rectangle is known (window_placement.hpp).
 #pragma once
 
 #include <condition_variable>
@@ -26,6 +30,8 @@
 #include "put/put_decision.hpp"
 #include "put/trusted_devices.hpp"
 #include "put/upload_table.hpp"
+#include "put/window_placement.hpp"
+#include "server/activity.hpp"
 
 namespace umf::provider {
 
@@ -42,8 +48,14 @@ public:
     // not block (a connection posts it to its strand).
     using Outbox = std::function<void(std::string encoded_message)>;
 
+    // The rectangle of the welcome's screen `index` in X11 root-window
+    // pixels; nullopt when unknown (nothing opened is moved then).
+    using ScreenRects = std::function<std::optional<PlaceRect>(int index)>;
+
     // No decider: puts are refused (and the welcome names no "put" feature).
-    static std::shared_ptr<PutDesk> create(std::shared_ptr<PutDecider> decider, PutSettings settings);
+    // `activity` (may be null) hears each put's steps.
+    static std::shared_ptr<PutDesk> create(std::shared_ptr<PutDecider> decider, PutSettings settings,
+                                           std::shared_ptr<ActivityListener> activity = nullptr);
     ~PutDesk();
     PutDesk(const PutDesk&) = delete;
     PutDesk& operator=(const PutDesk&) = delete;
@@ -72,6 +84,9 @@ public:
     // The upload failed: the error, pushed to the session and returned.
     protocol::Error upload_failed(const UploadEntry& entry, protocol::ErrorCode code, const std::string& message);
 
+    // Set before the server starts; not thread-safe against offers.
+    void set_screen_rects(ScreenRects rects) { screen_rects_ = std::move(rects); }
+
     TrustedDevices& trusted() { return trusted_; }
     std::size_t offers_waiting() const;
     std::size_t uploads_waiting() const { return uploads_.size(); }
@@ -89,9 +104,17 @@ private:
         std::optional<PutReply> early;      // answered within ask
     };
 
-    PutDesk(std::shared_ptr<PutDecider> decider, PutSettings settings);
+    PutDesk(std::shared_ptr<PutDecider> decider, PutSettings settings, std::shared_ptr<ActivityListener> activity);
     void answered(std::uint64_t offer, PutReply reply);
-    protocol::Message act(const Pending& pending, const PutReply& reply);
+    // How the answer came: from the person asked, at once (a fixed policy),
+    // or the device's standing choice.
+    enum class Via { asked, at_once, trusted };
+    protocol::Message act(const Pending& pending, const PutReply& reply, Via via);
+    static PutActivity activity_of(const PutOffer& offer, std::uint64_t session, PutStage stage);
+    void report(const PutOffer& offer, std::uint64_t session, PutStage stage, std::string detail = {},
+                bool asked = true) const;
+    void report(const UploadEntry& entry, PutStage stage, std::string path, std::string detail = {}) const;
+    std::optional<WindowPlacement> placement(const std::optional<ScreenPoint>& at) const;
     void watch_deadlines();
     void start_watch_locked();
 
@@ -99,6 +122,8 @@ private:
     PutSettings settings_;
     TrustedDevices trusted_;
     UploadTable uploads_;
+    std::shared_ptr<ActivityListener> activity_;
+    ScreenRects screen_rects_;
 
     mutable std::mutex mutex_;
     std::condition_variable wake_;

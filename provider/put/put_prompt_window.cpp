@@ -242,9 +242,12 @@ void PutCard::paint_to(QPainter& painter) {
     painter.setBrush(QColor(30, 32, 36, 245));
     painter.drawRoundedRect(card, kRadius, kRadius);
 
-    // The time left as a bar along the bottom edge.
+    // The time left as a bar along the bottom edge, in whole ticks: the bar
+    // is repainted once a tick, and a paint in between (a hover) draws the
+    // same bar rather than one a few pixels off.
+    const double tick = PutPromptDecider::kTickMs / 1000.0;
     const double total = std::chrono::duration<double>(deadline_ - start_).count();
-    const double left = std::chrono::duration<double>(deadline_ - Clock::now()).count();
+    const double left = std::ceil(std::chrono::duration<double>(deadline_ - Clock::now()).count() / tick) * tick;
     const double fraction = total > 0 ? std::clamp(left / total, 0.0, 1.0) : 0.0;
     painter.save();
     QPainterPath clip;
@@ -399,10 +402,24 @@ void PutPromptDecider::show(const PutOffer& offer, std::function<void(PutReply)>
         if (s.card->screen() == card->screen()) taken.push_back(s.card->geometry());
     card->setGeometry(place_put_card(card->size(), at, screen_rect, taken));
     shown_[id] = Shown{card, std::move(answer)};
+    if (snapshot_depth_ == 0) map_card(card);
+    if (!timer_->isActive()) timer_->start();
+}
+
+void PutPromptDecider::map_card(PutCard* card) {
     card->show();
     // Above windows mapped before it (the offscreen platform cannot raise).
     if (QGuiApplication::platformName() != QLatin1String("offscreen")) card->raise();
-    if (!timer_->isActive()) timer_->start();
+}
+
+void PutPromptDecider::hide_for_snapshot() {
+    if (snapshot_depth_++ > 0) return;
+    for (auto& [id, s] : shown_) s.card->hide();
+}
+
+void PutPromptDecider::show_after_snapshot() {
+    if (snapshot_depth_ == 0 || --snapshot_depth_ > 0) return;
+    for (auto& [id, s] : shown_) map_card(s.card);
 }
 
 void PutPromptDecider::finish(std::uint64_t id, std::optional<PutReply> reply) {

@@ -119,6 +119,14 @@ public:
     void ask(const PutOffer& offer, std::function<void(PutReply)> answer) override;
     void withdraw(std::uint64_t id) override;
 
+    // Around a snapshot of a window or the screen, on the Qt thread, as
+    // OverlayManager::hide_for_snapshot: a requester's snapshot must not
+    // show another's put. The cards are unmapped (cards asked for meanwhile
+    // wait unmapped) and come back when the last of nested calls ends; their
+    // countdowns go on.
+    void hide_for_snapshot();
+    void show_after_snapshot();
+
     // On the Qt thread: the cards up, oldest first; one by id (nullptr).
     std::vector<PutCard*> cards() const;
     PutCard* card(std::uint64_t id) const;
@@ -132,6 +140,7 @@ private:
     };
 
     void show(const PutOffer& offer, std::function<void(PutReply)> answer);
+    void map_card(PutCard* card);
     void finish(std::uint64_t id, std::optional<PutReply> reply);
     void tick();
 
@@ -140,6 +149,7 @@ private:
     std::unique_ptr<QObject> context_;  // what ask and withdraw post to
     QTimer* timer_ = nullptr;           // a child of context_
     std::map<std::uint64_t, Shown> shown_;
+    int snapshot_depth_ = 0;
 };
 
 }  // namespace umf::provider

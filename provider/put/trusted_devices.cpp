@@ -35,10 +35,22 @@ TrustedDevices::TrustedDevices(std::filesystem::path file) : file_(std::move(fil
         devices_.insert(name);
         order_.push_back(name);
     }
+    if (const auto open = doc.find("open_files"); open != doc.end() && open->is_array())
+        for (const auto& d : *open)
+            if (d.is_string() && devices_.count(d.get_ref<const std::string&>()))
+                open_files_.insert(d.get_ref<const std::string&>());
     while (order_.size() > kMaxTrustedDevices) {
         devices_.erase(order_.front());
+        open_files_.erase(order_.front());
         order_.erase(order_.begin());
     }
+}
+
+std::optional<PutAnswer> TrustedDevices::files_answer(std::string_view device) const {
+    if (device.empty()) return std::nullopt;
+    std::lock_guard lock(mutex_);
+    if (devices_.find(device) == devices_.end()) return std::nullopt;
+    return open_files_.find(device) != open_files_.end() ? PutAnswer::open : PutAnswer::save;
 }
 
 bool TrustedDevices::contains(std::string_view device) const {
@@ -47,14 +59,24 @@ bool TrustedDevices::contains(std::string_view device) const {
     return devices_.find(device) != devices_.end();
 }
 
-bool TrustedDevices::add(const std::string& device) {
-    if (device.empty()) return false;
+bool TrustedDevices::add(const std::string& device, std::optional<PutAnswer> files) {
+    if (device.empty() || files == PutAnswer::dismiss) return false;
     std::lock_guard lock(mutex_);
-    if (devices_.count(device)) return true;
-    devices_.insert(device);
-    order_.push_back(device);
+    const bool known = devices_.count(device) > 0;
+    const bool opened_before = open_files_.count(device) > 0;
+    const bool open = files ? *files == PutAnswer::open : opened_before;
+    if (known && open == opened_before) return true;
+    if (!known) {
+        devices_.insert(device);
+        order_.push_back(device);
+    }
+    if (open)
+        open_files_.insert(device);
+    else
+        open_files_.erase(device);
     while (order_.size() > kMaxTrustedDevices) {
         devices_.erase(order_.front());
+        open_files_.erase(order_.front());
         order_.erase(order_.begin());
     }
     return save_locked();
@@ -63,6 +85,7 @@ bool TrustedDevices::add(const std::string& device) {
 bool TrustedDevices::remove(const std::string& device) {
     std::lock_guard lock(mutex_);
     if (!devices_.erase(device)) return true;
+    open_files_.erase(device);
     order_.erase(std::remove(order_.begin(), order_.end(), device), order_.end());
     return save_locked();
 }
@@ -77,6 +100,11 @@ bool TrustedDevices::save_locked() const {
     nlohmann::ordered_json doc;
     doc["format"] = kFormat;
     doc["devices"] = order_;
+    // In the order of "devices", so the file reads the same after each rewrite.
+    std::vector<std::string> open;
+    for (const auto& d : order_)
+        if (open_files_.count(d)) open.push_back(d);
+    if (!open.empty()) doc["open_files"] = open;
     try {
         std::error_code ec;
         std::filesystem::create_directories(file_.parent_path(), ec);

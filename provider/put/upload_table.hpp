@@ -13,6 +13,7 @@
 #include <string>
 #include <string_view>
 
+#include "content/resolver.hpp"
 #include "protocol/messages.hpp"
 
 #include "server/one_time_links.hpp"
@@ -31,6 +32,7 @@ struct UploadEntry {
     std::string sha256;          // 64 lowercase hex digits
     bool open = false;           // open with the desktop's application once saved
     std::filesystem::path folder;
+    std::optional<ScreenPoint> at;  // where the phone pointed: the opened file's window goes there
 };
 
 class UploadTable : public OneTimeLinks<UploadEntry> {

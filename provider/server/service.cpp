@@ -76,7 +76,7 @@ Service::Service(ServiceConfig config, std::string token, std::vector<std::share
       resolvers_(std::move(resolvers)),
       downloads_(std::make_shared<DownloadTable>(std::chrono::milliseconds(
           static_cast<std::int64_t>(config_.limits.download_ttl_s * 1000.0)))),
-      puts_(PutDesk::create(config_.put_decider, config_.puts)),
+      puts_(PutDesk::create(config_.put_decider, config_.puts, activity)),
       facts_(std::make_shared<FileFactsCache>()),
       site_(site ? std::move(site) : std::make_shared<const StaticSite>()),
       activity_(std::move(activity)),
@@ -86,6 +86,15 @@ Service::Service(ServiceConfig config, std::string token, std::vector<std::share
         throw std::invalid_argument("a service needs screens, with one field placement each");
     first.desktop_offsets.resize(first.placements.size(), {0, 0});
     screens_ = std::make_shared<const ScreenMap>(first);
+    // What a put opens is placed on the pointed screen; the desk lives no
+    // longer than this service.
+    puts_->set_screen_rects([this](int index) -> std::optional<PlaceRect> {
+        const auto map = screens();
+        if (index < 0 || static_cast<std::size_t>(index) >= map->field.screens.size()) return std::nullopt;
+        const auto& screen = map->field.screens[index];
+        const auto& offset = map->desktop_offsets[index];
+        return PlaceRect{offset[0], offset[1], screen.width_px, screen.height_px};
+    });
 }
 
 void Service::set_screens(const DesktopLayout& layout) {

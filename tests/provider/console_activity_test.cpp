@@ -1,5 +1,5 @@
-// The provider's console lines about requesters: one a welcome, a grab and a
-// departure, text from requesters made harmless for a terminal, and every
+// The provider's console lines about requesters: one a welcome, a grab, a
+// put's step and a departure, text from requesters made harmless for a terminal, and every
 // call passed on to the listener behind.
 #ifdef UMF_PROVIDER_TESTS
 
@@ -14,11 +14,12 @@ namespace {
 using namespace umf::provider;
 
 struct Counting : ActivityListener {
-    int welcomes = 0, seekings = 0, aims = 0, grabs = 0, lefts = 0;
+    int welcomes = 0, seekings = 0, aims = 0, grabs = 0, puts = 0, lefts = 0;
     void welcomed(const WelcomeActivity&) override { ++welcomes; }
     void seeking(std::uint64_t) override { ++seekings; }
     void aimed(const AimActivity&) override { ++aims; }
     void grabbed(const GrabActivity&) override { ++grabs; }
+    void put(const PutActivity&) override { ++puts; }
     void left(std::uint64_t) override { ++lefts; }
 };
 
@@ -53,6 +54,57 @@ TEST(ConsoleActivity, RequesterTextCannotDriveTheTerminal) {
     EXPECT_EQ(text.find('\x07'), std::string::npos);
     EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 1);
     EXPECT_EQ(printable(std::string(300, 'a')).size(), 131u);  // 128 and an ellipsis
+}
+
+TEST(ConsoleActivity, OneLineForEachStepOfAPut) {
+    std::ostringstream out;
+    auto next = std::make_shared<Counting>();
+    ConsoleActivity console(out, next);
+    PutActivity file;
+    file.session = 3;
+    file.kind = umf::protocol::ContentKind::file;
+    file.name = "report.pdf";
+    file.size = 2411724;
+    file.device = "Pixel 7";
+    file.stage = PutStage::asking;
+    console.put(file);
+    file.stage = PutStage::accepted;
+    file.asked = true;
+    file.answer = "open";
+    file.always = true;
+    console.put(file);
+    file.stage = PutStage::opened;
+    file.path = "/home/ana/Downloads/report (1).pdf";
+    console.put(file);
+    PutActivity url;
+    url.session = 4;
+    url.kind = umf::protocol::ContentKind::url;
+    url.url = "https://example.org/talk";
+    url.stage = PutStage::accepted;
+    url.answer = "open";
+    url.trusted = true;
+    console.put(url);
+    url.stage = PutStage::refused;
+    url.asked = true;
+    url.detail = "declined at the screen";
+    console.put(url);
+    EXPECT_EQ(out.str(),
+              "requester 3 puts file \"report.pdf\" (2411724 bytes) from \"Pixel 7\": asking the screen\n"
+              "requester 3's put \"report.pdf\": accepted (open, always from now on)\n"
+              "requester 3 put report.pdf (2411724 bytes) \u2192 saved as /home/ana/Downloads/report (1).pdf and "
+              "opened\n"
+              "requester 4 puts url <https://example.org/talk>: accepted (open, a device always accepted)\n"
+              "requester 4's put \"https://example.org/talk\": refused (declined at the screen)\n");
+    EXPECT_EQ(next->puts, 5);
+}
+
+TEST(ConsoleActivity, PrintableHidesBidiOverridesAndCutsWholeCharacters) {
+    // U+202E would show "invoice\u202Efdp.exe" as "invoiceexe.pdf".
+    EXPECT_EQ(printable("invoice\xe2\x80\xae" "fdp.exe"), "invoice?fdp.exe");
+    EXPECT_EQ(printable("a\xc2\x9b" "31m"), "a?31m") << "C1 control sequence introducer";
+    // Three-byte characters cut at 4 bytes: one whole character and the ellipsis.
+    EXPECT_EQ(printable("\xe2\x82\xac\xe2\x82\xac", 4), "\xe2\x82\xac...");
+    EXPECT_EQ(printable("caf\xc3\xa9"), "caf\xc3\xa9");
 }
 
 }  // namespace

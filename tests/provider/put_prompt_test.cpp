@@ -383,6 +383,36 @@ TEST(PutPrompt, OffersFromAServerThreadReachTheQtThread) {
     EXPECT_EQ(answers.threads[0], std::this_thread::get_id());
 }
 
+TEST(PutPrompt, CardsStepAsideForASnapshotAndComeBack) {
+    umf::test::ensure_gui_application();
+    PutPromptDecider decider(std::chrono::seconds(2));
+    Answers answers;
+    decider.ask(file_offer(1), answers.callback());
+    ASSERT_TRUE(pump_until([&] { return decider.card(1) != nullptr; }, 3000));
+    EXPECT_TRUE(decider.card(1)->isVisible());
+    // Nested, as a snapshot during the overlay's own grab can be.
+    decider.hide_for_snapshot();
+    decider.hide_for_snapshot();
+    EXPECT_FALSE(decider.card(1)->isVisible());
+    // A put asked about meanwhile waits unseen.
+    decider.ask(url_offer(2), answers.callback());
+    ASSERT_TRUE(pump_until([&] { return decider.card(2) != nullptr; }, 3000));
+    EXPECT_FALSE(decider.card(2)->isVisible());
+    decider.show_after_snapshot();
+    EXPECT_FALSE(decider.card(1)->isVisible()) << "the outer snapshot is still being taken";
+    decider.show_after_snapshot();
+    EXPECT_TRUE(decider.card(1)->isVisible());
+    EXPECT_TRUE(decider.card(2)->isVisible());
+    decider.show_after_snapshot();  // one too many: no harm, and the next hide still hides
+    decider.hide_for_snapshot();
+    EXPECT_FALSE(decider.card(2)->isVisible());
+    // The countdown goes on while hidden: the card dismisses the put in time.
+    ASSERT_TRUE(pump_until([&] { return answers.count() == 2; }, 4000));
+    EXPECT_EQ(answers.replies[0].answer, PutAnswer::dismiss);
+    decider.show_after_snapshot();
+    EXPECT_TRUE(decider.cards().empty());
+}
+
 }  // namespace
 
 #endif  // UMF_PROVIDER_TESTS

@@ -98,7 +98,7 @@ protected:
     static std::vector<json> run_cases(const std::string& names, int timeout_s = 15) {
         const std::string command = "timeout -k 2 " + std::to_string(timeout_s) + " " + kPython + " " +
                                     quote(script_path().string()) + " --port " + std::to_string(server_->port()) +
-                                    " --token " + quote(token_) + " --case " + quote(names);
+                                    " --token=" + quote(token_) + " --case " + quote(names);
         const auto [status, out] = run_command(command);
         EXPECT_EQ(status, 0) << command << "\n" << out;
         std::vector<json> results;
