@@ -1,0 +1,43 @@
+#!/bin/bash
+# An installed umf-provider serves the installed phone page: `cmake --install`
+# into a fresh prefix, the build tree out of reach (the program is run from
+# the prefix), and GET / must be the web client, not the built-in page.
+# usage: installed_provider_test.sh BUILD_DIR
+set -euo pipefail
+build=$1
+prefix=$(mktemp -d /tmp/umf-install-XXXXXX)
+provider_pid=
+cleanup() {
+  [ -n "$provider_pid" ] && kill "$provider_pid" 2>/dev/null && wait "$provider_pid" 2>/dev/null
+  rm -rf "$prefix"
+}
+trap cleanup EXIT
+
+cmake --install "$build" --prefix "$prefix" >/dev/null
+for f in bin/umf-provider bin/umf-requester share/umf/web/index.html share/umf/web/app.js \
+         share/umf/web/umf-detector.wasm share/umf/web/sw.js; do
+  [ -f "$prefix/$f" ] || { echo "FAIL: $f was not installed"; exit 1; }
+done
+
+"$prefix/bin/umf-provider" --headless --port 0 --config-dir "$prefix/cfg" --no-qr --puts never \
+  >"$prefix/provider.log" 2>&1 &
+provider_pid=$!
+url=
+for _ in $(seq 100); do
+  url=$(sed -n 's/^pairing URL: //p' "$prefix/provider.log")
+  [ -n "$url" ] && break
+  sleep 0.1
+done
+[ -n "$url" ] || { echo "FAIL: no pairing URL"; cat "$prefix/provider.log"; exit 1; }
+# The build tree has a web client too: the installed one must win.
+if ! grep -q "^web client: $prefix/share/umf/web " "$prefix/provider.log"; then
+  echo "FAIL: the installed provider did not take the installed web client:"; cat "$prefix/provider.log"; exit 1
+fi
+origin=${url%%/#*}
+page=$(curl -sk "$origin/")
+if ! grep -q 'app.js' <<<"$page"; then
+  echo "FAIL: the installed provider served another page at /:"; head -c 600 <<<"$page"; exit 1
+fi
+wasm_type=$(curl -sk -o /dev/null -w '%{content_type}' "$origin/umf-detector.wasm")
+[ "$wasm_type" = "application/wasm" ] || { echo "FAIL: umf-detector.wasm came as '$wasm_type'"; exit 1; }
+echo "ok: $prefix/bin/umf-provider served the installed web client at $origin"
