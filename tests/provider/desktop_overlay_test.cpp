@@ -15,6 +15,7 @@
 #include "content/x11_window.hpp"
 #include "detect/detector.hpp"
 #include "screen/screen_field.hpp"
+#include "desktop_photo.hpp"
 #include "support/process.hpp"
 #include "support/temp_dir.hpp"
 #include "support/x11_session.hpp"
@@ -73,31 +74,16 @@ TEST(DesktopOverlay, TheFieldIsOverTheDesktopAndNotInSnapshots) {
                      options("provider.log"));
     ASSERT_TRUE(wait_until([&] { return log_of("provider.log").find("overlay: 1 screen") != std::string::npos; }, 20s))
         << log_of("provider.log");
-    const std::string text = log_of("provider.log");
-    const auto url_at = text.find("pairing URL: ");
-    ASSERT_NE(url_at, std::string::npos) << text;
-    const std::string url = text.substr(url_at + 13, text.find('\n', url_at) - url_at - 13);
+    const std::string url = pairing_url_in(log_of("provider.log"));
+    ASSERT_FALSE(url.empty()) << log_of("provider.log");
 
     // The field over the desktop, where the provider says it is.
     const ScreenField field = screen_field_for(1920, 1080);
     const umf::Detector detector(field.field);
-    cv::Mat bgr(1080, 1920, CV_8UC3);
-    umf::Detection found;
-    ASSERT_TRUE(wait_until(
-        [&] {
-            const Capture shot = desktop->capture({0, 0, 1920, 1080});
-            std::vector<std::uint8_t> grey(shot.pixels.size());
-            for (std::size_t i = 0; i < grey.size(); ++i) {
-                const std::uint32_t p = shot.pixels[i];
-                const std::uint8_t r = (p >> 16) & 255, g = (p >> 8) & 255, b = p & 255;
-                grey[i] = static_cast<std::uint8_t>((r * 77 + g * 150 + b * 29) >> 8);
-                bgr.at<cv::Vec3b>(static_cast<int>(i / 1920), static_cast<int>(i % 1920)) = {b, g, r};
-            }
-            found = detector.detect(umf::GreyView{grey.data(), 1920, 1080, 1920});
-            return found.found;
-        },
-        20s))
-        << "no field on the desktop: " << found.failure << "\n" << log_of("provider.log");
+    const DesktopPhoto photo = capture_until_field(*desktop, detector, 1920, 1080, 20s);
+    const umf::Detection& found = photo.detection;
+    const cv::Mat& bgr = photo.bgr;
+    ASSERT_TRUE(found.found) << "no field on the desktop: " << found.failure << "\n" << log_of("provider.log");
     double u = 0, v = 0;
     umf::overlay::screen_to_field(field.placement, 960, 540, u, v);
     EXPECT_NEAR(found.aim_field.x(), u, 0.05);

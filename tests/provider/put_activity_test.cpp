@@ -33,6 +33,7 @@ using namespace umf::provider;
 using umf::test::FakeXdgOpen;
 using umf::test::ScriptedDecider;
 using umf::test::TempDir;
+using umf::test::file_put;
 
 constexpr const char* kToken = "put-activity-token-0123456789";
 
@@ -64,18 +65,6 @@ private:
     std::condition_variable changed_;
     std::vector<PutActivity> steps_;
 };
-
-p::Put file_put(const std::string& bytes, const std::string& id, const std::string& name = "report.pdf") {
-    p::Put put;
-    put.id = p::RequestId{id};
-    put.point = {10, 10};
-    put.kind = p::ContentKind::file;
-    put.name = name;
-    put.mime = "application/pdf";
-    put.size = static_cast<std::int64_t>(bytes.size());
-    put.sha256 = sha256_hex(bytes);
-    return put;
-}
 
 p::Put url_put(const std::string& id) {
     p::Put put;

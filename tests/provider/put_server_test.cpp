@@ -52,6 +52,7 @@ using umf::test::folder_names;
 using umf::test::run_command;
 using umf::test::ScriptedDecider;
 using umf::test::TempDir;
+using umf::test::file_put;
 
 constexpr const char* kToken = "put-server-token-0123456789ab";
 constexpr auto kOpTimeout = std::chrono::seconds(5);
@@ -165,18 +166,6 @@ std::string random_bytes(std::size_t n, unsigned seed) {
     std::string s(n, '\0');
     for (auto& c : s) c = static_cast<char>(rng());
     return s;
-}
-
-p::Put file_put(const std::string& bytes, const std::string& id, const std::string& name = "report.pdf") {
-    p::Put put;
-    put.id = p::RequestId{id};
-    put.point = {20, 10};
-    put.kind = p::ContentKind::file;
-    put.name = name;
-    put.mime = "application/pdf";
-    put.size = static_cast<std::int64_t>(bytes.size());
-    put.sha256 = sha256_hex(bytes);
-    return put;
 }
 
 struct Response {

@@ -32,6 +32,7 @@ using umf::test::FakeXdgOpen;
 using umf::test::folder_names;
 using umf::test::ScriptedDecider;
 using umf::test::TempDir;
+using umf::test::file_put;
 
 constexpr const char* kToken = "put-token-0123456789abcdefgh";
 
@@ -46,18 +47,6 @@ p::Put url_put(const std::string& id = "p1", p::FieldPoint at = {10, 10}) {
     put.kind = p::ContentKind::url;
     put.url = "https://example.org/talk";
     put.title = "Talk page";
-    return put;
-}
-
-p::Put file_put(const std::string& bytes, const std::string& id = "p2", const std::string& name = "report.pdf") {
-    p::Put put;
-    put.id = p::RequestId{id};
-    put.point = {10, 10};
-    put.kind = p::ContentKind::file;
-    put.name = name;
-    put.mime = "application/pdf";
-    put.size = static_cast<std::int64_t>(bytes.size());
-    put.sha256 = sha256_hex(bytes);
     return put;
 }
 

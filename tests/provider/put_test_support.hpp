@@ -21,9 +21,26 @@
 #include <thread>
 #include <vector>
 
+#include "content/file_facts.hpp"
+#include "protocol/messages.hpp"
 #include "put/put_decision.hpp"
 
 namespace umf::test {
+
+// A put of a file with these bytes (its size and SHA-256), at a point every
+// test screen shows.
+inline protocol::Put file_put(const std::string& bytes, const std::string& id = "p2",
+                              const std::string& name = "report.pdf") {
+    protocol::Put put;
+    put.id = protocol::RequestId{id};
+    put.point = {10, 10};
+    put.kind = protocol::ContentKind::file;
+    put.name = name;
+    put.mime = "application/pdf";
+    put.size = static_cast<std::int64_t>(bytes.size());
+    put.sha256 = provider::sha256_hex(bytes);
+    return put;
+}
 
 class ScriptedDecider : public provider::PutDecider {
 public:
