@@ -246,18 +246,8 @@ struct X11Desktop::Connection {
     }
 
     int pid(Window window) const {
-        if (xres) {
-            XResClientIdSpec spec{window, XRES_CLIENT_ID_PID_MASK};
-            long count = 0;
-            XResClientIdValue* values = nullptr;
-            int found = 0;
-            if (XResQueryClientIds(display, 1, &spec, &count, &values) == Success) {
-                for (long i = 0; i < count && found <= 0; ++i)
-                    if (XResGetClientIdType(&values[i]) == XRES_CLIENT_ID_PID) found = XResGetClientPid(&values[i]);
-                XResClientIdsDestroy(count, values);
-            }
-            if (found > 0) return found;
-        }
+        if (xres)
+            if (const int found = x_server_client_pid(display, window); found > 0) return found;
         return claimed_pid(window);
     }
 
@@ -544,6 +534,19 @@ std::optional<Resolved> X11WindowResolver::resolve(const ScreenPoint& point, Pur
     resolved.mime = mime_for(*document);
     resolved.title = window->title.empty() ? resolved.name : window->title;
     return resolved;
+}
+
+int x_server_client_pid(Display* display, unsigned long window) {
+    XResClientIdSpec spec{window, XRES_CLIENT_ID_PID_MASK};
+    long count = 0;
+    XResClientIdValue* values = nullptr;
+    int found = 0;
+    if (XResQueryClientIds(display, 1, &spec, &count, &values) == Success) {
+        for (long i = 0; i < count && found <= 0; ++i)
+            if (XResGetClientIdType(&values[i]) == XRES_CLIENT_ID_PID) found = XResGetClientPid(&values[i]);
+        XResClientIdsDestroy(count, values);
+    }
+    return std::max(found, 0);
 }
 
 void ignore_x11_errors(Display* display) { ErrorHandlerRegistry::instance().add(display); }

@@ -20,6 +20,9 @@
 #include "content/recent_files.hpp"
 #include "content/resolver.hpp"
 
+// Xlib's Display, without Xlib in every file that includes this one.
+struct _XDisplay;
+
 namespace umf::provider {
 
 // In the root window's pixels.
@@ -64,8 +67,12 @@ struct Capture {
 // (a window closed while it is looked at gives BadWindow). A connection of
 // the provider's own is registered so that its errors are ignored, since
 // each call's result tells of its failure; forget it before or as it closes.
-void ignore_x11_errors(struct _XDisplay* display);
-void forget_x11_errors(struct _XDisplay* display);
+void ignore_x11_errors(::_XDisplay* display);
+void forget_x11_errors(::_XDisplay* display);
+// The process the X server itself records for the client that made
+// `window` (the X-Resource extension, local clients only), or 0 when it
+// cannot say; unlike _NET_WM_PID, a client cannot claim another's.
+int x_server_client_pid(::_XDisplay* display, unsigned long window);
 
 // One connection to an X server, shared by the X11 resolvers; calls are
 // serialised on it, so it is thread-safe.

@@ -131,18 +131,8 @@ struct NewWindowWatch::Connection {
     // client's own claim.
     std::optional<int> pid(Window window) const {
         int event_base = 0, error_base = 0;
-        if (XResQueryExtension(display, &event_base, &error_base)) {
-            XResClientIdSpec spec{window, XRES_CLIENT_ID_PID_MASK};
-            long count = 0;
-            XResClientIdValue* values = nullptr;
-            int found = 0;
-            if (XResQueryClientIds(display, 1, &spec, &count, &values) == Success) {
-                for (long i = 0; i < count && found <= 0; ++i)
-                    if (XResGetClientIdType(&values[i]) == XRES_CLIENT_ID_PID) found = XResGetClientPid(&values[i]);
-                XResClientIdsDestroy(count, values);
-            }
-            if (found > 0) return found;
-        }
+        if (XResQueryExtension(display, &event_base, &error_base))
+            if (const int found = x_server_client_pid(display, window); found > 0) return found;
         const auto p = longs(window, wm_pid, XA_CARDINAL);
         if (!p || p->empty()) return std::nullopt;
         return static_cast<int>((*p)[0]);
