@@ -1,5 +1,8 @@
 #include "device_name.hpp"
 
+#include <unistd.h>
+
+#include <array>
 #include <fstream>
 #include <random>
 #include <system_error>
@@ -32,6 +35,15 @@ std::string fresh_name() {
 }
 
 }  // namespace
+
+std::string client_name() {
+    std::string name = "umf-requester/" UMF_VERSION;
+    std::array<char, 256> host{};
+    if (::gethostname(host.data(), host.size() - 1) != 0 || host[0] == '\0') return name;
+    std::string clean;
+    for (const char* c = host.data(); *c && clean.size() < 64; ++c) clean += (*c > 0x20 && *c < 0x7f) ? *c : '_';
+    return name + " on " + clean;
+}
 
 std::filesystem::path default_device_file() { return config_home() / "umf" / "requester-device"; }
 

@@ -16,4 +16,9 @@ std::string device_name(const std::filesystem::path& file, std::string& note);
 // $XDG_CONFIG_HOME/umf/requester-device (~/.config/... without it).
 std::filesystem::path default_device_file();
 
+// The hello's `client`, what a screen's prompt calls this requester:
+// "umf-requester/VERSION on HOSTNAME" (the host name in printable ASCII, at
+// most 64 bytes; left out when there is none).
+std::string client_name();
+
 }  // namespace umf::requester

@@ -6,6 +6,7 @@
 
 #include "aiming_session.hpp"
 #include "cli.hpp"
+#include "device_name.hpp"
 #include "download.hpp"
 #include "download_dir.hpp"
 #include "grab_failure.hpp"
@@ -63,7 +64,6 @@ namespace {
 
 namespace p = protocol;
 
-constexpr const char* kClient = "umf-requester/" UMF_VERSION;
 
 // Takes what the provider shows at `at`: prints a link (opened with --open),
 // downloads a file or snapshot.
@@ -142,7 +142,7 @@ int run_grab(const GrabOptions& o, std::FILE* out) {
     std::optional<protocol::FieldPoint> point;
     return run_and_report(
         [&] {
-            AimingSession session(o.pointing, kClient);
+            AimingSession session(o.pointing, client_name());
             try {
                 return session.run({}, {"grab", [&](const protocol::FieldPoint& at) {
                                             return grab_at(session.connection(), o, at);

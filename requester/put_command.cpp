@@ -70,7 +70,6 @@ namespace {
 namespace p = protocol;
 namespace fs = std::filesystem;
 
-constexpr const char* kClient = "umf-requester/" UMF_VERSION;
 // The screen's answer comes within 30 s (docs/PROTOCOL.md, "put_status");
 // the provider refuses by itself then, so this only catches one that went quiet.
 constexpr std::chrono::seconds kAnswerWait{45};
@@ -115,7 +114,7 @@ struct FileToPut {
 
 class PutSession {
 public:
-    PutSession(const PutOptions& o, std::string device) : o_(o), session_(o.pointing, kClient, std::move(device)) {}
+    PutSession(const PutOptions& o, std::string device) : o_(o), session_(o.pointing, client_name(), std::move(device)) {}
 
     Json run() {
         if (o_.file) file_ = prepare_file(*o_.file);

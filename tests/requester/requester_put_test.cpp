@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <atomic>
@@ -14,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
@@ -53,12 +55,18 @@ std::string read_file(const fs::path& path) {
 // counts how often it was asked.
 class TrustingDecider : public PutDecider {
 public:
-    void ask(const PutOffer&, std::function<void(PutReply)> answer) override {
+    void ask(const PutOffer& offer, std::function<void(PutReply)> answer) override {
         ++asked;
+        {
+            std::lock_guard lock(mutex);
+            client = offer.client;
+        }
         answer(PutReply{PutAnswer::save, true});
     }
     void withdraw(std::uint64_t) override {}
     std::atomic<int> asked{0};
+    std::mutex mutex;
+    std::string client;  // the last offer's
 };
 
 class RequesterPut : public ::testing::Test {
@@ -141,6 +149,16 @@ TEST_F(RequesterPut, AVideoPutsOnceTheAimHoldsSteadyAndTheScreenTrustsTheDeviceA
     EXPECT_EQ(first.line["point"].size(), 2u);
     EXPECT_EQ(read_file(dir_.path / "screen" / "notes.md"), "# Notes\nfrom the phone\n");
     EXPECT_EQ(decider_->asked, 1);
+    // The prompt names the program and the computer it runs on.
+    char host[256] = {};
+    ::gethostname(host, sizeof host - 1);
+    {
+        std::lock_guard lock(decider_->mutex);
+        const std::string& c = decider_->client;
+        EXPECT_EQ(c.rfind("umf-requester/", 0), 0u) << c;
+        const std::string on = std::string(" on ") + host;
+        EXPECT_TRUE(c.size() > on.size() && c.compare(c.size() - on.size(), on.size(), on) == 0) << c;
+    }
 
     // The device's name was kept on the phone and remembered by the screen.
     const fs::path device_file = dir_.path / "phone" / "umf" / "requester-device";
