@@ -5,7 +5,7 @@
 // other way: a file, a photo or a link from the phone (or from its carry
 // list, carry.js) to the place on the screen it points at.
 import { connect } from './transport.js';
-import { carry, getCarried, listCarried, removeCarried } from './carry.js';
+import { carry, getCarried, listCarried, noteFile, removeCarried } from './carry.js';
 import { currentPairing, forget, rememberProviderName } from './pairing.js';
 import { Sha256 } from './sha256.js';
 
@@ -941,6 +941,13 @@ $('put-url-form').addEventListener('submit', (e) => {
     return;
   }
   enterPut({ kind: 'url', url, title: '' });
+});
+$('put-note-form').addEventListener('submit', (e) => {
+  e.preventDefault();
+  const text = $('put-note').value;
+  if (!text.trim()) return;
+  const note = noteFile(text);
+  enterPut(fileItem(note.blob, { name: note.name, title: 'Note', mime: 'text/plain' }));
 });
 $('pairing-close').addEventListener('click', () => ($('pairing').hidden = true));
 $('pairing-forget').addEventListener('click', () => {

@@ -75,6 +75,14 @@ export async function removeCarried(id) {
   await finished(tx);
 }
 
+// A note typed or shared on the phone, as the text file a screen saves:
+// named after its first words ("Call Anna at 3.txt"), "note.txt" without any.
+export function noteFile(text) {
+  const first = String(text).trim().split('\n')[0]
+    .replace(/[\\/:*?"<>|\x00-\x1f\x7f]+/g, ' ').replace(/\s+/g, ' ').trim().slice(0, 40).trim();
+  return { name: `${first || 'note'}.txt`, blob: new Blob([String(text)], { type: 'text/plain' }) };
+}
+
 // Adds an item on top and returns its id. The same link or the same bytes
 // carried before move to the top instead of being kept twice. A file larger
 // than the whole allowance is not kept (null).

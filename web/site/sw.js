@@ -5,7 +5,7 @@
 // list (carry.js) and the page opens with ?share=ID, in Put mode with it.
 // Every other request goes to the provider as if there were no worker: the
 // page is always the provider's current one.
-import { carry } from './carry.js';
+import { carry, noteFile } from './carry.js';
 
 const SHARE_PATH = new URL('./share', self.registration.scope).pathname;
 
@@ -43,7 +43,14 @@ async function takeShare(request) {
       if (id !== null) ids.unshift(id);
     }
     const link = findUrl(form.get('url'), text);
-    if (link && !files.length) ids.unshift(await carry({ kind: 'url', url: link, title: title || text.replace(link, '').trim() }));
+    if (link && !files.length) {
+      ids.unshift(await carry({ kind: 'url', url: link, title: title || text.replace(link, '').trim() }));
+    } else if (!files.length && text.trim()) {
+      // Plain text (a note, a paragraph) travels as a text file.
+      const note = noteFile(text);
+      const id = await carry({ kind: 'file', title: title || 'Note', name: note.name, mime: 'text/plain', blob: note.blob });
+      if (id !== null) ids.unshift(id);
+    }
     page.searchParams.set('share', ids.length ? String(ids[0]) : (files.length ? 'too-large' : 'empty'));
   } catch (e) {
     page.searchParams.set('share', 'failed');

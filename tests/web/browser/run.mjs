@@ -10,7 +10,7 @@
 // --modules   the node_modules that web.browser.npm_install filled
 // Scenarios: camera_file, camera_url_http, photo, wrong_token, unreachable,
 // camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo,
-// unpaired, put_file, put_url_http, put_refused, put_carry, share_target. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
+// unpaired, put_file, put_url_http, put_refused, put_carry, put_note, share_target. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
 // Chromium, playwright-core or a fixture is missing), 2 usage.
 import { spawn } from 'node:child_process';
 import crypto from 'node:crypto';
@@ -71,7 +71,7 @@ try {
 }
 const SCENARIOS = ['camera_file', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
                    'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
-                   'put_file', 'put_url_http', 'put_refused', 'put_carry', 'share_target'];
+                   'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'share_target'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
 const boardFile = path.resolve(opts.board);
 const board = JSON.parse(fs.readFileSync(boardFile, 'utf8'));
@@ -675,6 +675,27 @@ Object.assign(scenarios, {
     logPutLines(provider);
   },
 
+  // A note typed on the phone travels as a text file named after its first
+  // words, its UTF-8 bytes unchanged.
+  async put_note() {
+    const text = 'Call Anna at 3: slides/v2?\nRoom 2.14 — bring the remote ✓\n';
+    const dir = putDir();
+    const provider = await startProvider({ extra: ['--puts', 'always', '--put-dir', dir] });
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    const page = await openPage(browser, pageUrl(provider.pairing, { autoput: '1' }));
+    await openPutChooser(page);
+    await page.click('#put-note-use');
+    check(await stateOf(page) === 'put-choose', 'an empty note is not put');
+    await page.fill('#put-note', text);
+    await page.click('#put-note-use');
+    const r = await waitForPutResult(page, 30000);
+    const name = 'Call Anna at 3 slides v2.txt';
+    check(r.status === 'done' && r.outcome === 'saved', `#put-status done, saved (${r.status}, ${r.outcome})`);
+    check(r.name === name, `the note is named after its first words (${r.name})`);
+    checkPutFolder(dir, name, Buffer.from(text, 'utf8'));
+    logPutLines(provider);
+  },
+
   // The person at the screen dismisses the put; over HTTPS requests, so the
   // answer comes through the long poll.
   async put_refused() {
@@ -808,6 +829,28 @@ Object.assign(scenarios, {
     const u = await waitForPutResult(page, 15000);
     check(u.status === 'error' && u.code === 'share-unavailable', `?share=unavailable: #put-status[data-code=share-unavailable] (${u.code})`);
     check(/open umf once/i.test(u.text), `it says to open umf once ("${u.text}")`);
+    // Plain text shared (no link, no file): carried as a note.
+    await page.evaluate(({ action, field }) => {
+      const form = document.createElement('form');
+      form.method = 'POST';
+      form.enctype = 'multipart/form-data';
+      form.action = action;
+      const text = document.createElement('textarea');
+      text.name = field;
+      text.value = 'Buy milk\nand bread';
+      form.append(text);
+      document.body.append(form);
+      form.submit();
+    }, { action: action.href, field: st.params.text });
+    let note = null;
+    for (const until = Date.now() + 20000; Date.now() < until && !note;) {
+      note = await page.evaluate(() => (window.umfDebug?.share && window.umfDebug.put ? window.umfDebug.put : null))
+        .catch(() => null);
+      if (!note) await page.waitForTimeout(100);
+    }
+    // (A form's textarea sends its line break as CRLF, Android as LF.)
+    check(note && note.name === 'Buy milk.txt' && [18, 19].includes(note.size),
+          `shared text opens Put mode with a note (${JSON.stringify(note)})`);
   },
 });
 
