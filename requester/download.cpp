@@ -108,15 +108,12 @@ SavedFile download_file(const PairingUrl& provider, const DownloadRequest& reque
     const std::string name = protocol::safe_file_name(request.name);
 
     TempFile file(dir);
-    net::io_context io;
-    auto tls = make_pinned_client_context();
-    TlsStream stream(io.get_executor(), tls);
-    connect_pinned(io, stream, provider, timeouts);
+    PinnedExchange exchange(provider, timeouts);
+    net::io_context& io = exchange.io;
+    TlsStream& stream = exchange.stream;
 
     http::request<http::empty_body> req(http::verb::get, request.path, 11);
-    req.set(http::field::host, provider.authority());
-    req.set(http::field::user_agent, "umf-requester/" UMF_VERSION);
-    req.set(http::field::connection, "close");
+    PinnedExchange::set_headers(req, provider);
     auto ec = run_step(io, stream, timeouts.download_idle, [&](auto h) { http::async_write(stream, req, h); });
     if (ec) throw download_failure("cannot request " + request.path + ": " + ec.message());
 

@@ -9,6 +9,7 @@
 #include <boost/asio/ssl/context.hpp>
 #include <boost/beast/core/error.hpp>
 #include <boost/beast/core/tcp_stream.hpp>
+#include <boost/beast/http/field.hpp>
 #include <boost/beast/ssl/ssl_stream.hpp>
 #include <chrono>
 #include <cstddef>
@@ -69,5 +70,26 @@ boost::beast::error_code run_step(boost::asio::io_context& io, TlsStream& stream
 // shows another certificate (nothing has been sent to it then).
 void connect_pinned(boost::asio::io_context& io, TlsStream& stream, const PairingUrl& url,
                     const NetTimeouts& timeouts);
+
+// One HTTPS exchange with a provider (a download, an upload): its own
+// io_context and the pinned TLS stream, connected by the constructor (which
+// throws as connect_pinned does), and the request headers every such
+// exchange sends: Host, User-Agent, Connection: close.
+struct PinnedExchange {
+    PinnedExchange(const PairingUrl& url, const NetTimeouts& timeouts)
+        : tls(make_pinned_client_context()), stream(io.get_executor(), tls) {
+        connect_pinned(io, stream, url, timeouts);
+    }
+    template <class Request>
+    static void set_headers(Request& request, const PairingUrl& url) {
+        request.set(boost::beast::http::field::host, url.authority());
+        request.set(boost::beast::http::field::user_agent, "umf-requester/" UMF_VERSION);
+        request.set(boost::beast::http::field::connection, "close");
+    }
+
+    boost::asio::io_context io;
+    boost::asio::ssl::context tls;
+    TlsStream stream;
+};
 
 }  // namespace umf::requester

@@ -105,16 +105,13 @@ p::PutStatus upload_file(const PairingUrl& provider, const UploadRequest& reques
                          const NetTimeouts& timeouts) {
     if (request.size < 0) throw input_failure("a negative size cannot be uploaded");
     ReadOnlyFile file(request.file);
-    net::io_context io;
-    auto tls = make_pinned_client_context();
-    TlsStream stream(io.get_executor(), tls);
-    connect_pinned(io, stream, provider, timeouts);
+    PinnedExchange exchange(provider, timeouts);
+    net::io_context& io = exchange.io;
+    TlsStream& stream = exchange.stream;
 
     http::request<http::buffer_body> req(http::verb::put, request.path, 11);
-    req.set(http::field::host, provider.authority());
-    req.set(http::field::user_agent, "umf-requester/" UMF_VERSION);
+    PinnedExchange::set_headers(req, provider);
     req.set(http::field::content_type, "application/octet-stream");
-    req.set(http::field::connection, "close");
     req.content_length(static_cast<std::uint64_t>(request.size));
     req.body().data = nullptr;
     req.body().more = true;
