@@ -9,6 +9,7 @@
 
 #include "download_dir.hpp"
 #include "io/atomic_file.hpp"
+#include "pinned_tls.hpp"
 #include "protocol/messages.hpp"
 
 namespace umf::requester {
@@ -37,7 +38,7 @@ std::string fresh_name() {
 }  // namespace
 
 std::string client_name() {
-    std::string name = "umf-requester/" UMF_VERSION;
+    std::string name = user_agent();
     std::array<char, 256> host{};
     if (::gethostname(host.data(), host.size() - 1) != 0 || host[0] == '\0') return name;
     std::string clean;

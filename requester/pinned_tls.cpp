@@ -165,4 +165,6 @@ void connect_pinned(net::io_context& io, TlsStream& stream, const PairingUrl& ur
     tcp.expires_never();
 }
 
+std::string user_agent() { return "umf-requester/" UMF_VERSION; }
+
 }  // namespace umf::requester

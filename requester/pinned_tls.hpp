@@ -71,6 +71,9 @@ boost::beast::error_code run_step(boost::asio::io_context& io, TlsStream& stream
 void connect_pinned(boost::asio::io_context& io, TlsStream& stream, const PairingUrl& url,
                     const NetTimeouts& timeouts);
 
+// "umf-requester/VERSION", what every connection says it is.
+std::string user_agent();
+
 // One HTTPS exchange with a provider (a download, an upload): its own
 // io_context and the pinned TLS stream, connected by the constructor (which
 // throws as connect_pinned does), and the request headers every such
@@ -83,7 +86,7 @@ struct PinnedExchange {
     template <class Request>
     static void set_headers(Request& request, const PairingUrl& url) {
         request.set(boost::beast::http::field::host, url.authority());
-        request.set(boost::beast::http::field::user_agent, "umf-requester/" UMF_VERSION);
+        request.set(boost::beast::http::field::user_agent, user_agent());
         request.set(boost::beast::http::field::connection, "close");
     }
 

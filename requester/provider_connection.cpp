@@ -63,7 +63,7 @@ p::Welcome ProviderConnection::open(const std::string& client, const std::option
 
     ws_->set_option(websocket::stream_base::timeout{timeouts_.handshake, websocket::stream_base::none(), false});
     ws_->set_option(websocket::stream_base::decorator(
-        [](websocket::request_type& req) { req.set(http::field::user_agent, "umf-requester/" UMF_VERSION); }));
+        [](websocket::request_type& req) { req.set(http::field::user_agent, user_agent()); }));
     ws_->read_message_max(p::kMaxReplyBytes);
     bool done = false;
     beast::error_code ec;
