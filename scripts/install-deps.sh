@@ -19,7 +19,11 @@ packages=(
   # web/: WebAssembly build and browser tests
   emscripten chromium
   # headless desktop for overlay and window tests
-  xvfb xauth x11-utils x11-xserver-utils xdotool openbox mupdf xterm xcompmgr picom
+  xvfb xauth x11-utils x11-xserver-utils xdotool openbox mupdf xterm xcompmgr picom libxext-dev
+  # Wayland desktops: the client library and scanner for the layer-shell field,
+  # and the compositors the desktop tests run headless (Sway with foot and
+  # Xwayland, GNOME Shell with the umf extension, KWin, weston), grim, D-Bus
+  libwayland-dev wayland-protocols sway grim foot xwayland weston dbus dbus-daemon gnome-shell kwin-wayland
 )
 
 # node and npm may come from another repository whose nodejs bundles npm

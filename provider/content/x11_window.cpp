@@ -448,15 +448,6 @@ Capture X11Desktop::Connection::to_capture(XImage& image, const Visual* visual) 
     return capture;
 }
 
-bool WindowRect::contains(double px, double py) const {
-    return px >= x && py >= y && px < static_cast<double>(x) + width && py < static_cast<double>(y) + height;
-}
-
-bool WindowFilter::skips(const WindowInfo& window) const {
-    return (window.pid > 0 && own_pids.count(window.pid)) || skip_classes.count(window.instance) ||
-           skip_classes.count(window.wm_class);
-}
-
 X11Desktop::X11Desktop(const std::string& display_name) : connection_(std::make_unique<Connection>(display_name)) {}
 
 X11Desktop::~X11Desktop() = default;

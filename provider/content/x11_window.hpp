@@ -19,49 +19,12 @@
 #include "content/process_documents.hpp"
 #include "content/recent_files.hpp"
 #include "content/resolver.hpp"
+#include "desktop/desktop.hpp"
 
 // Xlib's Display, without Xlib in every file that includes this one.
 struct _XDisplay;
 
 namespace umf::provider {
-
-// In the root window's pixels.
-struct WindowRect {
-    int x = 0;
-    int y = 0;
-    int width = 0;
-    int height = 0;
-    bool contains(double px, double py) const;
-    bool empty() const { return width <= 0 || height <= 0; }
-    bool operator==(const WindowRect&) const = default;
-};
-
-struct WindowInfo {
-    unsigned long id = 0;  // the client window's XID
-    WindowRect rect;       // the window manager's frame included
-    std::string title;     // UTF-8: _NET_WM_NAME, else WM_NAME
-    std::string instance;  // WM_CLASS, both halves
-    std::string wm_class;
-    // The X server's word for local clients (X-Resource), else _NET_WM_PID
-    // when WM_CLIENT_MACHINE is this host; 0 when unknown.
-    int pid = 0;
-};
-
-// Windows that are not content: the provider's own (its PIDs), and classes
-// of the caller's choosing (panels, a screen keyboard). Matching windows are
-// looked through, as if absent.
-struct WindowFilter {
-    std::set<int> own_pids;
-    std::set<std::string> skip_classes;  // matches WM_CLASS's instance or class
-    bool skips(const WindowInfo& window) const;
-};
-
-// Pixels of the screen, row-major, 0xffRRGGBB.
-struct Capture {
-    int width = 0;
-    int height = 0;
-    std::vector<std::uint32_t> pixels;
-};
 
 // Xlib's error handler is process-wide and its default exits the process
 // (a window closed while it is looked at gives BadWindow). A connection of

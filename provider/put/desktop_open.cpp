@@ -23,7 +23,7 @@ bool open_with_desktop(const std::string& target, std::string* problem, std::opt
     if (target.empty() || target[0] == '-') return fail("not a URL or an absolute path: " + target);
     // The windows before xdg-open starts, so its window is the one that is new.
     std::shared_ptr<NewWindowWatch> watch;
-    if (place) watch = NewWindowWatch::create(*place);
+    if (place) watch = X11NewWindowWatch::create(*place);
     posix_spawn_file_actions_t actions;
     if (posix_spawn_file_actions_init(&actions) != 0) return fail("cannot prepare xdg-open");
     // No terminal input for it; its output is of no use to the provider's console.
@@ -36,7 +36,7 @@ bool open_with_desktop(const std::string& target, std::string* problem, std::opt
     const int rc = posix_spawnp(&pid, "xdg-open", &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) return fail(std::string("cannot start xdg-open: ") + std::strerror(rc));
-    if (watch) std::thread([watch, pid] { watch->place(pid); }).detach();
+    if (watch) std::thread([watch, pid] { watch->place(pid, std::chrono::milliseconds(kPlacementWaitMs)); }).detach();
     // Reaped when it ends, however long the browser keeps it.
     std::thread([pid] {
         int status = 0;

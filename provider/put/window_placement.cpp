@@ -82,7 +82,7 @@ bool descends_from(int pid, int ancestor) {
     return false;
 }
 
-struct NewWindowWatch::Connection {
+struct X11NewWindowWatch::Connection {
     Display* display = nullptr;
     Window root = 0;
     Atom client_list = 0, wm_pid = 0, supported = 0, moveresize = 0, frame_extents = 0, window_type = 0,
@@ -187,7 +187,7 @@ struct NewWindowWatch::Connection {
     }
 };
 
-std::unique_ptr<NewWindowWatch> NewWindowWatch::create(WindowPlacement where, const std::string& display_name) {
+std::unique_ptr<X11NewWindowWatch> X11NewWindowWatch::create(WindowPlacement where, const std::string& display_name) {
     const char* env = std::getenv("DISPLAY");
     if (display_name.empty() && (!env || !*env)) {
         debug_line("no X display, so the opened window stays where it opens");
@@ -207,15 +207,15 @@ std::unique_ptr<NewWindowWatch> NewWindowWatch::create(WindowPlacement where, co
         debug_line("no window manager to list the windows (_NET_SUPPORTING_WM_CHECK)");
         return nullptr;
     }
-    return std::unique_ptr<NewWindowWatch>(new NewWindowWatch(std::move(connection), where));
+    return std::unique_ptr<X11NewWindowWatch>(new X11NewWindowWatch(std::move(connection), where));
 }
 
-NewWindowWatch::NewWindowWatch(std::unique_ptr<Connection> connection, WindowPlacement where)
+X11NewWindowWatch::X11NewWindowWatch(std::unique_ptr<Connection> connection, WindowPlacement where)
     : connection_(std::move(connection)), where_(where), before_(connection_->clients()) {}
 
-NewWindowWatch::~NewWindowWatch() = default;
+X11NewWindowWatch::~X11NewWindowWatch() = default;
 
-std::optional<unsigned long> NewWindowWatch::place(int child_pid, std::chrono::milliseconds wait) {
+std::optional<unsigned long> X11NewWindowWatch::place(int child_pid, std::chrono::milliseconds wait) {
     const auto deadline = std::chrono::steady_clock::now() + wait;
     const Connection& c = *connection_;
     const auto from_child = [&](unsigned long w) {

@@ -17,19 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "desktop/desktop.hpp"
+
 namespace umf::provider {
 
 inline constexpr int kPlacementWaitMs = 5000;
 
-struct PlaceRect {
-    int x = 0, y = 0, width = 0, height = 0;
-};
-
-// The pointed place and its screen, in X11 root-window pixels.
-struct WindowPlacement {
-    double x = 0.0, y = 0.0;
-    PlaceRect screen;
-};
+using PlaceRect = WindowRect;
 
 // Where a window of outer size `width` x `height` goes so that its centre is
 // on (x, y), moved the least needed to lie inside `screen` (its top-left
@@ -52,23 +46,23 @@ bool descends_from(int pid, int ancestor);
 // The watch for one opening: made before xdg-open starts (it reads the
 // client list then), handed the child afterwards. Opening the display may
 // fail (no X, no window manager): create gives nullptr then.
-class NewWindowWatch {
+class X11NewWindowWatch final : public NewWindowWatch {
 public:
     // `display_name` empty: $DISPLAY.
-    static std::unique_ptr<NewWindowWatch> create(WindowPlacement where, const std::string& display_name = {});
-    ~NewWindowWatch();
-    NewWindowWatch(const NewWindowWatch&) = delete;
-    NewWindowWatch& operator=(const NewWindowWatch&) = delete;
+    static std::unique_ptr<X11NewWindowWatch> create(WindowPlacement where, const std::string& display_name = {});
+    ~X11NewWindowWatch() override;
+    X11NewWindowWatch(const X11NewWindowWatch&) = delete;
+    X11NewWindowWatch& operator=(const X11NewWindowWatch&) = delete;
 
     // Watches for the child's window for up to `wait` and moves it; the id
     // of the window moved, or nullopt. Blocks: desktop_open runs it on a
     // thread of its own.
     std::optional<unsigned long> place(int child_pid,
-                                       std::chrono::milliseconds wait = std::chrono::milliseconds(kPlacementWaitMs));
+                                       std::chrono::milliseconds wait = std::chrono::milliseconds(kPlacementWaitMs)) override;
 
 private:
     struct Connection;
-    NewWindowWatch(std::unique_ptr<Connection> connection, WindowPlacement where);
+    X11NewWindowWatch(std::unique_ptr<Connection> connection, WindowPlacement where);
 
     std::unique_ptr<Connection> connection_;
     WindowPlacement where_;

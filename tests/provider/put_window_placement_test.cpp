@@ -189,20 +189,20 @@ TEST_F(PutWindowPlacementOnX, XdgOpensWindowLandsCentredOnThePointedPlace) {
 }
 
 TEST_F(PutWindowPlacementOnX, OnlyANewWindowMovesAndWithoutAWindowManagerNothingIsWatched) {
-    EXPECT_EQ(NewWindowWatch::create({800, 500, {0, 0, 1600, 1000}}, server.display), nullptr)
+    EXPECT_EQ(X11NewWindowWatch::create({800, 500, {0, 0, 1600, 1000}}, server.display), nullptr)
         << "no window manager lists the windows";
     start_openbox();
     Process old({"xterm", "-T", "old", "-e", "sleep", "60"}, options("old.log"));
     ASSERT_TRUE(wait_until([&] { return window_titled("old").has_value(); }, 10s));
     const WindowRect before = window_titled("old")->rect;
-    auto watch = NewWindowWatch::create({800, 500, {0, 0, 1600, 1000}}, server.display);
+    auto watch = X11NewWindowWatch::create({800, 500, {0, 0, 1600, 1000}}, server.display);
     ASSERT_NE(watch, nullptr);
     // The "opener" brings up no window of its own: the old one stays put.
     Process quiet({"sleep", "30"}, options("sleep.log"));
     EXPECT_EQ(watch->place(quiet.pid(), 600ms), std::nullopt);
     EXPECT_EQ(window_titled("old")->rect, before);
     // A window that comes while it watches is the one moved.
-    auto second = NewWindowWatch::create({800, 500, {0, 0, 1600, 1000}}, server.display);
+    auto second = X11NewWindowWatch::create({800, 500, {0, 0, 1600, 1000}}, server.display);
     ASSERT_NE(second, nullptr);
     Process fresh({"xterm", "-T", "fresh", "-e", "sleep", "60"}, options("fresh.log"));
     const auto moved = second->place(fresh.pid(), 10s);
