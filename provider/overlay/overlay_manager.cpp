@@ -146,6 +146,7 @@ void OverlayManager::add_screen(QScreen* screen) {
     const QSize size = physical_size(screen);
     entry->window = std::make_unique<OverlayWindow>(
         screen, screen_field_for(size.width(), size.height(), module_px_for(screen, preset_)), preset_.palette);
+    entry->window->set_pixel_opacity(preset_.opacity_max);
     entry->window->set_opacity(std::max(applied_opacity_, 0.0));
     Entry* raw = entry.get();
     auto refit_this = [this, raw] {
@@ -227,6 +228,7 @@ void OverlayManager::set_preset(const overlay::Preset& preset) {
     adaptive_ = overlay::AdaptiveOverlay(preset_);
     for (auto& entry : entries_) {
         if (new_palette) entry->window->set_field(entry->window->screen_field(), preset_.palette);
+        entry->window->set_pixel_opacity(std::max(preset_.opacity_max, entry->window->pulse_opacity()));
         refocus(*entry, false);
     }
     if (new_module) {

@@ -14,6 +14,7 @@
 
 // Last: Xlib's macros (None, Bool) would clash with Qt's headers.
 #include <X11/Xlib.h>
+#include <X11/extensions/shape.h>
 
 namespace umf::provider {
 
@@ -50,6 +51,11 @@ OverlayWindow::OverlayWindow(QScreen* screen, ScreenField field, const std::vect
     if (screen) setScreen(screen);
     cover_screen();
     set_field(std::move(field), palette);
+    // Made now, not at the first show(): Qt's own empty input shape comes
+    // with its platform window, and ours is set on the X server before any
+    // map, whatever the Qt version does.
+    create();
+    if (QGuiApplication::platformName() == QLatin1String("xcb")) empty_input_region();
 }
 
 void OverlayWindow::cover_screen() {
@@ -75,15 +81,43 @@ void OverlayWindow::set_opacity(double opacity) {
         return;
     }
     pulse_ = opacity;
-    setOpacity(opacity);
+    if (opacity > pixel_opacity_) return set_pixel_opacity(opacity);
+    setOpacity(window_opacity());
     flush_x11();
+}
+
+double OverlayWindow::window_opacity() const {
+    if (painted_pulse_) return 1.0;
+    return pixel_opacity_ > 0 ? std::clamp(pulse_ / pixel_opacity_, 0.0, 1.0) : 0.0;
+}
+
+void OverlayWindow::set_pixel_opacity(double ceiling) {
+    ceiling = std::clamp(ceiling, 0.0, 1.0);
+    if (ceiling < pulse_) ceiling = pulse_;
+    if (ceiling == pixel_opacity_) return;
+    pixel_opacity_ = ceiling;
+    setOpacity(window_opacity());
+    flush_x11();
+    update();
+}
+
+void OverlayWindow::empty_input_region() {
+    const auto* x11 = qGuiApp->nativeInterface<QNativeInterface::QX11Application>();
+    Display* display = x11 ? x11->display() : nullptr;
+    if (!display) return;
+    int event_base = 0, error_base = 0;
+    if (!XShapeQueryExtension(display, &event_base, &error_base)) return;
+    // No rectangles: an empty input shape, so the pointer goes to what is below.
+    XShapeCombineRectangles(display, static_cast<::Window>(winId()), ShapeInput, 0, 0, nullptr, 0, ShapeSet,
+                            Unsorted);
+    XFlush(display);
 }
 
 void OverlayWindow::set_painted_pulse(bool on) {
     if (on == painted_pulse_) return;
     painted_pulse_ = on;
     if (!on) backdrop_ = QImage();
-    setOpacity(on ? 1.0 : pulse_);
+    setOpacity(window_opacity());
     flush_x11();
     update();
 }
@@ -235,12 +269,18 @@ void OverlayWindow::paint_to(QPainter& painter, const QRegion& region) {
     } else if (painted_pulse_) {
         if (focus_radius_ > 0) paint_painted_focus(painter);
     } else if (!focus_centre_) {
+        painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
+        painter.setOpacity(pixel_opacity_);
         painter.drawImage(QPointF(0, 0), layer_);
+        painter.setOpacity(1.0);
     } else if (focus_radius_ > 0) {
         const QRect bounds = logical_bounds(*focus_centre_, focus_radius_, 0);
         painter.save();
         painter.setClipRect(bounds, Qt::IntersectClip);
+        painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
+        painter.setOpacity(pixel_opacity_);
         painter.drawImage(QPointF(0, 0), layer_);
+        painter.setOpacity(1.0);
         const QPointF c = *focus_centre_ / dpr;
         const double r = focus_radius_ / dpr;
         QRadialGradient mask(c, r);

@@ -47,7 +47,15 @@ public:
 
     // 0..1, the pulse: the compositor's opacity for the whole window, no
     // repaint; with the painted pulse a repaint of the focus circle instead.
+    // A pulse above pixel_opacity() raises it (a repaint).
     void set_opacity(double opacity);
+    // The most the pulse reaches (the preset's opacity_max). The field's own
+    // pixels carry it as their alpha (premultiplied) and the window's opacity
+    // property is only the pulse's share of it, so a compositor that ignores
+    // _NET_WM_WINDOW_OPACITY still shows a translucent field, never an opaque
+    // one that hides the desktop.
+    void set_pixel_opacity(double ceiling);
+    double pixel_opacity() const { return pixel_opacity_; }
     // The pulse as last given to set_opacity.
     double pulse_opacity() const { return pulse_; }
 
@@ -91,7 +99,13 @@ private:
     double focus_radius_ = 0.0;
     int paint_count_ = 0;
     double pulse_ = 0.0;
+    double pixel_opacity_ = 1.0;
     bool painted_pulse_ = false;
+    // The window's opacity property for the pulse now.
+    double window_opacity() const;
+    // The input region emptied on the X server itself, before the window is
+    // first mapped: no click lands on the field, from its first frame on.
+    void empty_input_region();
     QImage backdrop_;  // Format_RGB32, physical pixels
     QPoint backdrop_origin_;
     // The painted circle's soft mask, kept while only the pulse moves.

@@ -63,7 +63,11 @@ TEST(OverlayManager, EasyLocksLowerTheFieldAndStrugglingRaisesIt) {
     const double lowered = manager.opacity();
     EXPECT_LT(lowered, 0.5 - 0.03) << "easy locks did not lower the field";
     EXPECT_GE(lowered, 0.1);
-    for (OverlayWindow* w : manager.windows()) EXPECT_NEAR(w->opacity(), lowered, 1.0 / 255 + 1e-6);
+    for (OverlayWindow* w : manager.windows()) {
+        // The pixels carry the preset's most, the window's opacity the pulse's share of it.
+        EXPECT_NEAR(w->pixel_opacity(), 0.5, 1e-9);
+        EXPECT_NEAR(w->opacity() * w->pixel_opacity(), lowered, 1.0 / 255 + 1e-6);
+    }
 
     // Two reports of no lock: back up at once, by more than it sank.
     manager.report_seeking();
@@ -225,7 +229,7 @@ TEST(OverlayManager, FocusWithBlurMixesTheBlurredScreenIntoTheCircle) {
     manager.set_preset(preset);
     EXPECT_FALSE(window.painted_pulse());
     EXPECT_TRUE(window.backdrop_rect().isEmpty());
-    EXPECT_NEAR(window.opacity(), manager.opacity(), 1.0 / 255 + 1e-6);
+    EXPECT_NEAR(window.opacity() * window.pixel_opacity(), manager.opacity(), 1.0 / 255 + 1e-6);
     manager.set_focus(screen.index, centre);
     pump_until([] { return false; }, 2 * OverlayManager::kMinGrabIntervalMs);
     EXPECT_EQ(log->asked.size(), 2u) << "grabbed without a blur";

@@ -39,7 +39,23 @@
 #include "support/temp_dir.hpp"
 #include "support/x11_session.hpp"
 
+// Last: Xlib's macros clash with Qt's headers.
+#include <X11/Xlib.h>
+#include <X11/extensions/shape.h>
+
 namespace {
+
+// The rectangles of a window's input shape on the X server; -1 when the
+// server cannot say.
+int input_rectangles(const std::string& display_name, unsigned long window) {
+    Display* display = XOpenDisplay(display_name.c_str());
+    if (!display) return -1;
+    int count = -1, ordering = 0;
+    XRectangle* rects = XShapeGetRectangles(display, window, ShapeInput, &count, &ordering);
+    if (rects) XFree(rects);
+    XCloseDisplay(display);
+    return count;
+}
 
 namespace fs = std::filesystem;
 using namespace umf::provider;
@@ -142,14 +158,22 @@ TEST(OverlayWindowOnX, DISABLED_Child) {
     ASSERT_GE(ps.size(), 9u);
     ASSERT_TRUE(pump_until([&] { return mix_error(desktop, ps, 0.0) <= 1; }, 5000)) << "the backdrop is not shown";
 
-    // (a) The field over the grey at the window's opacity.
+    // (a) The field over the grey at the window's opacity. Its pixels carry
+    // the preset's most (0.5 here), the window's opacity only the pulse's
+    // share of it: at the top of the pulse the window is fully "opaque".
     auto owned = std::make_unique<OverlayWindow>(screen, field, std::vector<std::string>{});
     OverlayWindow& overlay = *owned;
+    // (f) No click lands on it from its first frame: the input shape is
+    // empty on the server before it is ever mapped.
+    EXPECT_EQ(input_rectangles(display, overlay.winId()), 0);
+    overlay.set_pixel_opacity(0.5);
     overlay.set_opacity(0.5);
+    EXPECT_DOUBLE_EQ(overlay.opacity(), 1.0);
     overlay.show();
     int error = 255;
     EXPECT_TRUE(pump_until([&] { return (error = mix_error(desktop, ps, 0.5)) <= 3; }, 5000))
         << "worst channel off by " << error;
+    EXPECT_EQ(input_rectangles(display, overlay.winId()), 0);
 
     // (d) Shown, it took no focus.
     pump_until([] { return false; }, 200);
@@ -163,6 +187,18 @@ TEST(OverlayWindowOnX, DISABLED_Child) {
         << "worst channel off by " << error;
     pump_until([] { return false; }, 200);
     EXPECT_EQ(overlay.paint_count(), paints);
+
+    // (g) A compositor that ignores the window's opacity property still
+    // shows a translucent field (at the pixels' 0.5), never an opaque one.
+    char id[32];
+    std::snprintf(id, sizeof id, "0x%llx", static_cast<unsigned long long>(overlay.winId()));
+    run({"xprop", "-id", id, "-remove", "_NET_WM_WINDOW_OPACITY"}, env);
+    EXPECT_TRUE(pump_until([&] { return (error = mix_error(desktop, ps, 0.5)) <= 3; }, 5000))
+        << "without the opacity property, worst channel off by " << error;
+    overlay.set_opacity(0.21);
+    overlay.set_opacity(0.2);
+    EXPECT_TRUE(pump_until([&] { return (error = mix_error(desktop, ps, 0.2)) <= 3; }, 5000))
+        << "worst channel off by " << error;
 
     // (c) A click on the field reaches the window below.
     run({"xdotool", "mousemove", std::to_string(ps[0].x), std::to_string(ps[0].y), "click", "1"}, env);
