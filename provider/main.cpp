@@ -30,6 +30,7 @@ usage:
   umf-provider [serve] [--board BOARD.json] [--preset NAME] [--port P] [--headless]
                [--screen WxH] [--public] [--bind ADDR] [--host HOST] [--web DIR]
                [--config-dir DIR] [--no-qr] [--no-overlay] [--tune]
+               [--desktop x11|wlroots|kde|gnome|none]
                [--puts ask|always|never] [--put-dir DIR] [--put-max-mb N]
   umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate] [--no-qr]
   umf-provider share FILE|URL --rect X,Y,W,H [--title T] [--screen N] [--port P]
@@ -47,8 +48,12 @@ serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /w
          Without a display, or with --headless, the screen is virtual (--screen,
          default 1920x1080) and shows BOARD.json, or the built-in demo board.
          On a desktop with --board the board fills the screen; without one the
-         field is mixed over every screen (a compositing manager must run;
-         --no-overlay leaves it out) and pointing takes the window there.
+         field is mixed over every screen (--no-overlay leaves it out) and
+         pointing takes the window there. The desktop backend comes from the
+         session (X11; on Wayland: Sway/Hyprland/river, KDE Plasma, GNOME);
+         --desktop names it instead, and the console says which one runs and
+         what does not work there. A Wayland compositor without a backend gets
+         no field at all, and boards, shares and puts work as everywhere.
          The tray icon switches the overlay and its preset and opens the
          tuning window (--tune opens it at start) and the pairing QR code.
          --public (kiosks) welcomes any requester and serves board items only.

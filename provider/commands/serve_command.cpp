@@ -19,9 +19,10 @@
 #include "content/board_resolver.hpp"
 #include "content/image_snapshot.hpp"
 #include "content/shared_items.hpp"
-#include "content/x11_snapshot.hpp"
-#include "content/x11_window.hpp"
-#include "overlay/compositor.hpp"
+#include "content/snapshot_resolver.hpp"
+#include "content/window_resolver.hpp"
+#include "desktop/open_desktop.hpp"
+#include "desktop/session.hpp"
 #include "overlay/overlay_activity.hpp"
 #include "put/put_deciders.hpp"
 #include "put/put_folder.hpp"
@@ -49,7 +50,7 @@ const char* const kServeOptions[] = {"port",         "bind",        "host",   "c
                                      "preset",       "screen",      "web",    "opacity-min", "opacity-max",
                                      "period",       "waveform",    "module-px", "blur",     "region",
                                      "focus-radius", "activation",  "fade",   "palette",     "puts",
-                                     "put-dir",      "put-max-mb",  nullptr};
+                                     "put-dir",      "put-max-mb",  "desktop",     nullptr};
 const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", nullptr};
 
 namespace {
@@ -102,7 +103,13 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     const std::string bind = get(a, "bind").value_or("127.0.0.1");
     const std::string host = url_host(a, bind);
     const auto dir = config_dir_option(a);
-    const bool headless = has_flag(a, "headless") || !have_display();
+    DesktopChoice desktop_choice;
+    try {
+        desktop_choice = choose_desktop(session_from_environment(), get(a, "desktop"));
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    const bool headless = has_flag(a, "headless") || !have_display() || desktop_choice.kind == DesktopKind::headless;
     const bool public_mode = has_flag(a, "public");
     // Puts: a phone giving this screen a URL or a file. Kiosks take none
     // unless told (a shared-photo wall: --public --puts always).
@@ -173,19 +180,20 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         if (QScreen* s = QGuiApplication::primaryScreen())
             board_module_px = module_px_for_density(preset.module_px, s->physicalDotsPerInch() * s->devicePixelRatio());
 
-    // On a desktop without a board: the overlay over every screen, when a
-    // compositor can mix it in (without one a translucent window is opaque).
+    // The desktop (desktop/desktop.hpp): its field, its windows, its pixels.
+    // A Wayland session without a backend gets none, and no overlay at all.
+    OpenedDesktop desktop;
+    if (!headless) desktop = open_desktop(desktop_choice);
+    // On a desktop without a board: the overlay over every screen, when the
+    // desktop can show it (on X11: a compositor mixes it in).
     std::unique_ptr<OverlayManager> overlay_manager;
     std::shared_ptr<OverlayActivity> activity;
     std::optional<DesktopLayout> layout;
     if (!headless && !board && !has_flag(a, "no-overlay")) {
-        const char* x = std::getenv("DISPLAY");
-        if (!x || !*x || !compositor_running(std::string(x), 0)) {
-            std::cerr << "umf-provider: no compositing manager runs on this display, so the field cannot be mixed "
-                         "into the screen. "
-                      << compositor_advice() << "\n";
+        if (!desktop.desktop || !desktop.abilities.field) {
+            std::cerr << "umf-provider: the field cannot be shown on this desktop; the desktop lines on the console say why\n";
         } else {
-            overlay_manager = std::make_unique<OverlayManager>(preset);
+            overlay_manager = std::make_unique<OverlayManager>(preset, desktop.desktop);
             layout = overlay_manager->layout();
             activity = std::make_shared<OverlayActivity>(overlay_manager.get(), overlay_manager->layout_indices());
         }
@@ -232,14 +240,14 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         resolvers.push_back(shared_items);
         if (headless) {
             resolvers.push_back(std::make_shared<ImageSnapshotResolver>(screen_image));
-        } else if (const char* x = std::getenv("DISPLAY"); x && *x) {
+        } else if (desktop.desktop && desktop.abilities.windows) {
             // The windows under the point, never the provider's own.
             try {
-                auto desktop = std::make_shared<const X11Desktop>();
-                X11WindowOptions options;
+                const std::shared_ptr<const Desktop> windows = desktop.desktop;
+                WindowResolverOptions options;
                 options.filter.own_pids.insert(static_cast<int>(::getpid()));
-                resolvers.push_back(std::make_shared<X11WindowResolver>(desktop, options));
-                auto snapshots = std::make_shared<X11SnapshotResolver>(desktop, options.filter, true);
+                resolvers.push_back(std::make_shared<WindowResolver>(windows, options));
+                auto snapshots = std::make_shared<SnapshotResolver>(windows, options.filter, desktop.abilities.snapshots);
                 if (overlay_manager || put_prompt) {
                     // A snapshot shows the screen without the field and
                     // without the put cards. Called from a server thread; the
@@ -368,6 +376,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     if (!has_flag(a, "no-qr")) std::cout << qr_text(url);
     std::cout << "pairing URL: " << url << "\n" << std::flush;
 
+    for (const auto& line : describe_desktop(desktop)) std::cout << line << "\n";
     if (layout) {
         std::cout << "overlay: " << layout->screens.size() << " screen(s), field " << layout->field.id << ", preset "
                   << preset.name << " (" << overlay::to_string(preset.activation) << ")\n" << std::flush;
@@ -388,7 +397,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
             std::cerr << "umf-provider: no tray or tuning window: " << e.what() << "\n";
         }
     }
-    if (board_window || overlay_manager) {
+    if (board_window || overlay_manager || put_prompt) {
         // Windows are up: the Qt event loop runs here, and a thread waits for
         // the signals, stops the server (whose snapshots may wait on this
         // loop) and then ends the loop.

@@ -101,6 +101,10 @@ public:
     // 0..1, the pulse.
     virtual void set_opacity(double opacity) = 0;
     virtual double pulse_opacity() const = 0;
+    // The most the pulse will reach (the preset's opacity_max): a surface
+    // whose pulse is a cheap property (X11's window opacity) bakes it into
+    // its pixels, so a compositor ignoring the property shows no more.
+    virtual void set_pixel_opacity(double) {}
     // Only the field within `radius_px` of `centre_px` (the output's physical
     // pixels) is shown; nullopt shows all of it.
     virtual void set_focus(std::optional<QPointF> centre_px, double radius_px) = 0;

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "content/x11_window.hpp"
+#include "desktop/x11/x11_desktop.hpp"
 #include "overlay/background_blur.hpp"
 #include "overlay/pulse.hpp"
 #include "screen/desktop_layout.hpp"
@@ -51,6 +51,26 @@ int blur_margin_px(double module_px) {
 
 // The default grab: the root window's pixels through X11, on the display Qt
 // uses, opened at the first grab. Null images when there is none.
+// A screen the desktop shows no field on: it keeps its place in the layout
+// (the welcome's screens stay the same) and nothing is drawn.
+class AbsentSurface final : public FieldSurface {
+public:
+    explicit AbsentSurface(ScreenField field) : field_(std::move(field)) {}
+    const ScreenField& screen_field() const override { return field_; }
+    void set_field(ScreenField field, const std::vector<std::string>&) override { field_ = std::move(field); }
+    void cover_screen() override {}
+    void set_opacity(double opacity) override { pulse_ = opacity; }
+    double pulse_opacity() const override { return pulse_; }
+    void set_focus(std::optional<QPointF>, double) override {}
+    void show() override {}
+    void hide() override {}
+    bool is_visible() const override { return false; }
+
+private:
+    ScreenField field_;
+    double pulse_ = 0.0;
+};
+
 class X11Grab {
 public:
     QImage operator()(const QRect& root_rect) {
@@ -79,7 +99,7 @@ private:
 struct OverlayManager::Entry {
     QScreen* screen = nullptr;
     int index = 0;
-    std::unique_ptr<OverlayWindow> window;
+    std::unique_ptr<FieldSurface> window;
     std::optional<QPointF> focus;
     // The ring where a requester points, made at the first aim here.
     std::unique_ptr<PointerWindow> pointer;
@@ -98,8 +118,12 @@ struct OverlayManager::Entry {
     double blurred_module_px = -1.0;
 };
 
-OverlayManager::OverlayManager(overlay::Preset preset, QObject* parent)
-    : QObject(parent), preset_(std::move(preset)), adaptive_(preset_) {
+OverlayManager::OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> desktop, QObject* parent)
+    : QObject(parent),
+      preset_(std::move(preset)),
+      desktop_(std::move(desktop)),
+      x11_windows_(!desktop_ || desktop_->name() == "x11"),
+      adaptive_(preset_) {
     clock_.start();
     for (QScreen* screen : QGuiApplication::screens()) add_screen(screen);
     connect(qGuiApp, &QGuiApplication::screenAdded, this, [this](QScreen* screen) {
@@ -123,13 +147,13 @@ OverlayManager::OverlayManager(overlay::Preset preset, QObject* parent)
     });
     connect(&raise_timer_, &QTimer::timeout, this, [this] {
         for (auto& entry : entries_) {
-            if (entry->window->isVisible()) entry->window->raise();
+            if (entry->window->is_visible()) entry->window->raise();
             if (entry->pointer && entry->pointer->isVisible()) entry->pointer->raise();
         }
     });
     raise_timer_.start(kRaiseIntervalMs);
     // Only an X server can be asked for the desktop under the overlay.
-    if (QGuiApplication::platformName() == QLatin1String("xcb")) {
+    if (x11_windows_ && QGuiApplication::platformName() == QLatin1String("xcb")) {
         grab_ = X11Grab();
         for (auto& entry : entries_) refocus(*entry, false);
     }
@@ -144,8 +168,12 @@ void OverlayManager::add_screen(QScreen* screen) {
     entry->screen = screen;
     entry->index = next_index_++;
     const QSize size = physical_size(screen);
-    entry->window = std::make_unique<OverlayWindow>(
-        screen, screen_field_for(size.width(), size.height(), module_px_for(screen, preset_)), preset_.palette);
+    ScreenField field = screen_field_for(size.width(), size.height(), module_px_for(screen, preset_));
+    if (desktop_) entry->window = desktop_->make_field_surface(screen, std::move(field), preset_.palette);
+    else entry->window = std::make_unique<OverlayWindow>(screen, std::move(field), preset_.palette);
+    // A desktop that cannot show a field over this screen: it gets no
+    // surface, and the screen still takes part in the layout.
+    if (!entry->window) entry->window = std::make_unique<AbsentSurface>(screen_field_for(size.width(), size.height(), module_px_for(screen, preset_)));
     entry->window->set_pixel_opacity(preset_.opacity_max);
     entry->window->set_opacity(std::max(applied_opacity_, 0.0));
     Entry* raw = entry.get();
@@ -295,14 +323,14 @@ void OverlayManager::apply_shown(double opacity) {
     // An invisible field is unmapped rather than composited at opacity 0.
     const bool shown = visible_ && snapshot_depth_ == 0 && opacity > 0;
     for (auto& entry : entries_) {
-        OverlayWindow& window = *entry->window;
+        FieldSurface& window = *entry->window;
         if (shown) {
             window.set_opacity(opacity);
-            if (!window.isVisible()) {
+            if (!window.is_visible()) {
                 window.show();
                 window.raise();
             }
-        } else if (window.isVisible()) {
+        } else if (window.is_visible()) {
             window.hide();
         }
         show_pointer(*entry);
@@ -340,7 +368,7 @@ void OverlayManager::refocus(Entry& entry, bool aimed) {
     const bool circles = circles_applied_;
     const double module_px = entry.window->screen_field().placement.module_px;
     const double radius = adaptive_.focus_radius_modules() * module_px;
-    const bool painted = backdrop_mode() && circles;
+    const bool painted = backdrop_mode() && circles && entry.window->supports_painted_pulse();
     entry.window->set_painted_pulse(painted);
     // Circles: this screen's, or none here (a requester is locked elsewhere).
     // Otherwise the whole field, for the requesters still seeking a lock.
@@ -472,7 +500,7 @@ void OverlayManager::set_pointer(int index, std::optional<QPointF> point_px, con
     Entry* entry = entry_for(index);
     if (!entry) return;
     entry->pointing = point_px.has_value();
-    if (point_px) {
+    if (point_px && x11_windows_) {
         if (!entry->pointer) entry->pointer = std::make_unique<PointerWindow>(entry->screen);
         entry->pointer->point_at(*point_px, title);
         entry->pointed_ms = clock_.elapsed();
@@ -553,9 +581,16 @@ std::vector<int> OverlayManager::layout_indices() const {
     return out;
 }
 
+std::vector<FieldSurface*> OverlayManager::surfaces() const {
+    std::vector<FieldSurface*> out;
+    for (const auto& entry : entries_) out.push_back(entry->window.get());
+    return out;
+}
+
 std::vector<OverlayWindow*> OverlayManager::windows() const {
     std::vector<OverlayWindow*> out;
-    for (const auto& entry : entries_) out.push_back(entry->window.get());
+    for (const auto& entry : entries_)
+        if (auto* window = dynamic_cast<OverlayWindow*>(entry->window.get())) out.push_back(window);
     return out;
 }
 

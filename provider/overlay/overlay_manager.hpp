@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "overlay/adaptive.hpp"
-#include "overlay/overlay_window.hpp"
+#include "desktop/x11/overlay_window.hpp"
 #include "overlay/pointer_window.hpp"
 #include "overlay/preset.hpp"
 #include "screen/desktop_layout.hpp"
@@ -50,7 +50,12 @@ struct OverlayScreen {
 
 class OverlayManager : public QObject {
 public:
-    explicit OverlayManager(overlay::Preset preset, QObject* parent = nullptr);
+    // The field's surfaces come from `desktop` (desktop/desktop.hpp); without
+    // one they are X11 windows (desktop/x11/overlay_window.hpp), as on Qt's
+    // xcb and offscreen platforms. The pointer ring's own window and the
+    // blurred backdrop are X11 only.
+    explicit OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> desktop = nullptr,
+                            QObject* parent = nullptr);
     ~OverlayManager() override;
 
     void set_preset(const overlay::Preset& preset);
@@ -117,7 +122,8 @@ public:
     // Milliseconds the last grab's capture and blur took (not the settling).
     double last_grab_cost_ms() const { return last_grab_cost_ms_; }
 
-    // The windows, for tests and diagnostics.
+    // The surfaces, and those that are X11 windows, for tests and diagnostics.
+    std::vector<FieldSurface*> surfaces() const;
     std::vector<OverlayWindow*> windows() const;
     // The opacity last given to the windows.
     double opacity() const { return applied_opacity_; }
@@ -152,6 +158,8 @@ private:
     void blur_backdrop(Entry& entry);
 
     overlay::Preset preset_;
+    std::shared_ptr<Desktop> desktop_;
+    bool x11_windows_ = true;  // surfaces and pointer rings are Qt windows on X11
     overlay::AdaptiveOverlay adaptive_;
     std::vector<std::unique_ptr<Entry>> entries_;
     std::optional<DesktopLayout> layout_;

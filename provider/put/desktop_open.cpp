@@ -1,5 +1,7 @@
 #include "put/desktop_open.hpp"
 
+#include "desktop/x11/x11_window_watch.hpp"
+
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>

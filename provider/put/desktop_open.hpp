@@ -2,13 +2,13 @@
 // TARGET`, found on PATH and started without a shell (posix_spawnp), fire and
 // forget; a thread of its own reaps the child when it ends. Tests put a fake
 // xdg-open first on PATH that records its argument. With a place, the window
-// it brings up is moved there (window_placement.hpp), best effort.
+// it brings up is moved there (desktop/window_placement.hpp), best effort; on X11 for now.
 #pragma once
 
 #include <optional>
 #include <string>
 
-#include "put/window_placement.hpp"
+#include "desktop/window_placement.hpp"
 
 namespace umf::provider {
 

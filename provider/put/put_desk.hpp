@@ -30,7 +30,7 @@
 #include "put/put_decision.hpp"
 #include "put/trusted_devices.hpp"
 #include "put/upload_table.hpp"
-#include "put/window_placement.hpp"
+#include "desktop/window_placement.hpp"
 #include "server/activity.hpp"
 
 namespace umf::provider {

@@ -23,7 +23,7 @@
 #include <thread>
 #include <vector>
 
-#include "content/x11_window.hpp"
+#include "desktop/x11/x11_desktop.hpp"
 #include "protocol/messages.hpp"
 #include "server/pairing.hpp"
 #include "server/tls_identity.hpp"

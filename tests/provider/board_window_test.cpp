@@ -12,7 +12,7 @@
 #include <fstream>
 
 #include "board/board.hpp"
-#include "content/x11_window.hpp"
+#include "desktop/x11/x11_desktop.hpp"
 #include "detect/detector.hpp"
 #include "overlay/preset.hpp"
 #include "provider/gui_test_app.hpp"

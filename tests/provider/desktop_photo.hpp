@@ -12,7 +12,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "content/x11_window.hpp"
+#include "desktop/x11/x11_desktop.hpp"
 #include "detect/detector.hpp"
 
 namespace umf::test {

@@ -29,10 +29,10 @@
 #include <fstream>
 #include <iostream>
 
-#include "content/x11_window.hpp"
-#include "overlay/compositor.hpp"
+#include "desktop/x11/x11_desktop.hpp"
+#include "desktop/x11/compositor.hpp"
 #include "overlay/overlay_manager.hpp"
-#include "overlay/overlay_window.hpp"
+#include "desktop/x11/overlay_window.hpp"
 #include "screen/board_window.hpp"
 #include "screen/screen_field.hpp"
 #include "provider/qt_pump.hpp"

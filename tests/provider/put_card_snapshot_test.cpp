@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "content/x11_window.hpp"
+#include "desktop/x11/x11_desktop.hpp"
 #include "detect/detector.hpp"
 #include "screen/screen_field.hpp"
 #include "desktop_photo.hpp"

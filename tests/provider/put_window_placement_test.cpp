@@ -14,9 +14,9 @@
 
 #include <fstream>
 
-#include "content/x11_window.hpp"
+#include "desktop/x11/x11_desktop.hpp"
 #include "put/desktop_open.hpp"
-#include "put/window_placement.hpp"
+#include "desktop/x11/x11_window_watch.hpp"
 #include "support/temp_dir.hpp"
 #include "support/x11_session.hpp"
 

@@ -31,9 +31,10 @@
 #include <thread>
 #include <vector>
 
-#include "content/x11_snapshot.hpp"
+#include "content/snapshot_resolver.hpp"
 #include "content/file_facts.hpp"
-#include "content/x11_window.hpp"
+#include "content/window_resolver.hpp"
+#include "desktop/x11/x11_desktop.hpp"
 #include "support/x11_session.hpp"
 #include "support/temp_dir.hpp"
 
@@ -232,8 +233,8 @@ protected:
 
     X11Session& session() { return *session_; }
 
-    X11WindowOptions window_options(const fs::path& recent_files = {}) {
-        X11WindowOptions options;
+    WindowResolverOptions window_options(const fs::path& recent_files = {}) {
+        WindowResolverOptions options;
         options.documents.home = session().dir.path;
         options.recent_files = recent_files.empty() ? session().dir.path / "no-recent-files.xbel" : recent_files;
         return options;
@@ -280,7 +281,7 @@ TEST_F(X11Test, PdfViewerResolvesToItsFile) {
     EXPECT_LE(window->rect.width, kPdfW + 40);
     EXPECT_LE(window->rect.height, kPdfH + 60);
 
-    const X11WindowResolver resolver(session().desktop, window_options());
+    const WindowResolver resolver(session().desktop, window_options());
     for (const Purpose purpose : {Purpose::preview, Purpose::grab}) {
         const auto resolved = resolver.resolve(at(kPdfCentreX, kPdfCentreY), purpose);
         ASSERT_TRUE(resolved);
@@ -303,10 +304,10 @@ TEST_F(X11Test, WindowWithoutDocumentGivesASnapshot) {
     EXPECT_EQ(window->wm_class, "XTerm");
     EXPECT_EQ(window->pid, session().xterm->pid());
 
-    const X11WindowResolver resolver(session().desktop, window_options());
+    const WindowResolver resolver(session().desktop, window_options());
     EXPECT_FALSE(resolver.resolve(at(kTermCentreX, kTermCentreY), Purpose::preview));
 
-    const X11SnapshotResolver snapshots(session().desktop, {}, true);
+    const SnapshotResolver snapshots(session().desktop, {}, true);
     const auto preview = snapshots.resolve(at(kTermCentreX, kTermCentreY), Purpose::preview);
     ASSERT_TRUE(preview);
     EXPECT_EQ(preview->kind, p::ContentKind::snapshot);
@@ -335,7 +336,7 @@ TEST_F(X11Test, RecentFilesNameTheDocumentByTitle) {
     std::ofstream(xbel) << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<xbel version=\"1.0\">\n"
                            "<bookmark href=\"file://"
                         << notes.string() << "\" modified=\"2024-01-01T00:00:00Z\"/>\n</xbel>\n";
-    const X11WindowResolver resolver(session().desktop, window_options(xbel));
+    const WindowResolver resolver(session().desktop, window_options(xbel));
     const auto resolved = resolver.resolve(at(kTermCentreX, kTermCentreY), Purpose::preview);
     ASSERT_TRUE(resolved);
     EXPECT_EQ(resolved->kind, p::ContentKind::file);
@@ -346,9 +347,9 @@ TEST_F(X11Test, RecentFilesNameTheDocumentByTitle) {
 
 TEST_F(X11Test, BareDesktopHasNothing) {
     EXPECT_FALSE(session().desktop->window_at(kBareX, kBareY));
-    const X11WindowResolver resolver(session().desktop, window_options());
+    const WindowResolver resolver(session().desktop, window_options());
     EXPECT_FALSE(resolver.resolve(at(kBareX, kBareY), Purpose::preview));
-    const X11SnapshotResolver snapshots(session().desktop, {}, true);
+    const SnapshotResolver snapshots(session().desktop, {}, true);
     EXPECT_FALSE(snapshots.resolve(at(kBareX, kBareY), Purpose::preview));
     EXPECT_FALSE(snapshots.resolve(at(kBareX, kBareY), Purpose::grab));
     EXPECT_FALSE(session().desktop->window_at(-5, 10));
@@ -361,12 +362,12 @@ TEST_F(X11Test, OwnAndSkippedWindowsAreLookedThrough) {
     own.own_pids = {session().xterm->pid()};
     EXPECT_FALSE(session().desktop->window_at(kTermCentreX, kTermCentreY, own));
     EXPECT_TRUE(session().desktop->window_at(kPdfCentreX, kPdfCentreY, own));
-    const X11SnapshotResolver snapshots(session().desktop, own, true);
+    const SnapshotResolver snapshots(session().desktop, own, true);
     EXPECT_FALSE(snapshots.resolve(at(kTermCentreX, kTermCentreY), Purpose::grab));
 
-    X11WindowOptions options = window_options();
+    WindowResolverOptions options = window_options();
     options.filter.own_pids = {session().mupdf->pid()};
-    const X11WindowResolver resolver(session().desktop, options);
+    const WindowResolver resolver(session().desktop, options);
     EXPECT_FALSE(resolver.resolve(at(kPdfCentreX, kPdfCentreY), Purpose::preview));
 
     WindowFilter by_class;
@@ -375,13 +376,13 @@ TEST_F(X11Test, OwnAndSkippedWindowsAreLookedThrough) {
 }
 
 TEST_F(X11Test, DisabledSnapshotsNeverAnswer) {
-    const X11SnapshotResolver snapshots(session().desktop, {}, false);
+    const SnapshotResolver snapshots(session().desktop, {}, false);
     EXPECT_FALSE(snapshots.resolve(at(kTermCentreX, kTermCentreY), Purpose::preview));
     EXPECT_FALSE(snapshots.resolve(at(kTermCentreX, kTermCentreY), Purpose::grab));
 }
 
 TEST_F(X11Test, ConcurrentAimsAgreeAndStayCheap) {
-    const X11WindowResolver resolver(session().desktop, window_options());
+    const WindowResolver resolver(session().desktop, window_options());
     constexpr int kThreads = 4, kAims = 50;
     std::atomic<int> wrong{0};
     const auto start = Clock::now();
@@ -464,7 +465,7 @@ TEST_F(X11Test, WorksWithoutAWindowManager) {
     EXPECT_EQ(window->rect.x, 100);
     EXPECT_EQ(window->rect.y, 120);
     EXPECT_FALSE(desktop->window_at(90, 130));
-    const X11SnapshotResolver snapshots(desktop, {}, true);
+    const SnapshotResolver snapshots(desktop, {}, true);
     const auto grab = snapshots.resolve(at(110, 130), Purpose::grab);
     ASSERT_TRUE(grab && grab->bytes);
     const QImage image = QImage::fromData(QByteArray::fromStdString(*grab->bytes), "PNG");

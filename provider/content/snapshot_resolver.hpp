@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "content/resolver.hpp"
-#include "content/x11_window.hpp"
+#include "desktop/desktop.hpp"
 
 namespace umf::provider {
 
@@ -32,10 +32,10 @@ std::string snapshot_file_name(std::string_view title);
 WindowRect snapshot_rect(const WindowRect& window, const WindowRect& screen, double root_x, double root_y,
                          int max_side = kMaxSnapshotSide);
 
-class X11SnapshotResolver final : public Resolver {
+class SnapshotResolver final : public Resolver {
 public:
     // enabled false (public and kiosk modes): never answers.
-    X11SnapshotResolver(std::shared_ptr<const X11Desktop> desktop, WindowFilter filter, bool enabled);
+    SnapshotResolver(std::shared_ptr<const Desktop> desktop, WindowFilter filter, bool enabled);
     // Called around each capture, from a server thread: the overlay hides
     // itself (and waits until the screen shows it gone) and comes back, so a
     // snapshot never holds the field.
@@ -46,7 +46,7 @@ public:
     std::optional<Resolved> resolve(const ScreenPoint& point, Purpose purpose) const override;
 
 private:
-    std::shared_ptr<const X11Desktop> desktop_;
+    std::shared_ptr<const Desktop> desktop_;
     WindowFilter filter_;
     bool enabled_;
     std::function<void()> before_capture_;

@@ -1,4 +1,4 @@
-#include "content/x11_snapshot.hpp"
+#include "content/snapshot_resolver.hpp"
 
 #include <QBuffer>
 #include <QByteArray>
@@ -89,18 +89,18 @@ WindowRect snapshot_rect(const WindowRect& window, const WindowRect& screen, dou
     return {left, top, right - left, bottom - top};
 }
 
-X11SnapshotResolver::X11SnapshotResolver(std::shared_ptr<const X11Desktop> desktop, WindowFilter filter,
+SnapshotResolver::SnapshotResolver(std::shared_ptr<const Desktop> desktop, WindowFilter filter,
                                          bool enabled)
     : desktop_(std::move(desktop)), filter_(std::move(filter)), enabled_(enabled) {
-    if (enabled_ && !desktop_) throw std::invalid_argument("X11SnapshotResolver: no X11 desktop");
+    if (enabled_ && !desktop_) throw std::invalid_argument("SnapshotResolver: no desktop");
 }
 
-void X11SnapshotResolver::set_around_capture(std::function<void()> before, std::function<void()> after) {
+void SnapshotResolver::set_around_capture(std::function<void()> before, std::function<void()> after) {
     before_capture_ = std::move(before);
     after_capture_ = std::move(after);
 }
 
-std::optional<Resolved> X11SnapshotResolver::resolve(const ScreenPoint& point, Purpose purpose) const {
+std::optional<Resolved> SnapshotResolver::resolve(const ScreenPoint& point, Purpose purpose) const {
     if (!enabled_) return std::nullopt;
     const auto window = desktop_->window_at(point.root_x, point.root_y, filter_);
     if (!window) return std::nullopt;

@@ -1,6 +1,8 @@
-#include "content/x11_window.hpp"
+#include "desktop/x11/x11_desktop.hpp"
 
-#include "content/file_facts.hpp"
+#include "desktop/x11/compositor.hpp"
+#include "desktop/x11/overlay_window.hpp"
+#include "desktop/x11/x11_window_watch.hpp"
 
 #include <unistd.h>
 
@@ -448,16 +450,38 @@ Capture X11Desktop::Connection::to_capture(XImage& image, const Visual* visual) 
     return capture;
 }
 
-X11Desktop::X11Desktop(const std::string& display_name) : connection_(std::make_unique<Connection>(display_name)) {}
+X11Desktop::X11Desktop(const std::string& display_name)
+    : connection_(std::make_unique<Connection>(display_name)), display_name_(display_name) {}
 
 X11Desktop::~X11Desktop() = default;
 
-WindowRect X11Desktop::screen() const {
+std::vector<DesktopOutput> X11Desktop::outputs() const {
     std::lock_guard lock(mutex_);
     XWindowAttributes attributes{};
     if (!XGetWindowAttributes(connection_->display, connection_->root, &attributes))
-        throw std::runtime_error("X11: cannot read the root window's size");
-    return {0, 0, attributes.width, attributes.height};
+        throw DesktopError("X11: cannot read the root window's size");
+    return {DesktopOutput{"root", {0, 0, attributes.width, attributes.height}, 1.0}};
+}
+
+DesktopAbilities X11Desktop::abilities() const {
+    DesktopAbilities out;
+    out.windows = true;
+    out.snapshots = true;
+    out.placement = has_ewmh();
+    out.field = compositor_running(display_name_, 0);
+    if (!out.field) out.notes.push_back(compositor_advice());
+    if (!out.placement)
+        out.notes.push_back("No EWMH window manager runs: an opened put's window stays where the program puts it.");
+    return out;
+}
+
+std::unique_ptr<NewWindowWatch> X11Desktop::watch_new_window(const WindowPlacement& where) const {
+    return X11NewWindowWatch::create(where, display_name_);
+}
+
+std::unique_ptr<FieldSurface> X11Desktop::make_field_surface(QScreen* screen, ScreenField field,
+                                                            const std::vector<std::string>& palette) {
+    return std::make_unique<OverlayWindow>(screen, std::move(field), palette);
 }
 
 bool X11Desktop::has_ewmh() const {
@@ -494,38 +518,6 @@ Capture X11Desktop::capture(const WindowRect& rect) const {
     return connection_->capture(rect);
 }
 
-
-X11WindowResolver::X11WindowResolver(std::shared_ptr<const X11Desktop> desktop, X11WindowOptions options)
-    : desktop_(std::move(desktop)), options_(std::move(options)), recent_files_(options_.recent_files) {
-    if (!desktop_) throw std::invalid_argument("X11WindowResolver: no X11 desktop");
-}
-
-std::optional<WindowInfo> X11WindowResolver::window_at(double root_x, double root_y) const {
-    return desktop_->window_at(root_x, root_y, options_.filter);
-}
-
-std::optional<fs::path> X11WindowResolver::document_of(const WindowInfo& window) const {
-    const auto documents = process_documents(window.pid, options_.documents);
-    if (documents.size() == 1) return documents.front();
-    for (const auto& document : documents)
-        if (title_mentions(window.title, document.filename().string())) return document;
-    if (options_.recent_files.empty()) return std::nullopt;
-    return match_by_title(*recent_files_.entries(), window.title);
-}
-
-std::optional<Resolved> X11WindowResolver::resolve(const ScreenPoint& point, Purpose) const {
-    const auto window = window_at(point.root_x, point.root_y);
-    if (!window) return std::nullopt;
-    const auto document = document_of(*window);
-    if (!document) return std::nullopt;
-    Resolved resolved;
-    resolved.kind = protocol::ContentKind::file;
-    resolved.file = *document;
-    resolved.name = protocol::safe_file_name(document->filename().string());
-    resolved.mime = mime_for(*document);
-    resolved.title = window->title.empty() ? resolved.name : window->title;
-    return resolved;
-}
 
 int x_server_client_pid(Display* display, unsigned long window) {
     XResClientIdSpec spec{window, XRES_CLIENT_ID_PID_MASK};

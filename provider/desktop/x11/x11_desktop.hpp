@@ -1,9 +1,9 @@
-// The X11 window under a screen point and the document it shows (docs/
-// ARCHITECTURE.md, "Content", resolver 3). Windows come from the window
-// manager's stacking list (EWMH), or the root's children without one; the
-// document from the window's process (process_documents.hpp) or from the
-// recently used files matched by the window's title (recent_files.hpp).
-// Xlib stays out of this header: its macros (None, Status, Bool) clash with
+// The X11 backend of the desktop seam (desktop/desktop.hpp): windows come
+// from the window manager's stacking list (EWMH), or the root's children
+// without one; captures from the root window; the field in an override-
+// redirect ARGB window per screen (overlay_window.hpp) mixed in by a
+// compositing manager (compositor.hpp); a put's window placed through EWMH
+// (put/window_placement.hpp). Xlib stays out of this header: its macros (None, Status, Bool) clash with
 // Qt and the standard library.
 #pragma once
 
@@ -16,9 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "content/process_documents.hpp"
-#include "content/recent_files.hpp"
-#include "content/resolver.hpp"
 #include "desktop/desktop.hpp"
 
 // Xlib's Display, without Xlib in every file that includes this one.
@@ -39,17 +36,21 @@ int x_server_client_pid(::_XDisplay* display, unsigned long window);
 
 // One connection to an X server, shared by the X11 resolvers; calls are
 // serialised on it, so it is thread-safe.
-class X11Desktop {
+class X11Desktop final : public Desktop {
 public:
     // An empty name means $DISPLAY. Throws std::runtime_error when the
     // display cannot be opened.
     explicit X11Desktop(const std::string& display_name = {});
-    ~X11Desktop();
+    ~X11Desktop() override;
     X11Desktop(const X11Desktop&) = delete;
     X11Desktop& operator=(const X11Desktop&) = delete;
 
-    // The root window: all screens of a multi-monitor desktop.
-    WindowRect screen() const;
+    std::string name() const override { return "x11"; }
+    // The field needs a compositing manager; placement a window manager.
+    DesktopAbilities abilities() const override;
+    // The root window as one output: all screens of a multi-monitor desktop
+    // (the overlay follows the single screens through Qt).
+    std::vector<DesktopOutput> outputs() const override;
     // Whether a window manager with EWMH runs (its stacking list is used).
     bool has_ewmh() const;
     // Client windows that are shown (mapped, not minimised, not the desktop
@@ -57,43 +58,22 @@ public:
     std::vector<WindowInfo> windows() const;
     // The top-most shown window containing the point that the filter does
     // not skip; nullopt on the bare desktop.
-    std::optional<WindowInfo> window_at(double root_x, double root_y, const WindowFilter& filter = {}) const;
+    std::optional<WindowInfo> window_at(double root_x, double root_y, const WindowFilter& filter) const override;
+    std::optional<WindowInfo> window_at(double root_x, double root_y) const { return window_at(root_x, root_y, {}); }
     // The screen's pixels in `rect`, clipped to the screen (empty outside).
     // Throws std::runtime_error when the server refuses or the visual is not
     // true colour.
-    Capture capture(const WindowRect& rect) const;
+    Capture capture(const WindowRect& rect) const override;
+    std::unique_ptr<NewWindowWatch> watch_new_window(const WindowPlacement& where) const override;
+    std::unique_ptr<FieldSurface> make_field_surface(QScreen* screen, ScreenField field,
+                                                     const std::vector<std::string>& palette) override;
 
 private:
     struct Connection;
     std::unique_ptr<Connection> connection_;
+    std::string display_name_;
     mutable std::mutex mutex_;
 };
 
-
-struct X11WindowOptions {
-    WindowFilter filter;  // give own_pids at least getpid()
-    ProcessDocumentOptions documents;
-    std::filesystem::path recent_files = default_recent_files_path();  // empty: not consulted
-};
-
-// Kind file: the document of the window under the point. nullopt when the
-// point is on no window or the window's document is unknown (the snapshot
-// resolver answers then).
-class X11WindowResolver final : public Resolver {
-public:
-    X11WindowResolver(std::shared_ptr<const X11Desktop> desktop, X11WindowOptions options = {});
-    const char* name() const override { return "x11-window"; }
-    std::optional<Resolved> resolve(const ScreenPoint& point, Purpose purpose) const override;
-
-    std::optional<WindowInfo> window_at(double root_x, double root_y) const;
-    // The process's document when there is one, or the one of several the
-    // title names; else the recently used file the title names.
-    std::optional<std::filesystem::path> document_of(const WindowInfo& window) const;
-
-private:
-    std::shared_ptr<const X11Desktop> desktop_;
-    X11WindowOptions options_;
-    RecentFilesCache recent_files_;
-};
 
 }  // namespace umf::provider

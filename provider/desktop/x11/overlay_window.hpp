@@ -26,6 +26,7 @@
 #include <optional>
 #include <vector>
 
+#include "desktop/desktop.hpp"
 #include "screen/screen_field.hpp"
 
 class QPainter;
@@ -33,46 +34,53 @@ class QScreen;
 
 namespace umf::provider {
 
-class OverlayWindow : public QRasterWindow {
+class OverlayWindow final : public QRasterWindow, public FieldSurface {
 public:
     // `field` is the screen's field at its physical pixel size; `palette` as
     // in overlay::Preset.
     OverlayWindow(QScreen* screen, ScreenField field, const std::vector<std::string>& palette);
 
-    const ScreenField& screen_field() const { return field_; }
+    const ScreenField& screen_field() const override { return field_; }
     // A new field or palette, e.g. after the screen changed size or DPI.
-    void set_field(ScreenField field, const std::vector<std::string>& palette);
+    void set_field(ScreenField field, const std::vector<std::string>& palette) override;
     // Follows the screen's geometry (it may have moved or been resized).
-    void cover_screen();
+    void cover_screen() override;
 
     // 0..1, the pulse: the compositor's opacity for the whole window, no
     // repaint; with the painted pulse a repaint of the focus circle instead.
     // A pulse above pixel_opacity() raises it (a repaint).
-    void set_opacity(double opacity);
+    void set_opacity(double opacity) override;
     // The most the pulse reaches (the preset's opacity_max). The field's own
     // pixels carry it as their alpha (premultiplied) and the window's opacity
     // property is only the pulse's share of it, so a compositor that ignores
     // _NET_WM_WINDOW_OPACITY still shows a translucent field, never an opaque
     // one that hides the desktop.
-    void set_pixel_opacity(double ceiling);
+    void set_pixel_opacity(double ceiling) override;
     double pixel_opacity() const { return pixel_opacity_; }
     // The pulse as last given to set_opacity.
-    double pulse_opacity() const { return pulse_; }
+    double pulse_opacity() const override { return pulse_; }
 
     // The painted pulse (see the top of the file): on, the window's opacity is
     // 1 and set_opacity repaints the circle; off (the default), the backdrop
     // is dropped and the compositor's opacity pulses again.
-    void set_painted_pulse(bool on);
+    bool supports_painted_pulse() const override { return true; }
+    void set_painted_pulse(bool on) override;
     bool painted_pulse() const { return painted_pulse_; }
     // The blurred screen content at `origin_px` (the screen's physical
     // pixels), any format (kept as RGB32); a null image drops it. Used only
     // with the painted pulse.
-    void set_backdrop(QImage blurred, QPoint origin_px);
+    void set_backdrop(QImage blurred, QPoint origin_px) override;
     // The screen's physical pixels the backdrop covers (empty without one).
     QRect backdrop_rect() const { return backdrop_.isNull() ? QRect() : QRect(backdrop_origin_, backdrop_.size()); }
     // Only the field within `radius_px` of `centre_px` is shown; nullopt shows
     // all of it. Both in the screen's physical pixels, as the placement.
-    void set_focus(std::optional<QPointF> centre_px, double radius_px);
+    void set_focus(std::optional<QPointF> centre_px, double radius_px) override;
+
+    // FieldSurface's show, hide and raise are the window's.
+    void show() override { QRasterWindow::show(); }
+    void hide() override { QRasterWindow::hide(); }
+    bool is_visible() const override { return isVisible(); }
+    void raise() override { QRasterWindow::raise(); }
 
     // Paint events handled since the window was made: tests use it to tell
     // that the pulse does not repaint.

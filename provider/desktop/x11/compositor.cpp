@@ -1,4 +1,4 @@
-#include "overlay/compositor.hpp"
+#include "desktop/x11/compositor.hpp"
 
 #include <X11/Xlib.h>
 

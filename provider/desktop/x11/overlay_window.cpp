@@ -1,4 +1,4 @@
-#include "overlay/overlay_window.hpp"
+#include "desktop/x11/overlay_window.hpp"
 
 #include <QGuiApplication>
 #include <QPaintEvent>
