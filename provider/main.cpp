@@ -137,12 +137,13 @@ int dispatch(int argc, char** argv) {
         }
         ServeHooks hooks;
         if (qobject_cast<QApplication*>(app.get()))
-            hooks.desktop_controls = [](OverlayManager& overlay, const std::string& presets_file,
-                                        const std::string& pairing_url, bool tune) -> std::shared_ptr<void> {
-                auto controls = std::make_shared<DesktopControls>(overlay, presets_file, pairing_url,
+            hooks.desktop_controls = [](OverlayManager* overlay, const std::string& status,
+                                        const std::string& presets_file, const std::string& pairing_url,
+                                        bool tune) -> std::shared_ptr<void> {
+                auto controls = std::make_shared<DesktopControls>(overlay, status, presets_file, pairing_url,
                                                                   [] { ::kill(::getpid(), SIGTERM); });
                 if (tune) controls->show_tuning();
-                if (!controls->has_tray())
+                if (!controls->has_tray() && overlay)
                     std::cerr << "umf-provider: no system tray here; --tune opens the tuning window\n";
                 return controls;
             };

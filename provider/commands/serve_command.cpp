@@ -389,15 +389,15 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         board_window->showFullScreen();
     }
     std::shared_ptr<void> controls;
-    if (overlay_manager && hooks.desktop_controls) {
+    if (!headless && !board && hooks.desktop_controls) {
         try {
-            controls = hooks.desktop_controls(*overlay_manager, (dir / "presets.json").string(), url,
-                                              has_flag(a, "tune"));
+            controls = hooks.desktop_controls(overlay_manager.get(), desktop_summary(desktop),
+                                              (dir / "presets.json").string(), url, has_flag(a, "tune"));
         } catch (const std::exception& e) {
             std::cerr << "umf-provider: no tray or tuning window: " << e.what() << "\n";
         }
     }
-    if (board_window || overlay_manager || put_prompt) {
+    if (board_window || overlay_manager || put_prompt || controls) {
         // Windows are up: the Qt event loop runs here, and a thread waits for
         // the signals, stops the server (whose snapshots may wait on this
         // loop) and then ends the loop.

@@ -14,11 +14,12 @@ namespace umf::provider {
 class OverlayManager;
 
 // What the executable adds on a desktop (Qt Widgets live outside the core):
-// the controls for a running overlay, kept alive while it runs.
+// the controls for a running provider, kept alive while it runs.
 struct ServeHooks {
-    // `tune`: open the tuning window now.
-    std::function<std::shared_ptr<void>(OverlayManager& overlay, const std::string& presets_file,
-                                        const std::string& pairing_url, bool tune)>
+    // `overlay` null: the desktop shows no field, and the tray says so in
+    // `status` (what works here). `tune`: open the tuning window now.
+    std::function<std::shared_ptr<void>(OverlayManager* overlay, const std::string& status,
+                                        const std::string& presets_file, const std::string& pairing_url, bool tune)>
         desktop_controls;
 };
 

@@ -29,19 +29,23 @@ std::vector<std::string> names_of(const PresetStore& store) {
 
 }  // namespace
 
-DesktopControls::DesktopControls(OverlayManager& overlay, std::string presets_file, std::string pairing_url,
-                                 std::function<void()> quit)
+DesktopControls::DesktopControls(OverlayManager* overlay, const std::string& status, std::string presets_file,
+                                 std::string pairing_url, std::function<void()> quit)
     : overlay_(overlay), store_(std::move(presets_file)), pairing_url_(std::move(pairing_url)) {
     TrayCallbacks callbacks;
-    callbacks.overlay_toggled = [this](bool on) { overlay_.set_visible(on); };
-    callbacks.preset_chosen = [this](const std::string& name) {
-        if (store_.contains(name)) overlay_.set_preset(store_.get(name));
-    };
-    callbacks.tune = [this] { show_tuning(); };
+    if (overlay_) {
+        callbacks.overlay_toggled = [this](bool on) { overlay_->set_visible(on); };
+        callbacks.preset_chosen = [this](const std::string& name) {
+            if (store_.contains(name)) overlay_->set_preset(store_.get(name));
+        };
+        callbacks.tune = [this] { show_tuning(); };
+    }
     callbacks.pairing_qr = [this] { show_pairing(); };
     callbacks.quit = std::move(quit);
     if (TrayMenu::available()) {
-        tray_ = std::make_unique<TrayMenu>(names_of(store_), overlay_.preset().name, overlay_.visible(), callbacks);
+        tray_ = overlay_ ? std::make_unique<TrayMenu>(names_of(store_), overlay_->preset().name, overlay_->visible(),
+                                                      callbacks, status)
+                         : std::make_unique<TrayMenu>(callbacks, status);
         tray_->show();
     }
 }
@@ -49,9 +53,10 @@ DesktopControls::DesktopControls(OverlayManager& overlay, std::string presets_fi
 DesktopControls::~DesktopControls() = default;
 
 void DesktopControls::show_tuning() {
+    if (!overlay_) return;
     if (!tuning_) {
-        tuning_ = std::make_unique<TuningWindow>(store_, overlay_.preset().name, [this](const overlay::Preset& p) {
-            overlay_.set_preset(p);
+        tuning_ = std::make_unique<TuningWindow>(store_, overlay_->preset().name, [this](const overlay::Preset& p) {
+            overlay_->set_preset(p);
             if (tray_) tray_->set_presets(names_of(store_), p.name);
         });
     }

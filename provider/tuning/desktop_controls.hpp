@@ -1,7 +1,9 @@
 // What the person at the desk controls the running provider with: the tray
-// icon's menu (overlay on/off, preset, tuning, pairing QR code, quit) and
-// the tuning window, which changes the overlay live. Without a system tray
-// (or with --tune) the tuning window is opened on request at start-up.
+// icon's menu (what the desktop allows, overlay on/off, preset, tuning,
+// pairing QR code, quit) and the tuning window, which changes the overlay
+// live. Without a system tray (or with --tune) the tuning window is opened on
+// request at start-up. On a desktop that shows no field the tray has the
+// status line, the pairing QR code and quit.
 #pragma once
 
 #include <QImage>
@@ -22,9 +24,10 @@ QImage pairing_qr_image(const std::string& url, int scale = 6);
 
 class DesktopControls {
 public:
-    // Needs a QApplication; the manager must outlive the controls.
-    DesktopControls(OverlayManager& overlay, std::string presets_file, std::string pairing_url,
-                    std::function<void()> quit);
+    // Needs a QApplication; the manager (null: no field here) must outlive
+    // the controls. `status` says what works on this desktop.
+    DesktopControls(OverlayManager* overlay, const std::string& status, std::string presets_file,
+                    std::string pairing_url, std::function<void()> quit);
     bool has_tray() const { return tray_ != nullptr; }
     ~DesktopControls();
 
@@ -32,7 +35,7 @@ public:
     void show_pairing();
 
 private:
-    OverlayManager& overlay_;
+    OverlayManager* overlay_;
     PresetStore store_;
     std::string pairing_url_;
     std::unique_ptr<TrayMenu> tray_;

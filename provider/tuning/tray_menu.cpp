@@ -29,8 +29,9 @@ QIcon field_icon(int size) {
 }
 
 TrayMenu::TrayMenu(const std::vector<std::string>& presets, const std::string& current_preset, bool overlay_on,
-                   TrayCallbacks callbacks)
+                   TrayCallbacks callbacks, const std::string& status)
     : callbacks_(std::move(callbacks)), menu_(std::make_unique<QMenu>()), tray_(std::make_unique<QSystemTrayIcon>()) {
+    add_status(status);
     overlay_ = menu_->addAction("Overlay on");
     overlay_->setCheckable(true);
     overlay_->setChecked(overlay_on);
@@ -47,6 +48,24 @@ TrayMenu::TrayMenu(const std::vector<std::string>& presets, const std::string& c
     QObject::connect(menu_->addAction("Tune…"), &QAction::triggered, menu_.get(), [this] {
         if (callbacks_.tune) callbacks_.tune();
     });
+    add_common();
+}
+
+TrayMenu::TrayMenu(TrayCallbacks callbacks, const std::string& status)
+    : callbacks_(std::move(callbacks)), menu_(std::make_unique<QMenu>()), tray_(std::make_unique<QSystemTrayIcon>()) {
+    add_status(status);
+    add_common();
+}
+
+void TrayMenu::add_status(const std::string& status) {
+    if (status.empty()) return;
+    // A line to read, not to click.
+    QAction* line = menu_->addAction(QString::fromStdString(status));
+    line->setEnabled(false);
+    menu_->addSeparator();
+}
+
+void TrayMenu::add_common() {
     QObject::connect(menu_->addAction("Pairing QR code…"), &QAction::triggered, menu_.get(), [this] {
         if (callbacks_.pairing_qr) callbacks_.pairing_qr();
     });
@@ -55,7 +74,9 @@ TrayMenu::TrayMenu(const std::vector<std::string>& presets, const std::string& c
         if (callbacks_.quit) callbacks_.quit();
     });
     tray_->setIcon(field_icon());
-    tray_->setToolTip("umf provider");
+    const QList<QAction*> actions = menu_->actions();
+    const bool has_status = !actions.isEmpty() && !actions.first()->isEnabled();
+    tray_->setToolTip(has_status ? "umf provider: " + actions.first()->text() : QString("umf provider"));
     tray_->setContextMenu(menu_.get());
 }
 
@@ -67,6 +88,7 @@ bool TrayMenu::available() { return QSystemTrayIcon::isSystemTrayAvailable(); }
 void TrayMenu::show() { tray_->show(); }
 
 void TrayMenu::set_presets(const std::vector<std::string>& presets, const std::string& current_preset) {
+    if (!preset_group_) return;
     for (QAction* a : preset_group_->actions()) {
         preset_group_->removeAction(a);
         presets_->removeAction(a);
@@ -82,6 +104,7 @@ void TrayMenu::set_presets(const std::vector<std::string>& presets, const std::s
 }
 
 void TrayMenu::set_overlay_on(bool on) {
+    if (!overlay_) return;
     const QSignalBlocker quiet(overlay_);
     overlay_->setChecked(on);
 }

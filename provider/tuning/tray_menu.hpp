@@ -28,9 +28,12 @@ struct TrayCallbacks {
 
 class TrayMenu {
 public:
-    // Needs a QApplication. The icon is not shown until show().
+    // Needs a QApplication. The icon is not shown until show(). `status`
+    // (what works on this desktop) heads the menu and is the tooltip.
     TrayMenu(const std::vector<std::string>& presets, const std::string& current_preset, bool overlay_on,
-             TrayCallbacks callbacks);
+             TrayCallbacks callbacks, const std::string& status = {});
+    // A desktop that shows no field: the status, the pairing QR code, quit.
+    TrayMenu(TrayCallbacks callbacks, const std::string& status);
     ~TrayMenu();
     TrayMenu(const TrayMenu&) = delete;
     TrayMenu& operator=(const TrayMenu&) = delete;
@@ -53,6 +56,9 @@ private:
     QAction* overlay_ = nullptr;
     QMenu* presets_ = nullptr;
     QActionGroup* preset_group_ = nullptr;
+
+    void add_status(const std::string& status);
+    void add_common();
 };
 
 // A few modules of a field with a pulse ring around them, drawn rather than

@@ -367,6 +367,28 @@ TEST(TrayMenu, ActionsInOrderAndCallbacks) {
     EXPECT_FALSE(tray.tray_icon()->icon().isNull());
 }
 
+TEST(TrayMenu, ADesktopWithoutAFieldSaysWhatWorks) {
+    REQUIRE_WIDGETS();
+    std::vector<std::string> calls;
+    TrayCallbacks cb;
+    cb.pairing_qr = [&] { calls.push_back("qr"); };
+    cb.quit = [&] { calls.push_back("quit"); };
+    const std::string status = "No field on this desktop (wayland (no backend)): boards, shares and puts work.";
+    TrayMenu tray(cb, status);
+    QStringList texts;
+    for (QAction* a : tray.menu()->actions())
+        if (!a->isSeparator()) texts << a->text();
+    EXPECT_EQ(texts, (QStringList{QString::fromStdString(status), "Pairing QR code…", "Quit"}));
+    EXPECT_FALSE(tray.menu()->actions().at(0)->isEnabled()) << "the status is to read, not to click";
+    EXPECT_TRUE(tray.tray_icon()->toolTip().contains("No field on this desktop"));
+    for (QAction* a : tray.menu()->actions())
+        if (a->isEnabled() && !a->isSeparator()) a->trigger();
+    EXPECT_EQ(calls, (std::vector<std::string>{"qr", "quit"}));
+    // Nothing to follow without an overlay, and nothing breaks.
+    tray.set_overlay_on(true);
+    tray.set_presets({"kiosk"}, "kiosk");
+}
+
 }  // namespace
 
 #endif  // UMF_PROVIDER_TESTS && UMF_PROVIDER_TUNING
