@@ -319,6 +319,10 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         config.public_mode = public_mode;
         config.put_decider = put_decider;
         config.puts = put_settings;
+        if (desktop.desktop && desktop.abilities.placement)
+            config.puts.watch_new_window = [d = desktop.desktop](const WindowPlacement& where) {
+                return d->watch_new_window(where);
+            };
         // Who connects and what they take, on the console; the overlay hears it all.
         auto console = std::make_shared<ConsoleActivity>(std::cout, activity);
         auto service = std::make_shared<Service>(std::move(config), token, resolvers, site, console);

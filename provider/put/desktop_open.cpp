@@ -1,6 +1,6 @@
 #include "put/desktop_open.hpp"
 
-#include "desktop/x11/x11_window_watch.hpp"
+#include "desktop/window_placement.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -17,15 +17,13 @@ extern char** environ;
 
 namespace umf::provider {
 
-bool open_with_desktop(const std::string& target, std::string* problem, std::optional<WindowPlacement> place) {
+bool open_with_desktop(const std::string& target, std::string* problem, std::unique_ptr<NewWindowWatch> owned) {
     auto fail = [&](std::string why) {
         if (problem) *problem = std::move(why);
         return false;
     };
     if (target.empty() || target[0] == '-') return fail("not a URL or an absolute path: " + target);
-    // The windows before xdg-open starts, so its window is the one that is new.
-    std::shared_ptr<NewWindowWatch> watch;
-    if (place) watch = X11NewWindowWatch::create(*place);
+    std::shared_ptr<NewWindowWatch> watch = std::move(owned);
     posix_spawn_file_actions_t actions;
     if (posix_spawn_file_actions_init(&actions) != 0) return fail("cannot prepare xdg-open");
     // No terminal input for it; its output is of no use to the provider's console.

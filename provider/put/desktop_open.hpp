@@ -5,6 +5,7 @@
 // it brings up is moved there (desktop/window_placement.hpp), best effort; on X11 for now.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -15,7 +16,9 @@ namespace umf::provider {
 // True when xdg-open was started (not whether it found an application);
 // false with the reason in `problem` otherwise. The target goes as the one
 // argument; one that starts with '-' is refused, so it is never an option.
+// `watch`, made before xdg-open starts (it notes the windows there), moves
+// the window xdg-open brings up; nullptr: nothing is moved.
 bool open_with_desktop(const std::string& target, std::string* problem = nullptr,
-                       std::optional<WindowPlacement> place = std::nullopt);
+                       std::unique_ptr<NewWindowWatch> watch = nullptr);
 
 }  // namespace umf::provider

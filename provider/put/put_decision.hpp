@@ -15,6 +15,8 @@
 #include "content/resolver.hpp"
 #include "protocol/messages.hpp"
 
+#include "desktop/desktop.hpp"
+
 namespace umf::provider {
 
 struct PutOffer {
@@ -63,6 +65,9 @@ struct PutSettings {
     // device"), kept across runs: normally <config dir>/trusted-devices.json
     // (kTrustedDevicesFile). Empty: remembered only while the provider runs.
     std::filesystem::path trusted_devices;
+    // How an opened put's window is moved to the pointed place: the
+    // desktop's (Desktop::watch_new_window); empty or nullptr: not moved.
+    std::function<std::unique_ptr<NewWindowWatch>(const WindowPlacement&)> watch_new_window;
 };
 
 }  // namespace umf::provider

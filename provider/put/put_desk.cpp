@@ -76,6 +76,13 @@ std::optional<WindowPlacement> PutDesk::placement(const std::optional<ScreenPoin
     return WindowPlacement{at->root_x, at->root_y, *screen};
 }
 
+std::unique_ptr<NewWindowWatch> PutDesk::window_watch(const std::optional<ScreenPoint>& at) const {
+    // The windows are noted now, before the opener starts, so its window is the one that is new.
+    const auto where = placement(at);
+    if (!where || !settings_.watch_new_window) return nullptr;
+    return settings_.watch_new_window(*where);
+}
+
 PutDesk::~PutDesk() { stop(); }
 
 void PutDesk::stop() {
@@ -279,7 +286,7 @@ p::Message PutDesk::act(const Pending& pending, const PutReply& reply, Via via) 
     }
     if (url) {
         std::string problem;
-        if (!open_with_desktop(offer.url, &problem, placement(offer.at))) {
+        if (!open_with_desktop(offer.url, &problem, window_watch(offer.at))) {
             report(offer, pending.session, PutStage::failed, problem);
             return p::Error{pending.id, p::ErrorCode::internal, problem};
         }
@@ -312,7 +319,7 @@ std::optional<UploadEntry> PutDesk::take_upload(std::string_view target) { retur
 p::Message PutDesk::upload_done(const UploadEntry& entry, const std::string& stored_name) {
     p::PutStatus done{entry.id, p::PutState::done, std::nullopt, p::PutOutcome::saved, stored_name};
     const std::string path = (entry.folder / stored_name).string();
-    if (entry.open && open_with_desktop(path, nullptr, placement(entry.at))) done.outcome = p::PutOutcome::opened;
+    if (entry.open && open_with_desktop(path, nullptr, window_watch(entry.at))) done.outcome = p::PutOutcome::opened;
     report(entry, done.outcome == p::PutOutcome::opened ? PutStage::opened : PutStage::stored, path);
     push(entry.session, done);
     return done;

@@ -115,6 +115,7 @@ private:
                 bool asked = true) const;
     void report(const UploadEntry& entry, PutStage stage, std::string path, std::string detail = {}) const;
     std::optional<WindowPlacement> placement(const std::optional<ScreenPoint>& at) const;
+    std::unique_ptr<NewWindowWatch> window_watch(const std::optional<ScreenPoint>& at) const;
     void watch_deadlines();
     void start_watch_locked();
 

@@ -154,9 +154,9 @@ TEST_F(PutWindowPlacementOnX, XdgOpensWindowLandsCentredOnThePointedPlace) {
     const PlaceRect screen{0, 0, 1600, 1000};
 
     std::string problem;
-    ASSERT_TRUE(open_with_desktop("placed-middle", &problem, WindowPlacement{1100, 400, screen})) << problem;
+    ASSERT_TRUE(open_with_desktop("placed-middle", &problem, X11NewWindowWatch::create(WindowPlacement{1100, 400, screen}))) << problem;
     // Near a corner: kept on the screen, moved in no further than needed.
-    ASSERT_TRUE(open_with_desktop("placed-corner", &problem, WindowPlacement{1595, 995, screen})) << problem;
+    ASSERT_TRUE(open_with_desktop("placed-corner", &problem, X11NewWindowWatch::create(WindowPlacement{1595, 995, screen}))) << problem;
     // Without a place: where the window manager puts it.
     ASSERT_TRUE(open_with_desktop("placed-nowhere", &problem)) << problem;
 
