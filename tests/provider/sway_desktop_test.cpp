@@ -301,6 +301,8 @@ TEST_F(SwayDesktop, FieldShowsAtItsOpacityAndClicksGoThrough) {
                 changed += d >= 8;
             }
         }
+    std::cout << "field at " << kOpacity << ": largest change " << worst << ", " << changed << " of " << field_pixels
+              << " field pixels changed by 8 or more\n";
     // A pixel moves by opacity * (module - under) at most, plus rounding.
     EXPECT_LE(worst, static_cast<int>(std::ceil(kOpacity * 255)) + 2);
     EXPECT_GT(changed, field_pixels / 4) << "the field should show over most of its modules";
@@ -333,8 +335,8 @@ TEST_F(SwayDesktop, PulseCpuAt60Hz) {
     surface.set_opacity(0.1);
     surface.show();
     ASSERT_TRUE(test::wait_until([&] { pump(surface, 20ms); return surface.frames_committed() > 0; }, 5s));
-    const auto cpu_ticks = [] {
-        std::ifstream in("/proc/self/stat");
+    const auto cpu_ticks = [](const std::string& pid = "self") {
+        std::ifstream in("/proc/" + pid + "/stat");
         std::string stat((std::istreambuf_iterator<char>(in)), {});
         std::istringstream fields(stat.substr(stat.rfind(')') + 2));
         std::string f;
@@ -347,23 +349,28 @@ TEST_F(SwayDesktop, PulseCpuAt60Hz) {
     };
     const int frames_before = surface.frames_committed();
     const long ticks_before = cpu_ticks();
+    const std::string sway_pid = std::to_string(sway_->sway().pid());
+    const long sway_ticks_before = cpu_ticks(sway_pid);
     const auto start = std::chrono::steady_clock::now();
     constexpr auto kSeconds = 10s;
-    // The pulse as the overlay manager drives it: a new opacity every 16 ms,
-    // the event loop idle between.
+    // The pulse asked more often than the output refreshes (every 4 ms):
+    // frame callbacks hold the drawing to the refresh.
     while (std::chrono::steady_clock::now() - start < kSeconds) {
         const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         surface.set_opacity(0.1 + 0.08 * std::sin(t * 2 * M_PI));
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 16);
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 4);
         surface.dispatch_pending();
-        std::this_thread::sleep_for(16ms);
+        std::this_thread::sleep_for(4ms);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const double cpu = static_cast<double>(cpu_ticks() - ticks_before) / static_cast<double>(::sysconf(_SC_CLK_TCK));
     const int frames = surface.frames_committed() - frames_before;
+    const double sway_cpu =
+        static_cast<double>(cpu_ticks(sway_pid) - sway_ticks_before) / static_cast<double>(::sysconf(_SC_CLK_TCK));
     std::cout << "pulse on 1920x1080: " << frames << " frames in " << seconds << " s, CPU " << 100.0 * cpu / seconds
-              << " % of one core\n";
+              << " % of one core (sway, compositing with pixman: " << 100.0 * sway_cpu / seconds << " %)\n";
     EXPECT_GT(frames, 100);
+    EXPECT_LE(frames, 62 * seconds) << "never faster than the output refreshes";
     EXPECT_LT(100.0 * cpu / seconds, 15.0);
 }
 
