@@ -59,8 +59,16 @@ public:
     Impl(QString name, std::chrono::milliseconds timeout)
         : name_(std::move(name)),
           timeout_ms_(static_cast<int>(timeout.count())),
-          bus_(QDBusConnection::connectToBus(QDBusConnection::SessionBus, name_)) {}
+          bus_(connect(name_)) {}
     ~Impl() { QDBusConnection::disconnectFromBus(name_); }
+
+    // The session bus named in the environment now (libdbus would keep the
+    // first one it saw for the whole process).
+    static QDBusConnection connect(const QString& name) {
+        const QString address = qEnvironmentVariable("DBUS_SESSION_BUS_ADDRESS");
+        return address.isEmpty() ? QDBusConnection::connectToBus(QDBusConnection::SessionBus, name)
+                                 : QDBusConnection::connectToBus(address, name);
+    }
 
     QDBusMessage message(const char* method, const QVariantList& args) const {
         auto m = QDBusMessage::createMethodCall(kGnomeShellBusName, kGnomeShellObjectPath, kGnomeShellInterface, method);

@@ -181,16 +181,25 @@ class UmfShell {
     enable() {
         this._fields = new Map();
         this._connectors = new Map();
+        this._connectorsKnown = false;
+        this._shellPid = new Gio.Credentials().get_unix_pid();
         this._senderUids = new Map();
         this._shots = 0;
+        this._snapshotting = false;
         this._shooting = Promise.resolve();
         this._parent = Main.layoutManager.uiGroup;
         // Chrome added later (a modal dialog, a notification) goes on top of
         // the group: the fields are put back above it.
-        this._childAdded = this._parent.connect('child-added', (_group, child) => {
+        const onChildAdded = (_group, child) => {
             if (!child || child.name !== 'umf-field')
                 this._raiseFields();
-        });
+        };
+        // 'actor-added' until Mutter 45 named it 'child-added'.
+        try {
+            this._childAdded = this._parent.connect('child-added', onChildAdded);
+        } catch (e) {
+            this._childAdded = this._parent.connect('actor-added', onChildAdded);
+        }
         this._monitorsChanged = Main.layoutManager.connect('monitors-changed', () => this._relayout());
         this._exported = Gio.DBusExportedObject.wrapJSObject(IFACE_XML, this._methods());
         this._exported.export(Gio.DBus.session, OBJECT_PATH);
@@ -217,7 +226,12 @@ class UmfShell {
     _methods() {
         const methods = {
             Version: () => new GLib.Variant('(us)', [API_VERSION, Config.PACKAGE_VERSION]),
-            Monitors: () => new GLib.Variant('(a(siiiid))', [this._monitors()]),
+            Monitors: async () => {
+                // DisplayConfig may come up after the extension.
+                if (!this._connectorsKnown)
+                    await this._readConnectors();
+                return new GLib.Variant('(a(siiiid))', [this._monitors()]);
+            },
             WindowAt: ([x, y, pids, classes]) => this._windowAt(x, y, pids, classes),
             ListWindows: () => new GLib.Variant('(a(tisss(iiii)i))', [this._windows().map(w => this._describe(w))]),
             MoveWindow: ([id, x, y]) => new GLib.Variant('(b)', [this._move(id, x, y)]),
@@ -291,11 +305,13 @@ class UmfShell {
     // The connectors' names (DP-1, Meta-0) are Mutter's DisplayConfig's, by
     // the logical monitors' places.
     _readConnectors() {
-        Gio.DBus.session.call('org.gnome.Mutter.DisplayConfig', '/org/gnome/Mutter/DisplayConfig',
+        return new Promise(resolve => Gio.DBus.session.call('org.gnome.Mutter.DisplayConfig', '/org/gnome/Mutter/DisplayConfig',
             'org.gnome.Mutter.DisplayConfig', 'GetCurrentState', null, null, Gio.DBusCallFlags.NONE, 2000, null,
             (connection, result) => {
-                if (!this._exported)
+                if (!this._exported) {
+                    resolve();
                     return;
+                }
                 try {
                     const [, , logical] = connection.call_finish(result).deepUnpack();
                     this._connectors.clear();
@@ -303,11 +319,14 @@ class UmfShell {
                         if (monitors.length > 0)
                             this._connectors.set(`${x},${y}`, monitors[0][0]);
                     }
+                    this._connectorsKnown = true;
                 } catch (e) {
+                    this._connectorsKnown = false;
                     log(`umf: no connector names: ${e.message}`);
                 }
                 this._exported.emit_signal('MonitorsChanged', null);
-            });
+                resolve();
+            }));
     }
 
     _relayout() {
@@ -355,21 +374,23 @@ class UmfShell {
     // Application windows as shown now, bottom to top.
     _windows() {
         const workspace = global.workspace_manager.get_active_workspace();
-        return global.get_window_actors().map(a => a.meta_window).filter(w => w &&
+        // The shell's own X11 helper windows are not content.
+        return global.get_window_actors().map(a => a.meta_window).filter(w => w && w.get_pid() !== this._shellPid &&
             w.get_window_type() !== Meta.WindowType.DESKTOP && !w.minimized && w.showing_on_its_workspace() &&
             (w.is_on_all_workspaces() || w.located_on_workspace(workspace)));
     }
 
     _describe(w) {
         const x11 = w.get_client_type() === Meta.WindowClientType.X11;
-        return [w.get_id(), w.get_pid() ?? 0, w.get_title() ?? '', w.get_wm_class() ?? '',
+        return [w.get_id(), Math.max(0, w.get_pid() ?? 0), w.get_title() ?? '', w.get_wm_class() ?? '',
             x11 ? w.get_wm_class_instance() ?? '' : '', plainRect(w.get_frame_rect()), w.get_monitor()];
     }
 
     _windowAt(x, y, pids, classes) {
         const skipPids = new Set(pids);
         const skipClasses = new Set(classes);
-        const windows = this._windows();
+        // In the overview windows are not where their frames say.
+        const windows = Main.overview.visible ? [] : this._windows();
         for (let i = windows.length - 1; i >= 0; --i) {
             const w = windows[i];
             const r = w.get_frame_rect();
