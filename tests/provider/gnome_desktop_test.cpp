@@ -96,9 +96,19 @@ TEST(GnomeDesktop, TellsWaylandAndX11WindowsAtTheirPlaceAndMovesThem) {
     // Apart, so each has a place of its own.
     ASSERT_TRUE(desktop->shell().move_window(window_titled(*desktop, "umf-foot")->id, 100, 150));
     ASSERT_TRUE(desktop->shell().move_window(window_titled(*desktop, "umf-xterm")->id, 1100, 300));
-    ASSERT_TRUE(test::wait_until([&] {
-        return window_titled(*desktop, "umf-foot")->rect.x == 100 && window_titled(*desktop, "umf-xterm")->rect.x == 1100;
-    }, 5s)) << "the windows did not land where asked";
+    const auto landed = [&] {
+        const auto f = window_titled(*desktop, "umf-foot")->rect, x = window_titled(*desktop, "umf-xterm")->rect;
+        return f.x == 100 && f.y == 150 && x.x == 1100 && x.y == 300;
+    };
+    const bool first_try = test::wait_until(landed, 3s);
+    if (!first_try) {
+        std::cout << "[ note     ] foot at " << window_titled(*desktop, "umf-foot")->rect.x << ","
+                  << window_titled(*desktop, "umf-foot")->rect.y << " xterm at " << window_titled(*desktop, "umf-xterm")->rect.x
+                  << "," << window_titled(*desktop, "umf-xterm")->rect.y << " after the first move\n";
+        desktop->shell().move_window(window_titled(*desktop, "umf-foot")->id, 100, 150);
+        desktop->shell().move_window(window_titled(*desktop, "umf-xterm")->id, 1100, 300);
+    }
+    ASSERT_TRUE(test::wait_until(landed, 3s)) << "the windows did not land where asked";
     const auto foot_window = *window_titled(*desktop, "umf-foot");
     const auto xterm_window = *window_titled(*desktop, "umf-xterm");
     EXPECT_EQ(foot_window.rect.y, 150);
@@ -228,6 +238,12 @@ TEST(GnomeDesktop, PulsesAtSixtyHertzCheaply) {
         return user + system;
     };
     const long hz = ::sysconf(_SC_CLK_TCK);
+    // The shell with the field shown and still, for comparison.
+    surface->set_opacity(0.5);
+    std::this_thread::sleep_for(500ms);
+    const long idle_before = cpu_ticks(shell);
+    std::this_thread::sleep_for(2s);
+    const double idle_cpu = 100.0 * (cpu_ticks(shell) - idle_before) / hz / 2.0;
     const long shell_before = cpu_ticks(shell), self_before = cpu_ticks(0);
     const auto start = std::chrono::steady_clock::now();
     int steps = 0;
@@ -240,7 +256,7 @@ TEST(GnomeDesktop, PulsesAtSixtyHertzCheaply) {
     const double shell_cpu = 100.0 * (cpu_ticks(shell) - shell_before) / hz / seconds;
     const double self_cpu = 100.0 * (cpu_ticks(0) - self_before) / hz / seconds;
     std::cout << "[ measure  ] pulse " << steps << " steps in " << seconds << " s: gnome-shell " << shell_cpu
-              << " % of a core, provider side " << self_cpu << " %\n";
+              << " % of a core (" << idle_cpu << " % with the field still), provider side " << self_cpu << " %\n";
     // The last step arrived.
     const unsigned last = static_cast<unsigned>(std::lround(255 * surface->pulse_opacity()));
     EXPECT_TRUE(test::wait_until([&] { return desktop->shell().field_state()[0].opacity == last; }, 2s));
