@@ -109,6 +109,7 @@ TEST(GnomeDesktop, TellsWaylandAndX11WindowsAtTheirPlaceAndMovesThem) {
         desktop->shell().move_window(window_titled(*desktop, "umf-xterm")->id, 1100, 300);
     }
     ASSERT_TRUE(test::wait_until(landed, 3s)) << "the windows did not land where asked";
+    ASSERT_TRUE(session.leave_overview()) << "the overview came back";
     const auto foot_window = *window_titled(*desktop, "umf-foot");
     const auto xterm_window = *window_titled(*desktop, "umf-xterm");
     EXPECT_EQ(foot_window.rect.y, 150);

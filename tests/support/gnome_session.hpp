@@ -131,10 +131,17 @@ public:
                 return std::string();
             }
         };
+        // The shell may show it again once its start-up ends: it must stay
+        // down a while.
+        int down = 0;
         return wait_until([&] {
             call("org.freedesktop.DBus.Properties.Set", {"org.gnome.Shell", "OverviewActive", "<false>"});
-            return call("org.freedesktop.DBus.Properties.Get", {"org.gnome.Shell", "OverviewActive"})
-                       .find("false") != std::string::npos;
+            std::this_thread::sleep_for(200ms);
+            down = call("org.freedesktop.DBus.Properties.Get", {"org.gnome.Shell", "OverviewActive"}).find("false") !=
+                           std::string::npos
+                       ? down + 1
+                       : 0;
+            return down >= 5;
         }, timeout);
     }
 
