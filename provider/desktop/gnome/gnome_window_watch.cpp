@@ -68,8 +68,16 @@ std::optional<unsigned long> GnomeNewWindowWatch::place(int child_pid, std::chro
         if (chosen) {
             const auto [x, y] = centred_in(chosen->rect.width, chosen->rect.height, placement_.x, placement_.y,
                                            placement_.screen);
+            // A window that has just appeared may still be placed by Mutter
+            // after the move: it is moved again until it stays.
             try {
-                if (shell_->move_window(chosen->id, x, y)) return chosen->id;
+                const auto settle = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+                while (shell_->move_window(chosen->id, x, y)) {
+                    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+                    for (const auto& window : shell_->windows())
+                        if (window.id == chosen->id && window.rect.x == x && window.rect.y == y) return chosen->id;
+                    if (std::chrono::steady_clock::now() >= settle) return chosen->id;
+                }
             } catch (const DesktopError&) {
             }
             return std::nullopt;
