@@ -1,0 +1,114 @@
+#include "desktop/gnome/gnome_field_surface.hpp"
+
+#include <QImage>
+#include <QScreen>
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+
+#include "desktop/gnome/gnome_shell_client.hpp"
+#include "desktop/gnome/private_folder.hpp"
+#include "screen/board_window.hpp"
+
+namespace umf::provider {
+
+std::optional<int> monitor_for_screen(const std::vector<DesktopOutput>& monitors, const std::string& screen_name,
+                                      const WindowRect& screen_rect) {
+    if (monitors.empty()) return std::nullopt;
+    for (std::size_t i = 0; i < monitors.size(); ++i)
+        if (!screen_name.empty() && monitors[i].name == screen_name) return static_cast<int>(i);
+    for (std::size_t i = 0; i < monitors.size(); ++i)
+        if (!screen_rect.empty() && monitors[i].rect == screen_rect) return static_cast<int>(i);
+    return 0;
+}
+
+GnomeFieldSurface::GnomeFieldSurface(std::shared_ptr<const GnomeShellClient> shell, QScreen* screen, ScreenField field,
+                                     const std::vector<std::string>& palette)
+    : shell_(std::move(shell)), screen_(screen), field_(std::move(field)), palette_(palette) {
+    monitor_ = find_monitor();
+    private_runtime_folder();  // throws when it cannot be used
+    send_layer();
+}
+
+GnomeFieldSurface::~GnomeFieldSurface() { shell_->drop_field(monitor_); }
+
+int GnomeFieldSurface::find_monitor() const {
+    std::string name;
+    WindowRect rect;
+    if (screen_) {
+        name = screen_->name().toStdString();
+        const QRect g = screen_->geometry();
+        rect = {g.x(), g.y(), g.width(), g.height()};
+    }
+    const auto index = monitor_for_screen(shell_->monitors(), name, rect);
+    if (!index) throw DesktopError("GNOME Shell reports no monitor");
+    return *index;
+}
+
+void GnomeFieldSurface::send_layer() {
+    try {
+        const auto folder = private_runtime_folder();
+        const std::string name = "field-" + std::to_string(monitor_) + ".png";
+        const auto partial = folder / (name + ".part");
+        // Fast compression: the image is read once, a few ms later.
+        if (!field_layer(field_, palette_).save(QString::fromStdString(partial.string()), "PNG", 90))
+            throw DesktopError("cannot write " + partial.string());
+        std::filesystem::rename(partial, folder / name);
+        shell_->set_field(monitor_, name);
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: the field on GNOME Shell: " << e.what() << "\n";
+        return;
+    }
+    // A reloaded layer keeps the state it had.
+    shell_->send_field_opacity(monitor_, pulse_);
+    shell_->send_field_focus(
+        monitor_, focus_centre_ ? std::optional(std::pair{focus_centre_->x(), focus_centre_->y()}) : std::nullopt,
+        focus_radius_);
+    shell_->send_field_visible(monitor_, visible_);
+}
+
+void GnomeFieldSurface::set_field(ScreenField field, const std::vector<std::string>& palette) {
+    field_ = std::move(field);
+    palette_ = palette;
+    send_layer();
+}
+
+void GnomeFieldSurface::cover_screen() {
+    try {
+        const int now = find_monitor();
+        if (now == monitor_) return;
+        shell_->drop_field(monitor_);
+        monitor_ = now;
+        send_layer();
+    } catch (const DesktopError& e) {
+        std::cerr << "umf-provider: the field on GNOME Shell: " << e.what() << "\n";
+    }
+}
+
+void GnomeFieldSurface::set_opacity(double opacity) {
+    opacity = std::clamp(opacity, 0.0, 1.0);
+    if (opacity == pulse_) return;
+    pulse_ = opacity;
+    shell_->send_field_opacity(monitor_, pulse_);
+}
+
+void GnomeFieldSurface::set_focus(std::optional<QPointF> centre_px, double radius_px) {
+    radius_px = std::max(0.0, radius_px);
+    if (centre_px == focus_centre_ && radius_px == focus_radius_) return;
+    focus_centre_ = centre_px;
+    focus_radius_ = radius_px;
+    shell_->send_field_focus(monitor_, centre_px ? std::optional(std::pair{centre_px->x(), centre_px->y()}) : std::nullopt,
+                             radius_px);
+}
+
+void GnomeFieldSurface::show() {
+    visible_ = true;
+    shell_->send_field_visible(monitor_, true);
+}
+
+void GnomeFieldSurface::hide() {
+    visible_ = false;
+    shell_->send_field_visible(monitor_, false);
+}
+
+}  // namespace umf::provider

@@ -1,0 +1,345 @@
+// The GNOME Shell backend against a real GNOME Shell 43 (headless, virtual
+// monitor), the umf extension loaded in it, real Wayland and X11 clients.
+#include <gtest/gtest.h>
+
+#include <QCoreApplication>
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <iostream>
+
+#include "desktop/gnome/gnome_desktop.hpp"
+#include "desktop/gnome/gnome_extension.hpp"
+#include "desktop/gnome/gnome_field_surface.hpp"
+#include "desktop/gnome/gnome_install.hpp"
+#include "desktop/gnome/gnome_shell_client.hpp"
+#include "desktop/gnome/gnome_window_watch.hpp"
+#include "provider/gui_test_app.hpp"
+#include "screen/screen_field.hpp"
+#include "support/gnome_session.hpp"
+
+namespace umf::provider {
+namespace {
+
+using namespace std::chrono_literals;
+using test::AsUser;
+using test::GnomeSession;
+
+#define SKIP_WITHOUT_GNOME()                                                       \
+    do {                                                                           \
+        if (const auto why = GnomeSession::unavailable()) GTEST_SKIP() << *why;    \
+    } while (0)
+
+// The provider's view of the session: its bus and runtime folder.
+void enter(const GnomeSession& session) {
+    test::ensure_gui_application();
+    ::setenv("DBUS_SESSION_BUS_ADDRESS", session.bus_address().c_str(), 1);
+    ::setenv("XDG_RUNTIME_DIR", session.run_dir().c_str(), 1);
+    ::setenv("HOME", session.home().c_str(), 1);
+}
+
+// A GnomeDesktop connected as the session's user (the extension answers
+// no one else), once the extension answers.
+std::unique_ptr<GnomeDesktop> desktop_of(const GnomeSession& session) {
+    enter(session);
+    AsUser as(session.uid(), session.gid());
+    auto desktop = std::make_unique<GnomeDesktop>();
+    test::wait_until([&] { return desktop->abilities().field; }, 20s);
+    return desktop;
+}
+
+std::optional<WindowInfo> window_titled(const GnomeDesktop& desktop, const std::string& title) {
+    for (const auto& w : desktop.shell().windows())
+        if (w.title == title && !w.rect.empty()) return w;
+    return std::nullopt;
+}
+
+TEST(GnomeDesktop, AnswersItsUserAndRefusesAnother) {
+    SKIP_WITHOUT_GNOME();
+    GnomeSession session;
+    const auto desktop = desktop_of(session);
+    const auto abilities = desktop->abilities();
+    ASSERT_TRUE(abilities.field && abilities.windows && abilities.snapshots && abilities.placement)
+        << (abilities.notes.empty() ? session.log() : abilities.notes.front());
+    EXPECT_EQ(desktop->shell().version().api, kGnomeShellApi);
+    EXPECT_EQ(desktop->shell().version().shell.substr(0, 3), "43.");
+
+    const auto outputs = desktop->outputs();
+    ASSERT_EQ(outputs.size(), 1u);
+    EXPECT_EQ(outputs[0].rect, (WindowRect{0, 0, 1920, 1080}));
+    EXPECT_EQ(outputs[0].scale, 1.0);
+    EXPECT_EQ(outputs[0].name, "Meta-0");  // the virtual monitor's connector
+
+    // Root is another user on this bus (the session's policy lets it in).
+    GnomeShellClient foreign;
+    try {
+        foreign.version();
+        ADD_FAILURE() << "a foreign uid was answered";
+    } catch (const DesktopError& e) {
+        EXPECT_NE(std::string(e.what()).find("Refused"), std::string::npos) << e.what();
+    }
+}
+
+TEST(GnomeDesktop, TellsWaylandAndX11WindowsAtTheirPlaceAndMovesThem) {
+    SKIP_WITHOUT_GNOME();
+    GnomeSession session;
+    const auto desktop = desktop_of(session);
+    ASSERT_TRUE(session.leave_overview()) << "the overview stays up";
+    const auto foot = session.start_client({"foot", "-T", "umf-foot"}, "foot.log");
+    const auto x = session.xwayland();
+    ASSERT_TRUE(x) << "no Xwayland: " << session.log();
+    const auto xterm = session.start_client({"xterm", "-title", "umf-xterm", "-bg", "red"}, "xterm.log",
+                                            {{"DISPLAY", x->first}, {"XAUTHORITY", x->second}});
+    ASSERT_TRUE(test::wait_until([&] { return window_titled(*desktop, "umf-foot") && window_titled(*desktop, "umf-xterm"); }, 20s))
+        << session.log();
+
+    ASSERT_TRUE(session.leave_overview()) << "the overview came back";
+    // Apart, so each has a place of its own.
+    ASSERT_TRUE(desktop->shell().move_window(window_titled(*desktop, "umf-foot")->id, 100, 150));
+    ASSERT_TRUE(desktop->shell().move_window(window_titled(*desktop, "umf-xterm")->id, 1100, 300));
+    const auto landed = [&] {
+        const auto f = window_titled(*desktop, "umf-foot")->rect, x = window_titled(*desktop, "umf-xterm")->rect;
+        if (f.x == 100 && f.y == 150 && x.x == 1100 && x.y == 300) return true;
+        // Mutter may still be placing a window that has just appeared.
+        desktop->shell().move_window(window_titled(*desktop, "umf-foot")->id, 100, 150);
+        desktop->shell().move_window(window_titled(*desktop, "umf-xterm")->id, 1100, 300);
+        std::this_thread::sleep_for(100ms);
+        return false;
+    };
+    const bool first_try = test::wait_until(landed, 3s);
+    if (!first_try) {
+        std::cout << "[ note     ] foot at " << window_titled(*desktop, "umf-foot")->rect.x << ","
+                  << window_titled(*desktop, "umf-foot")->rect.y << " xterm at " << window_titled(*desktop, "umf-xterm")->rect.x
+                  << "," << window_titled(*desktop, "umf-xterm")->rect.y << " after the first move\n";
+        desktop->shell().move_window(window_titled(*desktop, "umf-foot")->id, 100, 150);
+        desktop->shell().move_window(window_titled(*desktop, "umf-xterm")->id, 1100, 300);
+    }
+    ASSERT_TRUE(test::wait_until(landed, 3s)) << "the windows did not land where asked";
+    const auto foot_window = *window_titled(*desktop, "umf-foot");
+    const auto xterm_window = *window_titled(*desktop, "umf-xterm");
+    EXPECT_EQ(foot_window.rect.y, 150);
+    EXPECT_EQ(xterm_window.rect.y, 300);
+
+    const auto at_foot = desktop->window_at(foot_window.rect.x + 50, foot_window.rect.y + 50, {});
+    ASSERT_TRUE(at_foot);
+    EXPECT_EQ(at_foot->title, "umf-foot");
+    EXPECT_EQ(at_foot->wm_class, "foot");
+    EXPECT_EQ(at_foot->instance, "");
+    EXPECT_EQ(at_foot->pid, foot->pid());
+    EXPECT_EQ(at_foot->output, "Meta-0");
+
+    const auto at_xterm = desktop->window_at(xterm_window.rect.x + 50, xterm_window.rect.y + 50, {});
+    ASSERT_TRUE(at_xterm);
+    EXPECT_EQ(at_xterm->title, "umf-xterm");
+    EXPECT_EQ(at_xterm->wm_class, "XTerm");
+    EXPECT_EQ(at_xterm->instance, "xterm");
+    EXPECT_EQ(at_xterm->pid, xterm->pid());
+
+    // Looked through: the provider's own pids, skipped classes; nothing on
+    // the bare desktop.
+    WindowFilter own;
+    own.own_pids = {foot->pid()};
+    EXPECT_FALSE(desktop->window_at(foot_window.rect.x + 50, foot_window.rect.y + 50, own));
+    WindowFilter classes;
+    classes.skip_classes = {"XTerm"};
+    EXPECT_FALSE(desktop->window_at(xterm_window.rect.x + 50, xterm_window.rect.y + 50, classes));
+    EXPECT_FALSE(desktop->window_at(1900, 1060, {}));
+
+    // Aim-to-title latency: the whole round trip of a window_at.
+    std::vector<double> ms;
+    for (int i = 0; i < 200; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        ASSERT_TRUE(desktop->window_at(xterm_window.rect.x + 10 + i % 40, xterm_window.rect.y + 60, {}));
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    }
+    std::sort(ms.begin(), ms.end());
+    std::cout << "[ measure  ] window_at round trip over 200: median " << ms[100] << " ms, p95 " << ms[190]
+              << " ms, max " << ms.back() << " ms\n";
+    EXPECT_LT(ms[100], 50.0);
+
+    // A put's window: a new xterm centred on the pointed place.
+    WindowPlacement place{1400, 700, {0, 0, 1920, 1080}};
+    auto watch = desktop->watch_new_window(place);
+    ASSERT_TRUE(watch);
+    const auto third = session.start_client({"xterm", "-title", "umf-put"}, "put.log",
+                                            {{"DISPLAY", x->first}, {"XAUTHORITY", x->second}});
+    const auto moved = watch->place(third->pid(), 10s);
+    ASSERT_TRUE(moved) << "the new window was not placed";
+    ASSERT_TRUE(test::wait_until([&] {
+        const auto w = window_titled(*desktop, "umf-put");
+        return w && std::abs(w->rect.x + w->rect.width / 2 - 1400) <= 1 && std::abs(w->rect.y + w->rect.height / 2 - 700) <= 1;
+    }, 5s)) << "the put's window is not centred on the place";
+}
+
+TEST(GnomeDesktop, SnapshotShowsTheWindowWithoutTheField) {
+    SKIP_WITHOUT_GNOME();
+    GnomeSession session;
+    const auto desktop = desktop_of(session);
+    ASSERT_TRUE(session.leave_overview());
+    const auto x = session.xwayland();
+    ASSERT_TRUE(x);
+    const auto xterm = session.start_client({"xterm", "-title", "umf-red", "-bg", "red", "-geometry", "80x30"}, "xterm.log",
+                                            {{"DISPLAY", x->first}, {"XAUTHORITY", x->second}});
+    ASSERT_TRUE(test::wait_until([&] { return window_titled(*desktop, "umf-red").has_value(); }, 20s));
+    ASSERT_TRUE(desktop->shell().move_window(window_titled(*desktop, "umf-red")->id, 400, 300));
+    ASSERT_TRUE(test::wait_until([&] { return window_titled(*desktop, "umf-red")->rect.x == 400; }, 5s));
+    const WindowRect inside{400 + 40, 300 + 80, 100, 100};  // below the title bar
+
+    AsUser as(session.uid(), session.gid());
+    // The field shown at full strength over the whole monitor.
+    const ScreenField field = screen_field_for(1920, 1080);
+    auto surface = desktop->make_field_surface(nullptr, field, {});
+    ASSERT_TRUE(surface);
+    surface->set_opacity(1.0);
+    surface->show();
+    ASSERT_TRUE(test::wait_until([&] {
+        const auto state = desktop->shell().field_state();
+        return state.size() == 1 && state[0].visible && state[0].opacity == 255;
+    }, 5s));
+    auto state = desktop->shell().field_state();
+    EXPECT_EQ(state[0].rect, (WindowRect{0, 0, 1920, 1080}));
+    EXPECT_EQ(state[0].image_width, 1920);
+    EXPECT_EQ(state[0].image_height, 1080);
+    EXPECT_FALSE(state[0].focus);
+    surface->set_focus(QPointF(960, 540), 200);
+    ASSERT_TRUE(test::wait_until([&] { return desktop->shell().field_state()[0].focus; }, 2s));
+
+    // The snapshot is of the window alone: pure red, the field hidden.
+    const Capture shot = desktop->capture(inside);
+    ASSERT_EQ(shot.width, 100);
+    ASSERT_EQ(shot.height, 100);
+    const auto red = std::count(shot.pixels.begin(), shot.pixels.end(), 0xffff0000u);
+    EXPECT_GE(red, 9000) << "of 10000 pixels";
+    // And the field is back after it.
+    state = desktop->shell().field_state();
+    EXPECT_TRUE(state[0].visible);
+
+    surface->hide();
+    ASSERT_TRUE(test::wait_until([&] { return !desktop->shell().field_state()[0].visible; }, 2s));
+    surface.reset();
+    ASSERT_TRUE(test::wait_until([&] { return desktop->shell().field_state().empty(); }, 2s));
+    EXPECT_THROW(desktop->capture({5000, 5000, 10, 10}), DesktopError);
+}
+
+TEST(GnomeDesktop, PulsesAtSixtyHertzCheaply) {
+    SKIP_WITHOUT_GNOME();
+    GnomeSession session;
+    const auto desktop = desktop_of(session);
+    ASSERT_TRUE(session.leave_overview());
+    AsUser as(session.uid(), session.gid());
+    auto surface = desktop->make_field_surface(nullptr, screen_field_for(1920, 1080), {});
+    ASSERT_TRUE(surface);
+    surface->show();
+    const pid_t shell = session.shell_pid();
+    ASSERT_GT(shell, 0);
+    const auto cpu_ticks = [](pid_t pid) {
+        std::ifstream stat("/proc/" + (pid ? std::to_string(pid) : std::string("self")) + "/stat");
+        std::string line;
+        std::getline(stat, line);
+        std::istringstream rest(line.substr(line.rfind(')') + 2));
+        std::string skip;
+        for (int i = 0; i < 11; ++i) rest >> skip;
+        long user = 0, system = 0;
+        rest >> user >> system;
+        return user + system;
+    };
+    const long hz = ::sysconf(_SC_CLK_TCK);
+    // The shell with the field shown and still, for comparison.
+    surface->set_opacity(0.5);
+    std::this_thread::sleep_for(500ms);
+    const long idle_before = cpu_ticks(shell);
+    std::this_thread::sleep_for(2s);
+    const double idle_cpu = 100.0 * (cpu_ticks(shell) - idle_before) / hz / 2.0;
+    const long shell_before = cpu_ticks(shell), self_before = cpu_ticks(0);
+    const auto start = std::chrono::steady_clock::now();
+    int steps = 0;
+    while (std::chrono::steady_clock::now() - start < 5s) {
+        surface->set_opacity(0.2 + 0.6 * (steps % 60) / 59.0);
+        ++steps;
+        std::this_thread::sleep_until(start + steps * std::chrono::microseconds(16667));
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double shell_cpu = 100.0 * (cpu_ticks(shell) - shell_before) / hz / seconds;
+    const double self_cpu = 100.0 * (cpu_ticks(0) - self_before) / hz / seconds;
+    std::cout << "[ measure  ] pulse " << steps << " steps in " << seconds << " s: gnome-shell " << shell_cpu
+              << " % of a core (" << idle_cpu << " % with the field still), provider side " << self_cpu << " %\n";
+    // The last step arrived.
+    const unsigned last = static_cast<unsigned>(std::lround(255 * surface->pulse_opacity()));
+    EXPECT_TRUE(test::wait_until([&] { return desktop->shell().field_state()[0].opacity == last; }, 2s));
+}
+
+TEST(GnomeDesktop, WithoutTheExtensionSaysWhatToDoAndDoesNotHang) {
+    SKIP_WITHOUT_GNOME();
+    for (const bool installed : {false, true}) {
+        GnomeSession session({installed, false});
+        enter(session);
+        AsUser as(session.uid(), session.gid());
+        GnomeDesktop desktop;
+        const auto start = std::chrono::steady_clock::now();
+        const auto abilities = desktop.abilities();
+        EXPECT_FALSE(abilities.field || abilities.windows || abilities.snapshots || abilities.placement);
+        ASSERT_FALSE(abilities.notes.empty());
+        EXPECT_NE(abilities.notes[0].find("umf-provider gnome install"), std::string::npos) << abilities.notes[0];
+        EXPECT_NE(abilities.notes[0].find(installed ? "not running" : "not installed"), std::string::npos)
+            << abilities.notes[0];
+        EXPECT_FALSE(desktop.window_at(10, 10, {}));
+        EXPECT_THROW(desktop.capture({0, 0, 10, 10}), DesktopError);
+        EXPECT_EQ(desktop.make_field_surface(nullptr, screen_field_for(1920, 1080), {}), nullptr);
+        EXPECT_LT(std::chrono::steady_clock::now() - start, 3s);
+    }
+}
+
+// The parts that need no shell.
+TEST(GnomeDesktopParts, ReadsTheShellVersion) {
+    EXPECT_EQ(gnome_shell_major("GNOME Shell 43.9"), 43);
+    EXPECT_EQ(gnome_shell_major("GNOME Shell 45.rc"), 45);
+    EXPECT_EQ(gnome_shell_major("47.1"), 47);
+    EXPECT_EQ(gnome_shell_major("GNOME Shell"), std::nullopt);
+    EXPECT_EQ(gnome_shell_major("GNOME Shell 43x"), std::nullopt);
+    EXPECT_EQ(gnome_extension_form_for(42), std::nullopt);
+    EXPECT_EQ(gnome_extension_form_for(44), GnomeExtensionForm::legacy);
+    EXPECT_EQ(gnome_extension_form_for(45), GnomeExtensionForm::module);
+    EXPECT_EQ(gnome_extension_form_for(48), GnomeExtensionForm::module);
+}
+
+TEST(GnomeDesktopParts, EnablesTheExtensionOnce) {
+    EXPECT_EQ(with_extension_enabled("@as []", "u@x"), "['u@x']");
+    EXPECT_EQ(with_extension_enabled("['a@b']", "u@x"), "['a@b', 'u@x']");
+    EXPECT_EQ(with_extension_enabled("['a@b', 'u@x']", "u@x"), "['a@b', 'u@x']");
+}
+
+TEST(GnomeDesktopParts, InstallsTheFormForTheShell) {
+    test::TempDir dir;
+    for (const auto form : {GnomeExtensionForm::legacy, GnomeExtensionForm::module}) {
+        const auto folder = install_gnome_extension(dir.path / (form == GnomeExtensionForm::legacy ? "43" : "45"), form);
+        std::ifstream js(folder / "extension.js"), meta(folder / "metadata.json");
+        const std::string text(std::istreambuf_iterator<char>(js), {}), metadata(std::istreambuf_iterator<char>(meta), {});
+        EXPECT_NE(metadata.find(std::string(kGnomeExtensionUuid)), std::string::npos);
+        EXPECT_NE(text.find("org.umf.Shell1"), std::string::npos);
+        if (form == GnomeExtensionForm::legacy) {
+            EXPECT_NE(text.find("imports.gi"), std::string::npos);
+            EXPECT_NE(text.find("function init()"), std::string::npos);
+            EXPECT_NE(metadata.find("\"43\""), std::string::npos);
+        } else {
+            EXPECT_NE(text.find("export default class"), std::string::npos);
+            EXPECT_EQ(text.find("imports.gi"), std::string::npos);
+            EXPECT_NE(metadata.find("\"47\""), std::string::npos);
+        }
+    }
+}
+
+TEST(GnomeDesktopParts, MatchesScreensAndPlacesWindows) {
+    const std::vector<DesktopOutput> monitors = {{"DP-1", {0, 0, 1920, 1080}, 1.0}, {"HDMI-1", {1920, 0, 1280, 1024}, 1.0}};
+    EXPECT_EQ(monitor_for_screen(monitors, "HDMI-1", {}), 1);
+    EXPECT_EQ(monitor_for_screen(monitors, "", {1920, 0, 1280, 1024}), 1);
+    EXPECT_EQ(monitor_for_screen(monitors, "X", {5, 5, 5, 5}), 0);
+    EXPECT_EQ(monitor_for_screen({}, "DP-1", {}), std::nullopt);
+    EXPECT_EQ(centred_in(200, 100, 500, 500, {0, 0, 1920, 1080}), std::pair(400, 450));
+    EXPECT_EQ(centred_in(200, 100, 10, 10, {0, 0, 1920, 1080}), std::pair(0, 0));
+    EXPECT_EQ(centred_in(200, 100, 1919, 1079, {0, 0, 1920, 1080}), std::pair(1720, 980));
+    EXPECT_TRUE(gnome_descends_from(::getpid(), ::getppid()));
+    EXPECT_FALSE(gnome_descends_from(::getppid(), ::getpid()));
+}
+
+}  // namespace
+}  // namespace umf::provider
