@@ -17,6 +17,7 @@
 #include "commands/pair_command.hpp"
 #include "commands/serve_command.hpp"
 #include "screen/gui_application.hpp"
+#include "desktop/gnome/gnome_install.hpp"
 #include "tuning/desktop_controls.hpp"
 #include "server/config_dir.hpp"
 
@@ -37,6 +38,7 @@ usage:
   umf-provider share --list | --remove ID [--port P]
   umf-provider puts [--json] [--port P]
   umf-provider puts --accept ID [--open] [--always] | --dismiss ID [--port P]
+  umf-provider gnome install
   umf-provider compose --content SCREEN.png [--board BOARD.json] --preset NAME
                        --time T --out OUT.png --map MAP.json [--screen WxH]
                        [preset settings, as for serve: --module-px P --blur B ...]
@@ -67,6 +69,9 @@ puts     lists the puts (a phone giving the screen a URL or a file) waiting for
          the file in the put folder (a URL: opens it), --open also opens the
          file, --always accepts that phone's puts from now on without asking;
          --dismiss ID refuses it. --json prints the list as JSON.
+gnome    install installs and enables the umf GNOME Shell extension, which
+         shows the field and answers the provider on GNOME (Wayland); GNOME
+         loads it at the next login.
 compose  writes the screen exactly as shown at time T (content, the board over
          it, the field at the preset's opacity then) and the map from field to
          screen pixels.
@@ -164,6 +169,11 @@ int dispatch(int argc, char** argv) {
         compose_args.named.erase("config-dir");
         auto app = make_gui_application(argc, argv, true);
         return run_compose(compose_args, config_dir);
+    }
+    if (command == "gnome") {
+        if (first >= argc || std::strcmp(argv[first], "install") != 0 || first + 1 != argc)
+            throw umf::cli::UsageError("gnome takes one word: install");
+        return run_gnome_install(std::cout, std::cerr);
     }
     throw umf::cli::UsageError("unknown command " + command);
 }

@@ -2,6 +2,8 @@
 
 #include <exception>
 
+#include "desktop/gnome/gnome_desktop.hpp"
+#include "desktop/wlroots/wlroots_desktop.hpp"
 #include "desktop/x11/x11_desktop.hpp"
 
 namespace umf::provider {
@@ -36,8 +38,12 @@ OpenedDesktop open_desktop(const DesktopChoice& choice) {
             out.desktop = std::make_shared<X11Desktop>();
             break;
         case DesktopKind::wlroots:
-        case DesktopKind::kde:
+            out.desktop = make_wlroots_desktop();
+            break;
         case DesktopKind::gnome:
+            out.desktop = make_gnome_desktop();
+            break;
+        case DesktopKind::kde:
         case DesktopKind::unsupported_wayland:
             out.abilities.notes.push_back(no_backend_note(choice.kind));
             return out;

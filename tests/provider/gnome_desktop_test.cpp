@@ -328,17 +328,12 @@ TEST(GnomeDesktopParts, InstallsTheFormForTheShell) {
     }
 }
 
-TEST(GnomeDesktopParts, MatchesScreensAndPlacesWindows) {
+TEST(GnomeDesktopParts, MatchesScreens) {
     const std::vector<DesktopOutput> monitors = {{"DP-1", {0, 0, 1920, 1080}, 1.0}, {"HDMI-1", {1920, 0, 1280, 1024}, 1.0}};
     EXPECT_EQ(monitor_for_screen(monitors, "HDMI-1", {}), 1);
     EXPECT_EQ(monitor_for_screen(monitors, "", {1920, 0, 1280, 1024}), 1);
     EXPECT_EQ(monitor_for_screen(monitors, "X", {5, 5, 5, 5}), 0);
     EXPECT_EQ(monitor_for_screen({}, "DP-1", {}), std::nullopt);
-    EXPECT_EQ(centred_in(200, 100, 500, 500, {0, 0, 1920, 1080}), std::pair(400, 450));
-    EXPECT_EQ(centred_in(200, 100, 10, 10, {0, 0, 1920, 1080}), std::pair(0, 0));
-    EXPECT_EQ(centred_in(200, 100, 1919, 1079, {0, 0, 1920, 1080}), std::pair(1720, 980));
-    EXPECT_TRUE(gnome_descends_from(::getpid(), ::getppid()));
-    EXPECT_FALSE(gnome_descends_from(::getppid(), ::getpid()));
 }
 
 }  // namespace

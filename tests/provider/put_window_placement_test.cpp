@@ -1,4 +1,4 @@
-// Where an accepted put opens (provider/put/window_placement.hpp): the
+// Where an accepted put opens (provider/desktop/window_placement.hpp): the
 // window's place centred on the pointed position and kept on its screen,
 // which new window is chosen, the process ancestry that prefers the opener's
 // own; and for real, on Xvfb with openbox, a fake xdg-open that starts an

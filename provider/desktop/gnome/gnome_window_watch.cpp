@@ -2,47 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <thread>
 
 #include "desktop/gnome/gnome_shell_client.hpp"
+#include "desktop/window_placement.hpp"
 
 namespace umf::provider {
-
-namespace {
-
-int parent_of(int pid) {
-    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-    std::string line;
-    if (!std::getline(stat, line)) return 0;
-    // The command name may hold spaces and parentheses: fields follow the last ')'.
-    const auto close = line.rfind(')');
-    if (close == std::string::npos) return 0;
-    std::istringstream rest(line.substr(close + 1));
-    char state = 0;
-    int parent = 0;
-    rest >> state >> parent;
-    return parent;
-}
-
-}  // namespace
-
-std::pair<int, int> centred_in(int width, int height, double x, double y, const WindowRect& screen) {
-    int left = static_cast<int>(std::lround(x - width / 2.0));
-    int top = static_cast<int>(std::lround(y - height / 2.0));
-    left = std::max(screen.x, std::min(left, screen.x + screen.width - width));
-    top = std::max(screen.y, std::min(top, screen.y + screen.height - height));
-    return {left, top};
-}
-
-bool gnome_descends_from(int pid, int ancestor) {
-    for (int hops = 0; pid > 1 && hops < 64; ++hops) {
-        if (pid == ancestor) return true;
-        pid = parent_of(pid);
-    }
-    return pid == ancestor && ancestor > 0;
-}
 
 GnomeNewWindowWatch::GnomeNewWindowWatch(std::shared_ptr<const GnomeShellClient> shell, WindowPlacement placement)
     : shell_(std::move(shell)), placement_(placement) {
@@ -56,7 +21,7 @@ std::optional<unsigned long> GnomeNewWindowWatch::place(int child_pid, std::chro
         try {
             for (const auto& window : shell_->windows()) {
                 if (std::find(before_.begin(), before_.end(), window.id) != before_.end() || window.rect.empty()) continue;
-                if (window.pid > 0 && gnome_descends_from(window.pid, child_pid)) {
+                if (window.pid > 0 && descends_from(window.pid, child_pid)) {
                     chosen = window;
                     break;
                 }
@@ -66,8 +31,9 @@ std::optional<unsigned long> GnomeNewWindowWatch::place(int child_pid, std::chro
             return std::nullopt;  // the shell went away: nothing to move
         }
         if (chosen) {
-            const auto [x, y] = centred_in(chosen->rect.width, chosen->rect.height, placement_.x, placement_.y,
-                                           placement_.screen);
+            const PlaceRect to = centred_on(chosen->rect.width, chosen->rect.height, placement_.x, placement_.y,
+                                            placement_.screen);
+            const int x = to.x, y = to.y;
             // A window that has just appeared may still be placed by Mutter
             // after the move: it is moved again until it stays.
             try {

@@ -13,14 +13,6 @@ namespace umf::provider {
 
 class GnomeShellClient;
 
-// The top-left corner that centres a `width` x `height` frame on (x, y),
-// moved the least needed to lie inside `screen` (its top-left corner kept on
-// the screen when it is larger).
-std::pair<int, int> centred_in(int width, int height, double x, double y, const WindowRect& screen);
-
-// Whether process `pid` is `ancestor` or descends from it (/proc's parents).
-bool gnome_descends_from(int pid, int ancestor);
-
 class GnomeNewWindowWatch final : public NewWindowWatch {
 public:
     // Takes the windows there now; throws DesktopError when they cannot be

@@ -6,7 +6,7 @@
 
 #include "desktop/wlroots/sway_ipc.hpp"
 #include "desktop/wlroots/sway_tree.hpp"
-#include "put/window_placement.hpp"
+#include "desktop/window_placement.hpp"
 
 namespace umf::provider {
 

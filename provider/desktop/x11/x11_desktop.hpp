@@ -3,7 +3,7 @@
 // without one; captures from the root window; the field in an override-
 // redirect ARGB window per screen (overlay_window.hpp) mixed in by a
 // compositing manager (compositor.hpp); a put's window placed through EWMH
-// (put/window_placement.hpp). Xlib stays out of this header: its macros (None, Status, Bool) clash with
+// (desktop/x11/x11_window_watch.hpp). Xlib stays out of this header: its macros (None, Status, Bool) clash with
 // Qt and the standard library.
 #pragma once
 
