@@ -301,6 +301,22 @@ TEST_F(KdeDesktop, APutsNewWindowIsMovedCentredOnThePlace) {
     EXPECT_NEAR(at->rect.y + at->rect.height / 2.0, 500.0, 1.0);
 }
 
+TEST_F(KdeDesktop, AStuckKWinGivesNoWindowAfterTheTimeoutAndAnswersAgainWhenItWakes) {
+    UMF_NEEDS_KWIN();
+    auto xterm = start({"xterm", "-title", "umf-xterm", "-geometry", "80x24+40+40"}, "xterm.log");
+    auto kde = desktop();
+    ASSERT_TRUE(wait_until([&] { auto w = kde->window_at(60, 60, {}); return w && w->title == "umf-xterm"; }, 15s));
+    ::kill(session->kwin->pid(), SIGSTOP);
+    const auto t0 = Clock::now();
+    const auto stuck = kde->window_at(60, 60, {});
+    const auto waited = Clock::now() - t0;
+    ::kill(session->kwin->pid(), SIGCONT);
+    EXPECT_FALSE(stuck);
+    EXPECT_GE(waited, 900ms);  // the 1 s timeout, not an instant failure
+    EXPECT_LT(waited, 3s);
+    EXPECT_TRUE(wait_until([&] { auto w = kde->window_at(60, 60, {}); return w && w->title == "umf-xterm"; }, 10s));
+}
+
 TEST_F(KdeDesktop, AKWinThatIsGoneGivesNoWindowQuicklyInsteadOfAHang) {
     UMF_NEEDS_KWIN();
     auto kde = desktop();

@@ -7,6 +7,7 @@
 #include <QDBusConnectionInterface>
 #include <algorithm>
 #include <cstdlib>
+#include <iostream>
 #include <mutex>
 
 #include "desktop/kde/kde_window_watch.hpp"
@@ -98,13 +99,15 @@ public:
             const auto windows = parse_window_list(scripting_->run(list_windows_script(), options_.timeout));
             if (!windows) throw DesktopError("KWin's window list could not be read");
             return window_at_point(*windows, x, y, filter, outputs());
-        } catch (const DesktopError&) {
+        } catch (const DesktopError& e) {
+            note_failure(e.what());
             return std::nullopt;  // KWin gone or stuck: the bare desktop, as the seam asks
         }
     }
 
     Capture capture(const WindowRect& rect) const override {
         const WindowRect all = screen();
+        if (all.empty()) throw DesktopError("KWin's outputs cannot be read (is KWin still running?)");
         const int left = std::max(rect.x, all.x), top = std::max(rect.y, all.y);
         const int right = std::min(rect.x + rect.width, all.x + all.width);
         const int bottom = std::min(rect.y + rect.height, all.y + all.height);
@@ -129,6 +132,14 @@ public:
     }
 
 private:
+    // Said on the console once per new failure, not once per aim.
+    void note_failure(const std::string& what) const {
+        std::lock_guard lock(note_mutex_);
+        if (what == last_failure_) return;
+        last_failure_ = what;
+        std::cerr << "desktop: kde: no window under the point: " << what << std::endl;
+    }
+
     void probe_windows() {
         try {
             windows_ = parse_window_list(scripting_->run(list_windows_script(), options_.timeout)).has_value();
@@ -167,6 +178,8 @@ private:
     std::string windows_error_;
     std::string snapshots_error_;
     mutable std::mutex capture_mutex_;
+    mutable std::mutex note_mutex_;
+    mutable std::string last_failure_;
 };
 
 }  // namespace

@@ -51,13 +51,14 @@ Capture capture_from_raw(const QVariantMap& layout, const QByteArray& data) {
                            std::to_string(static_cast<qsizetype>(stride) * height) + " bytes");
     const QImage image(reinterpret_cast<const uchar*>(data.constData()), width, height, stride,
                        static_cast<QImage::Format>(format));
-    // Premultiplied or straight alpha, RGBA or ARGB byte orders: Qt flattens
-    // any of them to 0xffRRGGBB.
-    const QImage rgb = image.convertToFormat(QImage::Format_RGB32);
+    // Premultiplied or straight alpha, RGBA or ARGB byte orders: Qt brings
+    // any of them to premultiplied ARGB, whose colour bits are the pixel
+    // shown over black.
+    const QImage rgb = image.convertToFormat(QImage::Format_ARGB32_Premultiplied);
     Capture capture{width, height, std::vector<std::uint32_t>(static_cast<std::size_t>(width) * height)};
     for (int y = 0; y < height; ++y) {
         const auto* line = reinterpret_cast<const std::uint32_t*>(rgb.constScanLine(y));
-        for (int x = 0; x < width; ++x) capture.pixels[static_cast<std::size_t>(y) * width + x] = 0xff000000u | line[x];
+        for (int x = 0; x < width; ++x) capture.pixels[static_cast<std::size_t>(y) * width + x] = 0xff000000u | (line[x] & 0xffffffu);
     }
     return capture;
 }

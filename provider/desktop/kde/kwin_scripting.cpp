@@ -156,18 +156,25 @@ std::string KWinScripting::run(const std::string& body, std::chrono::millisecond
         if (!out) throw DesktopError("cannot write the KWin script " + path.string());
     }
     sink_->expect(token, owner);
+    auto unload = QDBusMessage::createMethodCall(kKWinService, "/Scripting", "org.kde.kwin.Scripting", "unloadScript");
+    unload << QString::fromStdString(plugin);
     std::string failure;
     try {
         failure = start_script(plugin, path.string(), timeout);
     } catch (...) {
         sink_->wait(token, std::chrono::steady_clock::now());
-        std::filesystem::remove(path);
+        // A stuck KWin may still load it later: the unload queued behind
+        // the load takes it away again, unanswered.
+        bus_.send(unload);
+        std::error_code ignored;
+        std::filesystem::remove(path, ignored);
         throw;
     }
     const auto answer = failure.empty() ? sink_->wait(token, deadline) : sink_->wait(token, std::chrono::steady_clock::now());
-    auto unload = QDBusMessage::createMethodCall(kKWinService, "/Scripting", "org.kde.kwin.Scripting", "unloadScript");
-    unload << QString::fromStdString(plugin);
-    bus_.call(unload, QDBus::Block, static_cast<int>(timeout.count()));
+    if (answer)
+        bus_.call(unload, QDBus::Block, static_cast<int>(timeout.count()));
+    else
+        bus_.send(unload);
     std::error_code ignored;
     std::filesystem::remove(path, ignored);
     if (!failure.empty()) throw DesktopError(failure);
