@@ -381,6 +381,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     std::cout << "pairing URL: " << url << "\n" << std::flush;
 
     for (const auto& line : describe_desktop(desktop)) std::cout << line << "\n";
+    std::cout << std::flush;
     if (layout) {
         std::cout << "overlay: " << layout->screens.size() << " screen(s), field " << layout->field.id << ", preset "
                   << preset.name << " (" << overlay::to_string(preset.activation) << ")\n" << std::flush;

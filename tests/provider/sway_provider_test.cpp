@@ -1,0 +1,163 @@
+// The provider itself on a real headless Sway: umf-provider started in the
+// session as its user (--desktop chosen from SWAYSOCK and
+// XDG_CURRENT_DESKTOP), three windows tiled side by side (a native foot
+// showing a text file, an Xwayland xterm showing another, a plain grey foot),
+// the field on the overlay layer above them. umf-requester grabs with
+// screenshots of the desktop cropped around each window: the two documents
+// arrive byte for byte, the grey window as a snapshot without the field.
+#if defined(UMF_PROVIDER_TESTS) && defined(UMF_REQUESTER_TOOL)
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "desktop/wlroots/wlroots_desktop.hpp"
+#include "desktop_photo.hpp"
+#include "detect/detector.hpp"
+#include "screen/screen_field.hpp"
+#include "support/process.hpp"
+#include "support/sway_session.hpp"
+
+namespace umf::provider {
+namespace {
+
+using namespace std::chrono_literals;
+using test::SwaySession;
+namespace fs = std::filesystem;
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+cv::Mat to_bgr(const Capture& shot) {
+    cv::Mat bgr(shot.height, shot.width, CV_8UC3);
+    for (int y = 0; y < shot.height; ++y)
+        for (int x = 0; x < shot.width; ++x) {
+            const std::uint32_t p = shot.pixels[static_cast<std::size_t>(y) * shot.width + x];
+            bgr.at<cv::Vec3b>(y, x) = {static_cast<std::uint8_t>(p & 255), static_cast<std::uint8_t>((p >> 8) & 255),
+                                       static_cast<std::uint8_t>((p >> 16) & 255)};
+        }
+    return bgr;
+}
+
+// umf-requester grab with `photo`: its JSON line, or a failure.
+nlohmann::json grab(const std::string& url, const fs::path& photo, const fs::path& out) {
+    const fs::path errors = out.string() + ".log";
+    const auto result = test::run_command(std::string(UMF_REQUESTER_TOOL) + " grab --url '" + url + "' --image " +
+                                          photo.string() + " --out " + out.string() + " 2>" + errors.string());
+    EXPECT_EQ(result.exit_code, 0) << result.out << slurp(errors);
+    try {
+        return nlohmann::json::parse(result.out.substr(0, result.out.find('\n')));
+    } catch (const std::exception&) {
+        ADD_FAILURE() << "no JSON from the requester: " << result.out << slurp(errors);
+        return {};
+    }
+}
+
+TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWindows) {
+    if (const auto why = SwaySession::cannot_run()) GTEST_SKIP() << *why;
+    SwaySession sway;
+    // Files the test user's programs show, and a folder the provider writes.
+    const fs::path work = sway.dir() / "work";
+    fs::create_directory(work);
+    fs::permissions(work, fs::perms::all);
+    const fs::path notes = work / "notes.txt", report = work / "report.txt";
+    std::ofstream(notes) << "notes from a native Wayland window\n";
+    std::ofstream(report) << "a report shown in an Xwayland window\n";
+    for (const auto& f : {notes, report}) fs::permissions(f, fs::perms::owner_all | fs::perms::others_read);
+
+    const auto foot = sway.start_client({"foot", "-T", "notes.txt", "less", notes.string()});
+    const auto xterm = sway.start_client({"xterm", "-T", "report.txt", "-e", "less", report.string()});
+    const auto plain = sway.start_client({"foot", "-o", "colors.background=808080", "-o", "colors.foreground=808080",
+                                          "-T", "plain grey", "sleep", "120"});
+    const auto desktop =
+        make_wlroots_desktop(WlrootsSession{sway.wayland_socket(), sway.swaysock(), {}, sway.runtime_dir()});
+    std::map<std::string, WindowInfo> windows;
+    ASSERT_TRUE(test::wait_until(
+        [&] {
+            auto* wl = dynamic_cast<WlrootsDesktop*>(desktop.get());
+            windows.clear();
+            for (const auto& w : wl->windows()) windows[w.title] = w;
+            return windows.count("notes.txt") && windows.count("report.txt") && windows.count("plain grey");
+        },
+        15s))
+        << "the three windows did not come up:\n" << sway.log();
+
+    // The provider, as the session's user, in the session's environment.
+    const fs::path log = work / "provider.log";
+    std::ofstream(log).close();
+    fs::permissions(log, fs::perms::all);
+    const auto provider = sway.start_client(
+        {"sh", "-c",
+         "exec env QT_QPA_PLATFORM=xcb XDG_CURRENT_DESKTOP=sway XDG_SESSION_TYPE=wayland XDG_CONFIG_HOME=" +
+             (work / "config").string() + " " + UMF_PROVIDER_TOOL + " --port 0 --no-qr --preset static --puts never > " +
+             log.string() + " 2>&1"});
+    ASSERT_TRUE(test::wait_until([&] { return slurp(log).find("overlay: 1 screen") != std::string::npos; }, 20s))
+        << slurp(log);
+    EXPECT_NE(slurp(log).find("desktop: wlroots"), std::string::npos) << slurp(log);
+    const std::string url = test::pairing_url_in(slurp(log));
+    ASSERT_FALSE(url.empty()) << slurp(log);
+
+    // The desktop as a camera would see it, with the field found in it.
+    const ScreenField field = screen_field_for(1920, 1080);
+    const Detector detector(field.field);
+    cv::Mat bgr;
+    Detection found;
+    ASSERT_TRUE(test::wait_until(
+        [&] {
+            bgr = to_bgr(desktop->capture({0, 0, 1920, 1080}));
+            cv::Mat grey;
+            cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+            found = detector.detect(GreyView{grey.data, grey.cols, grey.rows, static_cast<int>(grey.step)});
+            return found.found;
+        },
+        10s))
+        << "no field on the desktop: " << found.failure << "\n" << slurp(log);
+
+    // Each window in the middle of a photo of its own.
+    auto photo_of = [&](const WindowInfo& w, const std::string& name) {
+        const int side = std::min(560, std::min(w.rect.width, w.rect.height));
+        const int cx = w.rect.x + w.rect.width / 2, cy = w.rect.y + w.rect.height / 2;
+        const cv::Rect crop(std::clamp(cx - side / 2, 0, 1920 - side), std::clamp(cy - side / 2, 0, 1080 - side), side, side);
+        const fs::path path = work / (name + ".png");
+        cv::imwrite(path.string(), bgr(crop));
+        return path;
+    };
+    const auto text = grab(url, photo_of(windows["notes.txt"], "native"), work / "got-native");
+    EXPECT_EQ(text.value("kind", ""), "file") << text.dump();
+    EXPECT_EQ(text.value("title", ""), "notes.txt") << text.dump();
+    EXPECT_EQ(slurp(text.value("saved", "")), slurp(notes));
+
+    const auto x11 = grab(url, photo_of(windows["report.txt"], "xwayland"), work / "got-xwayland");
+    EXPECT_EQ(x11.value("kind", ""), "file") << x11.dump();
+    EXPECT_EQ(x11.value("title", ""), "report.txt") << x11.dump();
+    EXPECT_EQ(slurp(x11.value("saved", "")), slurp(report));
+
+    const auto shot = grab(url, photo_of(windows["plain grey"], "plain"), work / "got-plain");
+    EXPECT_EQ(shot.value("kind", ""), "snapshot") << shot.dump();
+    EXPECT_EQ(shot.value("title", "").find("plain grey"), 0u) << shot.dump();
+    const cv::Mat snapshot = cv::imread(shot.value("saved", ""), cv::IMREAD_COLOR);
+    ASSERT_FALSE(snapshot.empty());
+    EXPECT_NEAR(snapshot.cols, windows["plain grey"].rect.width, 2);
+    EXPECT_NEAR(snapshot.rows, windows["plain grey"].rect.height, 2);
+    // Grey throughout below its title bar: the field was hidden for it.
+    long grey = 0, inside = 0;
+    for (int y = snapshot.rows / 4; y < snapshot.rows * 3 / 4; ++y)
+        for (int x = snapshot.cols / 4; x < snapshot.cols * 3 / 4; ++x) {
+            const cv::Vec3b p = snapshot.at<cv::Vec3b>(y, x);
+            ++inside;
+            grey += std::abs(p[0] - 0x80) <= 3 && std::abs(p[1] - 0x80) <= 3 && std::abs(p[2] - 0x80) <= 3;
+        }
+    EXPECT_GT(grey, inside * 95 / 100) << "the snapshot holds the field";
+    EXPECT_NE(slurp(log).find("took \"notes.txt\""), std::string::npos) << slurp(log);
+}
+
+}  // namespace
+}  // namespace umf::provider
+
+#endif
