@@ -7,6 +7,7 @@
 
 #include <QCoreApplication>
 #include <QImage>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -251,6 +252,18 @@ TEST_F(SwayDesktop, OutputsWindowsAndAbilities) {
     WindowFilter own;
     own.own_pids = {xterm_->pid()};
     EXPECT_FALSE(desktop_->window_at(xterm->rect.x + 5, xterm->rect.y + 5, own));
+
+    // What an aim costs to name its window (docs/BENCHMARKS.md).
+    std::vector<double> ms;
+    for (int i = 0; i < 200; ++i) {
+        const auto start = std::chrono::steady_clock::now();
+        const auto w = desktop_->window_at(i % 2 ? foot->rect.x + 50.0 : xterm->rect.x + 50.0, 300, {});
+        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        ASSERT_TRUE(w);
+    }
+    std::sort(ms.begin(), ms.end());
+    std::cout << "[ measure  ] window_at over Sway's IPC, 200 calls: median " << ms[100] << " ms, p95 " << ms[190]
+              << " ms, max " << ms.back() << " ms\n";
 }
 
 TEST_F(SwayDesktop, CaptureEqualsGrim) {

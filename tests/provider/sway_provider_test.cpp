@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -118,6 +119,13 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
         },
         10s))
         << "no field on the desktop: " << found.failure << "\n" << slurp(log);
+
+    // The README's picture of the provider on Sway (scripts/screenshots-wayland.sh).
+    if (const char* keep = std::getenv("UMF_SCREENSHOT_DIR"); keep && *keep) {
+        cv::Mat half;
+        cv::resize(bgr, half, cv::Size(960, 540), 0, 0, cv::INTER_AREA);
+        cv::imwrite((fs::path(keep) / "sway-desktop.png").string(), half);
+    }
 
     // Each window in the middle of a photo of its own.
     auto photo_of = [&](const WindowInfo& w, const std::string& name) {

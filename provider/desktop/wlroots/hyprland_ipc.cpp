@@ -1,5 +1,7 @@
 #include "desktop/wlroots/hyprland_ipc.hpp"
 
+#include "desktop/wlroots/json_fields.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -14,16 +16,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string text_of(const json& node, const char* key) {
-    const auto it = node.find(key);
-    return it != node.end() && it->is_string() ? it->get<std::string>() : std::string();
-}
-
-int int_of(const json& node, const char* key, int otherwise = 0) {
-    const auto it = node.find(key);
-    return it != node.end() && it->is_number() ? static_cast<int>(it->get<double>()) : otherwise;
-}
-
 int pair_part(const json& node, const char* key, std::size_t i) {
     const auto it = node.find(key);
     return it != node.end() && it->is_array() && it->size() > i && (*it)[i].is_number() ? (*it)[i].get<int>() : 0;
@@ -31,7 +23,7 @@ int pair_part(const json& node, const char* key, std::size_t i) {
 
 int workspace_id(const json& node, const char* key) {
     const auto it = node.find(key);
-    return it != node.end() && it->is_object() ? int_of(*it, "id", 0) : 0;
+    return it != node.end() && it->is_object() ? json_int(*it, "id", 0) : 0;
 }
 
 bool is_fullscreen(const json& client) {
@@ -66,13 +58,13 @@ std::vector<DesktopOutput> hyprland_outputs(const json& monitors) {
     for (const auto& m : monitors) {
         if (!m.is_object() || m.value("disabled", false)) continue;
         DesktopOutput o;
-        o.name = text_of(m, "name");
+        o.name = json_text(m, "name");
         const auto scale = m.find("scale");
         o.scale = scale != m.end() && scale->is_number() && scale->get<double>() > 0 ? scale->get<double>() : 1.0;
-        o.rect = {int_of(m, "x"), int_of(m, "y"), static_cast<int>(std::lround(int_of(m, "width") / o.scale)),
-                  static_cast<int>(std::lround(int_of(m, "height") / o.scale))};
+        o.rect = {json_int(m, "x"), json_int(m, "y"), static_cast<int>(std::lround(json_int(m, "width") / o.scale)),
+                  static_cast<int>(std::lround(json_int(m, "height") / o.scale))};
         // A turned monitor (transform 1, 3, 5, 7) lays out its height across.
-        if (int_of(m, "transform") % 2 == 1) std::swap(o.rect.width, o.rect.height);
+        if (json_int(m, "transform") % 2 == 1) std::swap(o.rect.width, o.rect.height);
         if (!o.rect.empty()) out.push_back(std::move(o));
     }
     return out;
@@ -84,10 +76,10 @@ std::vector<WindowInfo> hyprland_visible_windows(const json& clients, const json
     if (monitors.is_array())
         for (const auto& m : monitors) {
             if (!m.is_object()) continue;
-            monitor_names[int_of(m, "id", -1)] = text_of(m, "name");
-            shown_workspaces[workspace_id(m, "activeWorkspace")] = text_of(m, "name");
+            monitor_names[json_int(m, "id", -1)] = json_text(m, "name");
+            shown_workspaces[workspace_id(m, "activeWorkspace")] = json_text(m, "name");
             if (const int special = workspace_id(m, "specialWorkspace"); special != 0)
-                shown_workspaces[special] = text_of(m, "name");
+                shown_workspaces[special] = json_text(m, "name");
         }
     struct Ranked {
         int layer;  // 0 fullscreen, 1 floating, 2 tiled
@@ -101,16 +93,16 @@ std::vector<WindowInfo> hyprland_visible_windows(const json& clients, const json
             const auto shown = shown_workspaces.find(workspace_id(c, "workspace"));
             if (shown == shown_workspaces.end()) continue;
             WindowInfo w;
-            const std::string address = text_of(c, "address");
+            const std::string address = json_text(c, "address");
             w.id = std::strtoul(address.c_str(), nullptr, 16);
             w.rect = {pair_part(c, "at", 0), pair_part(c, "at", 1), pair_part(c, "size", 0), pair_part(c, "size", 1)};
-            w.title = text_of(c, "title");
-            w.wm_class = text_of(c, "class");
-            w.pid = int_of(c, "pid");
-            const auto monitor = monitor_names.find(int_of(c, "monitor", -1));
+            w.title = json_text(c, "title");
+            w.wm_class = json_text(c, "class");
+            w.pid = json_int(c, "pid");
+            const auto monitor = monitor_names.find(json_int(c, "monitor", -1));
             w.output = monitor != monitor_names.end() ? monitor->second : shown->second;
             const int layer = is_fullscreen(c) ? 0 : c.value("floating", false) ? 1 : 2;
-            ranked.push_back({layer, int_of(c, "focusHistoryID", 1 << 20), std::move(w)});
+            ranked.push_back({layer, json_int(c, "focusHistoryID", 1 << 20), std::move(w)});
         }
     std::stable_sort(ranked.begin(), ranked.end(), [](const Ranked& a, const Ranked& b) {
         return a.layer != b.layer ? a.layer < b.layer : a.focus_order < b.focus_order;

@@ -1,5 +1,7 @@
 #include "desktop/wlroots/sway_tree.hpp"
 
+#include "desktop/wlroots/json_fields.hpp"
+
 #include <functional>
 #include <string>
 
@@ -8,11 +10,6 @@ namespace umf::provider {
 namespace {
 
 using nlohmann::json;
-
-std::string text_of(const json& node, const char* key) {
-    const auto it = node.find(key);
-    return it != node.end() && it->is_string() ? it->get<std::string>() : std::string();
-}
 
 WindowRect rect_of(const json& node, const char* key) {
     const auto it = node.find(key);
@@ -29,7 +26,7 @@ const json& children(const json& node, const char* key) {
 // A view: a container that shows a client (it has a process, or at least
 // an app id or an X11 window), not a split of others.
 bool is_view(const json& node) {
-    const std::string type = text_of(node, "type");
+    const std::string type = json_text(node, "type");
     return (type == "con" || type == "floating_con") && children(node, "nodes").empty() &&
            children(node, "floating_nodes").empty() &&
            (node.contains("pid") || node.contains("app_id") || node.contains("window_properties"));
@@ -41,12 +38,12 @@ WindowInfo window_of(const json& node, const std::string& output) {
     const WindowRect content = rect_of(node, "rect");
     const WindowRect title = rect_of(node, "deco_rect");
     window.rect = {content.x, content.y - title.height, content.width, content.height + title.height};
-    window.title = text_of(node, "name");
-    window.wm_class = text_of(node, "app_id");
+    window.title = json_text(node, "name");
+    window.wm_class = json_text(node, "app_id");
     if (const auto props = node.find("window_properties"); props != node.end() && props->is_object()) {
         // An Xwayland window: its WM_CLASS.
-        window.wm_class = text_of(*props, "class");
-        window.instance = text_of(*props, "instance");
+        window.wm_class = json_text(*props, "class");
+        window.instance = json_text(*props, "instance");
     }
     if (const auto pid = node.find("pid"); pid != node.end() && pid->is_number_integer()) window.pid = pid->get<int>();
     window.output = output;
@@ -88,12 +85,12 @@ void workspace_windows(const json& workspace, const std::string& output, std::ve
 std::vector<WindowInfo> sway_visible_windows(const nlohmann::json& tree) {
     std::vector<WindowInfo> global_fullscreen, rest;
     for (const auto& output : children(tree, "nodes")) {
-        const std::string output_name = text_of(output, "name");
+        const std::string output_name = json_text(output, "name");
         if (output_name == "__i3") continue;  // the scratchpad
-        const std::string current = text_of(output, "current_workspace");
+        const std::string current = json_text(output, "current_workspace");
         for (const auto& workspace : children(output, "nodes")) {
-            if (text_of(workspace, "type") != "workspace") continue;
-            if (!current.empty() && text_of(workspace, "name") != current) continue;
+            if (json_text(workspace, "type") != "workspace") continue;
+            if (!current.empty() && json_text(workspace, "name") != current) continue;
             std::vector<WindowInfo> windows;
             workspace_windows(workspace, output_name, windows);
             rest.insert(rest.end(), windows.begin(), windows.end());
@@ -117,7 +114,7 @@ std::optional<WindowInfo> sway_window(const nlohmann::json& tree, unsigned long 
     std::optional<WindowInfo> found;
     for (const auto& output : children(tree, "nodes"))
         each_view(output, [&](const json& v) {
-            if (!found && v.value("id", 0ul) == id) found = window_of(v, text_of(output, "name"));
+            if (!found && v.value("id", 0ul) == id) found = window_of(v, json_text(output, "name"));
         });
     return found;
 }
@@ -136,7 +133,7 @@ std::vector<DesktopOutput> sway_outputs(const nlohmann::json& outputs) {
     for (const auto& output : outputs) {
         if (!output.is_object() || !output.value("active", false)) continue;
         DesktopOutput o;
-        o.name = text_of(output, "name");
+        o.name = json_text(output, "name");
         o.rect = rect_of(output, "rect");
         if (const auto scale = output.find("scale"); scale != output.end() && scale->is_number()) o.scale = scale->get<double>();
         if (!o.rect.empty()) out.push_back(std::move(o));
