@@ -18,6 +18,7 @@
 #include "commands/serve_command.hpp"
 #include "screen/gui_application.hpp"
 #include "desktop/gnome/gnome_install.hpp"
+#include "desktop/kde/kde_install.hpp"
 #include "tuning/desktop_controls.hpp"
 #include "server/config_dir.hpp"
 
@@ -39,6 +40,7 @@ usage:
   umf-provider puts [--json] [--port P]
   umf-provider puts --accept ID [--open] [--always] | --dismiss ID [--port P]
   umf-provider gnome install
+  umf-provider kde install
   umf-provider compose --content SCREEN.png [--board BOARD.json] --preset NAME
                        --time T --out OUT.png --map MAP.json [--screen WxH]
                        [preset settings, as for serve: --module-px P --blur B ...]
@@ -72,6 +74,10 @@ puts     lists the puts (a phone giving the screen a URL or a file) waiting for
 gnome    install installs and enables the umf GNOME Shell extension, which
          shows the field and answers the provider on GNOME (Wayland); GNOME
          loads it at the next login.
+kde      install lets KWin (KDE Plasma) answer the provider's snapshots: it
+         writes umf-provider.desktop for this program into
+         ~/.local/share/applications, which KWin's screenshot interface asks
+         for.
 compose  writes the screen exactly as shown at time T (content, the board over
          it, the field at the preset's opacity then) and the map from field to
          screen pixels.
@@ -169,6 +175,11 @@ int dispatch(int argc, char** argv) {
         compose_args.named.erase("config-dir");
         auto app = make_gui_application(argc, argv, true);
         return run_compose(compose_args, config_dir);
+    }
+    if (command == "kde") {
+        if (first >= argc || std::strcmp(argv[first], "install") != 0 || first + 1 != argc)
+            throw umf::cli::UsageError("kde takes one word: install");
+        return run_kde_install(std::cout, std::cerr);
     }
     if (command == "gnome") {
         if (first >= argc || std::strcmp(argv[first], "install") != 0 || first + 1 != argc)

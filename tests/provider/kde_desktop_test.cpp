@@ -20,6 +20,8 @@
 #include "desktop/kde/wayland_outputs.hpp"
 #include "provider/gui_test_app.hpp"
 #include "support/kwin_session.hpp"
+#include "support/process.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
@@ -139,6 +141,21 @@ TEST_F(KdeDesktop, KWinsRawScreenshotsBecomeOpaqueRgb) {
     const std::string entry = kde_screenshot_desktop_entry("/usr/bin/umf-provider");
     EXPECT_NE(entry.find("\nExec=/usr/bin/umf-provider\n"), std::string::npos);
     EXPECT_NE(entry.find("X-KDE-DBUS-Restricted-Interfaces=org.kde.KWin.ScreenShot2"), std::string::npos);
+}
+
+// `umf-provider kde install` writes the entry KWin looks for, naming the
+// program's own path, where KWin's application lookup finds it.
+TEST_F(KdeDesktop, InstallWritesTheDesktopEntryForThisProgram) {
+    TempDir dir;
+    const auto result = umf::test::run_command("XDG_DATA_HOME=" + (dir.path / "data").string() + " " +
+                                          std::string(UMF_PROVIDER_TOOL) + " kde install 2>&1");
+    ASSERT_EQ(result.exit_code, 0) << result.out;
+    std::ifstream in(dir.path / "data" / "applications" / "umf-provider.desktop");
+    const std::string entry{std::istreambuf_iterator<char>(in), {}};
+    const std::string program = std::filesystem::canonical(UMF_PROVIDER_TOOL).string();
+    EXPECT_NE(entry.find("\nExec=" + program + "\n"), std::string::npos) << entry;
+    EXPECT_NE(entry.find("X-KDE-DBUS-Restricted-Interfaces=org.kde.KWin.ScreenShot2"), std::string::npos);
+    EXPECT_NE(umf::test::run_command(std::string(UMF_PROVIDER_TOOL) + " kde uninstall 2>&1").exit_code, 0);
 }
 
 // The list and move scripts against a fake KWin in node: the 5.27 API
