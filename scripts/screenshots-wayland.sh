@@ -1,20 +1,22 @@
 #!/bin/bash
-# Makes the README's picture of the provider on a Wayland desktop,
-# docs/images/sway-desktop.png: a headless Sway (run as an unprivileged user)
-# with a native foot and an Xwayland xterm showing text files and a grey
-# foot, the field over them on the overlay layer, as the desktop's own
-# screencopy sees it. It is the end-to-end test SwayProvider run with
-# UMF_SCREENSHOT_DIR set, so the picture is of what that test checks.
+# Makes the README's pictures of the provider on Wayland desktops,
+# docs/images/sway-desktop.png and gnome-desktop.png: a headless Sway and a
+# headless GNOME Shell (each run as an unprivileged user) with a native foot
+# and an Xwayland xterm showing text files and a grey foot, the field over
+# them (Sway: on the overlay layer, as its screencopy sees it; GNOME: the umf
+# extension's actor, as Shell's screenshot sees it). They are the end-to-end
+# tests SwayProvider and GnomeProvider run with UMF_SCREENSHOT_DIR set, so
+# the pictures are of what those tests check.
 #
-#   scripts/screenshots-wayland.sh                 # writes docs/images/sway-desktop.png
+#   scripts/screenshots-wayland.sh                 # writes both into docs/images/
 #   UMF_SCREENSHOTS_OUT=/tmp/shots scripts/screenshots-wayland.sh
 #
-# Needs: sway foot xterm xwayland (scripts/install-deps.sh), root (to make
-# the test user). Builds nothing: run `make` first if the binaries are stale.
+# Needs: sway gnome-shell foot xterm xwayland (scripts/install-deps.sh), root
+# (to make the test users). Builds nothing: run `make` first if the binaries are stale.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 tests=${UMF_TESTS:-$root/build/release/tests/umf_tests}
 out=${UMF_SCREENSHOTS_OUT:-$root/docs/images}
 mkdir -p "$out"
-UMF_SCREENSHOT_DIR="$out" "$tests" --gtest_filter='SwayProvider.*'
-echo "wrote $out/sway-desktop.png"
+UMF_SCREENSHOT_DIR="$out" "$tests" --gtest_filter='SwayProvider.*:GnomeProvider.*'
+echo "wrote $out/sway-desktop.png and $out/gnome-desktop.png"

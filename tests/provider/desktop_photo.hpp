@@ -1,7 +1,8 @@
-// For tests of the provider on a real X desktop: the pairing URL from its
-// log, and the desktop captured until the field shows, as a photo both
-// requesters can be given (BGR for the webcam requester's --image, and the
-// detection on it).
+// For tests of the provider on a real desktop (X11, Sway, GNOME): the
+// pairing URL from its log, the desktop captured until the field shows, as a
+// photo both requesters can be given (BGR for the webcam requester's
+// --image, and the detection on it), photos aimed at one window, and a grab
+// with the real umf-requester.
 #pragma once
 
 #include <chrono>
@@ -10,10 +11,19 @@
 #include <thread>
 #include <vector>
 
-#include <opencv2/core.hpp>
+#include <gtest/gtest.h>
 
-#include "desktop/x11/x11_desktop.hpp"
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "desktop/desktop.hpp"
 #include "detect/detector.hpp"
+#include "support/process.hpp"
 
 namespace umf::test {
 
@@ -31,17 +41,22 @@ struct DesktopPhoto {
     umf::Detection detection;  // the field found in it, or why not
 };
 
-// Captures `rect`'s width x height from the origin of `desktop` until
+// Captures width x height from the desktop's origin with `capture` until
 // `detector` finds the field in it (the overlay pulses, so one capture may
 // fall on its faint phase) or `timeout` passes; the last capture either way.
-inline DesktopPhoto capture_until_field(const umf::provider::X11Desktop& desktop, const umf::Detector& detector,
-                                        int width, int height, std::chrono::milliseconds timeout) {
+inline DesktopPhoto capture_until_field(const std::function<umf::provider::Capture(const umf::provider::WindowRect&)>& capture,
+                                        const umf::Detector& detector, int width, int height,
+                                        std::chrono::milliseconds timeout) {
     DesktopPhoto photo;
     photo.bgr.create(height, width, CV_8UC3);
     std::vector<std::uint8_t> grey(static_cast<std::size_t>(width) * height);
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     for (;;) {
-        const umf::provider::Capture shot = desktop.capture({0, 0, width, height});
+        umf::provider::Capture shot;
+        try {
+            shot = capture({0, 0, width, height});
+        } catch (const std::exception&) {
+        }
         if (shot.pixels.size() == grey.size()) {
             for (std::size_t i = 0; i < grey.size(); ++i) {
                 const std::uint32_t p = shot.pixels[i];
@@ -55,6 +70,58 @@ inline DesktopPhoto capture_until_field(const umf::provider::X11Desktop& desktop
         if (std::chrono::steady_clock::now() >= deadline) return photo;
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
+}
+
+// The same through the desktop's own capture (which shows the field on X11
+// and wlroots, where the overlay is what the screen shows).
+inline DesktopPhoto capture_until_field(const umf::provider::Desktop& desktop, const umf::Detector& detector, int width,
+                                        int height, std::chrono::milliseconds timeout) {
+    return capture_until_field([&](const umf::provider::WindowRect& r) { return desktop.capture(r); }, detector, width,
+                               height, timeout);
+}
+
+// The square photo of `bgr` (the whole desktop) centred on `window` as far
+// as the desktop allows, at most `side` pixels, written to `path`: a camera
+// aimed at the window's middle.
+inline std::filesystem::path photo_of_window(const cv::Mat& bgr, const umf::provider::WindowRect& window,
+                                             const std::filesystem::path& path, int side = 560) {
+    side = std::min({side, window.width, window.height});
+    const int cx = window.x + window.width / 2, cy = window.y + window.height / 2;
+    const cv::Rect crop(std::clamp(cx - side / 2, 0, bgr.cols - side), std::clamp(cy - side / 2, 0, bgr.rows - side),
+                        side, side);
+    cv::imwrite(path.string(), bgr(crop));
+    return path;
+}
+
+// umf-requester grab --image `photo`: the JSON line it prints, or null with
+// a test failure saying why.
+inline nlohmann::json requester_grab(const std::string& url, const std::filesystem::path& photo,
+                                     const std::filesystem::path& out) {
+    const std::filesystem::path errors = out.string() + ".log";
+    const auto result = run_command(std::string(UMF_REQUESTER_TOOL) + " grab --url '" + url + "' --image " +
+                                    photo.string() + " --out " + out.string() + " 2>" + errors.string());
+    std::ifstream in(errors);
+    const std::string log{std::istreambuf_iterator<char>(in), {}};
+    EXPECT_EQ(result.exit_code, 0) << result.out << log;
+    try {
+        return nlohmann::json::parse(result.out.substr(0, result.out.find('\n')));
+    } catch (const std::exception&) {
+        ADD_FAILURE() << "no JSON from the requester: " << result.out << log;
+        return nlohmann::json::object();
+    }
+}
+
+// The share of the middle half of `image` within 3 of grey `level` in every
+// channel: 1 for a flat grey window, far less with the field mixed in.
+inline double grey_share(const cv::Mat& image, int level = 0x80) {
+    long grey = 0, inside = 0;
+    for (int y = image.rows / 4; y < image.rows * 3 / 4; ++y)
+        for (int x = image.cols / 4; x < image.cols * 3 / 4; ++x) {
+            const cv::Vec3b p = image.at<cv::Vec3b>(y, x);
+            ++inside;
+            grey += std::abs(p[0] - level) <= 3 && std::abs(p[1] - level) <= 3 && std::abs(p[2] - level) <= 3;
+        }
+    return inside ? static_cast<double>(grey) / static_cast<double>(inside) : 0.0;
 }
 
 }  // namespace umf::test

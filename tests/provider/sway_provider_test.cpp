@@ -35,31 +35,6 @@ std::string slurp(const fs::path& path) {
     return {std::istreambuf_iterator<char>(in), {}};
 }
 
-cv::Mat to_bgr(const Capture& shot) {
-    cv::Mat bgr(shot.height, shot.width, CV_8UC3);
-    for (int y = 0; y < shot.height; ++y)
-        for (int x = 0; x < shot.width; ++x) {
-            const std::uint32_t p = shot.pixels[static_cast<std::size_t>(y) * shot.width + x];
-            bgr.at<cv::Vec3b>(y, x) = {static_cast<std::uint8_t>(p & 255), static_cast<std::uint8_t>((p >> 8) & 255),
-                                       static_cast<std::uint8_t>((p >> 16) & 255)};
-        }
-    return bgr;
-}
-
-// umf-requester grab with `photo`: its JSON line, or a failure.
-nlohmann::json grab(const std::string& url, const fs::path& photo, const fs::path& out) {
-    const fs::path errors = out.string() + ".log";
-    const auto result = test::run_command(std::string(UMF_REQUESTER_TOOL) + " grab --url '" + url + "' --image " +
-                                          photo.string() + " --out " + out.string() + " 2>" + errors.string());
-    EXPECT_EQ(result.exit_code, 0) << result.out << slurp(errors);
-    try {
-        return nlohmann::json::parse(result.out.substr(0, result.out.find('\n')));
-    } catch (const std::exception&) {
-        ADD_FAILURE() << "no JSON from the requester: " << result.out << slurp(errors);
-        return {};
-    }
-}
-
 TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWindows) {
     if (const auto why = SwaySession::cannot_run()) GTEST_SKIP() << *why;
     SwaySession sway;
@@ -107,18 +82,9 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     // The desktop as a camera would see it, with the field found in it.
     const ScreenField field = screen_field_for(1920, 1080);
     const Detector detector(field.field);
-    cv::Mat bgr;
-    Detection found;
-    ASSERT_TRUE(test::wait_until(
-        [&] {
-            bgr = to_bgr(desktop->capture({0, 0, 1920, 1080}));
-            cv::Mat grey;
-            cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
-            found = detector.detect(GreyView{grey.data, grey.cols, grey.rows, static_cast<int>(grey.step)});
-            return found.found;
-        },
-        10s))
-        << "no field on the desktop: " << found.failure << "\n" << slurp(log);
+    const test::DesktopPhoto photo = test::capture_until_field(*desktop, detector, 1920, 1080, 10s);
+    ASSERT_TRUE(photo.detection.found) << "no field on the desktop: " << photo.detection.failure << "\n" << slurp(log);
+    const cv::Mat& bgr = photo.bgr;
 
     // The README's picture of the provider on Sway (scripts/screenshots-wayland.sh).
     if (const char* keep = std::getenv("UMF_SCREENSHOT_DIR"); keep && *keep) {
@@ -128,25 +94,17 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     }
 
     // Each window in the middle of a photo of its own.
-    auto photo_of = [&](const WindowInfo& w, const std::string& name) {
-        const int side = std::min(560, std::min(w.rect.width, w.rect.height));
-        const int cx = w.rect.x + w.rect.width / 2, cy = w.rect.y + w.rect.height / 2;
-        const cv::Rect crop(std::clamp(cx - side / 2, 0, 1920 - side), std::clamp(cy - side / 2, 0, 1080 - side), side, side);
-        const fs::path path = work / (name + ".png");
-        cv::imwrite(path.string(), bgr(crop));
-        return path;
-    };
-    const auto text = grab(url, photo_of(windows["notes.txt"], "native"), work / "got-native");
+    const auto text = test::requester_grab(url, test::photo_of_window(bgr, windows["notes.txt"].rect, work / "native.png"), work / "got-native");
     EXPECT_EQ(text.value("kind", ""), "file") << text.dump();
     EXPECT_EQ(text.value("title", ""), "notes.txt") << text.dump();
     EXPECT_EQ(slurp(text.value("saved", "")), slurp(notes));
 
-    const auto x11 = grab(url, photo_of(windows["report.txt"], "xwayland"), work / "got-xwayland");
+    const auto x11 = test::requester_grab(url, test::photo_of_window(bgr, windows["report.txt"].rect, work / "xwayland.png"), work / "got-xwayland");
     EXPECT_EQ(x11.value("kind", ""), "file") << x11.dump();
     EXPECT_EQ(x11.value("title", ""), "report.txt") << x11.dump();
     EXPECT_EQ(slurp(x11.value("saved", "")), slurp(report));
 
-    const auto shot = grab(url, photo_of(windows["plain grey"], "plain"), work / "got-plain");
+    const auto shot = test::requester_grab(url, test::photo_of_window(bgr, windows["plain grey"].rect, work / "plain.png"), work / "got-plain");
     EXPECT_EQ(shot.value("kind", ""), "snapshot") << shot.dump();
     EXPECT_EQ(shot.value("title", "").find("plain grey"), 0u) << shot.dump();
     const cv::Mat snapshot = cv::imread(shot.value("saved", ""), cv::IMREAD_COLOR);
@@ -154,14 +112,7 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     EXPECT_NEAR(snapshot.cols, windows["plain grey"].rect.width, 2);
     EXPECT_NEAR(snapshot.rows, windows["plain grey"].rect.height, 2);
     // Grey throughout below its title bar: the field was hidden for it.
-    long grey = 0, inside = 0;
-    for (int y = snapshot.rows / 4; y < snapshot.rows * 3 / 4; ++y)
-        for (int x = snapshot.cols / 4; x < snapshot.cols * 3 / 4; ++x) {
-            const cv::Vec3b p = snapshot.at<cv::Vec3b>(y, x);
-            ++inside;
-            grey += std::abs(p[0] - 0x80) <= 3 && std::abs(p[1] - 0x80) <= 3 && std::abs(p[2] - 0x80) <= 3;
-        }
-    EXPECT_GT(grey, inside * 95 / 100) << "the snapshot holds the field";
+    EXPECT_GT(test::grey_share(snapshot), 0.95) << "the snapshot holds the field";
     EXPECT_NE(slurp(log).find("took \"notes.txt\""), std::string::npos) << slurp(log);
 }
 

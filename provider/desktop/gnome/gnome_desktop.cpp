@@ -68,10 +68,14 @@ std::optional<WindowInfo> GnomeDesktop::window_at(double x, double y, const Wind
     }
 }
 
-Capture GnomeDesktop::capture(const WindowRect& rect) const {
+Capture GnomeDesktop::capture(const WindowRect& rect) const { return read_shot(rect, false); }
+
+Capture GnomeDesktop::capture_as_shown(const WindowRect& rect) const { return read_shot(rect, true); }
+
+Capture GnomeDesktop::read_shot(const WindowRect& rect, bool with_field) const {
     if (rect.empty()) throw DesktopError("an empty rectangle to capture");
     const auto folder = private_runtime_folder();
-    const std::string name = shell_->snapshot(rect);
+    const std::string name = with_field ? shell_->screen_as_shown(rect) : shell_->snapshot(rect);
     if (name.find('/') != std::string::npos || name.empty() || name[0] == '.')
         throw DesktopError("the umf GNOME Shell extension named a snapshot outside its folder: " + name);
     const auto path = folder / name;

@@ -25,6 +25,8 @@ public:
     std::vector<DesktopOutput> outputs() const override;
     std::optional<WindowInfo> window_at(double x, double y, const WindowFilter& filter) const override;
     Capture capture(const WindowRect& rect) const override;
+    // The screen with the field in it, as a camera sees it (checks, pictures).
+    Capture capture_as_shown(const WindowRect& rect) const;
     std::unique_ptr<NewWindowWatch> watch_new_window(const WindowPlacement& placement) const override;
     // `screen` null: the first monitor.
     std::unique_ptr<FieldSurface> make_field_surface(QScreen* screen, ScreenField field,
@@ -34,6 +36,7 @@ public:
     const GnomeShellClient& shell() const { return *shell_; }
 
 private:
+    Capture read_shot(const WindowRect& rect, bool with_field) const;
     std::shared_ptr<GnomeShellClient> shell_;
 };
 

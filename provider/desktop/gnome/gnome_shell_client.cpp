@@ -167,9 +167,13 @@ bool GnomeShellClient::move_window(unsigned long id, int x, int y) const {
     return out.size() == 1 && out[0].toBool();
 }
 
-std::string GnomeShellClient::snapshot(const WindowRect& rect) const {
-    const auto out = impl_->call("Snapshot", {rect.x, rect.y, rect.width, rect.height});
-    if (out.size() != 1) throw DesktopError("the umf GNOME Shell extension gave a malformed Snapshot");
+std::string GnomeShellClient::snapshot(const WindowRect& rect) const { return shot("Snapshot", rect); }
+
+std::string GnomeShellClient::screen_as_shown(const WindowRect& rect) const { return shot("ScreenAsShown", rect); }
+
+std::string GnomeShellClient::shot(const char* method, const WindowRect& rect) const {
+    const auto out = impl_->call(method, {rect.x, rect.y, rect.width, rect.height});
+    if (out.size() != 1) throw DesktopError(std::string("the umf GNOME Shell extension gave a malformed ") + method);
     return text(out[0].toString());
 }
 

@@ -52,6 +52,8 @@ public:
     bool move_window(unsigned long id, int x, int y) const;
     // The snapshot's file name in the private folder.
     std::string snapshot(const WindowRect& rect) const;
+    // The same with the field in it, as a camera sees the screen.
+    std::string screen_as_shown(const WindowRect& rect) const;
     void set_field(int monitor, const std::string& file_name) const;
     void drop_field(int monitor) const;
     std::vector<GnomeFieldState> field_state() const;
@@ -63,6 +65,7 @@ public:
     void send_field_visible(int monitor, bool visible) const;
 
 private:
+    std::string shot(const char* method, const WindowRect& rect) const;
     class Impl;
     std::unique_ptr<Impl> impl_;
 };

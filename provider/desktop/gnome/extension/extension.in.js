@@ -235,7 +235,8 @@ class UmfShell {
             WindowAt: ([x, y, pids, classes]) => this._windowAt(x, y, pids, classes),
             ListWindows: () => new GLib.Variant('(a(tisss(iiii)i))', [this._windows().map(w => this._describe(w))]),
             MoveWindow: ([id, x, y]) => new GLib.Variant('(b)', [this._move(id, x, y)]),
-            Snapshot: ([x, y, width, height]) => this._queueSnapshot(x, y, width, height),
+            Snapshot: ([x, y, width, height]) => this._queueSnapshot(x, y, width, height, false),
+            ScreenAsShown: ([x, y, width, height]) => this._queueSnapshot(x, y, width, height, true),
             SetField: ([monitor, name]) => this._setField(monitor, name),
             SetFieldOpacity: ([monitor, opacity]) => this._withField(monitor, f => {
                 f.actor.opacity = Math.round(255 * Math.min(1, Math.max(0, opacity)));
@@ -413,13 +414,13 @@ class UmfShell {
     }
 
     // One snapshot at a time (Shell.Screenshot takes one at a time too).
-    _queueSnapshot(x, y, width, height) {
-        const shot = this._shooting.then(() => this._snapshot(x, y, width, height));
+    _queueSnapshot(x, y, width, height, withField) {
+        const shot = this._shooting.then(() => this._snapshot(x, y, width, height, withField));
         this._shooting = shot.catch(() => {});
         return shot;
     }
 
-    async _snapshot(x, y, width, height) {
+    async _snapshot(x, y, width, height, withField) {
         const [stageWidth, stageHeight] = global.stage.get_size();
         const left = Math.max(0, x), top = Math.max(0, y);
         const right = Math.min(stageWidth, x + width), bottom = Math.min(stageHeight, y + height);
@@ -427,9 +428,11 @@ class UmfShell {
             throw new RefusedError(`the rectangle ${x},${y} ${width}x${height} is off the screen`);
         const name = `snapshot-${++this._shots}.png`;
         const file = Gio.File.new_for_path(privatePath(name));
-        this._snapshotting = true;
-        for (const field of this._fields.values())
-            field.actor.visible = false;
+        this._snapshotting = !withField;
+        if (!withField) {
+            for (const field of this._fields.values())
+                field.actor.visible = false;
+        }
         try {
             await nextFrame();
             const stream = file.replace(null, false, Gio.FileCreateFlags.PRIVATE | Gio.FileCreateFlags.REPLACE_DESTINATION, null);
