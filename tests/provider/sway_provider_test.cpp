@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -114,6 +115,14 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     // Grey throughout below its title bar: the field was hidden for it.
     EXPECT_GT(test::grey_share(snapshot), 0.95) << "the snapshot holds the field";
     EXPECT_NE(slurp(log).find("took \"notes.txt\""), std::string::npos) << slurp(log);
+
+    // The compositor dies: the console says the field is off, at once.
+    // (Qt's own connection goes through Xwayland, which dies with it, so the
+    // provider's Qt side ends too: see docs/ARCHITECTURE.md, "The desktop seam".)
+    ::kill(sway.sway().pid(), SIGKILL);
+    EXPECT_TRUE(test::wait_until(
+        [&] { return slurp(log).find("the connection to the Wayland compositor broke") != std::string::npos; }, 5s))
+        << slurp(log);
 }
 
 }  // namespace
