@@ -17,6 +17,7 @@
 #include "provider/gui_test_app.hpp"
 #include "screen/screen_field.hpp"
 #include "support/gnome_session.hpp"
+#include "support/mutter_remote_desktop.hpp"
 
 namespace umf::provider {
 namespace {
@@ -225,6 +226,122 @@ TEST(GnomeDesktop, SnapshotShowsTheWindowWithoutTheField) {
     surface.reset();
     ASSERT_TRUE(test::wait_until([&] { return desktop->shell().field_state().empty(); }, 2s));
     EXPECT_THROW(desktop->capture({5000, 5000, 10, 10}), DesktopError);
+}
+
+// The field is drawn above every window yet must not take the user's
+// clicks: a click through it, made by a virtual pointer in mutter's own seat
+// (RemoteDesktop), lands on the X11 window below, which mutter then focuses.
+TEST(GnomeDesktop, AClickOnTheFieldReachesTheWindowBelow) {
+    SKIP_WITHOUT_GNOME();
+    if (!test::find_program("xdotool")) GTEST_SKIP() << "xdotool is not installed";
+    GnomeSession session;
+    const auto desktop = desktop_of(session);
+    ASSERT_TRUE(session.leave_overview()) << "the overview stays up";
+    const auto x = session.xwayland();
+    ASSERT_TRUE(x) << "no Xwayland: " << session.log();
+    const std::map<std::string, std::string> x_env = {{"DISPLAY", x->first}, {"XAUTHORITY", x->second}};
+    // One after the other, so the second takes the focus as it maps.
+    const auto left = session.start_client({"xterm", "-title", "umf-left", "-geometry", "60x20"}, "left.log", x_env);
+    ASSERT_TRUE(test::wait_until([&] { return window_titled(*desktop, "umf-left").has_value(); }, 20s)) << session.log();
+    const auto right = session.start_client({"xterm", "-title", "umf-right", "-geometry", "60x20"}, "right.log", x_env);
+    ASSERT_TRUE(test::wait_until([&] { return window_titled(*desktop, "umf-right").has_value(); }, 20s)) << session.log();
+    ASSERT_TRUE(session.leave_overview()) << "the overview came back";
+
+    // Side by side, apart. Mutter may still place a new window after a
+    // move: moved until both stay.
+    const auto put = [&](const char* title, int to_x, int to_y) {
+        const auto w = window_titled(*desktop, title);
+        if (!w) return false;
+        if (w->rect.x == to_x && w->rect.y == to_y) return true;
+        desktop->shell().move_window(w->id, to_x, to_y);
+        return false;
+    };
+    ASSERT_TRUE(test::wait_until([&] {
+        const bool left_placed = put("umf-left", 200, 300), right_placed = put("umf-right", 1000, 300);
+        return left_placed && right_placed;
+    }, 10s))
+        << "the windows did not land where asked";
+    const WindowRect left_rect = window_titled(*desktop, "umf-left")->rect;
+    const WindowRect right_rect = window_titled(*desktop, "umf-right")->rect;
+    ASSERT_LT(left_rect.x + left_rect.width, right_rect.x) << "the windows overlap";
+
+    // The X11 focus as the windows' owner sees it: _NET_ACTIVE_WINDOW,
+    // which mutter keeps for Xwayland clients ("" when none).
+    const auto focused = [&] {
+        try {
+            std::string title = session.run_client({"xdotool", "getactivewindow", "getwindowname"}, x_env);
+            while (!title.empty() && (title.back() == '\n' || title.back() == ' ')) title.pop_back();
+            return title;
+        } catch (const std::exception&) {
+            return std::string();
+        }
+    };
+    // Should mutter not have focused the newer window as it mapped, it is
+    // asked to, as a pager would.
+    ASSERT_TRUE(test::wait_until([&] {
+        if (focused() == "umf-right") return true;
+        try {
+            session.run_client({"xdotool", "search", "--name", "^umf-right$", "windowactivate"}, x_env);
+        } catch (const std::exception&) {
+        }
+        return false;
+    }, 10s)) << "the right window never had the focus; it is on '" << focused() << "'";
+
+    // The field over the whole monitor at full strength, above both.
+    std::unique_ptr<FieldSurface> surface;
+    {
+        AsUser as(session.uid(), session.gid());
+        surface = desktop->make_field_surface(nullptr, screen_field_for(1920, 1080), {});
+        ASSERT_TRUE(surface);
+        surface->set_opacity(1.0);
+        surface->show();
+    }
+    const auto field_shown = [&] {
+        const auto state = desktop->shell().field_state();
+        return state.size() == 1 && state[0].visible && state[0].opacity == 255 &&
+               state[0].rect == WindowRect{0, 0, 1920, 1080};
+    };
+    ASSERT_TRUE(test::wait_until(field_shown, 5s)) << "the field is not shown over the monitor";
+    // Still the right window's, so a focus change below is the click's.
+    ASSERT_EQ(focused(), "umf-right");
+
+    // A pointer that the session's user drives, as its own bus peer.
+    std::unique_ptr<test::MutterRemoteDesktop> pointer;
+    try {
+        AsUser as(session.uid(), session.gid());
+        pointer = std::make_unique<test::MutterRemoteDesktop>(session.bus_address());
+    } catch (const std::exception& e) {
+        FAIL() << "mutter's RemoteDesktop refused: " << e.what();
+    }
+
+    const int left_x = left_rect.x + left_rect.width / 2, left_y = left_rect.y + left_rect.height / 2;
+    pointer->move_to(left_x, left_y, 1920, 1080);
+    // Xwayland tells where the pointer is only while it is over one of its
+    // windows: the pointer reached the left window through the field.
+    const auto pointer_at = [&](int want_x, int want_y) {
+        try {
+            const std::string where = session.run_client({"xdotool", "getmouselocation"}, x_env);
+            return where.rfind("x:" + std::to_string(want_x) + " y:" + std::to_string(want_y) + " ", 0) == 0;
+        } catch (const std::exception&) {
+            return false;
+        }
+    };
+    EXPECT_TRUE(test::wait_until([&] { return pointer_at(left_x, left_y); }, 3s))
+        << "Xwayland did not see the pointer over the left window";
+    pointer->click();
+    EXPECT_TRUE(test::wait_until([&] { return focused() == "umf-left"; }, 5s))
+        << "the click did not reach the left window; the focus is on '" << focused() << "'";
+    EXPECT_TRUE(field_shown()) << "the field went away with the click";
+
+    // And back: the same through the field on the right window, so the
+    // focus did not follow something else.
+    const int right_x = right_rect.x + right_rect.width / 2, right_y = right_rect.y + right_rect.height / 2;
+    pointer->move_to(right_x, right_y, 1920, 1080);
+    EXPECT_TRUE(test::wait_until([&] { return pointer_at(right_x, right_y); }, 3s));
+    pointer->click();
+    EXPECT_TRUE(test::wait_until([&] { return focused() == "umf-right"; }, 5s))
+        << "the second click did not reach the right window; the focus is on '" << focused() << "'";
+    EXPECT_TRUE(field_shown());
 }
 
 TEST(GnomeDesktop, PulsesAtSixtyHertzCheaply) {

@@ -118,6 +118,14 @@ public:
         return std::make_unique<Process>(as_user(argv), o);
     }
 
+    // A short command run as the session's user, its stdout; throws when it
+    // fails or outlasts the timeout. Call it as root: setpriv needs root to
+    // become the user.
+    std::string run_client(const std::vector<std::string>& argv, const std::map<std::string, std::string>& env = {},
+                           Clock::duration timeout = 5s) const {
+        return run(as_user(argv), client_env(env), timeout);
+    }
+
     // Leaves the overview GNOME 43 starts in (org.gnome.Shell's
     // OverviewActive), so windows are where their frames say.
     bool leave_overview(Clock::duration timeout = 10s) const {
