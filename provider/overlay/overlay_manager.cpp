@@ -105,6 +105,9 @@ struct OverlayManager::Entry {
     std::unique_ptr<PointerWindow> pointer;
     bool pointing = false;
     qint64 pointed_ms = 0;
+    // Where and what, for a surface that draws the ring itself (Wayland).
+    QPointF pointed_px;
+    QString pointed_title;
     // The backdrop under the focus circle (screen physical pixels): the raw
     // grab and where, the area its blur is good for, where the circle was.
     QImage raw;
@@ -500,9 +503,13 @@ void OverlayManager::set_pointer(int index, std::optional<QPointF> point_px, con
     Entry* entry = entry_for(index);
     if (!entry) return;
     entry->pointing = point_px.has_value();
-    if (point_px && x11_windows_) {
-        if (!entry->pointer) entry->pointer = std::make_unique<PointerWindow>(entry->screen);
-        entry->pointer->point_at(*point_px, title);
+    if (point_px) {
+        if (x11_windows_) {
+            if (!entry->pointer) entry->pointer = std::make_unique<PointerWindow>(entry->screen);
+            entry->pointer->point_at(*point_px, title);
+        }
+        entry->pointed_px = *point_px;
+        entry->pointed_title = title;
         entry->pointed_ms = clock_.elapsed();
         pointer_timer_.start(kPointerHoldMs);
     }
@@ -510,9 +517,14 @@ void OverlayManager::set_pointer(int index, std::optional<QPointF> point_px, con
 }
 
 void OverlayManager::show_pointer(Entry& entry) {
-    if (!entry.pointer) return;
     // With the field: not in a snapshot, not while the overlay is off or faded out.
     const bool shown = entry.pointing && visible_ && snapshot_depth_ == 0 && applied_opacity_ > 0;
+    if (!x11_windows_) {
+        // The surface draws the ring into its own pixels (Wayland).
+        entry.window->set_pointer(shown ? std::optional<QPointF>(entry.pointed_px) : std::nullopt, entry.pointed_title);
+        return;
+    }
+    if (!entry.pointer) return;
     if (shown) {
         if (!entry.pointer->isVisible()) entry.pointer->show();
         entry.pointer->raise();  // above the field's window, which may have been raised since

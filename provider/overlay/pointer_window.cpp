@@ -1,23 +1,13 @@
 #include "overlay/pointer_window.hpp"
 
-#include <QFontMetrics>
+#include "screen/pointer_mark.hpp"
+
 #include <QPainter>
-#include <QPainterPath>
 #include <QScreen>
 #include <QSurfaceFormat>
 #include <cmath>
 
 namespace umf::provider {
-
-namespace {
-
-QFont title_font() {
-    QFont font;
-    font.setPointSizeF(PointerWindow::kTitlePointSize);
-    return font;
-}
-
-}  // namespace
 
 PointerWindow::PointerWindow(QScreen* screen) {
     QSurfaceFormat format;
@@ -32,10 +22,7 @@ PointerWindow::PointerWindow(QScreen* screen) {
 }
 
 void PointerWindow::point_at(QPointF point_px, const QString& title) {
-    const QFontMetrics metrics(title_font());
-    const int text_width = title.isEmpty() ? 0 : metrics.horizontalAdvance(title) + 16;
-    const int side = static_cast<int>(std::ceil(2 * (kRingRadius + kMargin)));
-    const QSize size(side + text_width, std::max(side, metrics.height() + 8));
+    const QSize size = pointer_mark_size(title);
     const double dpr = devicePixelRatio();
     const QPoint origin = screen() ? screen()->geometry().topLeft() : QPoint();
     // The ring's centre on the point: Qt places windows in logical pixels
@@ -52,22 +39,7 @@ void PointerWindow::paint_to(QPainter& painter) {
     painter.setCompositionMode(QPainter::CompositionMode_Source);
     painter.fillRect(QRect(QPoint(), size()), Qt::transparent);
     painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
-    painter.setRenderHint(QPainter::Antialiasing);
-    const QPointF c = ring_centre();
-    // White on a dark outline: legible on light and dark content alike.
-    const QPen dark(QColor(0, 0, 0, 200), 4.0), light(Qt::white, 2.0);
-    painter.setBrush(Qt::NoBrush);
-    for (const QPen& pen : {dark, light}) {
-        painter.setPen(pen);
-        painter.drawEllipse(c, kRingRadius, kRingRadius);
-    }
-    if (!title_.isEmpty()) {
-        const QFont font = title_font();
-        QPainterPath text;
-        text.addText(c + QPointF(kRingRadius + 8, QFontMetrics(font).ascent() / 2.0 - 1), font, title_);
-        painter.strokePath(text, QPen(QColor(0, 0, 0, 220), 3.0, Qt::SolidLine, Qt::RoundCap, Qt::RoundJoin));
-        painter.fillPath(text, Qt::white);
-    }
+    paint_pointer_mark(painter, ring_centre(), title_);
 }
 
 void PointerWindow::paintEvent(QPaintEvent*) {

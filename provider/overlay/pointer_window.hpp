@@ -9,6 +9,8 @@
 #include <QRasterWindow>
 #include <QString>
 
+#include "screen/pointer_mark.hpp"
+
 class QScreen;
 
 namespace umf::provider {
@@ -27,14 +29,14 @@ public:
     // Draws the ring and title as paintEvent does (tests render it).
     void paint_to(QPainter& painter);
 
-    static constexpr double kRingRadius = 18.0;  // logical pixels: the same apparent size on any screen
-    static constexpr double kTitlePointSize = 11.0;
+    static constexpr double kRingRadius = kPointerRingRadius;
+    static constexpr double kTitlePointSize = kPointerTitlePointSize;
 
 protected:
     void paintEvent(QPaintEvent* event) override;
 
 private:
-    static constexpr double kMargin = 4.0;
+    static constexpr double kMargin = kPointerMargin;
 
     QString title_;
 };

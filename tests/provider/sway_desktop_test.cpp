@@ -25,6 +25,7 @@
 #include "desktop/wlroots/wlroots_desktop.hpp"
 #include "provider/gui_test_app.hpp"
 #include "screen/board_window.hpp"
+#include "screen/pointer_mark.hpp"
 #include "screen/screen_field.hpp"
 #include "support/sway_session.hpp"
 
@@ -286,6 +287,67 @@ TEST_F(SwayDesktop, CaptureEqualsGrim) {
     const Capture clipped = desktop_->capture({1900, 1000, 100, 100});
     EXPECT_EQ(clipped.width, 20);
     EXPECT_EQ(clipped.height, 80);
+}
+
+// The ring and title where a phone points are drawn into the field's own
+// surface at full strength, however faint the pulse, and go when told.
+TEST_F(SwayDesktop, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {
+    start_two_windows();
+    const WindowRect screen{0, 0, 1920, 1080};
+    auto made = desktop_->make_field_surface(nullptr, screen_field_for(1920, 1080), {});
+    ASSERT_TRUE(made);
+    auto& surface = dynamic_cast<LayerFieldSurface&>(*made);
+    surface.set_opacity(0.1);
+    surface.show();
+    ASSERT_TRUE(test::wait_until([&] { pump(surface, 20ms); return surface.frames_committed() > 0; }, 5s));
+    const QPointF point(700, 500);
+    // White on a dark outline: somewhere on the ring's circle a pixel is white
+    // and one is dark, which a field at 0.1 over the windows never makes.
+    const auto ring_extremes = [&](const QImage& shot) {
+        int brightest = 0, darkest = 255;
+        for (int k = 0; k < 360; k += 3) {
+            const double a = k * M_PI / 180.0;
+            for (const double r : {kPointerRingRadius - 1, kPointerRingRadius, kPointerRingRadius + 1}) {
+                const QRgb p = shot.pixel(static_cast<int>(std::lround(point.x() + r * std::cos(a))),
+                                          static_cast<int>(std::lround(point.y() + r * std::sin(a))));
+                const int v = std::min({qRed(p), qGreen(p), qBlue(p)});
+                brightest = std::max(brightest, v);
+                darkest = std::min(darkest, std::max({qRed(p), qGreen(p), qBlue(p)}));
+            }
+        }
+        return std::pair(brightest, darkest);
+    };
+    const QImage before = grim(*sway_, screen);
+    surface.set_pointer(point, "Report");
+    pump(surface, 300ms);
+    const QImage with = grim(*sway_, screen);
+    const auto [bright, dark] = ring_extremes(with);
+    EXPECT_GE(bright, 235) << "no white ring at full strength";
+    EXPECT_LE(dark, 60) << "no dark outline";
+    // Away from the ring and title the field stays as faint as it was.
+    int worst = 0;
+    for (int y = 800; y < 1000; ++y)
+        for (int x = 100; x < 1800; x += 7) {
+            const QRgb a = before.pixel(x, y), b = with.pixel(x, y);
+            worst = std::max({worst, std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)), std::abs(qBlue(a) - qBlue(b))});
+        }
+    EXPECT_LE(worst, 2) << "the ring changed the field elsewhere";
+
+    // Moved, then gone: nothing of it stays behind.
+    surface.set_pointer(QPointF(1300, 400), "Report");
+    pump(surface, 300ms);
+    surface.set_pointer(std::nullopt, {});
+    pump(surface, 300ms);
+    const QImage after = grim(*sway_, screen);
+    int left_behind = 0;
+    for (int y = 380; y < 520; ++y)
+        for (int x = 660; x < 1500; ++x) {
+            const QRgb a = before.pixel(x, y), b = after.pixel(x, y);
+            left_behind = std::max({left_behind, std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)),
+                                    std::abs(qBlue(a) - qBlue(b))});
+        }
+    EXPECT_LE(left_behind, 2) << "the ring left pixels behind";
+    surface.hide();
 }
 
 TEST_F(SwayDesktop, FieldShowsAtItsOpacityAndClicksGoThrough) {

@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "screen/board_window.hpp"
+#include "screen/pointer_mark.hpp"
 #include "wlr-layer-shell-unstable-v1-client-protocol.h"
 
 namespace umf::provider {
@@ -200,17 +201,23 @@ void LayerFieldSurface::draw_if_due() {
     if (!slot) return;  // all held by the compositor: drawn on a release
     ShmBuffer& buffer = *slot->buffer;
     const bool focused = focus_centre_.has_value();
-    const WindowRect box = focused ? mask_.box : pixels_->field_box();
+    const WindowRect pointer = pointer_box();
+    const WindowRect box = united(focused ? mask_.box : pixels_->field_box(), pointer);
     if (slot->content && !(*slot->content == box)) {
         const WindowRect& old = *slot->content;
         for (int y = old.y; y < old.y + old.height; ++y)
             std::memset(buffer.row(y) + old.x, 0, static_cast<std::size_t>(old.width) * 4);
     }
+    // The ring's place from the last frame is cleared before the field is
+    // painted again, or blending would pile up where the field is not.
+    for (int y = pointer.y; y < pointer.y + pointer.height; ++y)
+        std::memset(buffer.row(y) + pointer.x, 0, static_cast<std::size_t>(pointer.width) * 4);
     if (focused) {
-        if (!box.empty()) pixels_->paint_focus(buffer.data(), buffer.stride(), level, mask_);
+        if (!mask_.box.empty()) pixels_->paint_focus(buffer.data(), buffer.stride(), level, mask_);
     } else {
         pixels_->paint(buffer.data(), buffer.stride(), level);
     }
+    blend_pointer(buffer);
     slot->content = box;
 
     // The buffer is the field's physical pixels; the surface is logical.
@@ -233,6 +240,55 @@ void LayerFieldSurface::draw_if_due() {
     shown_generation_ = content_generation_;
     shown_box_ = box;
     flush();
+}
+
+WindowRect LayerFieldSurface::pointer_box() const {
+    if (!pointer_ || !pixels_) return {};
+    const int x0 = std::max(0, pointer_->at.x()), y0 = std::max(0, pointer_->at.y());
+    const int x1 = std::min(pixels_->width(), pointer_->at.x() + pointer_->image.width());
+    const int y1 = std::min(pixels_->height(), pointer_->at.y() + pointer_->image.height());
+    return x1 > x0 && y1 > y0 ? WindowRect{x0, y0, x1 - x0, y1 - y0} : WindowRect{};
+}
+
+void LayerFieldSurface::blend_pointer(ShmBuffer& buffer) const {
+    const WindowRect box = pointer_box();
+    for (int y = box.y; y < box.y + box.height; ++y) {
+        const auto* src = reinterpret_cast<const QRgb*>(pointer_->image.constScanLine(y - pointer_->at.y())) +
+                          (box.x - pointer_->at.x());
+        std::uint32_t* dst = buffer.row(y) + box.x;
+        for (int x = 0; x < box.width; ++x) {
+            // Both premultiplied ARGB: source over destination.
+            const std::uint32_t s = src[x], keep = 255 - qAlpha(s);
+            if (keep == 255) continue;
+            const std::uint32_t d = dst[x];
+            const auto channel = [&](int shift) {
+                return (((s >> shift) & 255) + (((d >> shift) & 255) * keep + 127) / 255) << shift;
+            };
+            dst[x] = channel(24) | channel(16) | channel(8) | channel(0);
+        }
+    }
+}
+
+void LayerFieldSurface::set_pointer(std::optional<QPointF> point_px, const QString& title) {
+    if (!point_px) {
+        if (!pointer_) return;
+        pointer_.reset();
+    } else {
+        if (!pointer_ || pointer_->title != title) {
+            const PointerMark mark = pointer_mark(title, 1.0);
+            pointer_ = Pointer{mark.image, {}, title};
+            pointer_->at = QPoint(static_cast<int>(std::lround(point_px->x() - mark.ring_centre.x())),
+                                  static_cast<int>(std::lround(point_px->y() - mark.ring_centre.y())));
+        } else {
+            const QPointF centre(kPointerMargin + kPointerRingRadius, pointer_->image.height() / 2.0);
+            const QPoint at(static_cast<int>(std::lround(point_px->x() - centre.x())),
+                            static_cast<int>(std::lround(point_px->y() - centre.y())));
+            if (at == pointer_->at) return;
+            pointer_->at = at;
+        }
+    }
+    ++content_generation_;
+    draw_if_due();
 }
 
 void LayerFieldSurface::set_field(ScreenField field, const std::vector<std::string>& palette) {

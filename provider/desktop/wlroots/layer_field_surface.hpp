@@ -38,6 +38,7 @@ public:
     void set_opacity(double opacity) override;
     double pulse_opacity() const override { return pulse_; }
     void set_focus(std::optional<QPointF> centre_px, double radius_px) override;
+    void set_pointer(std::optional<QPointF> point_px, const QString& title) override;
     void show() override;
     void hide() override;
     bool is_visible() const override { return visible_; }
@@ -90,6 +91,15 @@ private:
     std::optional<QPointF> focus_centre_;
     double focus_radius_ = 0.0;
     FocusMask mask_;
+    // The ring and title, drawn over the field at full strength.
+    struct Pointer {
+        QImage image;  // premultiplied ARGB, physical pixels
+        QPoint at;     // its top-left corner in the buffer
+        QString title;
+    };
+    std::optional<Pointer> pointer_;
+    WindowRect pointer_box() const;
+    void blend_pointer(ShmBuffer& buffer) const;
     // What is on screen, so an unchanged step draws nothing.
     int content_generation_ = 0;
     int shown_generation_ = -1;
