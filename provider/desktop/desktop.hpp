@@ -6,7 +6,7 @@
 // scale 1). Document resolution (a process's files, the recent list) stays
 // above it and works for every backend.
 //
-// Threads: the queries (outputs, window_at, capture, place_new_window) are
+// Threads: the queries (outputs, window_at, capture, watch_new_window) are
 // called from server threads and must be thread-safe; make_field_surface and
 // everything a FieldSurface does run on the Qt thread.
 #pragma once
@@ -89,7 +89,7 @@ public:
 // The field over one output: click-through (an empty input region from the
 // first frame), above all windows, never focused. Shown only when asked.
 // What OverlayManager needs of a window; the X11 one is a QRasterWindow
-// (desktop/x11/x11_field_window.hpp), the Wayland ones are a layer surface
+// (desktop/x11/overlay_window.hpp), the Wayland ones are a layer surface
 // or a Shell actor.
 class FieldSurface {
 public:

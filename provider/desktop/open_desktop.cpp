@@ -16,15 +16,12 @@ namespace {
 constexpr const char* kWhatWorks =
     "boards (--board), shared items (umf-provider share) and puts work as everywhere";
 
-std::string no_backend_note(DesktopKind kind) {
-    if (kind == DesktopKind::unsupported_wayland)
-        return "This Wayland compositor has no umf backend, so no field is shown: an X11 overlay through Xwayland "
-               "would hide the desktop and swallow its clicks. The window under the point and snapshots are off; " +
-               std::string(kWhatWorks) +
-               ". Sway, Hyprland, river, KDE Plasma and GNOME have backends; in an X11 session the overlay runs as "
-               "usual.";
-    return "The " + to_string(kind) + " backend is not part of this build of umf-provider, so no field is shown "
-           "and the window under the point and snapshots are off; " + std::string(kWhatWorks) + ".";
+std::string no_backend_note() {
+    return "This Wayland compositor has no umf backend, so no field is shown: an X11 overlay through Xwayland "
+           "would hide the desktop and swallow its clicks. The window under the point and snapshots are off; " +
+           std::string(kWhatWorks) +
+           ". Sway, Hyprland, river, KDE Plasma and GNOME have backends; in an X11 session the overlay runs as "
+           "usual.";
 }
 
 }  // namespace
@@ -56,7 +53,7 @@ OpenedDesktop open_desktop(const DesktopChoice& choice) {
             break;
         }
         case DesktopKind::unsupported_wayland:
-            out.abilities.notes.push_back(no_backend_note(choice.kind));
+            out.abilities.notes.push_back(no_backend_note());
             return out;
         }
     } catch (const std::exception& e) {

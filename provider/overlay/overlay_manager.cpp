@@ -49,8 +49,6 @@ int blur_margin_px(double module_px) {
     return static_cast<int>(std::ceil(3.0 * overlay::blur_sigma_px(1.0, module_px))) + 2;
 }
 
-// The default grab: the root window's pixels through X11, on the display Qt
-// uses, opened at the first grab. Null images when there is none.
 // A screen the desktop shows no field on: it keeps its place in the layout
 // (the welcome's screens stay the same) and nothing is drawn.
 class AbsentSurface final : public FieldSurface {
@@ -71,6 +69,8 @@ private:
     double pulse_ = 0.0;
 };
 
+// The default grab: the root window's pixels through X11, on the display Qt
+// uses, opened at the first grab. Null images when there is none.
 class X11Grab {
 public:
     QImage operator()(const QRect& root_rect) {
@@ -171,12 +171,12 @@ void OverlayManager::add_screen(QScreen* screen) {
     entry->screen = screen;
     entry->index = next_index_++;
     const QSize size = physical_size(screen);
-    ScreenField field = screen_field_for(size.width(), size.height(), module_px_for(screen, preset_));
-    if (desktop_) entry->window = desktop_->make_field_surface(screen, std::move(field), preset_.palette);
-    else entry->window = std::make_unique<OverlayWindow>(screen, std::move(field), preset_.palette);
+    const ScreenField field = screen_field_for(size.width(), size.height(), module_px_for(screen, preset_));
+    if (desktop_) entry->window = desktop_->make_field_surface(screen, field, preset_.palette);
+    else entry->window = std::make_unique<OverlayWindow>(screen, field, preset_.palette);
     // A desktop that cannot show a field over this screen: it gets no
     // surface, and the screen still takes part in the layout.
-    if (!entry->window) entry->window = std::make_unique<AbsentSurface>(screen_field_for(size.width(), size.height(), module_px_for(screen, preset_)));
+    if (!entry->window) entry->window = std::make_unique<AbsentSurface>(field);
     entry->window->set_pixel_opacity(preset_.opacity_max);
     entry->window->set_opacity(std::max(applied_opacity_, 0.0));
     Entry* raw = entry.get();

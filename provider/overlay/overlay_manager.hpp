@@ -110,7 +110,7 @@ public:
 
     // The screen in `root_rect` (root-window pixels, within one screen) as it
     // is without the overlay; a null image when it cannot be had. The default
-    // captures with X11 (content/x11_window.hpp) on the xcb platform and is
+    // captures with X11 (desktop/x11/x11_desktop.hpp) on the xcb platform and is
     // empty elsewhere: without a grab function the blur is not applied to the
     // overlay. Tests give a synthetic one. Setting it drops grabbed backdrops.
     using GrabFunction = std::function<QImage(const QRect& root_rect)>;

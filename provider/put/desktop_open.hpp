@@ -1,8 +1,9 @@
 // Opening a URL or a file with the desktop's default application: `xdg-open
 // TARGET`, found on PATH and started without a shell (posix_spawnp), fire and
 // forget; a thread of its own reaps the child when it ends. Tests put a fake
-// xdg-open first on PATH that records its argument. With a place, the window
-// it brings up is moved there (desktop/window_placement.hpp), best effort; on X11 for now.
+// xdg-open first on PATH that records its argument. With the desktop's watch
+// (Desktop::watch_new_window), the window it brings up is moved to the pointed
+// place (desktop/window_placement.hpp), best effort.
 #pragma once
 
 #include <memory>

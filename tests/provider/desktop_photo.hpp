@@ -17,12 +17,15 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
+#include <tuple>
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include "desktop/desktop.hpp"
 #include "detect/detector.hpp"
+#include "support/files.hpp"
 #include "support/process.hpp"
 
 namespace umf::test {
@@ -122,6 +125,38 @@ inline double grey_share(const cv::Mat& image, int level = 0x80) {
             grey += std::abs(p[0] - level) <= 3 && std::abs(p[1] - level) <= 3 && std::abs(p[2] - level) <= 3;
         }
     return inside ? static_cast<double>(grey) / static_cast<double>(inside) : 0.0;
+}
+
+// The grabs both Wayland provider tests make from a photo of the whole
+// desktop `bgr`, each aimed at one window's middle: notes.txt (a native
+// window) and report.txt (an Xwayland one) arrive as their files, byte for
+// byte; "plain grey" as a snapshot without the field. The snapshot, for more
+// checks (empty when it did not come).
+inline cv::Mat expect_documents_and_a_snapshot(const std::string& url, const cv::Mat& bgr,
+                                               const std::map<std::string, umf::provider::WindowInfo>& windows,
+                                               const std::filesystem::path& notes,
+                                               const std::filesystem::path& report,
+                                               const std::filesystem::path& work) {
+    const auto rect_of = [&](const std::string& title) {
+        const auto it = windows.find(title);
+        return it == windows.end() ? umf::provider::WindowRect{} : it->second.rect;
+    };
+    for (const auto& [title, file, shot] : {std::tuple{"notes.txt", notes, "native"},
+                                            std::tuple{"report.txt", report, "xwayland"}}) {
+        const auto got = requester_grab(url, photo_of_window(bgr, rect_of(title), work / (std::string(shot) + ".png")),
+                                        work / ("got-" + std::string(shot)));
+        EXPECT_EQ(got.value("kind", ""), "file") << got.dump();
+        EXPECT_EQ(got.value("title", ""), title) << got.dump();
+        EXPECT_EQ(read_file(got.value("saved", "")), read_file(file));
+    }
+    const auto shot = requester_grab(url, photo_of_window(bgr, rect_of("plain grey"), work / "plain.png"), work / "got-plain");
+    EXPECT_EQ(shot.value("kind", ""), "snapshot") << shot.dump();
+    EXPECT_EQ(shot.value("title", "").find("plain grey"), 0u) << shot.dump();
+    const cv::Mat snapshot = cv::imread(shot.value("saved", ""), cv::IMREAD_COLOR);
+    EXPECT_FALSE(snapshot.empty()) << "no snapshot saved";
+    // Grey throughout below its title bar: the field was hidden for it.
+    if (!snapshot.empty()) EXPECT_GT(grey_share(snapshot), 0.95) << "the snapshot holds the field";
+    return snapshot;
 }
 
 }  // namespace umf::test

@@ -24,6 +24,7 @@
 #include "overlay/placement.hpp"
 #include "provider/gui_test_app.hpp"
 #include "screen/screen_field.hpp"
+#include "support/files.hpp"
 #include "support/gnome_session.hpp"
 
 namespace umf::provider {
@@ -31,11 +32,6 @@ namespace {
 
 using namespace std::chrono_literals;
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 TEST(GnomeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWindows) {
     if (const auto why = test::GnomeSession::unavailable()) GTEST_SKIP() << *why;
@@ -101,11 +97,11 @@ TEST(GnomeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWi
         {"sh", "-c", std::string("exec ") + UMF_PROVIDER_TOOL + " --port 0 --no-qr --preset static --puts never > " +
                          log.string() + " 2>&1"},
         "provider-start.log", env);
-    ASSERT_TRUE(test::wait_until([&] { return slurp(log).find("overlay: 1 screen") != std::string::npos; }, 30s))
-        << slurp(log);
-    EXPECT_NE(slurp(log).find("desktop: gnome"), std::string::npos) << slurp(log);
-    const std::string url = test::pairing_url_in(slurp(log));
-    ASSERT_FALSE(url.empty()) << slurp(log);
+    ASSERT_TRUE(test::wait_until([&] { return test::read_file(log).find("overlay: 1 screen") != std::string::npos; }, 30s))
+        << test::read_file(log);
+    EXPECT_NE(test::read_file(log).find("desktop: gnome"), std::string::npos) << test::read_file(log);
+    const std::string url = test::pairing_url_in(test::read_file(log));
+    ASSERT_FALSE(url.empty()) << test::read_file(log);
 
     // The screen as a camera sees it: the field found where the provider puts it.
     const ScreenField field = screen_field_for(1920, 1080);
@@ -116,7 +112,7 @@ TEST(GnomeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWi
             return desktop.capture_as_shown(r);
         },
         detector, 1920, 1080, 20s);
-    ASSERT_TRUE(photo.detection.found) << "no field on the screen: " << photo.detection.failure << "\n" << slurp(log);
+    ASSERT_TRUE(photo.detection.found) << "no field on the screen: " << photo.detection.failure << "\n" << test::read_file(log);
     double u = 0, v = 0;
     overlay::screen_to_field(field.placement, 960, 540, u, v);
     EXPECT_NEAR(photo.detection.aim_field.x(), u, 0.05);
@@ -127,26 +123,8 @@ TEST(GnomeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWi
         cv::imwrite((fs::path(keep) / "gnome-desktop.png").string(), half);
     }
 
-    const auto text = test::requester_grab(
-        url, test::photo_of_window(photo.bgr, windows["notes.txt"].rect, work / "native.png"), work / "got-native");
-    EXPECT_EQ(text.value("kind", ""), "file") << text.dump();
-    EXPECT_EQ(text.value("title", ""), "notes.txt") << text.dump();
-    EXPECT_EQ(slurp(text.value("saved", "")), slurp(notes));
-
-    const auto xw = test::requester_grab(
-        url, test::photo_of_window(photo.bgr, windows["report.txt"].rect, work / "xwayland.png"), work / "got-xwayland");
-    EXPECT_EQ(xw.value("kind", ""), "file") << xw.dump();
-    EXPECT_EQ(xw.value("title", ""), "report.txt") << xw.dump();
-    EXPECT_EQ(slurp(xw.value("saved", "")), slurp(report));
-
-    const auto shot = test::requester_grab(
-        url, test::photo_of_window(photo.bgr, windows["plain grey"].rect, work / "plain.png"), work / "got-plain");
-    EXPECT_EQ(shot.value("kind", ""), "snapshot") << shot.dump();
-    EXPECT_EQ(shot.value("title", "").find("plain grey"), 0u) << shot.dump();
-    const cv::Mat snapshot = cv::imread(shot.value("saved", ""), cv::IMREAD_COLOR);
-    ASSERT_FALSE(snapshot.empty());
-    EXPECT_GT(test::grey_share(snapshot), 0.95) << "the snapshot holds the field";
-    EXPECT_NE(slurp(log).find("took \"notes.txt\""), std::string::npos) << slurp(log);
+    test::expect_documents_and_a_snapshot(url, photo.bgr, windows, notes, report, work);
+    EXPECT_NE(test::read_file(log).find("took \"notes.txt\""), std::string::npos) << test::read_file(log);
 }
 
 }  // namespace

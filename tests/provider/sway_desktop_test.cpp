@@ -222,6 +222,16 @@ protected:
         std::this_thread::sleep_for(500ms);  // both drawn
     }
 
+    // The whole output's field shown at `opacity`, once its first frame is committed.
+    void show_field(double opacity, std::unique_ptr<FieldSurface>& made) {
+        made = desktop_->make_field_surface(nullptr, screen_field_for(1920, 1080), {});
+        ASSERT_TRUE(made);
+        auto& surface = dynamic_cast<LayerFieldSurface&>(*made);
+        surface.set_opacity(opacity);
+        surface.show();
+        ASSERT_TRUE(test::wait_until([&] { pump(surface, 20ms); return surface.frames_committed() > 0; }, 5s));
+    }
+
     std::unique_ptr<SwaySession> sway_;
     std::unique_ptr<WlrootsDesktop> desktop_;
     std::unique_ptr<test::Process> foot_, xterm_;
@@ -294,12 +304,9 @@ TEST_F(SwayDesktop, CaptureEqualsGrim) {
 TEST_F(SwayDesktop, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {
     start_two_windows();
     const WindowRect screen{0, 0, 1920, 1080};
-    auto made = desktop_->make_field_surface(nullptr, screen_field_for(1920, 1080), {});
-    ASSERT_TRUE(made);
+    std::unique_ptr<FieldSurface> made;
+    ASSERT_NO_FATAL_FAILURE(show_field(0.1, made));
     auto& surface = dynamic_cast<LayerFieldSurface&>(*made);
-    surface.set_opacity(0.1);
-    surface.show();
-    ASSERT_TRUE(test::wait_until([&] { pump(surface, 20ms); return surface.frames_committed() > 0; }, 5s));
     const QPointF point(700, 500);
     // White on a dark outline: somewhere on the ring's circle a pixel is white
     // and one is dark, which a field at 0.1 over the windows never makes.
@@ -354,13 +361,10 @@ TEST_F(SwayDesktop, FieldShowsAtItsOpacityAndClicksGoThrough) {
     start_two_windows();
     const WindowRect screen{0, 0, 1920, 1080};
     const QImage before = grim(*sway_, screen);
-    auto made = desktop_->make_field_surface(nullptr, screen_field_for(1920, 1080), {});
-    ASSERT_TRUE(made);
-    auto& surface = dynamic_cast<LayerFieldSurface&>(*made);
     constexpr double kOpacity = 0.25;
-    surface.set_opacity(kOpacity);
-    surface.show();
-    ASSERT_TRUE(test::wait_until([&] { pump(surface, 20ms); return surface.frames_committed() > 0; }, 5s));
+    std::unique_ptr<FieldSurface> made;
+    ASSERT_NO_FATAL_FAILURE(show_field(kOpacity, made));
+    auto& surface = dynamic_cast<LayerFieldSurface&>(*made);
     pump(surface, 300ms);
     EXPECT_EQ(surface.output_name(), "HEADLESS-1");
     const QImage with = grim(*sway_, screen);
@@ -405,12 +409,9 @@ TEST_F(SwayDesktop, FieldShowsAtItsOpacityAndClicksGoThrough) {
 }
 
 TEST_F(SwayDesktop, PulseCpuAt60Hz) {
-    auto made = desktop_->make_field_surface(nullptr, screen_field_for(1920, 1080), {});
-    ASSERT_TRUE(made);
+    std::unique_ptr<FieldSurface> made;
+    ASSERT_NO_FATAL_FAILURE(show_field(0.1, made));
     auto& surface = dynamic_cast<LayerFieldSurface&>(*made);
-    surface.set_opacity(0.1);
-    surface.show();
-    ASSERT_TRUE(test::wait_until([&] { pump(surface, 20ms); return surface.frames_committed() > 0; }, 5s));
     const auto cpu_ticks = [](const std::string& pid = "self") {
         std::ifstream in("/proc/" + pid + "/stat");
         std::string stat((std::istreambuf_iterator<char>(in)), {});

@@ -21,6 +21,7 @@
 #include "desktop_photo.hpp"
 #include "detect/detector.hpp"
 #include "screen/screen_field.hpp"
+#include "support/files.hpp"
 #include "support/process.hpp"
 #include "support/sway_session.hpp"
 
@@ -30,11 +31,6 @@ namespace {
 using namespace std::chrono_literals;
 using test::SwaySession;
 namespace fs = std::filesystem;
-
-std::string slurp(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWindows) {
     if (const auto why = SwaySession::cannot_run()) GTEST_SKIP() << *why;
@@ -74,17 +70,17 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
          "exec env QT_QPA_PLATFORM=xcb XDG_CURRENT_DESKTOP=sway XDG_SESSION_TYPE=wayland XDG_CONFIG_HOME=" +
              (work / "config").string() + " " + UMF_PROVIDER_TOOL + " --port 0 --no-qr --preset static --puts never > " +
              log.string() + " 2>&1"});
-    ASSERT_TRUE(test::wait_until([&] { return slurp(log).find("overlay: 1 screen") != std::string::npos; }, 20s))
-        << slurp(log);
-    EXPECT_NE(slurp(log).find("desktop: wlroots"), std::string::npos) << slurp(log);
-    const std::string url = test::pairing_url_in(slurp(log));
-    ASSERT_FALSE(url.empty()) << slurp(log);
+    ASSERT_TRUE(test::wait_until([&] { return test::read_file(log).find("overlay: 1 screen") != std::string::npos; }, 20s))
+        << test::read_file(log);
+    EXPECT_NE(test::read_file(log).find("desktop: wlroots"), std::string::npos) << test::read_file(log);
+    const std::string url = test::pairing_url_in(test::read_file(log));
+    ASSERT_FALSE(url.empty()) << test::read_file(log);
 
     // The desktop as a camera would see it, with the field found in it.
     const ScreenField field = screen_field_for(1920, 1080);
     const Detector detector(field.field);
     const test::DesktopPhoto photo = test::capture_until_field(*desktop, detector, 1920, 1080, 10s);
-    ASSERT_TRUE(photo.detection.found) << "no field on the desktop: " << photo.detection.failure << "\n" << slurp(log);
+    ASSERT_TRUE(photo.detection.found) << "no field on the desktop: " << photo.detection.failure << "\n" << test::read_file(log);
     const cv::Mat& bgr = photo.bgr;
 
     // The README's picture of the provider on Sway (scripts/screenshots-wayland.sh).
@@ -95,34 +91,19 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     }
 
     // Each window in the middle of a photo of its own.
-    const auto text = test::requester_grab(url, test::photo_of_window(bgr, windows["notes.txt"].rect, work / "native.png"), work / "got-native");
-    EXPECT_EQ(text.value("kind", ""), "file") << text.dump();
-    EXPECT_EQ(text.value("title", ""), "notes.txt") << text.dump();
-    EXPECT_EQ(slurp(text.value("saved", "")), slurp(notes));
-
-    const auto x11 = test::requester_grab(url, test::photo_of_window(bgr, windows["report.txt"].rect, work / "xwayland.png"), work / "got-xwayland");
-    EXPECT_EQ(x11.value("kind", ""), "file") << x11.dump();
-    EXPECT_EQ(x11.value("title", ""), "report.txt") << x11.dump();
-    EXPECT_EQ(slurp(x11.value("saved", "")), slurp(report));
-
-    const auto shot = test::requester_grab(url, test::photo_of_window(bgr, windows["plain grey"].rect, work / "plain.png"), work / "got-plain");
-    EXPECT_EQ(shot.value("kind", ""), "snapshot") << shot.dump();
-    EXPECT_EQ(shot.value("title", "").find("plain grey"), 0u) << shot.dump();
-    const cv::Mat snapshot = cv::imread(shot.value("saved", ""), cv::IMREAD_COLOR);
+    const cv::Mat snapshot = test::expect_documents_and_a_snapshot(url, bgr, windows, notes, report, work);
     ASSERT_FALSE(snapshot.empty());
     EXPECT_NEAR(snapshot.cols, windows["plain grey"].rect.width, 2);
     EXPECT_NEAR(snapshot.rows, windows["plain grey"].rect.height, 2);
-    // Grey throughout below its title bar: the field was hidden for it.
-    EXPECT_GT(test::grey_share(snapshot), 0.95) << "the snapshot holds the field";
-    EXPECT_NE(slurp(log).find("took \"notes.txt\""), std::string::npos) << slurp(log);
+    EXPECT_NE(test::read_file(log).find("took \"notes.txt\""), std::string::npos) << test::read_file(log);
 
     // The compositor dies: the console says the field is off, at once.
     // (Qt's own connection goes through Xwayland, which dies with it, so the
     // provider's Qt side ends too: see docs/ARCHITECTURE.md, "The desktop seam".)
     ::kill(sway.sway().pid(), SIGKILL);
     EXPECT_TRUE(test::wait_until(
-        [&] { return slurp(log).find("the connection to the Wayland compositor broke") != std::string::npos; }, 5s))
-        << slurp(log);
+        [&] { return test::read_file(log).find("the connection to the Wayland compositor broke") != std::string::npos; }, 5s))
+        << test::read_file(log);
 }
 
 }  // namespace

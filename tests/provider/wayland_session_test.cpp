@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "support/files.hpp"
 #include "support/temp_dir.hpp"
 #include "support/x11_session.hpp"
 
@@ -21,11 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace umf::test;
-
-std::string read_file(const fs::path& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 TEST(WaylandSession, ACompositorWithoutABackendGetsNoOverlayAndIsToldWhatWorks) {
     for (const char* program : {"weston", "Xwayland", "xwininfo", "xterm"})

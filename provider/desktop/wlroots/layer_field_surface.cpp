@@ -245,15 +245,15 @@ void LayerFieldSurface::draw_if_due() {
 WindowRect LayerFieldSurface::pointer_box() const {
     if (!pointer_ || !pixels_) return {};
     const int x0 = std::max(0, pointer_->at.x()), y0 = std::max(0, pointer_->at.y());
-    const int x1 = std::min(pixels_->width(), pointer_->at.x() + pointer_->image.width());
-    const int y1 = std::min(pixels_->height(), pointer_->at.y() + pointer_->image.height());
+    const int x1 = std::min(pixels_->width(), pointer_->at.x() + pointer_->mark.image.width());
+    const int y1 = std::min(pixels_->height(), pointer_->at.y() + pointer_->mark.image.height());
     return x1 > x0 && y1 > y0 ? WindowRect{x0, y0, x1 - x0, y1 - y0} : WindowRect{};
 }
 
 void LayerFieldSurface::blend_pointer(ShmBuffer& buffer) const {
     const WindowRect box = pointer_box();
     for (int y = box.y; y < box.y + box.height; ++y) {
-        const auto* src = reinterpret_cast<const QRgb*>(pointer_->image.constScanLine(y - pointer_->at.y())) +
+        const auto* src = reinterpret_cast<const QRgb*>(pointer_->mark.image.constScanLine(y - pointer_->at.y())) +
                           (box.x - pointer_->at.x());
         std::uint32_t* dst = buffer.row(y) + box.x;
         for (int x = 0; x < box.width; ++x) {
@@ -274,18 +274,13 @@ void LayerFieldSurface::set_pointer(std::optional<QPointF> point_px, const QStri
         if (!pointer_) return;
         pointer_.reset();
     } else {
-        if (!pointer_ || pointer_->title != title) {
-            const PointerMark mark = pointer_mark(title, 1.0);
-            pointer_ = Pointer{mark.image, {}, title};
-            pointer_->at = QPoint(static_cast<int>(std::lround(point_px->x() - mark.ring_centre.x())),
-                                  static_cast<int>(std::lround(point_px->y() - mark.ring_centre.y())));
-        } else {
-            const QPointF centre(kPointerMargin + kPointerRingRadius, pointer_->image.height() / 2.0);
-            const QPoint at(static_cast<int>(std::lround(point_px->x() - centre.x())),
-                            static_cast<int>(std::lround(point_px->y() - centre.y())));
-            if (at == pointer_->at) return;
-            pointer_->at = at;
-        }
+        // The mark is drawn again only for a new title; a move only shifts it.
+        const bool new_mark = !pointer_ || pointer_->title != title;
+        if (new_mark) pointer_ = Pointer{pointer_mark(title, 1.0), {}, title};
+        const QPointF corner = *point_px - pointer_->mark.ring_centre;
+        const QPoint at(static_cast<int>(std::lround(corner.x())), static_cast<int>(std::lround(corner.y())));
+        if (!new_mark && at == pointer_->at) return;
+        pointer_->at = at;
     }
     ++content_generation_;
     draw_if_due();

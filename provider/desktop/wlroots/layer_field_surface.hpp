@@ -19,6 +19,7 @@
 #include "desktop/wlroots/field_pixels.hpp"
 #include "desktop/wlroots/shm_buffer.hpp"
 #include "desktop/wlroots/wayland_connection.hpp"
+#include "screen/pointer_mark.hpp"
 
 struct zwlr_layer_surface_v1;
 
@@ -93,8 +94,8 @@ private:
     FocusMask mask_;
     // The ring and title, drawn over the field at full strength.
     struct Pointer {
-        QImage image;  // premultiplied ARGB, physical pixels
-        QPoint at;     // its top-left corner in the buffer
+        PointerMark mark;  // at the buffer's physical pixels
+        QPoint at;         // its top-left corner in the buffer
         QString title;
     };
     std::optional<Pointer> pointer_;
