@@ -4,10 +4,11 @@
 #include <unistd.h>
 
 #include <QApplication>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
-#include <iostream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "cli/args.hpp"
@@ -15,12 +16,16 @@
 #include "commands/compose_command.hpp"
 #include "commands/preset_options.hpp"
 #include "commands/pair_command.hpp"
+#include "commands/desktop_keeper.hpp"
 #include "commands/serve_command.hpp"
-#include "screen/gui_application.hpp"
+#include "desktop/display_socket.hpp"
 #include "desktop/gnome/gnome_install.hpp"
 #include "desktop/kde/kde_install.hpp"
-#include "tuning/desktop_controls.hpp"
+#include "desktop/session.hpp"
+#include "screen/gui_application.hpp"
 #include "server/config_dir.hpp"
+#include "server/control_socket.hpp"
+#include "tuning/desktop_controls.hpp"
 
 namespace {
 
@@ -129,8 +134,8 @@ int dispatch(int argc, char** argv) {
         first = 2;
     }
     if (command == "serve") {
-        const auto args = parse_command_args(argc, argv, first, names(kServeOptions), names(kServeFlags));
-        const bool headless = umf::cli::has_flag(args, "headless");
+        auto args = parse_command_args(argc, argv, first, names(kServeOptions), names(kServeFlags));
+        bool headless = umf::cli::has_flag(args, "headless");
         // SIGINT and SIGTERM are taken by run_serve with sigwait: blocked
         // before Qt starts threads of its own (the xcb event reader), which
         // would otherwise receive them and die with the default action.
@@ -139,6 +144,29 @@ int dispatch(int argc, char** argv) {
         sigaddset(&signals, SIGINT);
         sigaddset(&signals, SIGTERM);
         pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+        ServeHooks hooks;
+        if (!headless && umf::cli::get(args, "desktop").value_or("") != "none") {
+            const SessionFacts session = session_from_environment();
+            if (!session.wayland_display.empty() || !session.x_display.empty()) {
+                // On a desktop, a keeper outlives the display (commands/desktop_keeper.hpp).
+                const char* runtime = std::getenv("XDG_RUNTIME_DIR");
+                KeeperSettings keeper;
+                keeper.shares_file = provider_runtime_dir() / ("shared-items-" + std::to_string(::getpid()) + ".json");
+                keeper.display_answers = [session, runtime = std::string(runtime ? runtime : "")] {
+                    return displays_answer(session, runtime);
+                };
+                auto role = keep_provider(keeper, std::cerr);
+                if (const int* code = std::get_if<int>(&role)) return *code;
+                hooks.keeper = std::get<KeeperRole>(role);
+                if (hooks.keeper->port) args.named["port"] = std::to_string(*hooks.keeper->port);
+                if (!hooks.keeper->with_desktop) {
+                    // Whatever platform the desktop's Qt was told to use, this one has no display.
+                    args.named["desktop"] = "none";
+                    headless = true;
+                    ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
+                }
+            }
+        }
         // On a desktop the tray and the tuning window need Qt Widgets.
         auto app = make_gui_application(argc, argv, headless);
         if (!headless && QGuiApplication::platformName() != "offscreen") {
@@ -146,7 +174,6 @@ int dispatch(int argc, char** argv) {
             app = std::make_unique<QApplication>(argc, argv);
             QApplication::setQuitOnLastWindowClosed(false);
         }
-        ServeHooks hooks;
         if (qobject_cast<QApplication*>(app.get()))
             hooks.desktop_controls = [](OverlayManager* overlay, const std::string& status,
                                         const std::string& presets_file, const std::string& pairing_url,

@@ -19,6 +19,7 @@
 #include "content/board_resolver.hpp"
 #include "content/image_snapshot.hpp"
 #include "content/shared_items.hpp"
+#include "content/shared_items_file.hpp"
 #include "content/snapshot_resolver.hpp"
 #include "content/window_resolver.hpp"
 #include "desktop/open_desktop.hpp"
@@ -94,6 +95,24 @@ overlay::Preset preset_option(const cli::Args& a, const std::filesystem::path& c
     std::string names;
     for (const auto& p : presets) names += (names.empty() ? "" : ", ") + p.name;
     throw UsageError("no preset called \"" + name + "\"; there are " + names);
+}
+
+// What was shared before this provider was started again by its keeper
+// comes back, and every change is written down for the next one.
+void keep_shared_items(SharedItems& items, const std::filesystem::path& file) {
+    try {
+        const int restored = items.restore(load_shared_items(file));
+        if (restored > 0) std::cout << "shared: " << restored << " item(s) shared before are served again\n";
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: " << e.what() << "; the items shared before are gone\n";
+    }
+    items.on_change([file](const std::vector<SharedItem>& now) {
+        try {
+            save_shared_items(file, now);
+        } catch (const std::exception& e) {
+            std::cerr << "umf-provider: " << e.what() << "; shared items will not survive a restart\n";
+        }
+    });
 }
 
 }  // namespace
@@ -229,6 +248,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
 
     std::vector<std::shared_ptr<const Resolver>> resolvers;
     auto shared_items = std::make_shared<SharedItems>();
+    if (hooks.keeper) keep_shared_items(*shared_items, hooks.keeper->shares_file);
     QImage screen_image(width, height, QImage::Format_RGB32);
     screen_image.fill(Qt::black);
     if (board) {
@@ -351,6 +371,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         options.threads = 2;
         server = std::make_unique<Server>(service, identity, options);
         server->start();
+        if (hooks.keeper) tell_keeper_port(*hooks.keeper, server->port());
         if (!public_mode || put_answers)
             control = std::make_unique<ControlSocket>(control_socket_path(server->port()),
                                                       public_mode ? nullptr : shared_items, put_answers);

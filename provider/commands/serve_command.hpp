@@ -5,9 +5,11 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cli/args.hpp"
+#include "commands/desktop_keeper.hpp"
 
 namespace umf::provider {
 
@@ -21,6 +23,9 @@ struct ServeHooks {
     std::function<std::shared_ptr<void>(OverlayManager* overlay, const std::string& status,
                                         const std::string& presets_file, const std::string& pairing_url, bool tune)>
         desktop_controls;
+    // Set when a keeper runs this provider (commands/desktop_keeper.hpp):
+    // it is told the port, and the shared items outlive this process.
+    std::optional<KeeperRole> keeper;
 };
 
 extern const char* const kServeOptions[];

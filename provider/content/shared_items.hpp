@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -34,11 +35,22 @@ public:
     bool remove(int id);
     std::vector<SharedItem> items() const;
 
+    // Items kept from an earlier run of the provider (content/shared_items_file.hpp),
+    // with their ids; each is checked as `add` checks it, and one that no
+    // longer holds (a file gone) is left out. Returns how many came back.
+    int restore(const std::vector<SharedItem>& kept);
+    // Told the whole list after every change, under the list's lock, so
+    // the calls come in the order of the changes.
+    void on_change(std::function<void(const std::vector<SharedItem>&)> listener);
+
     const char* name() const override { return "shared"; }
     std::optional<Resolved> resolve(const ScreenPoint& point, Purpose purpose) const override;
 
 private:
+    static void check(SharedItem& item);
+
     mutable std::mutex mutex_;
+    std::function<void(const std::vector<SharedItem>&)> listener_;
     std::vector<SharedItem> items_;
     int next_id_ = 1;
 };

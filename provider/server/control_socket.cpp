@@ -93,11 +93,14 @@ std::string put_answer_answer(const json& request, ControlPutDecider& puts) {
 
 }  // namespace
 
-std::filesystem::path control_socket_path(unsigned short port) {
+std::filesystem::path provider_runtime_dir() {
     const char* runtime = std::getenv("XDG_RUNTIME_DIR");
-    const std::filesystem::path base = runtime && *runtime ? std::filesystem::path(runtime) / "umf"
-                                                           : std::filesystem::path("/tmp") / ("umf-" + std::to_string(::getuid()));
-    return base / ("provider-" + std::to_string(port) + ".sock");
+    return runtime && *runtime ? std::filesystem::path(runtime) / "umf"
+                               : std::filesystem::path("/tmp") / ("umf-" + std::to_string(::getuid()));
+}
+
+std::filesystem::path control_socket_path(unsigned short port) {
+    return provider_runtime_dir() / ("provider-" + std::to_string(port) + ".sock");
 }
 
 std::string handle_control_request(const std::string& line, SharedItems& items) {

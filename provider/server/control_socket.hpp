@@ -25,7 +25,11 @@
 
 namespace umf::provider {
 
-// $XDG_RUNTIME_DIR/umf/provider-PORT.sock, else /tmp/umf-UID/provider-PORT.sock.
+// $XDG_RUNTIME_DIR/umf, else /tmp/umf-UID: the provider's files that live
+// as long as it runs.
+std::filesystem::path provider_runtime_dir();
+
+// provider_runtime_dir()/provider-PORT.sock.
 std::filesystem::path control_socket_path(unsigned short port);
 
 // One request line's answer (what the socket thread does per line; tests

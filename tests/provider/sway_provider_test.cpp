@@ -97,12 +97,24 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     EXPECT_NEAR(snapshot.rows, windows["plain grey"].rect.height, 2);
     EXPECT_NE(test::read_file(log).find("took \"notes.txt\""), std::string::npos) << test::read_file(log);
 
-    // The compositor dies: the console says the field is off, at once.
-    // (Qt's own connection goes through Xwayland, which dies with it, so the
-    // provider's Qt side ends too: see docs/ARCHITECTURE.md, "The desktop seam".)
+    // The compositor dies: the console says the field is off, at once. Qt's
+    // own connection goes through Xwayland, which dies with it, and ends the
+    // desktop provider; its keeper serves on without a desktop, at the same
+    // place (commands/desktop_keeper.hpp).
     ::kill(sway.sway().pid(), SIGKILL);
     EXPECT_TRUE(test::wait_until(
         [&] { return test::read_file(log).find("the connection to the Wayland compositor broke") != std::string::npos; }, 5s))
+        << test::read_file(log);
+    const std::string listening = url.substr(0, url.find('/', 8));
+    ASSERT_TRUE(test::wait_until(
+        [&] {
+            const std::string text = test::read_file(log);
+            return text.find("Serving on without a desktop") != std::string::npos &&
+                   test::pairing_url_in(text.substr(text.find("Serving on without a desktop"))) == url;
+        },
+        20s))
+        << test::read_file(log);
+    EXPECT_EQ(test::run_command("curl -s -k --max-time 10 -o /dev/null -w '%{http_code}' " + listening + "/").out, "200")
         << test::read_file(log);
 }
 
