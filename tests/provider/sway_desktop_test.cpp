@@ -277,6 +277,16 @@ TEST_F(SwayDesktop, OutputsWindowsAndAbilities) {
               << " ms, max " << ms.back() << " ms\n";
 }
 
+// A provider started again after sway was still has the old $SWAYSOCK.
+TEST_F(SwayDesktop, AStaleSwaysockLeadsToTheSwayThatRuns) {
+    const std::string stale = sway_->runtime_dir() + "/sway-ipc.0.1.sock";
+    EXPECT_EQ(live_swaysock(stale, sway_->runtime_dir()), sway_->swaysock());
+    EXPECT_EQ(live_swaysock(sway_->swaysock(), "/nonexistent"), sway_->swaysock());
+    test::TempDir empty("umf-no-sway");
+    EXPECT_EQ(live_swaysock(stale, empty.path.string()), stale);
+    EXPECT_EQ(live_swaysock("", sway_->runtime_dir()), "") << "no sway named: none is looked for";
+}
+
 TEST_F(SwayDesktop, CaptureEqualsGrim) {
     start_two_windows();
     for (const char* title : {"umf-foot", "umf-xterm"}) {

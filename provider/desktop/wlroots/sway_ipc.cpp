@@ -1,6 +1,7 @@
 #include "desktop/wlroots/sway_ipc.hpp"
 
 #include <cstring>
+#include <filesystem>
 
 #include "desktop/desktop.hpp"
 #include "desktop/wlroots/unix_socket.hpp"
@@ -52,6 +53,26 @@ void sway_run(const std::string& socket_path, const std::string& commands, std::
     for (const auto& result : reply)
         if (!result.value("success", false))
             throw DesktopError("sway refused '" + commands + "': " + result.value("error", std::string("no reason")));
+}
+
+std::string live_swaysock(const std::string& given, const std::string& runtime_dir) {
+    const auto answers = [](const std::string& path) {
+        try {
+            sway_request(path, SwayMessage::get_version, {}, std::chrono::milliseconds(500));
+            return true;
+        } catch (const DesktopError&) {
+            return false;
+        }
+    };
+    if (given.empty() || answers(given)) return given;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(runtime_dir, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("sway-ipc.", 0) == 0 && name.size() > 5 && name.compare(name.size() - 5, 5, ".sock") == 0 &&
+            entry.is_socket(ec) && answers(entry.path().string()))
+            return entry.path().string();
+    }
+    return given;
 }
 
 }  // namespace umf::provider

@@ -40,4 +40,10 @@ nlohmann::json sway_request(const std::string& socket_path, SwayMessage type, co
 void sway_run(const std::string& socket_path, const std::string& commands,
               std::chrono::milliseconds timeout = kSwayTimeout);
 
+// The socket of the sway that runs now: `given` ($SWAYSOCK) when it answers,
+// else one in `runtime_dir` named as sway names them (sway-ipc.UID.PID.sock)
+// that does, for a provider started again after sway was (its environment
+// still names the old socket). `given` when none answers.
+std::string live_swaysock(const std::string& given, const std::string& runtime_dir);
+
 }  // namespace umf::provider

@@ -33,7 +33,9 @@ int overlap(const WindowRect& a, const WindowRect& b) {
 }  // namespace
 
 WlrootsSession wlroots_session_from_environment() {
-    return {env("WAYLAND_DISPLAY"), env("SWAYSOCK"), env("HYPRLAND_INSTANCE_SIGNATURE"), env("XDG_RUNTIME_DIR")};
+    const std::string runtime_dir = env("XDG_RUNTIME_DIR");
+    return {env("WAYLAND_DISPLAY"), live_swaysock(env("SWAYSOCK"), runtime_dir), env("HYPRLAND_INSTANCE_SIGNATURE"),
+            runtime_dir};
 }
 
 std::unique_ptr<Desktop> make_wlroots_desktop(WlrootsSession session) {
