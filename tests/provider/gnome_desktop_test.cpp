@@ -15,6 +15,7 @@
 #include "desktop/gnome/gnome_shell_client.hpp"
 #include "desktop/gnome/gnome_window_watch.hpp"
 #include "provider/gui_test_app.hpp"
+#include "provider/qt_pump.hpp"
 #include "screen/screen_field.hpp"
 #include "support/gnome_session.hpp"
 #include "support/mutter_remote_desktop.hpp"
@@ -389,6 +390,42 @@ TEST(GnomeDesktop, PulsesAtSixtyHertzCheaply) {
     // The last step arrived.
     const unsigned last = static_cast<unsigned>(std::lround(255 * surface->pulse_opacity()));
     EXPECT_TRUE(test::wait_until([&] { return desktop->shell().field_state()[0].opacity == last; }, 2s));
+}
+
+// The extension disabled while the provider runs, then enabled again (as a
+// shell restart does too): the field comes back as it was.
+TEST(GnomeDesktop, TheFieldComesBackWithTheExtension) {
+    SKIP_WITHOUT_GNOME();
+    GnomeSession session;
+    const auto desktop = desktop_of(session);
+    std::unique_ptr<FieldSurface> surface;
+    {
+        AsUser as(session.uid(), session.gid());  // the private folder is the user's
+        surface = desktop->make_field_surface(nullptr, screen_field_for(1920, 1080), {});
+    }
+    ASSERT_TRUE(surface);
+    surface->show();
+    surface->set_opacity(0.4);
+    const unsigned opacity = 102;  // 0.4 of 255
+    const auto shown = [&] {
+        try {
+            const auto state = desktop->shell().field_state();
+            return !state.empty() && state[0].visible && state[0].opacity == opacity;
+        } catch (const DesktopError&) {
+            return false;
+        }
+    };
+    ASSERT_TRUE(test::pump_until(shown, 5000));
+    const auto extensions = [&](const char* what) {
+        return session.run_client({"gdbus", "call", "--session", "-d", "org.gnome.Shell", "-o", "/org/gnome/Shell",
+                                   "-m", std::string("org.gnome.Shell.Extensions.") + what, UMF_GNOME_EXTENSION_UUID});
+    };
+    EXPECT_NE(extensions("DisableExtension").find("true"), std::string::npos);
+    ASSERT_TRUE(test::pump_until([&] { return !desktop->shell().extension_present(); }, 5000));
+    EXPECT_FALSE(desktop->window_at(10, 10, {}));  // answers at once, with nothing
+    EXPECT_NE(extensions("EnableExtension").find("true"), std::string::npos);
+    AsUser as(session.uid(), session.gid());  // as the provider runs: the user's private folder
+    EXPECT_TRUE(test::pump_until(shown, 10000)) << "the field did not come back with the extension";
 }
 
 TEST(GnomeDesktop, WithoutTheExtensionSaysWhatToDoAndDoesNotHang) {

@@ -28,7 +28,16 @@ bool extension_installed() {
 
 }  // namespace
 
-GnomeDesktop::GnomeDesktop(std::chrono::milliseconds timeout) : shell_(std::make_shared<GnomeShellClient>(timeout)) {}
+GnomeDesktop::GnomeDesktop(std::chrono::milliseconds timeout) : shell_(std::make_shared<GnomeShellClient>(timeout)) {
+    extension_watch_ = shell_->watch_extension([stopped = false](bool running) mutable {
+        if (running && stopped)
+            std::cerr << "umf-provider: the umf GNOME Shell extension runs again: the field, windows and snapshots are back\n";
+        stopped = !running;
+        if (!running)
+            std::cerr << "umf-provider: the umf GNOME Shell extension stopped (disabled, or GNOME Shell restarted): no "
+                         "field, windows or snapshots until it runs again; boards, shares and puts go on\n";
+    });
+}
 
 GnomeDesktop::~GnomeDesktop() = default;
 

@@ -4,6 +4,7 @@
 // bus. Without it, abilities() says what to do and every query fails fast.
 #pragma once
 
+#include <QObject>
 #include <chrono>
 #include <memory>
 
@@ -38,6 +39,7 @@ public:
 private:
     Capture read_shot(const WindowRect& rect, bool with_field) const;
     std::shared_ptr<GnomeShellClient> shell_;
+    std::unique_ptr<QObject> extension_watch_;  // says on the console when the extension stops and comes back
 };
 
 // For the lead's backend choice.

@@ -28,6 +28,9 @@ GnomeFieldSurface::GnomeFieldSurface(std::shared_ptr<const GnomeShellClient> she
     monitor_ = find_monitor();
     private_runtime_folder();  // throws when it cannot be used
     send_layer();
+    extension_watch_ = shell_->watch_extension([this](bool running) {
+        if (running) send_layer();
+    });
 }
 
 GnomeFieldSurface::~GnomeFieldSurface() { shell_->drop_field(monitor_); }

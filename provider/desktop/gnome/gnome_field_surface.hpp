@@ -4,6 +4,7 @@
 // focus circle and hide/show are small calls sent without waiting.
 #pragma once
 
+#include <QObject>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,6 +55,9 @@ private:
     std::optional<QPointF> focus_centre_;
     double focus_radius_ = 0.0;
     bool visible_ = false;
+    // The extension started again (enabled, or the shell restarted) shows
+    // nothing until told: the layer and its state are sent again.
+    std::unique_ptr<QObject> extension_watch_;
 };
 
 }  // namespace umf::provider

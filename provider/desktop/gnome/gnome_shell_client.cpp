@@ -6,6 +6,7 @@
 #include <QDBusMessage>
 #include <QDBusMetaType>
 #include <QDBusReply>
+#include <QDBusServiceWatcher>
 #include <QList>
 #include <QStringList>
 #include <QVariant>
@@ -112,6 +113,16 @@ GnomeShellClient::~GnomeShellClient() = default;
 bool GnomeShellClient::extension_present() const {
     const auto reply = impl_->bus_.interface()->isServiceRegistered(kGnomeShellBusName);
     return reply.isValid() && reply.value();
+}
+
+std::unique_ptr<QObject> GnomeShellClient::watch_extension(std::function<void(bool running)> changed) const {
+    auto watcher = std::make_unique<QDBusServiceWatcher>(kGnomeShellBusName, impl_->bus_,
+                                                         QDBusServiceWatcher::WatchForOwnerChange);
+    QObject::connect(watcher.get(), &QDBusServiceWatcher::serviceOwnerChanged, watcher.get(),
+                     [changed = std::move(changed)](const QString&, const QString&, const QString& owner) {
+                         changed(!owner.isEmpty());
+                     });
+    return watcher;
 }
 
 GnomeShellVersion GnomeShellClient::version() const {

@@ -4,8 +4,10 @@
 // thread share one; blocking calls wait on the connection's own thread.
 #pragma once
 
+#include <QObject>
 #include <QString>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -42,6 +44,10 @@ public:
     // Whether the extension holds its name on the bus (a quick question to
     // the bus itself).
     bool extension_present() const;
+    // `changed(running)` each time the extension takes or gives up its name
+    // (enabled, disabled, the shell restarted), on the calling thread's
+    // event loop while the returned watcher lives.
+    std::unique_ptr<QObject> watch_extension(std::function<void(bool running)> changed) const;
 
     // Each throws DesktopError: the extension is missing, refused or failed,
     // or did not answer in time.
