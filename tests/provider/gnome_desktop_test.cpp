@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <QCoreApplication>
+#include <QColor>
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
@@ -16,6 +18,7 @@
 #include "desktop/gnome/gnome_window_watch.hpp"
 #include "provider/gui_test_app.hpp"
 #include "provider/qt_pump.hpp"
+#include "screen/pointer_mark.hpp"
 #include "screen/screen_field.hpp"
 #include "support/gnome_session.hpp"
 #include "support/mutter_remote_desktop.hpp"
@@ -390,6 +393,72 @@ TEST(GnomeDesktop, PulsesAtSixtyHertzCheaply) {
     // The last step arrived.
     const unsigned last = static_cast<unsigned>(std::lround(255 * surface->pulse_opacity()));
     EXPECT_TRUE(test::wait_until([&] { return desktop->shell().field_state()[0].opacity == last; }, 2s));
+}
+
+// The ring and title where a phone points: white on a dark outline at full
+// strength over a faint field, nothing elsewhere, not in snapshots, and
+// nothing left behind when it moves and goes.
+TEST(GnomeDesktop, ThePointerMarkShowsAtFullStrengthAboveTheField) {
+    SKIP_WITHOUT_GNOME();
+    GnomeSession session;
+    const auto desktop = desktop_of(session);
+    ASSERT_TRUE(session.leave_overview());
+    AsUser as(session.uid(), session.gid());
+    auto surface = desktop->make_field_surface(nullptr, screen_field_for(1920, 1080), {});
+    ASSERT_TRUE(surface);
+    surface->set_opacity(0.1);
+    surface->show();
+    ASSERT_TRUE(test::wait_until([&] {
+        const auto state = desktop->shell().field_state();
+        return state.size() == 1 && state[0].visible && state[0].opacity == 26;
+    }, 5s));
+    const WindowRect screen{0, 0, 1920, 1080};
+    const auto pixel = [](const Capture& c, int x, int y) { return c.pixels[static_cast<std::size_t>(y) * c.width + x]; };
+    const auto differs = [&](const Capture& a, const Capture& b, int x0, int y0, int x1, int y1) {
+        int worst = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) {
+                const QRgb p = pixel(a, x, y), q = pixel(b, x, y);
+                worst = std::max({worst, std::abs(qRed(p) - qRed(q)), std::abs(qGreen(p) - qGreen(q)),
+                                  std::abs(qBlue(p) - qBlue(q))});
+            }
+        return worst;
+    };
+    const QPointF point(700, 500);
+    const auto ring_extremes = [&](const Capture& shot) {
+        int brightest = 0, darkest = 255;
+        for (int k = 0; k < 360; k += 3) {
+            const double a = k * M_PI / 180.0;
+            for (const double r : {kPointerRingRadius - 1, kPointerRingRadius, kPointerRingRadius + 1}) {
+                const QRgb p = pixel(shot, static_cast<int>(std::lround(point.x() + r * std::cos(a))),
+                                     static_cast<int>(std::lround(point.y() + r * std::sin(a))));
+                brightest = std::max(brightest, std::min({qRed(p), qGreen(p), qBlue(p)}));
+                darkest = std::min(darkest, std::max({qRed(p), qGreen(p), qBlue(p)}));
+            }
+        }
+        return std::pair(brightest, darkest);
+    };
+    const Capture before = desktop->capture_as_shown(screen);
+    const Capture plain_before = desktop->capture({600, 450, 400, 100});
+    surface->set_pointer(point, "Report");
+    std::pair<int, int> extremes;
+    Capture with;
+    EXPECT_TRUE(test::wait_until([&] {
+        with = desktop->capture_as_shown(screen);
+        extremes = ring_extremes(with);
+        return extremes.first >= 235 && extremes.second <= 60;
+    }, 5s)) << "no white ring on a dark outline at full strength: brightest " << extremes.first << ", darkest "
+            << extremes.second;
+    EXPECT_LE(differs(before, with, 100, 800, 1800, 1000), 2) << "the mark changed the field elsewhere";
+    EXPECT_LE(differs(plain_before, desktop->capture({600, 450, 400, 100}), 0, 0, 400, 100), 2)
+        << "the mark is in a snapshot";
+
+    surface->set_pointer(QPointF(1300, 400), "Report");
+    std::this_thread::sleep_for(300ms);
+    surface->set_pointer(std::nullopt, {});
+    EXPECT_TRUE(test::wait_until(
+        [&] { return differs(before, desktop->capture_as_shown(screen), 660, 380, 1500, 520) <= 2; }, 5s))
+        << "the mark left pixels behind";
 }
 
 // The extension disabled while the provider runs, then enabled again (as a

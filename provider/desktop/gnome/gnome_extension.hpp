@@ -16,7 +16,7 @@ inline constexpr const char* kGnomeShellBusName = "org.umf.Shell1";
 inline constexpr const char* kGnomeShellObjectPath = "/org/umf/Shell1";
 inline constexpr const char* kGnomeShellInterface = "org.umf.Shell1";
 // The interface version this provider speaks (Version()'s api).
-inline constexpr unsigned kGnomeShellApi = 1;
+inline constexpr unsigned kGnomeShellApi = 2;
 
 enum class GnomeExtensionForm {
     legacy,  // GNOME 43-44: imports.* and init()

@@ -230,4 +230,10 @@ void GnomeShellClient::send_field_visible(int monitor, bool visible) const {
     impl_->send("SetFieldVisible", {monitor, visible});
 }
 
+void GnomeShellClient::send_pointer(int monitor, const std::string& file_name, double x, double y) const {
+    impl_->send("SetPointer", {monitor, QString::fromStdString(file_name), x, y});
+}
+
+void GnomeShellClient::send_drop_pointer(int monitor) const { impl_->send("DropPointer", {monitor}); }
+
 }  // namespace umf::provider

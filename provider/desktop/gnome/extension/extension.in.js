@@ -13,11 +13,8 @@
 const BUS_NAME = 'org.umf.Shell1';
 const OBJECT_PATH = '/org/umf/Shell1';
 const ERROR_PREFIX = 'org.umf.Shell1.Error';
-const API_VERSION = 1;
+const API_VERSION = 2;
 const IFACE_XML = `@UMF_DBUS_XML@`;
-// The soft edge of the focus circle, as the X11 overlay's: the field fades
-// over the outer 15 % of the radius so its edge does not read as a border.
-const FOCUS_SOFTNESS = 0.15;
 // The caller's uid, per unique bus name; those names are never reused on a
 // bus, so an entry cannot go stale. Bounded for a long session.
 const MAX_KNOWN_SENDERS = 256;
@@ -96,90 +93,13 @@ function nextFrame() {
     });
 }
 
-// Only the field within a soft circle: a fragment mask over the actor.
-const FocusEffect = GObject.registerClass(
-class UmfFocusEffect extends Shell.GLSLEffect {
-    vfunc_build_pipeline() {
-        const hook = (Shell.SnippetHook ?? Cogl.SnippetHook).FRAGMENT;
-        this.add_glsl_snippet(hook,
-            'uniform vec2 umf_centre; uniform float umf_radius; uniform vec2 umf_size; uniform float umf_soft;',
-            'float d = distance(cogl_tex_coord_in[0].xy * umf_size, umf_centre);\n' +
-            'float inner = umf_radius * (1.0 - umf_soft);\n' +
-            'float m = d <= inner ? 1.0 : clamp((umf_radius - d) / max(umf_radius - inner, 0.0001), 0.0, 1.0);\n' +
-            'cogl_color_out *= m;',
-            false);
-    }
-
-    setCircle(x, y, radius, width, height) {
-        this.set_uniform_float(this.get_uniform_location('umf_centre'), 2, [x, y]);
-        this.set_uniform_float(this.get_uniform_location('umf_radius'), 1, [radius]);
-        this.set_uniform_float(this.get_uniform_location('umf_size'), 2, [width, height]);
-        this.set_uniform_float(this.get_uniform_location('umf_soft'), 1, [FOCUS_SOFTNESS]);
-        this.queue_repaint();
-    }
-});
-
-// The field over one monitor: never reactive, so it takes no pointer and no
-// focus; its opacity is the pulse, which costs a composite and no upload.
-class FieldLayer {
-    constructor(parent) {
-        this.actor = new Clutter.Actor({reactive: false, visible: false, name: 'umf-field'});
-        this.actor.set_content_scaling_filters(Clutter.ScalingFilter.NEAREST, Clutter.ScalingFilter.NEAREST);
-        this.imageSize = [0, 0];
-        this.focus = null;
-        this.wanted = false;  // shown when not hidden for a snapshot
-        parent.add_child(this.actor);
-    }
-
-    load(path) {
-        const pixbuf = GdkPixbuf.Pixbuf.new_from_file(path);
-        const content = new St.ImageContent({preferred_width: pixbuf.width, preferred_height: pixbuf.height});
-        const format = pixbuf.has_alpha ? Cogl.PixelFormat.RGBA_8888 : Cogl.PixelFormat.RGB_888;
-        const args = [pixbuf.get_pixels(), format, pixbuf.width, pixbuf.height, pixbuf.rowstride];
-        try {
-            content.set_data(...args);
-        } catch (e) {
-            // GNOME 46+ wants the Cogl context first.
-            content.set_data(global.stage.context.get_backend().get_cogl_context(), ...args);
-        }
-        this.actor.set_content(content);
-        this.imageSize = [pixbuf.width, pixbuf.height];
-        this._applyFocus();
-    }
-
-    cover(monitor) {
-        this.actor.set_position(monitor.x, monitor.y);
-        this.actor.set_size(monitor.width, monitor.height);
-    }
-
-    setFocus(circle) {
-        this.focus = circle;
-        this._applyFocus();
-    }
-
-    _applyFocus() {
-        if (!this.focus) {
-            this.actor.remove_effect_by_name('umf-focus');
-            return;
-        }
-        let effect = this.actor.get_effect('umf-focus');
-        if (!effect) {
-            effect = new FocusEffect();
-            this.actor.add_effect_with_name('umf-focus', effect);
-        }
-        const [x, y, radius] = this.focus;
-        effect.setCircle(x, y, radius, this.imageSize[0], this.imageSize[1]);
-    }
-
-    destroy() {
-        this.actor.destroy();
-    }
-}
+/* @UMF_LAYERS@ */
 
 // The service object behind org.umf.Shell1.
 class UmfShell {
     enable() {
         this._fields = new Map();
+        this._pointers = new Map();
         this._connectors = new Map();
         this._connectorsKnown = false;
         this._shellPid = new Gio.Credentials().get_unix_pid();
@@ -191,7 +111,7 @@ class UmfShell {
         // Chrome added later (a modal dialog, a notification) goes on top of
         // the group: the fields are put back above it.
         const onChildAdded = (_group, child) => {
-            if (!child || child.name !== 'umf-field')
+            if (!child || (child.name !== 'umf-field' && child.name !== 'umf-pointer'))
                 this._raiseFields();
         };
         // 'actor-added' until Mutter 45 named it 'child-added'.
@@ -216,9 +136,10 @@ class UmfShell {
         this._exported = null;
         Main.layoutManager.disconnect(this._monitorsChanged);
         this._parent.disconnect(this._childAdded);
-        for (const field of this._fields.values())
-            field.destroy();
+        for (const layer of [...this._fields.values(), ...this._pointers.values()])
+            layer.destroy();
         this._fields.clear();
+        this._pointers.clear();
     }
 
     // The D-Bus methods, each as NameAsync(params, invocation) so that the
@@ -248,8 +169,16 @@ class UmfShell {
                 f.actor.visible = visible && !this._snapshotting;
             }),
             DropField: ([monitor]) => {
-                this._fields.get(monitor)?.destroy();
-                this._fields.delete(monitor);
+                for (const layers of [this._fields, this._pointers]) {
+                    layers.get(monitor)?.destroy();
+                    layers.delete(monitor);
+                }
+                return null;
+            },
+            SetPointer: ([monitor, name, x, y]) => this._setPointer(monitor, name, x, y),
+            DropPointer: ([monitor]) => {
+                this._pointers.get(monitor)?.destroy();
+                this._pointers.delete(monitor);
                 return null;
             },
             FieldState: () => new GLib.Variant('(a(ibub(iiii)(ii)))', [[...this._fields.entries()].map(([i, f]) => [
@@ -340,12 +269,53 @@ class UmfShell {
                 this._fields.delete(index);
             }
         }
+        for (const [index, pointer] of [...this._pointers.entries()]) {
+            if (index < monitors.length) {
+                pointer.place(monitors[index], this._scale(index), ...pointer.corner);
+            } else {
+                pointer.destroy();
+                this._pointers.delete(index);
+            }
+        }
         this._readConnectors();
     }
 
+    // The fields above every window, the pointer marks above the fields.
     _raiseFields() {
-        for (const field of this._fields.values())
-            this._parent.set_child_above_sibling(field.actor, null);
+        for (const layer of [...this._fields.values(), ...this._pointers.values()])
+            this._parent.set_child_above_sibling(layer.actor, null);
+    }
+
+    // Physical pixels per logical one on a monitor: as its field's image
+    // was made, else as Mutter scales it.
+    _scale(monitor) {
+        const field = this._fields.get(monitor);
+        const logical = Main.layoutManager.monitors[monitor];
+        if (field && field.imageSize[0] > 0)
+            return field.imageSize[0] / logical.width;
+        return logical.geometry_scale ?? 1;
+    }
+
+    // `name` empty: the mark already shown, moved.
+    _setPointer(monitor, name, x, y) {
+        const monitors = Main.layoutManager.monitors;
+        if (!Number.isInteger(monitor) || monitor < 0 || monitor >= monitors.length)
+            throw new RefusedError(`no monitor ${monitor}`);
+        let pointer = this._pointers.get(monitor);
+        if (!pointer && name === '')
+            throw new RefusedError(`no pointer mark on monitor ${monitor}`);
+        if (name !== '') {
+            const path = privateFileToRead(name);
+            if (!pointer) {
+                pointer = new PointerMark(this._parent);
+                this._pointers.set(monitor, pointer);
+            }
+            pointer.load(path);
+        }
+        pointer.place(monitors[monitor], this._scale(monitor), x, y);
+        pointer.actor.visible = !this._snapshotting;
+        this._raiseFields();
+        return null;
     }
 
     _withField(monitor, change) {
@@ -430,8 +400,8 @@ class UmfShell {
         const file = Gio.File.new_for_path(privatePath(name));
         this._snapshotting = !withField;
         if (!withField) {
-            for (const field of this._fields.values())
-                field.actor.visible = false;
+            for (const layer of [...this._fields.values(), ...this._pointers.values()])
+                layer.actor.visible = false;
         }
         try {
             await nextFrame();
@@ -454,6 +424,8 @@ class UmfShell {
             this._snapshotting = false;
             for (const field of this._fields.values())
                 field.actor.visible = field.wanted;
+            for (const pointer of this._pointers.values())
+                pointer.actor.visible = true;
         }
         return new GLib.Variant('(s)', [name]);
     }

@@ -11,6 +11,8 @@ foreach(var SOURCE_DIR OUT_DIR CPP_OUT UUID)
 endforeach()
 
 file(READ "${SOURCE_DIR}/extension.in.js" body)
+file(READ "${SOURCE_DIR}/layers.in.js" layers)
+string(REPLACE "/* @UMF_LAYERS@ */" "${layers}" body "${body}")
 file(READ "${SOURCE_DIR}/org.umf.Shell1.xml" xml)
 file(READ "${SOURCE_DIR}/metadata.in.json" metadata)
 if(xml MATCHES "[`]" OR xml MATCHES "[$][{]")
