@@ -119,6 +119,13 @@ exit codes: 0 success; 2 wrong usage; 3 the configuration directory, TLS
             4 the server could not start, or (share, puts) no provider is running.
 )";
 
+// The tray and tuning window as the serve command knows its controls.
+class TrayControls final : public DesktopControls, public ProviderControls {
+public:
+    using DesktopControls::DesktopControls;
+    void set_status(const std::string& status) override { DesktopControls::set_status(status); }
+};
+
 std::vector<std::string> names(const char* const* list) {
     std::vector<std::string> out;
     for (; *list; ++list) out.emplace_back(*list);
@@ -177,9 +184,9 @@ int dispatch(int argc, char** argv) {
         if (qobject_cast<QApplication*>(app.get()))
             hooks.desktop_controls = [](OverlayManager* overlay, const std::string& status,
                                         const std::string& presets_file, const std::string& pairing_url,
-                                        bool tune) -> std::shared_ptr<void> {
-                auto controls = std::make_shared<DesktopControls>(overlay, status, presets_file, pairing_url,
-                                                                  [] { ::kill(::getpid(), SIGTERM); });
+                                        bool tune) -> std::shared_ptr<ProviderControls> {
+                auto controls = std::make_shared<TrayControls>(overlay, status, presets_file, pairing_url,
+                                                               [] { ::kill(::getpid(), SIGTERM); });
                 if (tune) controls->show_tuning();
                 if (!controls->has_tray() && overlay)
                     std::cerr << "umf-provider: no system tray here; --tune opens the tuning window\n";

@@ -414,7 +414,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
                                                      preset, QGuiApplication::primaryScreen());
         board_window->showFullScreen();
     }
-    std::shared_ptr<void> controls;
+    std::shared_ptr<ProviderControls> controls;
     if (!headless && !board && hooks.desktop_controls) {
         try {
             controls = hooks.desktop_controls(overlay_manager.get(), desktop_summary(desktop),
@@ -423,6 +423,11 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
             std::cerr << "umf-provider: no tray or tuning window: " << e.what() << "\n";
         }
     }
+    if (controls && desktop.desktop)
+        desktop.desktop->on_abilities_changed([&desktop, weak = std::weak_ptr<ProviderControls>(controls)] {
+            desktop.abilities = desktop.desktop->abilities();
+            if (const auto c = weak.lock()) c->set_status(desktop_summary(desktop));
+        });
     if (board_window || overlay_manager || put_prompt || controls) {
         // Windows are up: the Qt event loop runs here, and a thread waits for
         // the signals, stops the server (whose snapshots may wait on this
@@ -438,6 +443,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
             QMetaObject::invokeMethod(qApp, [] { QCoreApplication::quit(); }, Qt::QueuedConnection);
         });
         QGuiApplication::exec();
+        if (desktop.desktop) desktop.desktop->on_abilities_changed({});
         if (got == 0) ::kill(::getpid(), SIGTERM);  // the loop ended otherwise: release the waiter
         waiter.join();
         std::cerr << "umf-provider: stopped\n";

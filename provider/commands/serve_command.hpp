@@ -15,12 +15,20 @@ namespace umf::provider {
 
 class OverlayManager;
 
-// What the executable adds on a desktop (Qt Widgets live outside the core):
-// the controls for a running provider, kept alive while it runs.
+// The controls for a running provider (the tray, the tuning window), kept
+// alive while it runs.
+class ProviderControls {
+public:
+    virtual ~ProviderControls() = default;
+    // What works on this desktop changed (an extension stopped or came back).
+    virtual void set_status(const std::string& status) = 0;
+};
+
+// What the executable adds on a desktop (Qt Widgets live outside the core).
 struct ServeHooks {
     // `overlay` null: the desktop shows no field, and the tray says so in
     // `status` (what works here). `tune`: open the tuning window now.
-    std::function<std::shared_ptr<void>(OverlayManager* overlay, const std::string& status,
+    std::function<std::shared_ptr<ProviderControls>(OverlayManager* overlay, const std::string& status,
                                         const std::string& presets_file, const std::string& pairing_url, bool tune)>
         desktop_controls;
     // Set when a keeper runs this provider (commands/desktop_keeper.hpp):

@@ -17,6 +17,7 @@
 #include <QString>
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <set>
@@ -178,6 +179,12 @@ public:
     // desktop cannot show one (abilities().field is false).
     virtual std::unique_ptr<FieldSurface> make_field_surface(QScreen* screen, ScreenField field,
                                                              const std::vector<std::string>& palette) = 0;
+
+    // `changed` is called on the Qt thread when abilities() may answer
+    // otherwise than before (an extension stopped or came back); one
+    // listener, replaced by the next. Desktops whose abilities are fixed
+    // once open never call it.
+    virtual void on_abilities_changed(std::function<void()> /*changed*/) {}
 };
 
 }  // namespace umf::provider

@@ -52,6 +52,10 @@ DesktopControls::DesktopControls(OverlayManager* overlay, const std::string& sta
 
 DesktopControls::~DesktopControls() = default;
 
+void DesktopControls::set_status(const std::string& status) {
+    if (tray_) tray_->set_status(status);
+}
+
 void DesktopControls::show_tuning() {
     if (!overlay_) return;
     if (!tuning_) {

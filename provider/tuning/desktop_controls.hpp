@@ -33,6 +33,8 @@ public:
 
     void show_tuning();
     void show_pairing();
+    // What works on this desktop changed: the tray says it now.
+    void set_status(const std::string& status);
 
 private:
     OverlayManager* overlay_;

@@ -31,7 +31,6 @@ QIcon field_icon(int size) {
 TrayMenu::TrayMenu(const std::vector<std::string>& presets, const std::string& current_preset, bool overlay_on,
                    TrayCallbacks callbacks, const std::string& status)
     : callbacks_(std::move(callbacks)), menu_(std::make_unique<QMenu>()), tray_(std::make_unique<QSystemTrayIcon>()) {
-    add_status(status);
     overlay_ = menu_->addAction("Overlay on");
     overlay_->setCheckable(true);
     overlay_->setChecked(overlay_on);
@@ -49,20 +48,34 @@ TrayMenu::TrayMenu(const std::vector<std::string>& presets, const std::string& c
         if (callbacks_.tune) callbacks_.tune();
     });
     add_common();
+    set_status(status);
 }
 
 TrayMenu::TrayMenu(TrayCallbacks callbacks, const std::string& status)
     : callbacks_(std::move(callbacks)), menu_(std::make_unique<QMenu>()), tray_(std::make_unique<QSystemTrayIcon>()) {
-    add_status(status);
     add_common();
+    set_status(status);
 }
 
-void TrayMenu::add_status(const std::string& status) {
-    if (status.empty()) return;
-    // A line to read, not to click.
-    QAction* line = menu_->addAction(QString::fromStdString(status));
-    line->setEnabled(false);
-    menu_->addSeparator();
+void TrayMenu::set_status(const std::string& status) {
+    if (status.empty()) {
+        delete status_;
+        delete status_separator_;
+        status_ = status_separator_ = nullptr;
+        tray_->setToolTip("umf provider");
+        return;
+    }
+    const QString text = QString::fromStdString(status);
+    if (!status_) {
+        // A line to read, not to click, above everything else.
+        QAction* first = menu_->actions().value(0);
+        status_ = new QAction(text, menu_.get());
+        status_->setEnabled(false);
+        menu_->insertAction(first, status_);
+        status_separator_ = menu_->insertSeparator(first);
+    }
+    status_->setText(text);
+    tray_->setToolTip("umf provider: " + text);
 }
 
 void TrayMenu::add_common() {
@@ -74,9 +87,7 @@ void TrayMenu::add_common() {
         if (callbacks_.quit) callbacks_.quit();
     });
     tray_->setIcon(field_icon());
-    const QList<QAction*> actions = menu_->actions();
-    const bool has_status = !actions.isEmpty() && !actions.first()->isEnabled();
-    tray_->setToolTip(has_status ? "umf provider: " + actions.first()->text() : QString("umf provider"));
+    tray_->setToolTip("umf provider");
     tray_->setContextMenu(menu_.get());
 }
 

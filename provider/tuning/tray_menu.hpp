@@ -45,6 +45,9 @@ public:
     // without calling back.
     void set_presets(const std::vector<std::string>& presets, const std::string& current_preset);
     void set_overlay_on(bool on);
+    // What works on this desktop changed: the line heading the menu and the
+    // tooltip say it now (empty: neither says anything).
+    void set_status(const std::string& status);
 
     QMenu* menu() const { return menu_.get(); }
     QSystemTrayIcon* tray_icon() const { return tray_.get(); }
@@ -56,8 +59,9 @@ private:
     QAction* overlay_ = nullptr;
     QMenu* presets_ = nullptr;
     QActionGroup* preset_group_ = nullptr;
+    QAction* status_ = nullptr;  // the line heading the menu
+    QAction* status_separator_ = nullptr;
 
-    void add_status(const std::string& status);
     void add_common();
 };
 

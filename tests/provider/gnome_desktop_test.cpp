@@ -485,16 +485,23 @@ TEST(GnomeDesktop, TheFieldComesBackWithTheExtension) {
         }
     };
     ASSERT_TRUE(test::pump_until(shown, 5000));
+    test::pump_until([] { return false; }, 300);  // the extension's start, if it was still starting, is past
+    int changes = 0;
+    desktop->on_abilities_changed([&] { ++changes; });
     const auto extensions = [&](const char* what) {
         return session.run_client({"gdbus", "call", "--session", "-d", "org.gnome.Shell", "-o", "/org/gnome/Shell",
                                    "-m", std::string("org.gnome.Shell.Extensions.") + what, UMF_GNOME_EXTENSION_UUID});
     };
     EXPECT_NE(extensions("DisableExtension").find("true"), std::string::npos);
     ASSERT_TRUE(test::pump_until([&] { return !desktop->shell().extension_present(); }, 5000));
+    EXPECT_TRUE(test::pump_until([&] { return changes == 1; }, 2000)) << "the tray was not told";
+    EXPECT_FALSE(desktop->abilities().field);
     EXPECT_FALSE(desktop->window_at(10, 10, {}));  // answers at once, with nothing
     EXPECT_NE(extensions("EnableExtension").find("true"), std::string::npos);
     AsUser as(session.uid(), session.gid());  // as the provider runs: the user's private folder
     EXPECT_TRUE(test::pump_until(shown, 10000)) << "the field did not come back with the extension";
+    EXPECT_EQ(changes, 2);
+    EXPECT_TRUE(desktop->abilities().field);
 }
 
 TEST(GnomeDesktop, WithoutTheExtensionSaysWhatToDoAndDoesNotHang) {

@@ -389,6 +389,33 @@ TEST(TrayMenu, ADesktopWithoutAFieldSaysWhatWorks) {
     tray.set_presets({"kiosk"}, "kiosk");
 }
 
+// The desktop's abilities change while the provider runs (GNOME's extension
+// stopped, or came back): the tray says what works now.
+TEST(TrayMenu, TheStatusFollowsTheDesktop) {
+    REQUIRE_WIDGETS();
+    TrayMenu tray({"balanced", "kiosk"}, "balanced", true, {});
+    EXPECT_EQ(tray.tray_icon()->toolTip(), "umf provider");
+    EXPECT_EQ(tray.menu()->actions().at(0)->text(), "Overlay on");
+    const auto texts = [&] {
+        QStringList out;
+        for (QAction* a : tray.menu()->actions()) out << (a->isSeparator() ? QString("--") : a->text());
+        return out;
+    };
+    const QStringList plain = texts();
+    tray.set_status("No field on this desktop (gnome): boards, shares and puts work.");
+    EXPECT_EQ(tray.menu()->actions().at(0)->text(), "No field on this desktop (gnome): boards, shares and puts work.");
+    EXPECT_FALSE(tray.menu()->actions().at(0)->isEnabled());
+    EXPECT_TRUE(tray.menu()->actions().at(1)->isSeparator());
+    EXPECT_EQ(tray.tray_icon()->toolTip(), "umf provider: No field on this desktop (gnome): boards, shares and puts work.");
+    tray.set_status("The field is shown on gnome.");
+    EXPECT_EQ(tray.menu()->actions().at(0)->text(), "The field is shown on gnome.");
+    EXPECT_EQ(texts().size(), plain.size() + 2) << "one line and its separator, not two";
+    EXPECT_TRUE(tray.tray_icon()->toolTip().endsWith("The field is shown on gnome."));
+    tray.set_status("");
+    EXPECT_EQ(texts(), plain);
+    EXPECT_EQ(tray.tray_icon()->toolTip(), "umf provider");
+}
+
 }  // namespace
 
 #endif  // UMF_PROVIDER_TESTS && UMF_PROVIDER_TUNING

@@ -29,15 +29,20 @@ bool extension_installed() {
 }  // namespace
 
 GnomeDesktop::GnomeDesktop(std::chrono::milliseconds timeout) : shell_(std::make_shared<GnomeShellClient>(timeout)) {
-    extension_watch_ = shell_->watch_extension([stopped = false](bool running) mutable {
-        if (running && stopped)
+    // Only changes are news: the name taken while the shell starts is not.
+    extension_watch_ = shell_->watch_extension([this, was_running = shell_->extension_present()](bool running) mutable {
+        if (running == was_running) return;
+        was_running = running;
+        if (running)
             std::cerr << "umf-provider: the umf GNOME Shell extension runs again: the field, windows and snapshots are back\n";
-        stopped = !running;
-        if (!running)
+        else
             std::cerr << "umf-provider: the umf GNOME Shell extension stopped (disabled, or GNOME Shell restarted): no "
                          "field, windows or snapshots until it runs again; boards, shares and puts go on\n";
+        if (abilities_changed_) abilities_changed_();
     });
 }
+
+void GnomeDesktop::on_abilities_changed(std::function<void()> changed) { abilities_changed_ = std::move(changed); }
 
 GnomeDesktop::~GnomeDesktop() = default;
 

@@ -32,6 +32,7 @@ public:
     // `screen` null: the first monitor.
     std::unique_ptr<FieldSurface> make_field_surface(QScreen* screen, ScreenField field,
                                                      const std::vector<std::string>& palette) override;
+    void on_abilities_changed(std::function<void()> changed) override;
 
     // The extension's own connection, for checks of what it shows.
     const GnomeShellClient& shell() const { return *shell_; }
@@ -40,6 +41,7 @@ private:
     Capture read_shot(const WindowRect& rect, bool with_field) const;
     std::shared_ptr<GnomeShellClient> shell_;
     std::unique_ptr<QObject> extension_watch_;  // says on the console when the extension stops and comes back
+    std::function<void()> abilities_changed_;
 };
 
 // For the lead's backend choice.
