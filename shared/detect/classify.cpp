@@ -56,6 +56,69 @@ double otsu(std::vector<double> v, double& low_mean, double& high_mean) {
     return threshold;
 }
 
+
+// The field's step between a dark and a light module over the same
+// content, as the image shows it: adjacent modules either read alike or
+// differ by it, and only a few pairs straddle a change of the content
+// (a card's border, a picture's edge), so it is the upper quarter of the
+// differences between neighbours. 0 when too few pairs were seen.
+double field_step(const std::vector<double>& value, int rows, int cols) {
+    std::vector<double> d;
+    for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < cols; ++j) {
+            const double v = value[static_cast<std::size_t>(i) * cols + j];
+            if (!std::isfinite(v)) continue;
+            if (j + 1 < cols && std::isfinite(value[static_cast<std::size_t>(i) * cols + j + 1]))
+                d.push_back(std::abs(value[static_cast<std::size_t>(i) * cols + j + 1] - v));
+            if (i + 1 < rows && std::isfinite(value[static_cast<std::size_t>(i + 1) * cols + j]))
+                d.push_back(std::abs(value[static_cast<std::size_t>(i + 1) * cols + j] - v));
+        }
+    if (d.size() < 8) return 0;
+    const auto q = d.begin() + static_cast<std::ptrdiff_t>(d.size() * 3 / 4);
+    std::nth_element(d.begin(), q, d.end());
+    return *q;
+}
+
+// Binary modules, each judged against the modules around it that lie over
+// the same content: pictures, text and cards change the brightness under
+// the field, and in a binary field about half of any 5 x 5 block is dark.
+// Neighbours farther from a module's value than the field's step can
+// explain lie over other content (across a card's border) and are left
+// out, so the threshold does not fall between two backgrounds. The global
+// threshold is the fallback where too few neighbours are left.
+void classify_binary(const std::vector<double>& value, int rows, int cols, double threshold, double gap,
+                     const ClassifyOptions& o, ModuleGrid& g) {
+    constexpr int kRadius = 2;
+    const double step = field_step(value, rows, cols);
+    // A field step read under another tone curve or gain, and noise, stay within this.
+    const double reach = 1.6 * step;
+    for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < cols; ++j) {
+            const std::size_t k = static_cast<std::size_t>(i) * cols + j;
+            const double v = value[k];
+            if (!std::isfinite(v)) continue;
+            double sum = 0, sq = 0;
+            int n = 0;
+            for (int a = std::max(0, i - kRadius); a <= std::min(rows - 1, i + kRadius); ++a)
+                for (int b = std::max(0, j - kRadius); b <= std::min(cols - 1, j + kRadius); ++b) {
+                    const double u = value[static_cast<std::size_t>(a) * cols + b];
+                    if (!std::isfinite(u) || (step > 0 && std::abs(u - v) > reach)) continue;
+                    sum += u;
+                    sq += u * u;
+                    ++n;
+                }
+            double local = threshold, local_gap = gap;
+            if (n >= 8) {
+                local = sum / n;
+                const double var = std::max(0.0, sq / n - local * local);
+                // Two equal clusters sit one standard deviation from their middle.
+                local_gap = 2 * std::sqrt(var);
+            }
+            if (std::abs(v - local) < o.doubt * local_gap) continue;
+            g.value[k] = v > local ? 1 : 0;
+        }
+}
+
 }  // namespace
 
 ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int rows, int cols, int colors,
@@ -74,47 +137,7 @@ ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int ro
     const double threshold = otsu(seen, low, high);
     const double gap = high - low;
     if (!edge_key && colors == 2) {
-        // Pictures and text change the brightness under the field, so each
-        // module is judged against the modules around it: in a binary field
-        // about half of any 5 x 5 block is dark. The global threshold is the
-        // fallback where few neighbours were seen.
-        constexpr int kRadius = 2;
-        // Sums over any block from summed-area tables of the values, their
-        // squares and how many were seen.
-        const int w1 = cols + 1;
-        std::vector<double> sum((rows + 1) * static_cast<std::size_t>(w1), 0.0), sq(sum.size(), 0.0);
-        std::vector<int> seen_n(sum.size(), 0);
-        for (int i = 0; i < rows; ++i)
-            for (int j = 0; j < cols; ++j) {
-                const double v = value[static_cast<std::size_t>(i) * cols + j];
-                const bool ok = std::isfinite(v);
-                const std::size_t k = static_cast<std::size_t>(i + 1) * w1 + j + 1;
-                sum[k] = (ok ? v : 0) + sum[k - 1] + sum[k - w1] - sum[k - w1 - 1];
-                sq[k] = (ok ? v * v : 0) + sq[k - 1] + sq[k - w1] - sq[k - w1 - 1];
-                seen_n[k] = ok + seen_n[k - 1] + seen_n[k - w1] - seen_n[k - w1 - 1];
-            }
-        auto block = [w1](const auto& t, int i0, int j0, int i1, int j1) {  // rows i0..i1-1, cols j0..j1-1
-            return t[static_cast<std::size_t>(i1) * w1 + j1] - t[static_cast<std::size_t>(i0) * w1 + j1] -
-                   t[static_cast<std::size_t>(i1) * w1 + j0] + t[static_cast<std::size_t>(i0) * w1 + j0];
-        };
-        for (int i = 0; i < rows; ++i)
-            for (int j = 0; j < cols; ++j) {
-                const std::size_t k = static_cast<std::size_t>(i) * cols + j;
-                const double v = value[k];
-                if (!std::isfinite(v)) continue;
-                const int i0 = std::max(0, i - kRadius), i1 = std::min(rows, i + kRadius + 1);
-                const int j0 = std::max(0, j - kRadius), j1 = std::min(cols, j + kRadius + 1);
-                const int n = block(seen_n, i0, j0, i1, j1);
-                double local = threshold, local_gap = gap;
-                if (n >= 12) {
-                    local = block(sum, i0, j0, i1, j1) / n;
-                    const double var = std::max(0.0, block(sq, i0, j0, i1, j1) / n - local * local);
-                    // Two equal clusters sit one standard deviation from their middle.
-                    local_gap = 2 * std::sqrt(var);
-                }
-                if (std::abs(v - local) < o.doubt * local_gap) continue;
-                g.value[k] = v > local ? 1 : 0;
-            }
+        classify_binary(value, rows, cols, threshold, gap, o, g);
         g.derive_edges();
         return g;
     }
