@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 
+#include "detect/field_edgels.hpp"
 #include "detect/homography.hpp"
 
 namespace umf {
@@ -54,6 +55,33 @@ std::optional<GridPlacement> predict_placement(const Eigen::Matrix3d& image_to_f
     return p;
 }
 
+// Small modules: a family's lines labelled at half the module (text lines
+// or a blurred module's two flanks between the true ones) spaces them half
+// as far as the other family's. Modules are square and the view at most
+// moderately foreshortened, so such a labelling also stands for the two
+// that keep every other line: the even labels, and the odd ones.
+void add_halved_labellings(std::vector<GridLineFamily>& family, double other_spacing) {
+    const std::size_t n = family.size();
+    for (std::size_t h = 0; h < n; ++h) {
+        if (!(family[h].spacing_px > 0) || family[h].spacing_px > 0.7 * other_spacing) continue;
+        for (int parity = 0; parity < 2; ++parity) {
+            GridLineFamily halved = family[h];
+            halved.lines.clear();
+            for (const GridLine& line : family[h].lines)
+                if (((line.index % 2) + 2) % 2 == parity) {
+                    halved.lines.push_back(line);
+                    halved.lines.back().index = (line.index - parity) / 2;
+                }
+            if (halved.lines.size() < 3) continue;
+            // Indices from 0, as every labelling's are.
+            const int first = halved.lines.front().index;
+            for (GridLine& line : halved.lines) line.index -= first;
+            halved.spacing_px *= 2;
+            family.push_back(std::move(halved));
+        }
+    }
+}
+
 }  // namespace
 
 Detector::Detector(const Field& field, DetectorOptions options) : index_(field), options_(std::move(options)) {}
@@ -90,7 +118,7 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
     EdgelScan scan = find_edgels(im, options_.edgels);
     out.pixels_visited += scan.pixels_visited;
     out.times.edgels_ms += ms_since(t);
-    const char* failure = search(im, aim, prior, scan, out);
+    const char* failure = search_all_then_field_like(im, aim, prior, scan, out);
     int offset = options_.edgels.offset >= 0 ? options_.edgels.offset : scan.step / 2;  // of the scanlines so far
     while (failure && options_.rescan && scan.step >= 8) {
         EdgelOptions between = options_.edgels;
@@ -103,11 +131,26 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
         scan.step /= 2;
         out.pixels_visited += more.pixels_visited;
         out.times.edgels_ms += ms_since(t);
-        failure = search(im, aim, prior, scan, out);
+        failure = search_all_then_field_like(im, aim, prior, scan, out);
     }
     out.failure = failure ? failure : "";
     out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     return out;
+}
+
+const char* Detector::search_all_then_field_like(const GreyView& im, const Eigen::Vector2d& aim,
+                                                 const DetectionPrior* prior, const EdgelScan& scan, Detection& out) const {
+    const char* failure = search(im, aim, prior, scan, out);
+    if (!failure) return nullptr;
+    // A faint field under strong content: its own edges alone (field_edgels.hpp),
+    // when that leaves out enough of the others to matter.
+    auto t = Clock::now();
+    EdgelScan field_like = scan;
+    field_like.edgels = edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels));
+    out.times.edgels_ms += ms_since(t);
+    if (field_like.edgels.size() < 40 || field_like.edgels.size() > scan.edgels.size() * 17 / 20) return failure;
+    const char* again = search(im, aim, prior, field_like, out);
+    return again ? failure : nullptr;
 }
 
 const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
@@ -128,6 +171,7 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
             return "no grid lines";
         }
     }
+    for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
     out.times.grid_ms += ms_since(t);
 
     // Steps 4 to 6 for each pair of labellings, the likeliest first, until

@@ -88,6 +88,10 @@ public:
     const Field& field() const { return index_.field(); }
 
 private:
+    // search over all of a scan's edgels, then, when that fails, over the
+    // field-like ones alone (field_edgels.hpp).
+    const char* search_all_then_field_like(const GreyView& image, const Eigen::Vector2d& aim,
+                                           const DetectionPrior* prior, const EdgelScan& scan, Detection& out) const;
     // Steps 2 to 7 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                        const EdgelScan& scan, Detection& out) const;

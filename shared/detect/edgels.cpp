@@ -21,7 +21,8 @@ void sobel(const GreyView& im, int x, int y, float& gx, float& gy) {
 // Edges along one line of samples s[0..n): peaks of the smoothed derivative
 // d[i] = s[i+1] + s[i+2] - s[i-1] - s[i-2] that stand out of the line's noise
 // (a robust estimate from the lower quartile of |d|) and reach
-// the contrast floor. Calls found(position) with a sub-pixel position.
+// the contrast floor. Calls found(position, step) with a sub-pixel position
+// and the grey levels across the edge.
 template <typename Sample, typename Found>
 double scan_line(int n, Sample s, int floor, std::vector<int>& d, std::vector<int>& scratch, Found found) {
     if (n < 7) return 0;
@@ -44,7 +45,7 @@ double scan_line(int n, Sample s, int floor, std::vector<int>& d, std::vector<in
             // A parabola through the three magnitudes places the peak.
             const double den = prev - 2.0 * cur + next;
             const double off = den != 0 ? 0.5 * (prev - next) / den : 0.0;
-            found(i + std::clamp(off, -0.5, 0.5));
+            found(i + std::clamp(off, -0.5, 0.5), cur / 2.0);
         }
         prev = cur;
         cur = next;
@@ -61,13 +62,14 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
     const int thr = std::max(1, o.min_contrast);
     std::vector<int> d, scratch;
     std::vector<double> noise;
-    auto keep = [&](float x, float y, bool on_row) {
+    auto keep = [&](float x, float y, bool on_row, double step) {
         const int xi = std::clamp(static_cast<int>(std::lround(x)), 1, im.width - 2);
         const int yi = std::clamp(static_cast<int>(std::lround(y)), 1, im.height - 2);
         Edgel e;
         e.x = x + 0.5f;  // pixel i covers [i, i+1): its centre is i + 0.5
         e.y = y + 0.5f;
         e.on_row = on_row;
+        e.step = static_cast<float>(step);
         sobel(im, xi, yi, e.gx, e.gy);
         out.pixels_visited += 9;
         out.edgels.push_back(e);
@@ -77,12 +79,12 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
         const std::uint8_t* row = im.row(y);
         out.pixels_visited += im.width;
         noise.push_back(scan_line(im.width, [row](int i) { return static_cast<int>(row[i]); }, thr, d, scratch,
-                                  [&](double x) { keep(static_cast<float>(x), static_cast<float>(y), true); }));
+                                  [&](double x, double step) { keep(static_cast<float>(x), static_cast<float>(y), true, step); }));
     }
     for (int x = first; x < im.width; x += out.step) {
         out.pixels_visited += im.height;
         noise.push_back(scan_line(im.height, [&im, x](int i) { return static_cast<int>(im.at(x, i)); }, thr, d,
-                                  scratch, [&](double y) { keep(static_cast<float>(x), static_cast<float>(y), false); }));
+                                  scratch, [&](double y, double step) { keep(static_cast<float>(x), static_cast<float>(y), false, step); }));
     }
     if (!noise.empty()) {
         std::nth_element(noise.begin(), noise.begin() + noise.size() / 2, noise.end());

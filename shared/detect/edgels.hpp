@@ -14,6 +14,7 @@ struct Edgel {
     float x = 0, y = 0;    // sub-pixel position on its scanline; pixel (i, j) covers [i, i+1) x [j, j+1)
     float gx = 0, gy = 0;  // Sobel gradient there, pointing from dark to bright
     bool on_row = true;    // found on a row (horizontal) scanline, else on a column
+    float step = 0;        // grey levels from one side to the other (two pixels each side)
 };
 
 struct EdgelOptions {
