@@ -4,6 +4,7 @@
 // still photograph (PNG) for the page's photo mode.
 //
 //   umf_fake_camera --provider BIN --board BOARD.json --out VIDEO.y4m [options]
+//   umf_fake_camera --provider BIN --demo-board --out VIDEO.y4m [options]
 //
 // The screen is what the provider shows: `umf-provider compose` paints the
 // board with the field mixed in at several phases of the pulse, and each frame
@@ -50,9 +51,13 @@ const char* const kUsage = R"(umf_fake_camera: a hand-held phone filming one boa
 
 usage:
   umf_fake_camera --provider BIN --board BOARD.json --out VIDEO.y4m [options]
+  umf_fake_camera --provider BIN --demo-board --out VIDEO.y4m [options]
 
 --provider BIN    umf-provider (its compose command paints the screen)
 --board FILE      the board the provider serves (umf-board/1)
+--demo-board      instead of --board: the built-in demo board (what
+                  `umf-provider serve --headless` serves without --board),
+                  written into the --work folder's demo-board/
 --out FILE        the video: YUV4MPEG2, 4:2:0 (C420jpeg), what Chromium's
                   --use-file-for-fake-video-capture plays in a loop
                   (BT.601 video range, as Chromium reads it)
@@ -83,7 +88,7 @@ struct Options {
     double fps = 30, distance_mm = 350;
     cv::Size size{640, 480}, still_size{1280, 720}, screen{1920, 1080};
     std::uint64_t seed = 1;
-    bool check = true;
+    bool check = true, demo_board = false;
 };
 
 struct Usage : std::runtime_error {
@@ -111,6 +116,10 @@ Options parse(int argc, char** argv) {
             o.check = false;
             continue;
         }
+        if (a == "--demo-board") {
+            o.demo_board = true;
+            continue;
+        }
         if (i + 1 >= argc) throw Usage(a + " needs a value");
         const std::string v = argv[++i];
         if (a == "--provider") o.provider = v;
@@ -130,7 +139,9 @@ Options parse(int argc, char** argv) {
         else if (a == "--screen") o.screen = parse_size("screen", v);
         else throw Usage("unknown option " + a);
     }
-    if (o.provider.empty() || o.board.empty()) throw Usage("--provider and --board are needed");
+    if (!o.board.empty() && o.demo_board) throw Usage("--board or --demo-board, not both");
+    if (o.provider.empty() || (o.board.empty() && !o.demo_board))
+        throw Usage("--provider and --board (or --demo-board) are needed");
     if (o.frames > 0 && o.out.empty()) throw Usage("--out is needed (or --frames 0 and --still)");
     if (o.frames == 0 && o.still.empty()) throw Usage("--frames 0 makes only the still: --still is needed");
     if (o.size.width % 2 || o.size.height % 2) throw Usage("--size must be even in both directions (4:2:0)");
@@ -228,6 +239,10 @@ int main(int argc, char** argv) {
     umf::provider::BoardItem item;
     double period = 1.5;
     try {
+        if (o.demo_board) {
+            umf::provider::write_demo_board(fs::path(o.work) / "demo-board");
+            o.board = (fs::path(o.work) / "demo-board" / "board.json").string();
+        }
         const auto board = umf::provider::load_board(o.board);
         if (o.tile < 0 || o.tile >= static_cast<int>(board.items.size()))
             throw Usage("--tile " + std::to_string(o.tile) + ": the board has " + std::to_string(board.items.size()) +
@@ -317,6 +332,8 @@ int main(int argc, char** argv) {
                     {"frames", o.frames},
                     {"fps", o.fps},
                     {"bytes", o.frames > 0 ? fs::file_size(o.out) : 0},
+                    {"board", o.board},
+                    {"preset", o.preset},
                     {"tile", o.tile},
                     {"title", item.title},
                     {"kind", item.file ? "file" : "url"},

@@ -2,15 +2,17 @@
 // web.browser.*; tests/web/browser/README.md has the page contract it checks).
 //
 //   node run.mjs --scenario NAME --provider BIN --site DIR --board BOARD.json
-//                --fixtures DIR --modules DIR [--chromium PATH] [--headed] [--keep]
+//                --fixtures DIR --modules DIR [--chromium PATH] [--tile N] [--headed] [--keep]
 //
 // --site      the phone page's folder (build/.../web/site), served by the
 //             provider with --web; without index.html the scenario skips
 // --fixtures  where web.browser.video_* wrote tile0.y4m, tile1.y4m, tile2.png
 // --modules   the node_modules that web.browser.npm_install filled
+// --tile      kiosk_lock: the demo board's tile (0..5) its video films
 // Scenarios: camera_file, camera_url_http, photo, wrong_token, unreachable,
 // camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo,
-// unpaired, put_file, put_url_http, put_refused, put_carry, put_note, share_target. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
+// unpaired, put_file, put_url_http, put_refused, put_carry, put_note, share_target,
+// kiosk_lock. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
 // Chromium, playwright-core or a fixture is missing), 2 usage.
 import { spawn } from 'node:child_process';
 import crypto from 'node:crypto';
@@ -40,7 +42,7 @@ const opts = { chromium: '/usr/bin/chromium', headed: false, keep: false };
 }
 function usage(message) {
   console.error(`run.mjs: ${message}\nusage: node run.mjs --scenario NAME --provider BIN --site DIR --board BOARD.json ` +
-                '--fixtures DIR --modules DIR [--chromium PATH] [--headed] [--keep]');
+                '--fixtures DIR --modules DIR [--chromium PATH] [--tile N] [--headed] [--keep]');
   process.exit(2);
 }
 
@@ -71,8 +73,9 @@ try {
 }
 const SCENARIOS = ['camera_file', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
                    'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
-                   'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'share_target'];
+                   'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'share_target', 'kiosk_lock'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
+if (opts.scenario === 'kiosk_lock' && !/^\d+$/.test(opts.tile ?? '')) usage('kiosk_lock needs --tile N (the demo board\'s tile)');
 const boardFile = path.resolve(opts.board);
 const board = JSON.parse(fs.readFileSync(boardFile, 'utf8'));
 const item = (i) => {
@@ -99,9 +102,10 @@ const current = { page: null, consoleLines: [], provider: null };
 const work = fs.mkdtempSync(path.join(os.tmpdir(), `umf-browser-${opts.scenario}-`));
 const cleanups = [];
 
-// extra: more serve arguments (--puts ...); env: more environment.
-async function startProvider({ extra = [], env = {} } = {}) {
-  const args = ['serve', '--headless', '--board', boardFile, '--screen', '1920x1080', '--port', '0',
+// extra: more serve arguments (--puts ...); env: more environment; board:
+// null serves the built-in demo board (no --board).
+async function startProvider({ extra = [], env = {}, board = boardFile } = {}) {
+  const args = ['serve', '--headless', ...(board ? ['--board', board] : []), '--screen', '1920x1080', '--port', '0',
                 '--bind', '127.0.0.1', '--config-dir', path.join(work, 'config'), '--no-qr', '--web', opts.site, ...extra];
   const child = spawn(opts.provider, args, { stdio: ['ignore', 'pipe', 'pipe'],
                                              env: { ...process.env, XDG_RUNTIME_DIR: work, ...env } });
@@ -371,6 +375,85 @@ async function answerPut(provider, answer, timeoutMs) {
 function logPutLines(provider) {
   const lines = provider.output().split('\n').filter((l) => /\bput/i.test(l));
   if (lines.length) log(`provider:\n    ${lines.join('\n    ')}`);
+}
+
+// ---------------------------------------------------------------- kiosk_lock
+// The kiosk preset's pulse (shared/overlay/preset.cpp): 1.5 s; three periods.
+const KIOSK_PERIODS = 3;
+const KIOSK_WATCH_MS = KIOSK_PERIODS * 1500;
+
+// In the page: body[data-state] and #grab's disabled for durationMs, every
+// change as it happens (MutationObserver) and sampled on every animation
+// frame and every 20 ms besides; the detector's results as umfDebug counts
+// them, and the titles #target-title showed. Times are from the start.
+async function watchLock({ durationMs }) {
+  const grab = document.getElementById('grab');
+  const titleEl = document.getElementById('target-title');
+  const t0 = performance.now();
+  const events = [];
+  const titles = [];
+  let last = null;
+  let samples = 0;
+  let rafs = 0;
+  let lastResult = window.umfDebug.lastResult;
+  let resultsNotLocked = 0;
+  const frames0 = window.umfDebug.frames;
+  const note = (how) => {
+    samples += 1;
+    const state = document.body.dataset.state;
+    const enabled = !!grab && !grab.disabled;
+    const key = `${state}/${enabled}`;
+    if (key !== last) {
+      events.push({ t: performance.now() - t0, state, grab: enabled, how });
+      last = key;
+    }
+    const title = titleEl?.textContent.trim();
+    if (title && !titles.includes(title)) titles.push(title);
+    const r = window.umfDebug.lastResult;
+    if (r && r !== lastResult) {
+      lastResult = r;
+      if (r.state !== 'locked') resultsNotLocked += 1;
+    }
+  };
+  note('start');
+  const observer = new MutationObserver(() => note('change'));
+  observer.observe(document.body, { attributes: true, attributeFilter: ['data-state'] });
+  if (grab) observer.observe(grab, { attributes: true, attributeFilter: ['disabled'] });
+  if (titleEl) observer.observe(titleEl, { childList: true, characterData: true, subtree: true });
+  const timer = setInterval(() => note('timer'), 20);
+  let running = true;
+  const frame = () => {
+    if (!running) return;
+    rafs += 1;
+    note('frame');
+    requestAnimationFrame(frame);
+  };
+  requestAnimationFrame(frame);
+  await new Promise((resolve) => setTimeout(resolve, durationMs));
+  running = false;
+  clearInterval(timer);
+  observer.disconnect();
+  note('end');
+  const ms = performance.now() - t0;
+  return { ms, events, titles, samples, rafs, results: window.umfDebug.frames - frames0, resultsNotLocked };
+}
+
+// Time locked with Grab enabled, and the unlocked stretches.
+function summariseWatch(w) {
+  let lockedMs = 0;
+  let longestUnlockMs = 0;
+  let unlocks = 0;
+  for (let i = 0; i < w.events.length; ++i) {
+    const e = w.events[i];
+    const end = i + 1 < w.events.length ? w.events[i + 1].t : w.ms;
+    const ok = e.state === 'locked' && e.grab;
+    if (ok) lockedMs += end - e.t;
+    else {
+      unlocks += 1;
+      longestUnlockMs = Math.max(longestUnlockMs, end - e.t);
+    }
+  }
+  return { lockedPercent: (100 * lockedMs) / w.ms, longestUnlockMs, unlocks };
 }
 
 // ---------------------------------------------------------------- scenarios
@@ -851,6 +934,48 @@ Object.assign(scenarios, {
     // (A form's textarea sends its line break as CRLF, Android as LF.)
     check(note && note.name === 'Buy milk.txt' && [18, 19].includes(note.size),
           `shared text opens Put mode with a note (${JSON.stringify(note)})`);
+  },
+
+  // The kiosk preset on the built-in demo board, filmed over one tile: once
+  // the page has locked, it stays locked, Grab enabled, through three pulse
+  // periods (the issue: "the pulse loses the lock … a person sees the Grab
+  // button blink"). No tolerance: one frame out of "locked" is a blink.
+  async kiosk_lock() {
+    const tile = Number(opts.tile);
+    const video = fixture(`kiosk_tile${tile}.y4m`);
+    const provider = await startProvider({ board: null, extra: ['--preset', 'kiosk'] });
+    check(/preset kiosk\b/.test(provider.output()), 'the provider runs the kiosk preset');
+    // What it serves: the demo board it wrote into its configuration folder.
+    const demoFile = path.join(work, 'config', 'demo-board', 'board.json');
+    check(fs.existsSync(demoFile), `the provider serves its built-in demo board (${demoFile})`);
+    const demo = JSON.parse(fs.readFileSync(demoFile, 'utf8'));
+    if (!(tile < demo.items.length)) throw new Failure(`--tile ${tile}: the demo board has ${demo.items.length} tiles`);
+    const title = demo.items[tile].title;
+    const browser = await launch({ video });
+    const page = await openPage(browser, pageUrl(provider.pairing, {}));
+    await waitForState(page, ['locked'], 30000);
+    const d0 = await debugOf(page);
+    log(`first lock ${Math.round(d0.firstLockMs)} ms after page load; watching ${KIOSK_PERIODS} pulse periods ` +
+        `(${KIOSK_WATCH_MS} ms)`);
+    const w = await page.evaluate(watchLock, { durationMs: KIOSK_WATCH_MS });
+    const s = summariseWatch(w);
+    const timeline = () => w.events.map((e) => `${e.t.toFixed(0)} ms ${e.state}${e.grab ? '' : ' (grab disabled)'}`)
+      .join(' → ');
+    log(`watched ${w.ms.toFixed(0)} ms: ${w.samples} samples (${w.rafs} animation frames), ${w.results} detector ` +
+        `results (${(w.results / (w.ms / 1000)).toFixed(1)} a second), ${w.resultsNotLocked} of those seen not locked; ` +
+        `titles ${JSON.stringify(w.titles)}`);
+    log(`timeline: ${timeline()}`);
+    const line = `KIOSK tile ${tile}: locked ${s.lockedPercent.toFixed(1)} % of ${(w.ms / 1000).toFixed(1)} s, ` +
+                 `longest unlock ${Math.round(s.longestUnlockMs)} ms (${s.unlocks} unlocks, ${w.results} results, ` +
+                 `"${title}")`;
+    console.log(line);
+    check(w.ms >= KIOSK_WATCH_MS - 1, `watched ${KIOSK_PERIODS} pulse periods (${w.ms.toFixed(0)} ms)`);
+    // A page that stopped looking at frames would stay "locked" for nothing.
+    check(w.results >= KIOSK_PERIODS * 1.5 * 5, `the detector ran all along (${w.results} results, at least 5 a second)`);
+    check(s.unlocks === 0,
+          `the page stayed locked with Grab enabled throughout (${s.unlocks} unlocks; longest ${Math.round(s.longestUnlockMs)} ms)`);
+    check(w.titles.length > 0 && w.titles.every((t) => t === title),
+          `the aim is on tile ${tile}: #target-title "${title}" (${JSON.stringify(w.titles)})`);
   },
 });
 
