@@ -15,6 +15,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// Grey levels of pixel noise above which scanlines are read three pixels wide
+// when a first search failed (a phone's camera in dim light).
+constexpr double kNoisyImage = 3.0;
+
 double ms_since(Clock::time_point& t) {
     const auto now = Clock::now();
     const double ms = std::chrono::duration<double, std::milli>(now - t).count();
@@ -115,13 +119,24 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
     // scanlines for their grid lines to chain), keeping what was read, down
     // to scanlines 4 pixels apart.
     auto t = Clock::now();
-    EdgelScan scan = find_edgels(im, options_.edgels);
+    EdgelOptions edgel_options = options_.edgels;
+    EdgelScan scan = find_edgels(im, edgel_options);
     out.pixels_visited += scan.pixels_visited;
     out.times.edgels_ms += ms_since(t);
     const char* failure = search_all_then_field_like(im, aim, prior, scan, out);
-    int offset = options_.edgels.offset >= 0 ? options_.edgels.offset : scan.step / 2;  // of the scanlines so far
+    if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3) {
+        // A noisy image (low light): a faint field's edges drown in the
+        // scanlines' noise; three pixels across each line hold them.
+        edgel_options.across = 3;
+        t = Clock::now();
+        scan = find_edgels(im, edgel_options);
+        out.pixels_visited += scan.pixels_visited;
+        out.times.edgels_ms += ms_since(t);
+        failure = search_all_then_field_like(im, aim, prior, scan, out);
+    }
+    int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan.step / 2;  // of the scanlines so far
     while (failure && options_.rescan && scan.step >= 8) {
-        EdgelOptions between = options_.edgels;
+        EdgelOptions between = edgel_options;
         between.step = scan.step;
         between.offset = (offset + scan.step / 2) % scan.step;
         offset = std::min(offset, between.offset);

@@ -75,16 +75,35 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
         out.edgels.push_back(e);
     };
     const int first = o.offset >= 0 ? o.offset : out.step / 2;
-    for (int y = first; y < im.height; y += out.step) {
-        const std::uint8_t* row = im.row(y);
-        out.pixels_visited += im.width;
-        noise.push_back(scan_line(im.width, [row](int i) { return static_cast<int>(row[i]); }, thr, d, scratch,
-                                  [&](double x, double step) { keep(static_cast<float>(x), static_cast<float>(y), true, step); }));
+    const int half = std::clamp(o.across, 1, 5) / 2;
+    // Sums over the pixels across the line: a step grows n times, the noise
+    // sqrt(n) times; steps are reported per pixel again, and the noise as a
+    // single pixel's (the Sobel gradients are of single pixels).
+    const int n_across = 2 * half + 1;
+    std::vector<int> line;
+    for (int y = std::max(first, half); y + half < im.height; y += out.step) {
+        line.assign(im.width, 0);
+        for (int dy = -half; dy <= half; ++dy) {
+            const std::uint8_t* row = im.row(y + dy);
+            for (int i = 0; i < im.width; ++i) line[i] += row[i];
+        }
+        out.pixels_visited += static_cast<long>(im.width) * n_across;
+        noise.push_back(scan_line(im.width, [&line](int i) { return line[i]; }, thr * n_across, d, scratch,
+                                  [&](double x, double step) {
+                                      keep(static_cast<float>(x), static_cast<float>(y), true, step / n_across);
+                                  }) / std::sqrt(n_across));
     }
-    for (int x = first; x < im.width; x += out.step) {
-        out.pixels_visited += im.height;
-        noise.push_back(scan_line(im.height, [&im, x](int i) { return static_cast<int>(im.at(x, i)); }, thr, d,
-                                  scratch, [&](double y, double step) { keep(static_cast<float>(x), static_cast<float>(y), false, step); }));
+    for (int x = std::max(first, half); x + half < im.width; x += out.step) {
+        line.assign(im.height, 0);
+        for (int i = 0; i < im.height; ++i) {
+            const std::uint8_t* row = im.row(i);
+            for (int dx = -half; dx <= half; ++dx) line[i] += row[x + dx];
+        }
+        out.pixels_visited += static_cast<long>(im.height) * n_across;
+        noise.push_back(scan_line(im.height, [&line](int i) { return line[i]; }, thr * n_across, d, scratch,
+                                  [&](double y, double step) {
+                                      keep(static_cast<float>(x), static_cast<float>(y), false, step / n_across);
+                                  }) / std::sqrt(n_across));
     }
     if (!noise.empty()) {
         std::nth_element(noise.begin(), noise.begin() + noise.size() / 2, noise.end());

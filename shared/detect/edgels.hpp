@@ -23,6 +23,10 @@ struct EdgelOptions {
     // Smallest step in grey levels across an edge (the smoothed difference
     // over two pixels each side). Low, because the field may be faint.
     int min_contrast = 5;
+    // Pixels averaged across each scanline (1, 3 or 5): in a noisy image the
+    // evidence of a module's edge gathered along it, a few pixels either
+    // side, at as many times the reads.
+    int across = 1;
 };
 
 struct EdgelScan {
