@@ -221,7 +221,9 @@ Summary summarise(const std::vector<Outcome>& outcomes) {
         if (o.success()) ++s.success;
         if (o.false_location()) {
             ++s.false_location;
-            ++s.reasons[kWrongPlace];
+            ++s.reasons[o.radius_modules == kSuccessRadiusModules ? std::string(kWrongPlace)
+                                                                  : "wrong place (found, error > " +
+                                                                        num(o.radius_modules, 1) + " module)"];
         }
         if (!o.found) ++s.reasons[o.failure.empty() ? "(no reason given)" : o.failure];
     }
@@ -280,7 +282,7 @@ nlohmann::json to_json(const Report& r) {
     j["started"] = r.started;
     j["wall_time_s"] = r.wall_s;
     j["settings"] = r.settings;
-    j["success_radius_modules"] = kSuccessRadiusModules;
+    j["success_radius_modules"] = r.success_radius_modules;
     nlohmann::json configs = nlohmann::json::array();
     for (const auto& c : r.configs) {
         nlohmann::json e = {{"category", c.category}, {"opacity", c.opacity}, {"resolution", c.resolution}};
@@ -354,15 +356,18 @@ std::string to_markdown(const Report& r) {
         md << "\n";
     };
 
-    md << "# Detector benchmark: umf against ArUco on simulated phone photos\n\n";
+    md << "# " << (r.title.empty() ? "Detector benchmark: umf against ArUco on simulated phone photos" : r.title) << "\n\n";
     md << "Command: `" << r.command << "`, started " << r.started << ", wall time " << num(r.wall_s / 60, 1)
-       << " min. Written by `tests/bench/umf_benchmark.cpp`; every number below is also in `detector.json`.";
+       << " min. Written by `tests/bench/umf_benchmark.cpp`; every number below is also in `" << r.json_name << "`.";
     if (r.settings.contains("load_average_at_start") && r.settings.contains("load_average_at_end"))
         md << " Load average (1, 5, 15 min) at the start " << r.settings["load_average_at_start"].get<std::string>()
            << ", at the end " << r.settings["load_average_at_end"].get<std::string>()
            << " on " << r.settings.value("hardware_threads", 0) << " hardware threads: other work on the machine "
            << "inflates the times.";
     md << "\n\n";
+    if (!r.setup_md.empty()) {
+        md << r.setup_md << "\n\n";
+    } else {
     md << "Setup: a 1920 x 1080 screen, 527 mm wide, showing one of five contents (document, code_dark, web_page, "
           "photo, blank; frame i shows kind i mod 5). umf: the field `" << r.settings.value("field", std::string("?")) << "` (30 px modules, covering the whole "
           "screen) blended in at the given opacity. ArUco: an 8 x 4 board of DICT_4X4_250 markers (180 px = 6 cells "
@@ -373,6 +378,7 @@ std::string to_markdown(const Report& r) {
           "JPEG 80, and some frames motion blur (1..4 px, 30 %), RGB subpixel stripes (moire, 15 %) or a lamp's "
           "glare (10 %). occlusion: general motion plus a hand or mug over 15..35 % of the frame (never the centre); "
           "low_light: general motion at exposure 0.35, gamma 1.2, noise sigma 6.\n\n";
+    }
     md << "Methods: **umf** is the detector on each frame on its own (`umf::Detector::detect`, single frame). "
           "**umf video** is the tracker (`umf::Tracker`, on the same detector) fed a configuration's frames in their "
           "order, the consecutive frames of the category's 25 fps camera motion, as a phone feeds its camera frames "
@@ -382,8 +388,11 @@ std::string to_markdown(const Report& r) {
           "locked, its aim point is the tracker's (smoothed) one, its time is the whole `update()` call. Frames "
           "whose centre is off the screen are still fed to the tracker but left out of its statistics. **ArUco** is "
           "the single-frame baseline above.\n\n";
-    md << "Success: located within " << num(kSuccessRadiusModules, 0)
-       << " module (30 screen px) of the true screen point under the image centre; false: located farther away. "
+    if (r.success_radius_modules == kSuccessRadiusModules)
+        md << "Success: located within " << num(kSuccessRadiusModules, 0) << " module (30 screen px)";
+    else
+        md << "Success: located within " << num(r.success_radius_modules, 1) << " module";
+    md << " of the true screen point under the image centre; false: located farther away. "
           "Percentages are of the evaluated frames (frames whose centre falls off the screen are skipped for all "
           "methods; the skipped count is in the JSON). Errors are in modules over the located frames; ms per frame "
           "is the median of one detector call (for umf video one tracker update) on one thread (OpenCV limited to "
