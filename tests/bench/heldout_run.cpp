@@ -61,6 +61,9 @@ public:
         report_.setup_md = kSetup;
         report_.json_name = "heldout.json";
         report_.success_radius_modules = kHeldoutRadiusModules;
+        report_.pooled_over = "Pooled over all categories but occlusion and low_light, and all resolutions; module px = "
+                              "image pixels per module (ArUco cell) at the image centre.";
+        for (auto c : sim::kAllHeldoutContents) report_.screen_kinds.emplace_back(sim::to_string(c));
         report_.command = opt.command;
         report_.started = now_text();
         settings();
@@ -130,6 +133,7 @@ private:
     void settings() {
         nlohmann::json& s = report_.settings;
         s["set"] = "heldout";
+        s["fps"] = 30;
         s["frames_per_configuration"] = opt_.frames;
         for (HeldoutCategory c : opt_.categories) s["categories"].push_back(to_string(c));
         for (cv::Size r : opt_.resolutions) s["resolutions"].push_back(res_name(r));

@@ -14,6 +14,14 @@ double pct(int part, int whole) { return whole > 0 ? 100.0 * part / whole : kNaN
 
 // Fixed-point text for tables; a dash where there is no number (nothing
 // found, not measured) rather than "nan".
+std::string num(double v, int decimals);
+
+// The reason given for a false location at a success radius.
+std::string wrong_place(double radius_modules) {
+    return radius_modules == kSuccessRadiusModules ? std::string(kWrongPlace)
+                                                   : "wrong place (found, error > " + num(radius_modules, 1) + " module)";
+}
+
 std::string num(double v, int decimals) {
     if (!std::isfinite(v)) return "–";
     char buf[64];
@@ -221,9 +229,7 @@ Summary summarise(const std::vector<Outcome>& outcomes) {
         if (o.success()) ++s.success;
         if (o.false_location()) {
             ++s.false_location;
-            ++s.reasons[o.radius_modules == kSuccessRadiusModules ? std::string(kWrongPlace)
-                                                                  : "wrong place (found, error > " +
-                                                                        num(o.radius_modules, 1) + " module)"];
+            ++s.reasons[wrong_place(o.radius_modules)];
         }
         if (!o.found) ++s.reasons[o.failure.empty() ? "(no reason given)" : o.failure];
     }
@@ -330,9 +336,11 @@ nlohmann::json to_json(const Report& r) {
     for (const auto& [name, by_op] : r.by_screen)
         for (const auto& [op, kinds] : by_op)
             for (const auto& [kind, t] : kinds) by_screen[name][num(op, 2)][kind] = tally_json(t);
-    j["success_by_module_px"] = {{"pooled_over", "near_far, horizontal, rotation, perspective, general; all resolutions"},
+    const std::string pooled =
+        r.pooled_over.empty() ? "near_far, horizontal, rotation, perspective, general; all resolutions" : r.pooled_over;
+    j["success_by_module_px"] = {{"pooled_over", pooled},
                                  {"by_method_and_opacity", by_px}};
-    j["success_by_screen"] = {{"pooled_over", "near_far, horizontal, rotation, perspective, general; all resolutions"},
+    j["success_by_screen"] = {{"pooled_over", pooled},
                               {"by_method_and_opacity", by_screen}};
     return j;
 }
@@ -381,7 +389,8 @@ std::string to_markdown(const Report& r) {
     }
     md << "Methods: **umf** is the detector on each frame on its own (`umf::Detector::detect`, single frame). "
           "**umf video** is the tracker (`umf::Tracker`, on the same detector) fed a configuration's frames in their "
-          "order, the consecutive frames of the category's 25 fps camera motion, as a phone feeds its camera frames "
+          "order, the consecutive frames of the category's "
+       << r.settings.value("fps", 25) << " fps camera motion, as a phone feeds its camera frames "
           "(one fresh tracker per configuration and per pulsing video): it predicts the field's next place from the "
           "last two, confirms it there on the field's own edges (`Detector::follow`), and falls back to a full "
           "detection (with the last place as a prior) when that fails. It counts as found when the tracker is "
@@ -561,14 +570,14 @@ std::string to_markdown(const Report& r) {
     md << "\n";
 
     md << "## (e) Why frames were not successes, per category (all opacities and resolutions)\n\n";
-    md << "umf: `Detection::failure` of the frames not found, and \"" << kWrongPlace
+    md << "umf: `Detection::failure` of the frames not found, and \"" << wrong_place(r.success_radius_modules)
        << "\"; share of the evaluated frames.\n\n";
     reasons_table(md, r, "umf", categories);
     if (video) {
         md << "umf video: for the frames where the tracker is not locked, the failure of that frame's detection (the "
               "full detection after a failed follow), or the tracker's state (lost, searching) when it gives none; "
               "and \""
-           << kWrongPlace << "\".\n\n";
+           << wrong_place(r.success_radius_modules) << "\".\n\n";
         reasons_table(md, r, "umf_video", categories);
     }
     if (aruco) {
@@ -596,9 +605,12 @@ std::string to_markdown(const Report& r) {
         head_text << "\n";
         const std::string head = head_text.str();
         md << "## (f) Success by module size in the image, opacity " << num(op, 2)
-           << "\n\nPooled over the five motion categories (near_far, horizontal, rotation, perspective, general) and "
-              "all resolutions; module px = image pixels per 30 px module (ArUco cell) at the image centre.\n\n"
-           << "| module px |" << head;
+           << "\n\n"
+           << (r.pooled_over.empty() ? "Pooled over the five motion categories (near_far, horizontal, rotation, "
+                                       "perspective, general) and all resolutions; module px = image pixels per 30 px "
+                                       "module (ArUco cell) at the image centre."
+                                     : r.pooled_over)
+           << "\n\n| module px |" << head;
         for (int bin = 0; bin + 1 < static_cast<int>(kModulePxBins.size()); ++bin)
             row(module_px_bin_label(bin), [&](const std::string& name) {
                 const auto m = r.by_module_px.find(name);
@@ -609,7 +621,9 @@ std::string to_markdown(const Report& r) {
                 return b == o->second.end() ? Tally{} : b->second;
             });
         md << "\n## (g) Success by screen content, opacity " << num(op, 2) << "\n\nPooled as in (f).\n\n| screen |" << head;
-        for (const char* kind : {"document", "code_dark", "web_page", "photo", "blank"})
+        std::vector<std::string> kinds = r.screen_kinds;
+        if (kinds.empty()) kinds = {"document", "code_dark", "web_page", "photo", "blank"};
+        for (const std::string& kind : kinds)
             row(kind, [&](const std::string& name) {
                 const auto m = r.by_screen.find(name);
                 if (m == r.by_screen.end()) return Tally{};

@@ -117,6 +117,8 @@ struct Report {
     std::string setup_md;  // replaces the tuning set's setup paragraph
     std::string json_name = "detector.json";
     double success_radius_modules = kSuccessRadiusModules;
+    std::string pooled_over;                // what (f) and (g) pool, when not the tuning set's
+    std::vector<std::string> screen_kinds;  // rows of (g), when not the tuning set's
     std::string command;
     std::string started;  // local date and time
     double wall_s = 0;

@@ -63,6 +63,8 @@ Usage: umf_benchmark [options]
                          moire (default all)
   --resolutions WxH,...  camera resolutions (default 640x480,1280x720,1920x1080)
   --opacities a,b        field and board opacities (default 0.1,0.15,0.2,0.3,0.5; heldout 0.15,0.3,0.5)
+  --success-radius R     tuning only: success within R modules (default 1; the held-out set's is 0.5),
+                         to compare the tuning set with the held-out set on the held-out criterion
   --without a,b          heldout only, for diagnosis: leave effects of the second camera model out
                          (pixel_structure, rolling_shutter, curved_blur, exposure_hunt, processing, compression)
   --no-aruco             leave ArUco out
@@ -82,6 +84,8 @@ struct Options {
     std::vector<std::string> category_names;  // as given; resolved once the set is known
     bool opacities_given = false;
     std::vector<std::string> without;
+    double radius = kSuccessRadiusModules;  // tuning set's success radius in modules
+    bool radius_given = false;
     int frames = 40;
     std::string out = "docs/benchmarks";
     std::vector<Category> categories{kAllCategories.begin(), kAllCategories.end()};
@@ -160,6 +164,10 @@ Options parse(int argc, char** argv) {
                 if (!(op > 0 && op <= 1)) throw std::invalid_argument("opacity " + v + " is not in (0, 1]");
                 o.opacities.push_back(op);
             }
+        } else if (a == "--success-radius") {
+            o.radius = std::stod(value());
+            o.radius_given = true;
+            if (!(o.radius > 0)) throw std::invalid_argument("--success-radius must be > 0");
         } else if (a == "--without") {
             o.without = split(value());
         } else if (a == "--no-aruco") {
@@ -183,6 +191,7 @@ Options parse(int argc, char** argv) {
         }
     }
     if (!o.heldout && !o.without.empty()) throw std::invalid_argument("--without is for --set heldout only");
+    if (o.heldout && o.radius_given) throw std::invalid_argument("--success-radius is for the tuning set (the held-out set's is half a module)");
     if (!o.heldout && !o.category_names.empty()) {
         o.categories.clear();
         for (const auto& name : o.category_names) {
@@ -271,7 +280,10 @@ void write_plots(const Report& report, const std::filesystem::path& dir) {
                     }
             lines.push_back(s);
         }
-    plot::Axes axes{"Success against opacity (" + sweep + " category)", "opacity", "success % (within 1 module)",
+    std::ostringstream radius;
+    radius << report.success_radius_modules;
+    const std::string within = "success % (within " + radius.str() + " module)";
+    plot::Axes axes{"Success against opacity (" + sweep + " category)", "opacity", within,
                     std::make_pair(0.0, 100.0)};
     write_png(dir / "success_vs_opacity.png", plot::line_chart(axes, lines));
 
@@ -313,7 +325,7 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
     s["distance_mm"] = {{"rest", scene.range.distance_mm}, {"near", scene.range.near_mm}, {"far", scene.range.far_mm}};
     s["aruco_board"] = {{"dictionary", "DICT_4X4_250"}, {"markers", methods.board().marker_count()},
                         {"marker_px", 180}, {"gap_px", 60}};
-    s["success_radius_modules"] = kSuccessRadiusModules;
+    s["success_radius_modules"] = opt.radius;
     return s;
 }
 
@@ -321,7 +333,9 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
 class Bench {
 public:
     Bench(const Options& opt, const std::string& command)
-        : opt_(opt), field_(load_field(std::string(UMF_DATA_DIR) + "/fields/" + opt.field)), methods_(field_, scene_.screen.pixels, sim::FieldPlacement{{0, 0}, scene_.module_px}, 30, kSuccessRadiusModules) {
+        : opt_(opt), field_(load_field(std::string(UMF_DATA_DIR) + "/fields/" + opt.field)), 
+          methods_(field_, scene_.screen.pixels, sim::FieldPlacement{{0, 0}, scene_.module_px}, 30, opt.radius) {
+        report_.success_radius_modules = opt.radius;
         report_.command = command;
         report_.started = now_text();
         report_.settings = settings_json(opt_, scene_, methods_);
