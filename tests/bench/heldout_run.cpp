@@ -252,6 +252,8 @@ bool leave_out(HeldoutRecipe& r, const std::string& effect) {
     else if (effect == "exposure_hunt") r.shot.hunt = 1;
     else if (effect == "processing") r.shot.processing = {};
     else if (effect == "compression") r.shot.compression = {};
+    else if (effect == "flat_macroblocks") r.shot.compression.flat_threshold = 0;
+    else if (effect == "video_jpeg") r.shot.compression.quality = 0;
     else return false;
     return true;
 }

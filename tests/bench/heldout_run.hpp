@@ -31,7 +31,8 @@ struct HeldoutOptions {
     // Effects of the second camera model left out of every frame, to see
     // what each costs (diagnosis only; the held-out numbers of record have
     // all of them): pixel_structure, rolling_shutter, curved_blur,
-    // exposure_hunt, processing, compression.
+    // exposure_hunt, processing, compression (or only its flat_macroblocks or
+    // its video_jpeg).
     std::vector<std::string> without;
 };
 

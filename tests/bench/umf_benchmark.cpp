@@ -66,7 +66,8 @@ Usage: umf_benchmark [options]
   --success-radius R     tuning only: success within R modules (default 1; the held-out set's is 0.5),
                          to compare the tuning set with the held-out set on the held-out criterion
   --without a,b          heldout only, for diagnosis: leave effects of the second camera model out
-                         (pixel_structure, rolling_shutter, curved_blur, exposure_hunt, processing, compression)
+                         (pixel_structure, rolling_shutter, curved_blur, exposure_hunt, processing, compression,
+                         or of compression only flat_macroblocks or video_jpeg)
   --no-aruco             leave ArUco out
   --no-video             leave "umf video" (the tracker over consecutive frames) out
   --pulse-frames N       frames per screen content in the pulsing video (default 150, quick 50; 0 = skip)
