@@ -14,6 +14,14 @@ double pct(int part, int whole) { return whole > 0 ? 100.0 * part / whole : kNaN
 
 // Fixed-point text for tables; a dash where there is no number (nothing
 // found, not measured) rather than "nan".
+std::string num(double v, int decimals);
+
+// The reason given for a false location at a success radius.
+std::string wrong_place(double radius_modules) {
+    return radius_modules == kSuccessRadiusModules ? std::string(kWrongPlace)
+                                                   : "wrong place (found, error > " + num(radius_modules, 1) + " module)";
+}
+
 std::string num(double v, int decimals) {
     if (!std::isfinite(v)) return "–";
     char buf[64];
@@ -221,7 +229,7 @@ Summary summarise(const std::vector<Outcome>& outcomes) {
         if (o.success()) ++s.success;
         if (o.false_location()) {
             ++s.false_location;
-            ++s.reasons[kWrongPlace];
+            ++s.reasons[wrong_place(o.radius_modules)];
         }
         if (!o.found) ++s.reasons[o.failure.empty() ? "(no reason given)" : o.failure];
     }
@@ -280,7 +288,7 @@ nlohmann::json to_json(const Report& r) {
     j["started"] = r.started;
     j["wall_time_s"] = r.wall_s;
     j["settings"] = r.settings;
-    j["success_radius_modules"] = kSuccessRadiusModules;
+    j["success_radius_modules"] = r.success_radius_modules;
     nlohmann::json configs = nlohmann::json::array();
     for (const auto& c : r.configs) {
         nlohmann::json e = {{"category", c.category}, {"opacity", c.opacity}, {"resolution", c.resolution}};
@@ -328,9 +336,11 @@ nlohmann::json to_json(const Report& r) {
     for (const auto& [name, by_op] : r.by_screen)
         for (const auto& [op, kinds] : by_op)
             for (const auto& [kind, t] : kinds) by_screen[name][num(op, 2)][kind] = tally_json(t);
-    j["success_by_module_px"] = {{"pooled_over", "near_far, horizontal, rotation, perspective, general; all resolutions"},
+    const std::string pooled =
+        r.pooled_over.empty() ? "near_far, horizontal, rotation, perspective, general; all resolutions" : r.pooled_over;
+    j["success_by_module_px"] = {{"pooled_over", pooled},
                                  {"by_method_and_opacity", by_px}};
-    j["success_by_screen"] = {{"pooled_over", "near_far, horizontal, rotation, perspective, general; all resolutions"},
+    j["success_by_screen"] = {{"pooled_over", pooled},
                               {"by_method_and_opacity", by_screen}};
     return j;
 }
@@ -354,15 +364,18 @@ std::string to_markdown(const Report& r) {
         md << "\n";
     };
 
-    md << "# Detector benchmark: umf against ArUco on simulated phone photos\n\n";
+    md << "# " << (r.title.empty() ? "Detector benchmark: umf against ArUco on simulated phone photos" : r.title) << "\n\n";
     md << "Command: `" << r.command << "`, started " << r.started << ", wall time " << num(r.wall_s / 60, 1)
-       << " min. Written by `tests/bench/umf_benchmark.cpp`; every number below is also in `detector.json`.";
+       << " min. Written by `tests/bench/umf_benchmark.cpp`; every number below is also in `" << r.json_name << "`.";
     if (r.settings.contains("load_average_at_start") && r.settings.contains("load_average_at_end"))
         md << " Load average (1, 5, 15 min) at the start " << r.settings["load_average_at_start"].get<std::string>()
            << ", at the end " << r.settings["load_average_at_end"].get<std::string>()
            << " on " << r.settings.value("hardware_threads", 0) << " hardware threads: other work on the machine "
            << "inflates the times.";
     md << "\n\n";
+    if (!r.setup_md.empty()) {
+        md << r.setup_md << "\n\n";
+    } else {
     md << "Setup: a 1920 x 1080 screen, 527 mm wide, showing one of five contents (document, code_dark, web_page, "
           "photo, blank; frame i shows kind i mod 5). umf: the field `" << r.settings.value("field", std::string("?")) << "` (30 px modules, covering the whole "
           "screen) blended in at the given opacity. ArUco: an 8 x 4 board of DICT_4X4_250 markers (180 px = 6 cells "
@@ -373,17 +386,22 @@ std::string to_markdown(const Report& r) {
           "JPEG 80, and some frames motion blur (1..4 px, 30 %), RGB subpixel stripes (moire, 15 %) or a lamp's "
           "glare (10 %). occlusion: general motion plus a hand or mug over 15..35 % of the frame (never the centre); "
           "low_light: general motion at exposure 0.35, gamma 1.2, noise sigma 6.\n\n";
+    }
     md << "Methods: **umf** is the detector on each frame on its own (`umf::Detector::detect`, single frame). "
           "**umf video** is the tracker (`umf::Tracker`, on the same detector) fed a configuration's frames in their "
-          "order, the consecutive frames of the category's 25 fps camera motion, as a phone feeds its camera frames "
+          "order, the consecutive frames of the category's "
+       << r.settings.value("fps", 25) << " fps camera motion, as a phone feeds its camera frames "
           "(one fresh tracker per configuration and per pulsing video): it predicts the field's next place from the "
           "last two, confirms it there on the field's own edges (`Detector::follow`), and falls back to a full "
           "detection (with the last place as a prior) when that fails. It counts as found when the tracker is "
           "locked, its aim point is the tracker's (smoothed) one, its time is the whole `update()` call. Frames "
           "whose centre is off the screen are still fed to the tracker but left out of its statistics. **ArUco** is "
           "the single-frame baseline above.\n\n";
-    md << "Success: located within " << num(kSuccessRadiusModules, 0)
-       << " module (30 screen px) of the true screen point under the image centre; false: located farther away. "
+    if (r.success_radius_modules == kSuccessRadiusModules)
+        md << "Success: located within " << num(kSuccessRadiusModules, 0) << " module (30 screen px)";
+    else
+        md << "Success: located within " << num(r.success_radius_modules, 1) << " module";
+    md << " of the true screen point under the image centre; false: located farther away. "
           "Percentages are of the evaluated frames (frames whose centre falls off the screen are skipped for all "
           "methods; the skipped count is in the JSON). Errors are in modules over the located frames; ms per frame "
           "is the median of one detector call (for umf video one tracker update) on one thread (OpenCV limited to "
@@ -552,14 +570,14 @@ std::string to_markdown(const Report& r) {
     md << "\n";
 
     md << "## (e) Why frames were not successes, per category (all opacities and resolutions)\n\n";
-    md << "umf: `Detection::failure` of the frames not found, and \"" << kWrongPlace
+    md << "umf: `Detection::failure` of the frames not found, and \"" << wrong_place(r.success_radius_modules)
        << "\"; share of the evaluated frames.\n\n";
     reasons_table(md, r, "umf", categories);
     if (video) {
         md << "umf video: for the frames where the tracker is not locked, the failure of that frame's detection (the "
               "full detection after a failed follow), or the tracker's state (lost, searching) when it gives none; "
               "and \""
-           << kWrongPlace << "\".\n\n";
+           << wrong_place(r.success_radius_modules) << "\".\n\n";
         reasons_table(md, r, "umf_video", categories);
     }
     if (aruco) {
@@ -587,9 +605,12 @@ std::string to_markdown(const Report& r) {
         head_text << "\n";
         const std::string head = head_text.str();
         md << "## (f) Success by module size in the image, opacity " << num(op, 2)
-           << "\n\nPooled over the five motion categories (near_far, horizontal, rotation, perspective, general) and "
-              "all resolutions; module px = image pixels per 30 px module (ArUco cell) at the image centre.\n\n"
-           << "| module px |" << head;
+           << "\n\n"
+           << (r.pooled_over.empty() ? "Pooled over the five motion categories (near_far, horizontal, rotation, "
+                                       "perspective, general) and all resolutions; module px = image pixels per 30 px "
+                                       "module (ArUco cell) at the image centre."
+                                     : r.pooled_over)
+           << "\n\n| module px |" << head;
         for (int bin = 0; bin + 1 < static_cast<int>(kModulePxBins.size()); ++bin)
             row(module_px_bin_label(bin), [&](const std::string& name) {
                 const auto m = r.by_module_px.find(name);
@@ -600,7 +621,9 @@ std::string to_markdown(const Report& r) {
                 return b == o->second.end() ? Tally{} : b->second;
             });
         md << "\n## (g) Success by screen content, opacity " << num(op, 2) << "\n\nPooled as in (f).\n\n| screen |" << head;
-        for (const char* kind : {"document", "code_dark", "web_page", "photo", "blank"})
+        std::vector<std::string> kinds = r.screen_kinds;
+        if (kinds.empty()) kinds = {"document", "code_dark", "web_page", "photo", "blank"};
+        for (const std::string& kind : kinds)
             row(kind, [&](const std::string& name) {
                 const auto m = r.by_screen.find(name);
                 if (m == r.by_screen.end()) return Tally{};

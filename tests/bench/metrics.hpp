@@ -40,9 +40,10 @@ struct Outcome {
     double pixels_pct = kNaN;     // share of the image's pixels read; NaN when the method does not say
     std::string failure;          // why not found; empty when found
     std::array<double, kStageNames.size()> stage_ms{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};  // see kStageNames; umf methods only
+    double radius_modules = kSuccessRadiusModules;  // success radius of the set the frame belongs to
 
-    bool success() const { return found && error_modules <= kSuccessRadiusModules; }
-    bool false_location() const { return found && !(error_modules <= kSuccessRadiusModules); }
+    bool success() const { return found && error_modules <= radius_modules; }
+    bool false_location() const { return found && !(error_modules <= radius_modules); }
 };
 
 // One method over one configuration. Percentages are of the evaluated
@@ -110,6 +111,14 @@ using ModuleBreakdown = std::map<std::string, std::map<double, std::map<int, Tal
 using ScreenBreakdown = std::map<std::string, std::map<double, std::map<std::string, Tally>>>;
 
 struct Report {
+    // Set for the held-out set (bench/heldout_run.cpp); empty or default for
+    // the tuning set, whose report reads as it always has.
+    std::string title;     // the Markdown heading
+    std::string setup_md;  // replaces the tuning set's setup paragraph
+    std::string json_name = "detector.json";
+    double success_radius_modules = kSuccessRadiusModules;
+    std::string pooled_over;                // what (f) and (g) pool, when not the tuning set's
+    std::vector<std::string> screen_kinds;  // rows of (g), when not the tuning set's
     std::string command;
     std::string started;  // local date and time
     double wall_s = 0;

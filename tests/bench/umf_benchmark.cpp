@@ -29,7 +29,9 @@
 #include <vector>
 
 #include "bench/aruco_baseline.hpp"
+#include "bench/heldout_run.hpp"
 #include "bench/metrics.hpp"
+#include "bench/methods.hpp"
 #include "bench/plot.hpp"
 #include "bench/scenario.hpp"
 #include "detect/detector.hpp"
@@ -42,7 +44,7 @@ namespace {
 
 using namespace umf;
 using namespace umf::bench;
-using Clock = std::chrono::steady_clock;
+using Clock = BenchClock;
 
 constexpr std::uint64_t kScreenSeed = 7;
 
@@ -50,12 +52,22 @@ const char* const kUsage = R"(umf_benchmark: the umf detector (single frame and 
 
 Usage: umf_benchmark [options]
   --frames N             frames per category x opacity x resolution (default 40)
+  --set tuning|heldout   tuning (default): the scenes the detector is tuned on, written to
+                         detector.{json,md} and two PNGs; heldout: the held-out scenes (other screens,
+                         contents, camera model and seeds; success within half a module), written to
+                         heldout.{json,md}, no pulsing video
   --quick                10 frames, 640x480 only, a short pulsing run (explicit options win)
-  --out DIR              where detector.json, detector.md and the PNGs go (default docs/benchmarks)
-  --categories a,b       of near_far, horizontal, rotation, perspective, general, occlusion, low_light
-                         (default all)
+  --out DIR              where the reports go (default docs/benchmarks)
+  --categories a,b       tuning: near_far, horizontal, rotation, perspective, general, occlusion, low_light;
+                         heldout: general, rotation, perspective, near, far, motion, low_light, occlusion,
+                         moire (default all)
   --resolutions WxH,...  camera resolutions (default 640x480,1280x720,1920x1080)
-  --opacities a,b        field and board opacities (default 0.1,0.15,0.2,0.3,0.5)
+  --opacities a,b        field and board opacities (default 0.1,0.15,0.2,0.3,0.5; heldout 0.15,0.3,0.5)
+  --success-radius R     tuning only: success within R modules (default 1; the held-out set's is 0.5),
+                         to compare the tuning set with the held-out set on the held-out criterion
+  --without a,b          heldout only, for diagnosis: leave effects of the second camera model out
+                         (pixel_structure, rolling_shutter, curved_blur, exposure_hunt, processing, compression,
+                         or of compression only flat_macroblocks or video_jpeg)
   --no-aruco             leave ArUco out
   --no-video             leave "umf video" (the tracker over consecutive frames) out
   --pulse-frames N       frames per screen content in the pulsing video (default 150, quick 50; 0 = skip)
@@ -69,6 +81,12 @@ Progress goes to stderr. The detectors are timed on one thread each.
 )";
 
 struct Options {
+    bool heldout = false;
+    std::vector<std::string> category_names;  // as given; resolved once the set is known
+    bool opacities_given = false;
+    std::vector<std::string> without;
+    double radius = kSuccessRadiusModules;  // tuning set's success radius in modules
+    bool radius_given = false;
     int frames = 40;
     std::string out = "docs/benchmarks";
     std::vector<Category> categories{kAllCategories.begin(), kAllCategories.end()};
@@ -124,13 +142,13 @@ Options parse(int argc, char** argv) {
             quick = true;
         } else if (a == "--out") {
             o.out = value();
+        } else if (a == "--set") {
+            const std::string set = value();
+            if (set != "tuning" && set != "heldout") throw std::invalid_argument("--set takes tuning or heldout");
+            o.heldout = set == "heldout";
         } else if (a == "--categories") {
-            o.categories.clear();
-            for (const auto& name : split(value())) {
-                const auto c = category_from_string(name);
-                if (!c) throw std::invalid_argument("unknown category '" + name + "'");
-                o.categories.push_back(*c);
-            }
+            o.category_names = split(value());
+            if (o.category_names.empty()) throw std::invalid_argument("nothing to run: empty category list");
         } else if (a == "--resolutions") {
             o.resolutions.clear();
             for (const auto& r : split(value())) {
@@ -140,12 +158,19 @@ Options parse(int argc, char** argv) {
             }
             res_given = true;
         } else if (a == "--opacities") {
+            o.opacities_given = true;
             o.opacities.clear();
             for (const auto& v : split(value())) {
                 const double op = std::stod(v);
                 if (!(op > 0 && op <= 1)) throw std::invalid_argument("opacity " + v + " is not in (0, 1]");
                 o.opacities.push_back(op);
             }
+        } else if (a == "--success-radius") {
+            o.radius = std::stod(value());
+            o.radius_given = true;
+            if (!(o.radius > 0)) throw std::invalid_argument("--success-radius must be > 0");
+        } else if (a == "--without") {
+            o.without = split(value());
         } else if (a == "--no-aruco") {
             o.aruco = false;
         } else if (a == "--no-video") {
@@ -166,6 +191,16 @@ Options parse(int argc, char** argv) {
             throw std::invalid_argument("unknown option '" + a + "' (see --help)");
         }
     }
+    if (!o.heldout && !o.without.empty()) throw std::invalid_argument("--without is for --set heldout only");
+    if (o.heldout && o.radius_given) throw std::invalid_argument("--success-radius is for the tuning set (the held-out set's is half a module)");
+    if (!o.heldout && !o.category_names.empty()) {
+        o.categories.clear();
+        for (const auto& name : o.category_names) {
+            const auto c = category_from_string(name);
+            if (!c) throw std::invalid_argument("unknown category '" + name + "'");
+            o.categories.push_back(*c);
+        }
+    }
     if (quick) {
         if (!frames_given) o.frames = 10;
         if (!res_given) o.resolutions = {{640, 480}};
@@ -176,139 +211,6 @@ Options parse(int argc, char** argv) {
     return o;
 }
 
-// Runs job(i) for i in [0, n) on `threads` threads; the first exception is
-// rethrown here.
-template <class Job>
-void parallel_for(int n, int threads, const Job& job) {
-    std::atomic<int> next{0};
-    std::exception_ptr error;
-    std::mutex error_mutex;
-    std::vector<std::thread> pool;
-    for (int t = 0; t < std::min(threads, n); ++t)
-        pool.emplace_back([&] {
-            try {
-                for (int i; (i = next++) < n;) job(i);
-            } catch (...) {
-                std::lock_guard<std::mutex> lock(error_mutex);
-                if (!error) error = std::current_exception();
-                next = n;
-            }
-        });
-    for (auto& t : pool) t.join();
-    if (error) std::rethrow_exception(error);
-}
-
-double ms_between(Clock::time_point a, Clock::time_point b) {
-    return std::chrono::duration<double, std::milli>(b - a).count();
-}
-
-// The methods under test, each turning a frame into an Outcome with its
-// call timed and nothing else.
-class Methods {
-public:
-    Methods(const Scene& scene, const Field& field) : scene_(scene), detector_(field), aruco_(scene.screen.pixels) {}
-
-    Outcome umf(const Frame& frame) const {
-        Outcome o;
-        if (!frame.centre_on_screen) {
-            o.skipped = true;
-            return o;
-        }
-        Detection d;
-        const auto t0 = Clock::now();
-        try {
-            d = detector_.detect(grey_view(frame));
-        } catch (const std::exception& e) {
-            // The detector is work in progress: one bad frame should cost
-            // that frame, not the whole run.
-            d.found = false;
-            d.failure = std::string("exception: ") + e.what();
-        }
-        const auto t1 = Clock::now();
-        o.ms = ms_between(t0, t1);
-        o.found = d.found;
-        o.failure = d.failure;
-        fill_umf(o, frame, d, d.aim_field);
-        return o;
-    }
-
-    // A fresh tracker on this detector: one per configuration and per
-    // pulsing video.
-    Tracker tracker() const { return Tracker(detector_); }
-
-    // One frame of a video: every frame goes to the tracker (a phone keeps
-    // filming while the centre is off the screen), but such frames are
-    // marked skipped for the statistics.
-    Outcome video(Tracker& tracker, const Frame& frame) const {
-        Outcome o;
-        TrackResult t;
-        const auto t0 = Clock::now();
-        try {
-            t = tracker.update(grey_view(frame));
-        } catch (const std::exception& e) {
-            t = TrackResult{};
-            t.state = TrackState::lost;
-            t.detection.failure = std::string("exception: ") + e.what();
-        }
-        const auto t1 = Clock::now();
-        if (!frame.centre_on_screen) {
-            o.skipped = true;
-            return o;
-        }
-        o.ms = ms_between(t0, t1);
-        o.found = t.state == TrackState::locked;
-        if (!o.found) o.failure = t.detection.failure.empty() ? to_string(t.state) : t.detection.failure;
-        fill_umf(o, frame, t.detection, t.aim_field);
-        return o;
-    }
-
-    Outcome aruco(const Frame& frame) const {
-        Outcome o;
-        if (!frame.centre_on_screen) {
-            o.skipped = true;
-            return o;
-        }
-        ArucoLocation a;
-        const auto t0 = Clock::now();
-        try {
-            a = aruco_.locate(frame.grey);
-        } catch (const std::exception& e) {
-            a.found = false;
-            a.failure = std::string("exception: ") + e.what();
-        }
-        const auto t1 = Clock::now();
-        o.ms = ms_between(t0, t1);
-        o.found = a.found;
-        o.failure = a.failure;
-        if (a.found) o.error_modules = cv::norm(a.aim_screen_px - frame.centre_screen_px) / scene_.module_px;
-        return o;
-    }
-
-    const ArucoBaseline& board() const { return aruco_; }
-    const Field& field() const { return detector_.field(); }
-
-private:
-    static GreyView grey_view(const Frame& frame) {
-        return {frame.grey.data, frame.grey.cols, frame.grey.rows, static_cast<std::ptrdiff_t>(frame.grey.step)};
-    }
-
-    // The umf methods' pixels, stage times and aim error (when found).
-    void fill_umf(Outcome& o, const Frame& frame, const Detection& d, const Eigen::Vector2d& aim_field) const {
-        o.pixels_pct = 100.0 * static_cast<double>(d.pixels_visited) / static_cast<double>(frame.grey.total());
-        o.stage_ms = {d.times.edgels_ms, d.times.vanishing_ms, d.times.grid_ms,
-                      d.times.classify_ms, d.times.vote_ms,      d.times.refine_ms};
-        if (o.found) {
-            // The field's placement is at the screen's origin, so field
-            // (u, v) in modules is screen px / module_px.
-            const cv::Point2d aim(aim_field.x() * scene_.module_px, aim_field.y() * scene_.module_px);
-            o.error_modules = cv::norm(aim - frame.centre_screen_px) / scene_.module_px;
-        }
-    }
-
-    const Scene& scene_;
-    Detector detector_;
-    ArucoBaseline aruco_;
-};
 
 // Other processes on the machine slow the timed calls down; the load
 // average before and after the run says how much there was.
@@ -379,7 +281,10 @@ void write_plots(const Report& report, const std::filesystem::path& dir) {
                     }
             lines.push_back(s);
         }
-    plot::Axes axes{"Success against opacity (" + sweep + " category)", "opacity", "success % (within 1 module)",
+    std::ostringstream radius;
+    radius << report.success_radius_modules;
+    const std::string within = "success % (within " + radius.str() + " module)";
+    plot::Axes axes{"Success against opacity (" + sweep + " category)", "opacity", within,
                     std::make_pair(0.0, 100.0)};
     write_png(dir / "success_vs_opacity.png", plot::line_chart(axes, lines));
 
@@ -421,7 +326,7 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
     s["distance_mm"] = {{"rest", scene.range.distance_mm}, {"near", scene.range.near_mm}, {"far", scene.range.far_mm}};
     s["aruco_board"] = {{"dictionary", "DICT_4X4_250"}, {"markers", methods.board().marker_count()},
                         {"marker_px", 180}, {"gap_px", 60}};
-    s["success_radius_modules"] = kSuccessRadiusModules;
+    s["success_radius_modules"] = opt.radius;
     return s;
 }
 
@@ -429,7 +334,9 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
 class Bench {
 public:
     Bench(const Options& opt, const std::string& command)
-        : opt_(opt), field_(load_field(std::string(UMF_DATA_DIR) + "/fields/" + opt.field)), methods_(scene_, field_) {
+        : opt_(opt), field_(load_field(std::string(UMF_DATA_DIR) + "/fields/" + opt.field)), 
+          methods_(field_, scene_.screen.pixels, sim::FieldPlacement{{0, 0}, scene_.module_px}, 30, opt.radius) {
+        report_.success_radius_modules = opt.radius;
         report_.command = command;
         report_.started = now_text();
         report_.settings = settings_json(opt_, scene_, methods_);
@@ -601,7 +508,33 @@ private:
     Report report_;
 };
 
+int run_heldout_set(const Options& opt, const std::string& command) {
+    HeldoutOptions h;
+    h.frames = opt.frames;
+    h.out = opt.out;
+    if (!opt.category_names.empty()) {
+        h.categories.clear();
+        for (const auto& name : opt.category_names) {
+            const auto c = heldout_category_from_string(name);
+            if (!c) throw std::invalid_argument("unknown held-out category '" + name + "'");
+            h.categories.push_back(*c);
+        }
+    }
+    h.resolutions = opt.resolutions;
+    if (opt.opacities_given) h.opacities = opt.opacities;
+    h.aruco = opt.aruco;
+    h.video = opt.video;
+    h.seed = opt.seed;
+    h.threads = opt.threads;
+    h.dump = opt.dump;
+    h.field = opt.field;
+    h.command = command;
+    h.without = opt.without;
+    return run_heldout(h);
+}
+
 int run(const Options& opt, const std::string& command) {
+    if (opt.heldout) return run_heldout_set(opt, command);
     // OpenCV's own threads would compete with the frame-making threads and
     // would let ArUco use both cores where umf uses one.
     cv::setNumThreads(1);

@@ -1,4 +1,5 @@
 // Which desktop backend a session gets (provider/desktop/session.hpp).
+#ifdef UMF_PROVIDER_TESTS
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -71,3 +72,5 @@ TEST(DesktopSession, TheOptionWins) {
 
 }  // namespace
 }  // namespace umf::provider
+
+#endif  // UMF_PROVIDER_TESTS

@@ -1,5 +1,7 @@
 // The GNOME Shell backend against a real GNOME Shell 43 (headless, virtual
 // monitor), the umf extension loaded in it, real Wayland and X11 clients.
+#ifdef UMF_PROVIDER_TESTS
+
 #include <gtest/gtest.h>
 
 #include <QCoreApplication>
@@ -574,3 +576,5 @@ TEST(GnomeDesktopParts, MatchesScreens) {
 
 }  // namespace
 }  // namespace umf::provider
+
+#endif  // UMF_PROVIDER_TESTS

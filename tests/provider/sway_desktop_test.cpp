@@ -3,6 +3,8 @@
 // with grim's, the field's layer surface seen by grim and clicked through,
 // placement of a new window, and the pulse's CPU cost. Parsing of Sway's and
 // Hyprland's answers is tested from samples (WlrootsParsing).
+#ifdef UMF_PROVIDER_TESTS
+
 #include <gtest/gtest.h>
 
 #include <QCoreApplication>
@@ -502,3 +504,5 @@ TEST_F(SwayDesktop, DeadCompositorGivesErrorsNotHangs) {
 
 }  // namespace
 }  // namespace umf::provider
+
+#endif  // UMF_PROVIDER_TESTS

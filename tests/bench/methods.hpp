@@ -1,0 +1,169 @@
+// The methods the detector benchmark compares, each turning a frame into an
+// Outcome with its call timed and nothing else, and the thread pool that
+// makes frames. Shared by the tuning and the held-out sets.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <exception>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/aruco_baseline.hpp"
+#include "bench/metrics.hpp"
+#include "bench/scenario.hpp"
+#include "detect/detector.hpp"
+#include "detect/tracker.hpp"
+#include "sim/field_mix.hpp"
+
+namespace umf::bench {
+
+using BenchClock = std::chrono::steady_clock;
+
+inline double ms_between(BenchClock::time_point a, BenchClock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+// Runs job(i) for i in [0, n) on `threads` threads; the first exception is
+// rethrown here.
+template <class Job>
+void parallel_for(int n, int threads, const Job& job) {
+    std::atomic<int> next{0};
+    std::exception_ptr error;
+    std::mutex error_mutex;
+    std::vector<std::thread> pool;
+    for (int t = 0; t < std::min(threads, n); ++t)
+        pool.emplace_back([&] {
+            try {
+                for (int i; (i = next++) < n;) job(i);
+            } catch (...) {
+                std::lock_guard<std::mutex> lock(error_mutex);
+                if (!error) error = std::current_exception();
+                next = n;
+            }
+        });
+    for (auto& t : pool) t.join();
+    if (error) std::rethrow_exception(error);
+}
+
+
+// The methods under test, each turning a frame into an Outcome with its
+// call timed and nothing else.
+class Methods {
+public:
+    // The field at `placement` on a screen of `screen` pixels, the ArUco
+    // board with cells of `board_cell_px`; a located point counts as right
+    // within `radius_modules` of the truth.
+    Methods(const Field& field, cv::Size screen, sim::FieldPlacement placement, int board_cell_px, double radius_modules)
+        : placement_(placement), radius_(radius_modules), detector_(field), aruco_(screen, board_cell_px) {}
+
+    Outcome umf(const Frame& frame) const {
+        Outcome o;
+        o.radius_modules = radius_;
+        if (!frame.centre_on_screen) {
+            o.skipped = true;
+            return o;
+        }
+        Detection d;
+        const auto t0 = BenchClock::now();
+        try {
+            d = detector_.detect(grey_view(frame));
+        } catch (const std::exception& e) {
+            // The detector is work in progress: one bad frame should cost
+            // that frame, not the whole run.
+            d.found = false;
+            d.failure = std::string("exception: ") + e.what();
+        }
+        const auto t1 = BenchClock::now();
+        o.ms = ms_between(t0, t1);
+        o.found = d.found;
+        o.failure = d.failure;
+        fill_umf(o, frame, d, d.aim_field);
+        return o;
+    }
+
+    // A fresh tracker on this detector: one per configuration and per
+    // pulsing video.
+    Tracker tracker() const { return Tracker(detector_); }
+
+    // One frame of a video: every frame goes to the tracker (a phone keeps
+    // filming while the centre is off the screen), but such frames are
+    // marked skipped for the statistics.
+    Outcome video(Tracker& tracker, const Frame& frame) const {
+        Outcome o;
+        o.radius_modules = radius_;
+        TrackResult t;
+        const auto t0 = BenchClock::now();
+        try {
+            t = tracker.update(grey_view(frame));
+        } catch (const std::exception& e) {
+            t = TrackResult{};
+            t.state = TrackState::lost;
+            t.detection.failure = std::string("exception: ") + e.what();
+        }
+        const auto t1 = BenchClock::now();
+        if (!frame.centre_on_screen) {
+            o.skipped = true;
+            return o;
+        }
+        o.ms = ms_between(t0, t1);
+        o.found = t.state == TrackState::locked;
+        if (!o.found) o.failure = t.detection.failure.empty() ? to_string(t.state) : t.detection.failure;
+        fill_umf(o, frame, t.detection, t.aim_field);
+        return o;
+    }
+
+    Outcome aruco(const Frame& frame) const {
+        Outcome o;
+        o.radius_modules = radius_;
+        if (!frame.centre_on_screen) {
+            o.skipped = true;
+            return o;
+        }
+        ArucoLocation a;
+        const auto t0 = BenchClock::now();
+        try {
+            a = aruco_.locate(frame.grey);
+        } catch (const std::exception& e) {
+            a.found = false;
+            a.failure = std::string("exception: ") + e.what();
+        }
+        const auto t1 = BenchClock::now();
+        o.ms = ms_between(t0, t1);
+        o.found = a.found;
+        o.failure = a.failure;
+        if (a.found) o.error_modules = cv::norm(a.aim_screen_px - frame.centre_screen_px) / placement_.module_px;
+        return o;
+    }
+
+    const ArucoBaseline& board() const { return aruco_; }
+    const Field& field() const { return detector_.field(); }
+
+private:
+    static GreyView grey_view(const Frame& frame) {
+        return {frame.grey.data, frame.grey.cols, frame.grey.rows, static_cast<std::ptrdiff_t>(frame.grey.step)};
+    }
+
+    // The umf methods' pixels, stage times and aim error (when found).
+    void fill_umf(Outcome& o, const Frame& frame, const Detection& d, const Eigen::Vector2d& aim_field) const {
+        o.pixels_pct = 100.0 * static_cast<double>(d.pixels_visited) / static_cast<double>(frame.grey.total());
+        o.stage_ms = {d.times.edgels_ms, d.times.vanishing_ms, d.times.grid_ms,
+                      d.times.classify_ms, d.times.vote_ms,      d.times.refine_ms};
+        if (o.found) {
+            const cv::Point2d aim = sim::field_to_screen(placement_, {aim_field.x(), aim_field.y()});
+            o.error_modules = cv::norm(aim - frame.centre_screen_px) / placement_.module_px;
+        }
+    }
+
+    sim::FieldPlacement placement_;
+    double radius_;
+    Detector detector_;
+    ArucoBaseline aruco_;
+};
+
+}  // namespace umf::bench
