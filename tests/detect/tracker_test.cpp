@@ -1,6 +1,8 @@
 // The tracker over simulated 25 fps video: a pulsing field, a moving hand.
 #include <gtest/gtest.h>
 
+#include <iostream>
+
 #include <cmath>
 
 #include "detect/photo.hpp"
@@ -41,15 +43,15 @@ std::vector<Frame> pulsing_video(const Field& f, sim::ScreenKind kind, sim::Moti
 }
 
 // Locks per 50 frames of general motion with the field pulsing between
-// opacity 0.1 and 0.4: floors a little below what this measured (blank 50,
-// document 45, web page 44; frame-by-frame detection 33, 21, 15).
+// opacity 0.1 and 0.4: floors a little below what this measured (blank,
+// document and web page 50 each; frame-by-frame detection 50, 38, 38).
 TEST(Tracker, FollowsAPulsingFieldWithoutAWrongPlace) {
     const Field f = test::shipped_field("b4-64x36.json");
     const Detector detector(f);
     const struct {
         sim::ScreenKind kind;
         int floor;
-    } cases[] = {{sim::ScreenKind::blank, 48}, {sim::ScreenKind::document, 42}, {sim::ScreenKind::web_page, 41}};
+    } cases[] = {{sim::ScreenKind::blank, 48}, {sim::ScreenKind::document, 48}, {sim::ScreenKind::web_page, 48}};
     for (const auto& c : cases) {
         const auto video = pulsing_video(f, c.kind, sim::Motion::general, 50, 0.1, 0.4, 7);
         Tracker tracker(detector);
@@ -66,7 +68,11 @@ TEST(Tracker, FollowsAPulsingFieldWithoutAWrongPlace) {
                 << sim::to_string(c.kind) << " frame " << (&frame - video.data());
         }
         EXPECT_GE(locked, c.floor) << sim::to_string(c.kind);
-        EXPECT_GT(locked, plain) << sim::to_string(c.kind);
+        // Never behind frame-by-frame detection (which now finds most of
+        // these frames itself).
+        EXPECT_GE(locked, plain) << sim::to_string(c.kind);
+        std::cout << "[ measure  ] " << sim::to_string(c.kind) << ": tracker " << locked << ", frame by frame " << plain
+                  << " of 50\n";
     }
 }
 
