@@ -243,7 +243,10 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
             }
             // The final homography reaches beyond the windows that voted: the
             // modules it predicts over the whole view must read as the field.
-            if (!confirm_place(im, field_to_image, aim, out).found) {
+            // Each candidate checked is one more chance for a wrong place to
+            // pass: the n-th needs log2(n) bits more than the first.
+            ++out.places_checked;
+            if (!confirm_place(im, field_to_image, aim, out, std::log2(static_cast<double>(out.places_checked))).found) {
                 failure = "place not confirmed";
                 out.edges_fitted = 0;
                 t = Clock::now();
@@ -301,7 +304,7 @@ bool Detector::grid_homography(const GridLineFamily& rows_family, const GridLine
 namespace umf {
 
 VoteResult Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
-                                   Detection& out) const {
+                                   Detection& out, double extra_bits) const {
     // The modules of the field's visible box, read under the homography: the
     // grid is the field itself, so the expected placement is a plain offset,
     // and it must beat its neighbours one module away.
@@ -327,7 +330,9 @@ VoteResult Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& fi
     const ModuleGrid grid = classify_modules(im, field_to_image * shift, r1 - r0, c1 - c0, f.colors,
                                              f.key == WindowKey::edges, options_.classify, out.pixels_visited);
     out.times.classify_ms += ms_since(t);
-    VoteResult vote = vote_near(grid, index_, GridPlacement{0, r0, c0}, 1, options_.vote);
+    VoteOptions vote_options = options_.vote;
+    vote_options.min_evidence_bits += extra_bits;
+    VoteResult vote = vote_near(grid, index_, GridPlacement{0, r0, c0}, 1, vote_options);
     out.times.vote_ms += ms_since(t);
     out.windows = vote.votes;
     out.confidence = vote.agreement;

@@ -52,6 +52,7 @@ struct Detection {
     bool from_prior = false;  // confirmed near the predicted place rather than found anew
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
     double confidence = 0;    // fraction of the read modules or edges the place explains
+    int places_checked = 0;   // candidate places that reached the final check (each costs evidence)
     StageTimes times;
     long pixels_visited = 0;
     std::string failure;      // the stage that ended the search, when not found
@@ -99,9 +100,10 @@ private:
                          Eigen::Matrix3d& grid_to_image, int& rows, int& cols) const;
 
     // Reads the field's visible modules under `field_to_image` and checks that
-    // they single out exactly that placement; records windows and confidence.
+    // they single out exactly that placement, by `extra_bits` more evidence
+    // than a first candidate needs; records windows and confidence.
     VoteResult confirm_place(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
-                             Detection& out) const;
+                             Detection& out, double extra_bits = 0) const;
 
     WindowIndex index_;
     DetectorOptions options_;

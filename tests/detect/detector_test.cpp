@@ -61,6 +61,22 @@ TEST(Detector, NeverPlacesAScreenWithoutTheField) {
     EXPECT_FALSE(d.found) << "windows " << d.windows;
 }
 
+// Every candidate place that reaches the final check is counted, and each
+// after the first must bring more evidence: a clear view is placed at the
+// first; a screen without the field checks few and places none.
+TEST(Detector, CountsTheCandidatePlacesItChecks) {
+    const Field f = test::shipped_field("b4-64x36.json");
+    const Detector detector(f);
+    const Photo seen = test::photograph_field(f, 0.5, 0, 0, 0, 300);
+    const Detection found = detector.detect(seen.view());
+    ASSERT_TRUE(found.found);
+    EXPECT_EQ(found.places_checked, 1);
+    const Photo none = test::photograph_field(f, 0, 0, 0, 0, 300, sim::ScreenKind::document);
+    const Detection missing = detector.detect(none.view());
+    EXPECT_FALSE(missing.found);
+    EXPECT_LE(missing.places_checked, 2);
+}
+
 TEST(Detector, BadImagesAreNotFoundNeverACrash) {
     Detector detector(test::shipped_field("b4-64x36.json"));
     std::vector<std::uint8_t> px(64, 128);
