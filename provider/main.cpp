@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -14,9 +15,9 @@
 #include "cli/args.hpp"
 #include "commands/common_options.hpp"
 #include "commands/compose_command.hpp"
-#include "commands/preset_options.hpp"
-#include "commands/pair_command.hpp"
 #include "commands/desktop_keeper.hpp"
+#include "commands/pair_command.hpp"
+#include "commands/preset_options.hpp"
 #include "commands/serve_command.hpp"
 #include "desktop/display_socket.hpp"
 #include "desktop/gnome/gnome_install.hpp"
@@ -126,6 +127,33 @@ public:
     void set_status(const std::string& status) override { DesktopControls::set_status(status); }
 };
 
+// On a desktop the provider runs under a keeper that outlives the display
+// (commands/desktop_keeper.hpp). In the keeper, once it is done: its exit
+// code. In the provider it starts (or with no desktop at all): nullopt, with
+// the role in `hooks` and the port, the desktop and `headless` as it says.
+std::optional<int> serve_under_keeper(umf::cli::Args& args, bool& headless, ServeHooks& hooks) {
+    if (headless || umf::cli::get(args, "desktop").value_or("") == "none") return std::nullopt;
+    const SessionFacts session = session_from_environment();
+    if (session.wayland_display.empty() && session.x_display.empty()) return std::nullopt;
+    const char* runtime = std::getenv("XDG_RUNTIME_DIR");
+    KeeperSettings keeper;
+    keeper.shares_file = provider_runtime_dir() / ("shared-items-" + std::to_string(::getpid()) + ".json");
+    keeper.display_answers = [session, runtime = std::string(runtime ? runtime : "")] {
+        return displays_answer(session, runtime);
+    };
+    auto role = keep_provider(keeper, std::cerr);
+    if (const int* code = std::get_if<int>(&role)) return *code;
+    hooks.keeper = std::get<KeeperRole>(role);
+    if (hooks.keeper->port) args.named["port"] = std::to_string(*hooks.keeper->port);
+    if (!hooks.keeper->with_desktop) {
+        // Whatever platform the desktop's Qt was told to use, this one has no display.
+        args.named["desktop"] = "none";
+        headless = true;
+        ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
+    }
+    return std::nullopt;
+}
+
 std::vector<std::string> names(const char* const* list) {
     std::vector<std::string> out;
     for (; *list; ++list) out.emplace_back(*list);
@@ -152,28 +180,7 @@ int dispatch(int argc, char** argv) {
         sigaddset(&signals, SIGTERM);
         pthread_sigmask(SIG_BLOCK, &signals, nullptr);
         ServeHooks hooks;
-        if (!headless && umf::cli::get(args, "desktop").value_or("") != "none") {
-            const SessionFacts session = session_from_environment();
-            if (!session.wayland_display.empty() || !session.x_display.empty()) {
-                // On a desktop, a keeper outlives the display (commands/desktop_keeper.hpp).
-                const char* runtime = std::getenv("XDG_RUNTIME_DIR");
-                KeeperSettings keeper;
-                keeper.shares_file = provider_runtime_dir() / ("shared-items-" + std::to_string(::getpid()) + ".json");
-                keeper.display_answers = [session, runtime = std::string(runtime ? runtime : "")] {
-                    return displays_answer(session, runtime);
-                };
-                auto role = keep_provider(keeper, std::cerr);
-                if (const int* code = std::get_if<int>(&role)) return *code;
-                hooks.keeper = std::get<KeeperRole>(role);
-                if (hooks.keeper->port) args.named["port"] = std::to_string(*hooks.keeper->port);
-                if (!hooks.keeper->with_desktop) {
-                    // Whatever platform the desktop's Qt was told to use, this one has no display.
-                    args.named["desktop"] = "none";
-                    headless = true;
-                    ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
-                }
-            }
-        }
+        if (const auto keeper_done = serve_under_keeper(args, headless, hooks)) return *keeper_done;
         // On a desktop the tray and the tuning window need Qt Widgets.
         auto app = make_gui_application(argc, argv, headless);
         if (!headless && QGuiApplication::platformName() != "offscreen") {

@@ -166,4 +166,35 @@ private:
     ArucoBaseline aruco_;
 };
 
+// One configuration's outcomes per method, in frame order; video and aruco
+// are empty when those methods were left out.
+struct ConfigOutcomes {
+    std::vector<Outcome> umf, video, aruco;
+};
+
+// What every configuration of either set records: each method's summary and
+// the module sizes seen into `cr`; each frame's time into the report and,
+// when `tally_frames`, its module size and screen kind (`kinds[i]`) into the
+// report's breakdowns.
+inline void record_configuration(Report& report, ConfigResult& cr, double opacity, const std::vector<Frame>& frames,
+                                 const std::vector<std::string>& kinds, const ConfigOutcomes& o, bool tally_frames) {
+    const std::pair<const char*, const std::vector<Outcome>*> methods[] = {
+        {"umf", &o.umf}, {"umf_video", &o.video}, {"aruco", &o.aruco}};
+    for (const auto& [name, out] : methods)
+        if (!out->empty()) cr.methods[name] = summarise(*out);
+    std::vector<double> module_px;
+    for (const auto& f : frames)
+        if (f.centre_on_screen) module_px.push_back(f.module_px_in_image);
+    if (!module_px.empty())
+        cr.module_px = {*std::min_element(module_px.begin(), module_px.end()), percentile(module_px, 50),
+                        *std::max_element(module_px.begin(), module_px.end())};
+    for (std::size_t i = 0; i < frames.size(); ++i)
+        for (const auto& [name, out] : methods) {
+            if (out->empty()) continue;
+            const Outcome& outcome = (*out)[i];
+            if (!outcome.skipped) report.all_ms[name][cr.resolution].push_back(outcome.ms);
+            if (tally_frames) tally(report, name, opacity, frames[i].module_px_in_image, kinds[i], outcome);
+        }
+}
+
 }  // namespace umf::bench

@@ -450,30 +450,12 @@ private:
         cr.resolution = resolution_name(res);
         if (!opt_.dump.empty()) dump(cr, field_frames, board_frames);
 
-        std::vector<Outcome> umf_out, video_out, aruco_out;
-        run_methods(field_frames, board_frames, umf_out, video_out, aruco_out);
-        cr.methods["umf"] = summarise(umf_out);
-        if (opt_.video) cr.methods["umf_video"] = summarise(video_out);
-        if (opt_.aruco) cr.methods["aruco"] = summarise(aruco_out);
-
-        std::vector<double> module_px;
-        for (const auto& f : field_frames)
-            if (f.centre_on_screen) module_px.push_back(f.module_px_in_image);
-        if (!module_px.empty())
-            cr.module_px = {*std::min_element(module_px.begin(), module_px.end()), percentile(module_px, 50),
-                            *std::max_element(module_px.begin(), module_px.end())};
-        for (std::size_t i = 0; i < rs.size(); ++i) {
-            if (!umf_out[i].skipped) report_.all_ms["umf"][cr.resolution].push_back(umf_out[i].ms);
-            if (opt_.video && !video_out[i].skipped)
-                report_.all_ms["umf_video"][cr.resolution].push_back(video_out[i].ms);
-            if (opt_.aruco && !aruco_out[i].skipped) report_.all_ms["aruco"][cr.resolution].push_back(aruco_out[i].ms);
-            if (category == Category::occlusion || category == Category::low_light) continue;
-            const std::string kind = sim::to_string(rs[i].screen);
-            const double px = field_frames[i].module_px_in_image;
-            tally(report_, "umf", opacity, px, kind, umf_out[i]);
-            if (opt_.video) tally(report_, "umf_video", opacity, px, kind, video_out[i]);
-            if (opt_.aruco) tally(report_, "aruco", opacity, px, kind, aruco_out[i]);
-        }
+        ConfigOutcomes outcomes;
+        run_methods(field_frames, board_frames, outcomes.umf, outcomes.video, outcomes.aruco);
+        std::vector<std::string> kinds;
+        for (const auto& r : rs) kinds.emplace_back(sim::to_string(r.screen));
+        record_configuration(report_, cr, opacity, field_frames, kinds, outcomes,
+                             category != Category::occlusion && category != Category::low_light);
         report_.configs.push_back(std::move(cr));
     }
 
