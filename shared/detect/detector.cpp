@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 
+#include "detect/aim_check.hpp"
 #include "detect/field_edgels.hpp"
 #include "detect/homography.hpp"
 
@@ -223,13 +224,20 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
                 out.windows = vote.votes;
                 out.confidence = vote.agreement;
             }
-            if (!vote.found) {
+            // A grid labelled wrongly in part (a text line taken for a grid
+            // line) still has windows that agree where it is right: the
+            // refit grows out from them, and the checks below judge it.
+            const bool provisional = !vote.found && vote.votes >= options_.provisional_votes &&
+                                     vote.votes > vote.runner_up;
+            if (!vote.found && !provisional) {
                 failure = "no agreeing windows";
                 continue;
             }
             const Eigen::Matrix3d placement = placement_matrix(vote.placement);
-            Eigen::Matrix3d field_to_image = g2i * placement.inverse();
+            const Eigen::Matrix3d voted_f2i = g2i * placement.inverse();
+            Eigen::Matrix3d field_to_image = voted_f2i;
             // Step 7. Module edges around the voting windows, then outwards.
+            int edges_fitted = 0;
             if (options_.refine_enabled) {
                 double su, sv;
                 vote.placement.field_point(vote.centre_x, vote.centre_y, su, sv);
@@ -238,24 +246,36 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
                 out.times.refine_ms += ms_since(t);
                 if (r.refined) {
                     field_to_image = r.field_to_image;
-                    out.edges_fitted = r.edges_fitted;
+                    edges_fitted = r.edges_fitted;
                 }
             }
             // The final homography reaches beyond the windows that voted: the
-            // modules it predicts over the whole view must read as the field.
-            // Each candidate checked is one more chance for a wrong place to
-            // pass: the n-th needs log2(n) bits more than the first.
-            ++out.places_checked;
-            if (!confirm_place(im, field_to_image, aim, out, std::log2(static_cast<double>(out.places_checked))).found) {
-                failure = "place not confirmed";
-                out.edges_fitted = 0;
-                t = Clock::now();
-                continue;
+            // modules it predicts over the whole view must read as the field,
+            // and those around the aim must single out the place. Each
+            // candidate checked is one more chance for a wrong place to pass:
+            // the n-th needs log2(n) bits more than the first. A refit that
+            // strayed (pulled by content far from the windows) leaves the
+            // voted homography as a candidate of its own.
+            const char* refused = nullptr;
+            for (int attempt = 0; attempt < (edges_fitted > 0 ? 2 : 1); ++attempt) {
+                if (attempt == 1) {
+                    field_to_image = voted_f2i;
+                    edges_fitted = 0;
+                }
+                ++out.places_checked;
+                refused = confirm_place(im, field_to_image, aim, out, std::log2(static_cast<double>(out.places_checked)));
+                if (!refused) break;
             }
             t = Clock::now();
+            if (refused) {
+                failure = refused;
+                continue;
+            }
+            out.edges_fitted = edges_fitted;
             out.image_to_field = field_to_image.inverse();
             out.image_to_field /= out.image_to_field(2, 2);
-            auto aim_field = apply_homography(out.image_to_field, aim);
+            auto aim_field = aim_from_edges_around(im, field_to_image, aim, out.pixels_visited);
+            out.times.refine_ms += ms_since(t);
             if (!aim_field) return "aim point at infinity";
             out.aim_field = *aim_field;
             out.from_prior = near_prior;
@@ -303,8 +323,8 @@ bool Detector::grid_homography(const GridLineFamily& rows_family, const GridLine
 
 namespace umf {
 
-VoteResult Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
-                                   Detection& out, double extra_bits) const {
+const char* Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
+                                    Detection& out, double extra_bits) const {
     // The modules of the field's visible box, read under the homography: the
     // grid is the field itself, so the expected placement is a plain offset,
     // and it must beat its neighbours one module away.
@@ -324,7 +344,7 @@ VoteResult Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& fi
     }
     const int c0 = std::max(0, static_cast<int>(std::floor(u0))), r0 = std::max(0, static_cast<int>(std::floor(v0)));
     const int c1 = std::min(f.width, static_cast<int>(std::ceil(u1))), r1 = std::min(f.height, static_cast<int>(std::ceil(v1)));
-    if (c1 - c0 < 2 || r1 - r0 < 2) return {};
+    if (c1 - c0 < 2 || r1 - r0 < 2) return "place not confirmed";
     Eigen::Matrix3d shift;
     shift << 1, 0, c0, 0, 1, r0, 0, 0, 1;
     const ModuleGrid grid = classify_modules(im, field_to_image * shift, r1 - r0, c1 - c0, f.colors,
@@ -336,8 +356,28 @@ VoteResult Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& fi
     out.times.vote_ms += ms_since(t);
     out.windows = vote.votes;
     out.confidence = vote.agreement;
-    vote.found = vote.found && vote.placement.row_offset == r0 && vote.placement.col_offset == c0;
-    return vote;
+    if (!vote.found || vote.placement.row_offset != r0 || vote.placement.col_offset != c0)
+        return "place not confirmed";
+    const Eigen::Vector3d a = i2f * Eigen::Vector3d(aim.x(), aim.y(), 1.0);
+    if (!aim_holds(grid, r0, c0, a.hnormalized(), index_, options_.vote, options_.aim))
+        return "place does not hold at the aim";
+    return nullptr;
+}
+
+std::optional<Eigen::Vector2d> Detector::aim_from_edges_around(const GreyView& im, const Eigen::Matrix3d& field_to_image,
+                                                               const Eigen::Vector2d& aim, long& visited) const {
+    const Eigen::Matrix3d i2f = field_to_image.inverse();
+    const auto seed = apply_homography(i2f, aim);
+    if (!seed || options_.aim_refit_modules <= 0) return seed;
+    RefineOptions around = options_.refine;
+    around.max_radius_modules = options_.aim_refit_modules;
+    const Refinement r = refine_homography(im, index_.field(), field_to_image, *seed, around, visited);
+    if (!r.refined) return seed;
+    const auto refitted = apply_homography(r.field_to_image.inverse(), aim);
+    // The refit searches edges within 0.4 module of the whole view's
+    // prediction; farther off, it took hold of something else.
+    if (!refitted || (*refitted - *seed).norm() > 0.4) return seed;
+    return refitted;
 }
 
 Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
@@ -360,11 +400,10 @@ Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
     out.times.refine_ms = ms_since(t);
     if (!r.refined) return finish("too few module edges near the prediction");
 
-    const VoteResult vote = confirm_place(im, r.field_to_image, aim, out);
-    if (!vote.found) return finish("prediction not confirmed");
+    if (const char* refused = confirm_place(im, r.field_to_image, aim, out)) return finish(refused);
     const Eigen::Matrix3d i2f = r.field_to_image.inverse();
     out.image_to_field = i2f / i2f(2, 2);
-    auto aim_field = apply_homography(out.image_to_field, aim);
+    auto aim_field = aim_from_edges_around(im, r.field_to_image, aim, out.pixels_visited);
     if (!aim_field) return finish("aim point at infinity");
     out.aim_field = *aim_field;
     out.edges_fitted = r.edges_fitted;

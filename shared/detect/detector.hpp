@@ -8,7 +8,8 @@
 //   5. module values or edge signs           (classify.hpp)
 //   6. window lookup and placement vote      (window_index.hpp, placement_vote.hpp)
 //   7. the homography refitted to the field's own module edges (refine.hpp),
-//      then checked: the whole view must read as the field at that place
+//      then checked: the whole view must read as the field at that place,
+//      and so must the modules around the aim point (aim_check.hpp)
 // A wrong place is worse than none: every stage may end in "not found".
 #pragma once
 
@@ -16,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "detect/aim_check.hpp"
 #include "detect/classify.hpp"
 #include "detect/edgels.hpp"
 #include "detect/grid_lines.hpp"
@@ -34,7 +36,15 @@ struct DetectorOptions {
     ClassifyOptions classify;
     VoteOptions vote;
     RefineOptions refine;
+    AimCheckOptions aim;
+    // The aim point is read from a refit to the module edges within this
+    // many modules of it: one homography for the whole view is off by a
+    // tenth of a module or more at the aim under a rolling shutter.
+    double aim_refit_modules = 4;
     bool refine_enabled = true;
+    // Windows that must agree, and outvote any other placement, for a grid
+    // the vote does not accept as a whole to go on to the refit and checks.
+    int provisional_votes = 4;
     bool rescan = true;  // scans on the lines in between (down to 4 px apart) when a scan finds nothing
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
@@ -47,7 +57,7 @@ struct Detection {
     bool found = false;
     Eigen::Matrix3d image_to_field = Eigen::Matrix3d::Identity();
     Eigen::Vector2d aim_image = Eigen::Vector2d::Zero();
-    Eigen::Vector2d aim_field = Eigen::Vector2d::Zero();  // (u, v) in modules
+    Eigen::Vector2d aim_field = Eigen::Vector2d::Zero();  // (u, v) in modules, from the edges around the aim
     int windows = 0;          // windows that agreed on the place
     bool from_prior = false;  // confirmed near the predicted place rather than found anew
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
@@ -96,13 +106,19 @@ private:
     // Steps 2 to 7 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                        const EdgelScan& scan, Detection& out) const;
+    // Step 8: the aim point in field coordinates, from the module edges around
+    // it (or from `field_to_image` where too few are found).
+    std::optional<Eigen::Vector2d> aim_from_edges_around(const GreyView& image, const Eigen::Matrix3d& field_to_image,
+                                                         const Eigen::Vector2d& aim, long& pixels_visited) const;
     bool grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family, const GreyView& image,
                          Eigen::Matrix3d& grid_to_image, int& rows, int& cols) const;
 
     // Reads the field's visible modules under `field_to_image` and checks that
     // they single out exactly that placement, by `extra_bits` more evidence
-    // than a first candidate needs; records windows and confidence.
-    VoteResult confirm_place(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
+    // than a first candidate needs, and that the modules around the aim do
+    // too (aim_check.hpp); records windows and confidence. The reason for
+    // refusing, or null.
+    const char* confirm_place(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
                              Detection& out, double extra_bits = 0) const;
 
     WindowIndex index_;

@@ -12,6 +12,19 @@ void ModuleGrid::derive_edges() {
         }
 }
 
+ModuleGrid ModuleGrid::crop(int i0, int j0, int rows_, int cols_) const {
+    ModuleGrid out(rows_, cols_);
+    for (int i = 0; i < rows_; ++i)
+        for (int j = 0; j < cols_; ++j) {
+            const int a = i0 + i, b = j0 + j;
+            if (a < 0 || b < 0 || a >= rows || b >= cols) continue;
+            out.at(i, j) = at(a, b);
+            out.right_of(i, j) = j + 1 < cols_ ? right_of(a, b) : kUnknown;
+            out.below(i, j) = i + 1 < rows_ ? below(a, b) : kUnknown;
+        }
+    return out;
+}
+
 std::optional<std::uint64_t> observed_code(const ModuleGrid& g, const WindowCodec& codec, int i, int j) {
     const int n = codec.window();
     if (i < 0 || j < 0 || i + n > g.rows || j + n > g.cols) return std::nullopt;

@@ -38,6 +38,9 @@ struct ModuleGrid {
 
     // Edge signs from the module values, where both neighbours are known.
     void derive_edges();
+
+    // The rows x cols part from cell (i0, j0) on; cells outside this grid are unknown.
+    ModuleGrid crop(int i0, int j0, int rows, int cols) const;
 };
 
 // The code of the n x n window whose top-left grid cell is (i, j), in the

@@ -186,6 +186,7 @@ VoteResult vote_near(const ModuleGrid& grid, const WindowIndex& index, const Gri
         }
     out.agreement = best_agreement.compared ? static_cast<double>(best_agreement.matched) / best_agreement.compared : 0.0;
     out.evidence_bits = best_bits - choice_bits;
+    out.margin_bits = best_bits - second_bits;
     // Complete windows that agree: the same count the global vote reports.
     const int n = index.codec().window();
     read_windows(grid, index, out, [&](int i, int j, const GridPlacement& q) {
@@ -202,7 +203,7 @@ VoteResult vote_near(const ModuleGrid& grid, const WindowIndex& index, const Gri
         out.centre_y = grid.rows / 2.0;
     }
     out.found = out.agreement >= options.min_agreement && out.evidence_bits >= options.min_evidence_bits &&
-                best_bits - second_bits >= options.min_evidence_bits;
+                out.margin_bits >= options.min_evidence_bits;
     return out;
 }
 

@@ -43,6 +43,7 @@ struct VoteResult {
     int windows_known = 0;  // of those, found in the field
     double agreement = 0;   // fraction of read modules or edges that match the field at the winner
     double evidence_bits = 0;
+    double margin_bits = 0;  // vote_near: the winner's evidence over the runner-up's
     // Grid point (x along columns, y along rows) at the mean centre of the
     // windows that voted for the winner: where the grid is surely right.
     double centre_x = 0, centre_y = 0;

@@ -140,7 +140,7 @@ Refinement refine_homography(const GreyView& im, const Field& f, const Eigen::Ma
         u0 = std::min(u0, q.x() / q.z()), u1 = std::max(u1, q.x() / q.z());
         v0 = std::min(v0, q.y() / q.z()), v1 = std::max(v1, q.y() / q.z());
     }
-    const double span = std::max({u1 - u0, v1 - v0, 1.0});
+    const double span = std::min(std::max({u1 - u0, v1 - v0, 1.0}), std::max(1.0, o.max_radius_modules));
     Eigen::Matrix3d h = field_to_image;
     double max_gradient = std::numeric_limits<double>::infinity();
     // Rings of radius 4, 6, 9, 13... modules (each fit must predict the next

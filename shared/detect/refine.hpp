@@ -22,6 +22,7 @@ struct RefineOptions {
     int min_edges = 16;           // fewer found edges leave the homography as it was
     double tolerance_modules = 0.2;  // an edge further than this from the fit is an outlier
     double max_strength_ratio = 2.5; // edges stronger than this times the median are not the field's
+    double max_radius_modules = 1e9; // the rings stop at this radius (the whole view by default)
 };
 
 struct Refinement {

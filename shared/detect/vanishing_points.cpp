@@ -81,6 +81,35 @@ double dominant_angle(const std::vector<EdgelLine>& lines, double avoid, double 
     return best < 0 ? -1 : (best + 0.5) * kPi / kBins;
 }
 
+// Cosine of the angle an edgel may make with the direction to its vanishing
+// point: a Sobel gradient's direction is uncertain by about 3.46 sigma / |g|
+// radians for pixel noise sigma.
+double inlier_cos(double g, double noise_sigma, const VanishingOptions& o) {
+    const double tol_deg =
+        std::min(o.max_inlier_deg, std::max(o.inlier_deg, o.noise_deviations * 3.46 * noise_sigma / g * 180 / kPi));
+    return std::cos(tol_deg * kPi / 180);
+}
+
+// The noise that the candidates' scatter about the vanishing point v shows,
+// from the lower quartile of angle x |g| / 3.46 (0.319 deviations of a
+// normal distribution; the lower quartile leaves out the content's edges,
+// which lie anywhere in the range). Compression flattens the areas the
+// image's noise is estimated from while its ringing, like the corners of
+// small modules, still tilts the gradients on the edges.
+double scatter_noise(const std::vector<EdgelLine>& lines, const std::vector<int>& candidates,
+                     const Eigen::Vector3d& v, const VanishingOptions& o) {
+    const double cos_widest = std::cos(o.max_inlier_deg * kPi / 180);
+    std::vector<double> x;
+    for (int i : candidates) {
+        const double a = alignment(lines[i], v);
+        if (a >= cos_widest) x.push_back(std::acos(std::min(1.0, a)) * lines[i].weight / 3.46);
+    }
+    if (static_cast<int>(x.size()) < o.min_edgels) return 0;
+    const auto q = x.begin() + static_cast<std::ptrdiff_t>(x.size() / 4);
+    std::nth_element(x.begin(), q, x.end());
+    return *q / 0.319;
+}
+
 }  // namespace
 
 Eigen::Vector2d direction_to(const Eigen::Vector3d& v, const Eigen::Vector2d& from) {
@@ -104,9 +133,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         l.l = Eigen::Vector3d(e.gx / g, e.gy / g, -(e.gx * l.p.x() + e.gy * l.p.y()) / g);
         l.angle = std::fmod(std::atan2(l.d.y(), l.d.x()) + 2 * kPi, kPi);
         l.weight = g;
-        const double tol_deg = std::min(o.max_inlier_deg, std::max(o.inlier_deg, o.noise_deviations * 3.46 *
-                                                                                      noise_sigma / g * 180 / kPi));
-        l.cos_tol = std::cos(tol_deg * kPi / 180);
+        l.cos_tol = inlier_cos(g, noise_sigma, o);
         lines.push_back(l);
     }
     if (static_cast<int>(lines.size()) < 2 * o.min_edgels) return out;
@@ -168,6 +195,8 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
             }
         }
         if (best_score < 0) return out;
+        if (const double seen = scatter_noise(lines, candidates, best_v, o); seen > noise_sigma)
+            for (int i : candidates) lines[i].cos_tol = inlier_cos(lines[i].weight, seen, o);
         std::vector<int> best = inliers_of(best_v);
         if (static_cast<int>(best.size()) < o.min_edgels) return out;
         Eigen::Vector3d v = fit_point(lines, best);

@@ -42,6 +42,7 @@ nlohmann::json to_json(const Summary& s) {
     j["success_pct"] = json_number(s.success_pct);
     j["false_location_pct"] = json_number(s.false_pct);
     j["aim_error_modules"] = {{"median", json_number(s.err_median)}, {"p95", json_number(s.err_p95)}};
+    if (!s.false_errors.empty()) j["false_location_errors_modules"] = s.false_errors;
     j["ms_per_frame"] = {{"median", json_number(s.ms_median)}, {"mean", json_number(s.ms_mean)}};
     j["pixels_visited_pct_median"] = json_number(s.pixels_median_pct);
     if (std::isfinite(s.stage_median_ms[0])) {
@@ -229,6 +230,7 @@ Summary summarise(const std::vector<Outcome>& outcomes) {
         if (o.success()) ++s.success;
         if (o.false_location()) {
             ++s.false_location;
+            s.false_errors.push_back(o.error_modules);
             ++s.reasons[wrong_place(o.radius_modules)];
         }
         if (!o.found) ++s.reasons[o.failure.empty() ? "(no reason given)" : o.failure];

@@ -53,6 +53,7 @@ struct Summary {
     int frames = 0, skipped = 0, evaluated = 0, found = 0, success = 0, false_location = 0;
     double success_pct = kNaN, false_pct = kNaN;
     double err_median = kNaN, err_p95 = kNaN;
+    std::vector<double> false_errors;  // modules: how far off each false location was (a bent aim or a wrong place)
     double ms_median = kNaN, ms_mean = kNaN;
     double pixels_median_pct = kNaN;
     std::array<double, kStageNames.size()> stage_median_ms{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN};

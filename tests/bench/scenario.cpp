@@ -53,9 +53,12 @@ sim::Motion motion_of(Category category) {
     case Category::horizontal: return sim::Motion::horizontal;
     case Category::rotation: return sim::Motion::rotation;
     case Category::perspective: return sim::Motion::perspective;
+    case Category::distant: return sim::Motion::near_far;
     case Category::general:
     case Category::occlusion:
-    case Category::low_light: return sim::Motion::general;
+    case Category::low_light:
+    case Category::smeared:
+    case Category::compressed: return sim::Motion::general;
     }
     return sim::Motion::general;
 }
@@ -107,8 +110,16 @@ const char* to_string(Category category) {
     case Category::general: return "general";
     case Category::occlusion: return "occlusion";
     case Category::low_light: return "low_light";
+    case Category::smeared: return "smeared";
+    case Category::distant: return "distant";
+    case Category::compressed: return "compressed";
     }
     return "?";
+}
+
+bool is_plain(Category category) {
+    return category != Category::occlusion && category != Category::low_light && category != Category::smeared &&
+           category != Category::compressed;
 }
 
 std::optional<Category> category_from_string(const std::string& name) {
@@ -120,8 +131,12 @@ std::optional<Category> category_from_string(const std::string& name) {
 std::vector<FrameRecipe> category_recipes(const Scene& scene, Category category, int frames, std::uint64_t seed) {
     // general, occlusion and low_light share the seed and hence the poses and
     // the everyday degradations: what they add is then all that differs.
+    // distant: the near_far sweep from 650 to 1100 mm (modules of 4-7 px
+    // at 640 x 480).
+    const sim::MotionRange range = category == Category::distant ? sim::MotionRange{900, 650, 1100, 60} : scene.range;
     const std::vector<sim::CameraPose> poses =
-        sim::pose_trajectory(motion_of(category), frames, scene.screen.pixels, seed, scene.range);
+        sim::pose_trajectory(motion_of(category), frames, scene.screen.pixels, seed, range);
+    cv::RNG extra(mix_seed(seed, static_cast<std::uint64_t>(category), 6));
     std::vector<FrameRecipe> out;
     for (int i = 0; i < frames; ++i) {
         FrameRecipe r;
@@ -137,6 +152,16 @@ std::vector<FrameRecipe> category_recipes(const Scene& scene, Category category,
             r.degradation.noise_sigma = 6;
         }
         if (category == Category::occlusion) r.occluder_seed = mix_seed(seed, static_cast<std::uint64_t>(i), 3);
+        // Both drawn for every category, so the stream is the same for all.
+        const double smear_px = extra.uniform(4.0, 12.0), smear_deg = extra.uniform(0.0, 180.0);
+        const int quality = extra.uniform(25, 56);
+        if (category == Category::smeared) {
+            // A hand moving the phone during a long exposure.
+            r.degradation.motion_blur_px = smear_px;
+            r.degradation.motion_angle_deg = smear_deg;
+        }
+        // A screen recording or a video call's frame: low-quality JPEG.
+        if (category == Category::compressed) r.degradation.jpeg_quality = quality;
         out.push_back(r);
     }
     return out;

@@ -20,12 +20,18 @@
 
 namespace umf::bench {
 
-enum class Category { near_far, horizontal, rotation, perspective, general, occlusion, low_light };
+// The thesis's seven categories, then three that stress what a phone's
+// video adds (strong smear, far views, low-quality compression), each with
+// parameters of its own: the held-out set's are not copied here.
+enum class Category { near_far, horizontal, rotation, perspective, general, occlusion, low_light, smeared, distant,
+                      compressed };
 
-inline constexpr std::array<Category, 7> kAllCategories = {Category::near_far,    Category::horizontal,
-                                                           Category::rotation,    Category::perspective,
-                                                           Category::general,     Category::occlusion,
-                                                           Category::low_light};
+inline constexpr std::array<Category, 10> kAllCategories = {
+    Category::near_far, Category::horizontal, Category::rotation, Category::perspective, Category::general,
+    Category::occlusion, Category::low_light, Category::smeared, Category::distant, Category::compressed};
+
+// Categories whose frames have no more than the everyday degradations.
+bool is_plain(Category category);
 
 const char* to_string(Category category);
 std::optional<Category> category_from_string(const std::string& name);

@@ -58,7 +58,8 @@ Usage: umf_benchmark [options]
                          heldout.{json,md}, no pulsing video
   --quick                10 frames, 640x480 only, a short pulsing run (explicit options win)
   --out DIR              where the reports go (default docs/benchmarks)
-  --categories a,b       tuning: near_far, horizontal, rotation, perspective, general, occlusion, low_light;
+  --categories a,b       tuning: near_far, horizontal, rotation, perspective, general, occlusion, low_light,
+                         smeared, distant, compressed;
                          heldout: general, rotation, perspective, near, far, motion, low_light, occlusion,
                          moire (default all)
   --resolutions WxH,...  camera resolutions (default 640x480,1280x720,1920x1080)
@@ -455,7 +456,7 @@ private:
         std::vector<std::string> kinds;
         for (const auto& r : rs) kinds.emplace_back(sim::to_string(r.screen));
         record_configuration(report_, cr, opacity, field_frames, kinds, outcomes,
-                             category != Category::occlusion && category != Category::low_light);
+                             is_plain(category));
         report_.configs.push_back(std::move(cr));
     }
 

@@ -1,8 +1,11 @@
 // Accuracy floors per benchmark category on fixed seeds: the first 20 frames
 // of each category of tests/bench (the same recipes umf_benchmark uses) at
 // opacity 0.3 and 640 x 480, single frames and the tracker. The floors sit a
-// little below what this measured; a wrong place is never allowed.
+// little below what this measured; a wrong place (more than half a module
+// from the truth) is never allowed.
 #include <gtest/gtest.h>
+
+#include <iostream>
 
 #include "bench/scenario.hpp"
 #include "detect/tracker.hpp"
@@ -26,12 +29,13 @@ TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
     std::vector<cv::Mat> screens;
     for (auto kind : sim::kAllScreenKinds)
         screens.push_back(sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), f, placement, 0.3));
-    // Measured: 19, 20, 20, 20, 20, 20, 18 single frames; 20 tracked in every
-    // category but low light (19).
-    const Floor floors[] = {{bench::Category::near_far, 17, 19},    {bench::Category::horizontal, 18, 19},
-                            {bench::Category::rotation, 18, 19},    {bench::Category::perspective, 18, 19},
-                            {bench::Category::general, 18, 19},     {bench::Category::occlusion, 18, 19},
-                            {bench::Category::low_light, 16, 18}};
+    // Measured at half a module: 19, 20, 20, 20, 20, 20, 19, 17, 20, 20 single
+    // frames; 20 tracked in every category but smeared (18).
+    const Floor floors[] = {{bench::Category::near_far, 18, 19},   {bench::Category::horizontal, 19, 19},
+                            {bench::Category::rotation, 19, 19},   {bench::Category::perspective, 19, 19},
+                            {bench::Category::general, 19, 19},    {bench::Category::occlusion, 19, 19},
+                            {bench::Category::low_light, 17, 19},  {bench::Category::smeared, 15, 16},
+                            {bench::Category::distant, 18, 19},    {bench::Category::compressed, 18, 19}};
     for (const Floor& floor : floors) {
         Tracker tracker(detector);
         int single = 0, video = 0;
@@ -47,14 +51,15 @@ TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
             const TrackResult t = tracker.update(view);
             if (!frame.centre_on_screen) continue;
             if (d.found) {
-                EXPECT_LT(error(d.aim_field), 1.0) << to_string(floor.category) << " frame " << recipe.index;
-                single += error(d.aim_field) < 1.0;
+                EXPECT_LT(error(d.aim_field), 0.5) << to_string(floor.category) << " frame " << recipe.index;
+                single += error(d.aim_field) < 0.5;
             }
             if (t.state == TrackState::locked) {
-                EXPECT_LT(error(t.aim_field), 1.0) << to_string(floor.category) << " frame " << recipe.index;
-                video += error(t.aim_field) < 1.0;
+                EXPECT_LT(error(t.aim_field), 0.5) << to_string(floor.category) << " frame " << recipe.index;
+                video += error(t.aim_field) < 0.5;
             }
         }
+        std::cout << to_string(floor.category) << ": " << single << " single, " << video << " tracked\n";
         EXPECT_GE(single, floor.single) << to_string(floor.category);
         EXPECT_GE(video, floor.video) << to_string(floor.category);
     }
