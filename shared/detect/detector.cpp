@@ -272,12 +272,9 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
                 continue;
             }
             out.edges_fitted = edges_fitted;
-            out.image_to_field = field_to_image.inverse();
-            out.image_to_field /= out.image_to_field(2, 2);
-            auto aim_field = aim_from_edges_around(im, field_to_image, aim, out.pixels_visited);
+            const bool placed = place_aim(im, field_to_image, aim, out);
             out.times.refine_ms += ms_since(t);
-            if (!aim_field) return "aim point at infinity";
-            out.aim_field = *aim_field;
+            if (!placed) return "aim point at infinity";
             out.from_prior = near_prior;
             out.found = true;
             return nullptr;
@@ -364,20 +361,30 @@ const char* Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& f
     return nullptr;
 }
 
-std::optional<Eigen::Vector2d> Detector::aim_from_edges_around(const GreyView& im, const Eigen::Matrix3d& field_to_image,
-                                                               const Eigen::Vector2d& aim, long& visited) const {
+bool Detector::place_aim(const GreyView& im, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
+                         Detection& out) const {
     const Eigen::Matrix3d i2f = field_to_image.inverse();
     const auto seed = apply_homography(i2f, aim);
-    if (!seed || options_.aim_refit_modules <= 0) return seed;
+    if (!seed) return false;
+    out.image_to_field = i2f / i2f(2, 2);
+    out.aim_field = *seed;
+    if (options_.aim_refit_modules <= 0) return true;
     RefineOptions around = options_.refine;
     around.max_radius_modules = options_.aim_refit_modules;
-    const Refinement r = refine_homography(im, index_.field(), field_to_image, *seed, around, visited);
-    if (!r.refined) return seed;
+    const Refinement r = refine_homography(im, index_.field(), field_to_image, *seed, around, out.pixels_visited);
+    if (!r.refined) return true;
     const auto refitted = apply_homography(r.field_to_image.inverse(), aim);
     // The refit searches edges within 0.4 module of the whole view's
     // prediction; farther off, it took hold of something else.
-    if (!refitted || (*refitted - *seed).norm() > 0.4) return seed;
-    return refitted;
+    if (!refitted || (*refitted - *seed).norm() > 0.4) return true;
+    // The view's homography shifted in the field so that it takes the aim
+    // to the refitted point: one map for the view, exact at the aim.
+    Eigen::Matrix3d shift = Eigen::Matrix3d::Identity();
+    shift.topRightCorner<2, 1>() = *refitted - *seed;
+    out.image_to_field = shift * out.image_to_field;
+    out.image_to_field /= out.image_to_field(2, 2);
+    out.aim_field = *refitted;
+    return true;
 }
 
 Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
@@ -401,11 +408,7 @@ Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
     if (!r.refined) return finish("too few module edges near the prediction");
 
     if (const char* refused = confirm_place(im, r.field_to_image, aim, out)) return finish(refused);
-    const Eigen::Matrix3d i2f = r.field_to_image.inverse();
-    out.image_to_field = i2f / i2f(2, 2);
-    auto aim_field = aim_from_edges_around(im, r.field_to_image, aim, out.pixels_visited);
-    if (!aim_field) return finish("aim point at infinity");
-    out.aim_field = *aim_field;
+    if (!place_aim(im, r.field_to_image, aim, out)) return finish("aim point at infinity");
     out.edges_fitted = r.edges_fitted;
     out.from_prior = true;
     out.found = true;

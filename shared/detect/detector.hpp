@@ -58,6 +58,7 @@ struct Detection {
     Eigen::Matrix3d image_to_field = Eigen::Matrix3d::Identity();
     Eigen::Vector2d aim_image = Eigen::Vector2d::Zero();
     Eigen::Vector2d aim_field = Eigen::Vector2d::Zero();  // (u, v) in modules, from the edges around the aim
+                                                          // (image_to_field takes the aim there)
     int windows = 0;          // windows that agreed on the place
     bool from_prior = false;  // confirmed near the predicted place rather than found anew
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
@@ -106,10 +107,12 @@ private:
     // Steps 2 to 7 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                        const EdgelScan& scan, Detection& out) const;
-    // Step 8: the aim point in field coordinates, from the module edges around
-    // it (or from `field_to_image` where too few are found).
-    std::optional<Eigen::Vector2d> aim_from_edges_around(const GreyView& image, const Eigen::Matrix3d& field_to_image,
-                                                         const Eigen::Vector2d& aim, long& pixels_visited) const;
+    // Step 8: the aim point in field coordinates from the module edges around
+    // it (from `field_to_image` alone where too few are found), and the
+    // image-to-field map shifted to take the aim there. False when the aim
+    // maps to infinity.
+    bool place_aim(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
+                   Detection& out) const;
     bool grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family, const GreyView& image,
                          Eigen::Matrix3d& grid_to_image, int& rows, int& cols) const;
 
