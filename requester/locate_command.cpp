@@ -86,7 +86,7 @@ Json detection_json(int frame, const Detection& d, const Eigen::Vector2d& point)
     j["found"] = d.found;
     if (d.found) {
         j["point"] = point_json(point);
-        j["H"] = homography_json(d.image_to_field);
+        j["H"] = homography_json(image_to_field_through_aim(d));
         j["windows"] = d.windows;
         j["ms"] = round_ms(d.times.total_ms);
         j["confidence"] = d.confidence;

@@ -377,14 +377,17 @@ bool Detector::place_aim(const GreyView& im, const Eigen::Matrix3d& field_to_ima
     // The refit searches edges within 0.4 module of the whole view's
     // prediction; farther off, it took hold of something else.
     if (!refitted || (*refitted - *seed).norm() > 0.4) return true;
-    // The view's homography shifted in the field so that it takes the aim
-    // to the refitted point: one map for the view, exact at the aim.
-    Eigen::Matrix3d shift = Eigen::Matrix3d::Identity();
-    shift.topRightCorner<2, 1>() = *refitted - *seed;
-    out.image_to_field = shift * out.image_to_field;
-    out.image_to_field /= out.image_to_field(2, 2);
     out.aim_field = *refitted;
     return true;
+}
+
+Eigen::Matrix3d image_to_field_through_aim(const Detection& d) {
+    const auto at_aim = apply_homography(d.image_to_field, d.aim_image);
+    if (!at_aim) return d.image_to_field;
+    Eigen::Matrix3d shift = Eigen::Matrix3d::Identity();
+    shift.topRightCorner<2, 1>() = d.aim_field - *at_aim;
+    Eigen::Matrix3d h = shift * d.image_to_field;
+    return h / h(2, 2);
 }
 
 Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,

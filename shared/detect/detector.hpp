@@ -57,8 +57,10 @@ struct Detection {
     bool found = false;
     Eigen::Matrix3d image_to_field = Eigen::Matrix3d::Identity();
     Eigen::Vector2d aim_image = Eigen::Vector2d::Zero();
-    Eigen::Vector2d aim_field = Eigen::Vector2d::Zero();  // (u, v) in modules, from the edges around the aim
-                                                          // (image_to_field takes the aim there)
+    // (u, v) in modules, from the module edges around the aim: within a few
+    // hundredths of a module of where image_to_field, fitted to the whole
+    // view, takes the aim (image_to_field_through_aim joins the two).
+    Eigen::Vector2d aim_field = Eigen::Vector2d::Zero();
     int windows = 0;          // windows that agreed on the place
     bool from_prior = false;  // confirmed near the predicted place rather than found anew
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
@@ -68,6 +70,10 @@ struct Detection {
     long pixels_visited = 0;
     std::string failure;      // the stage that ended the search, when not found
 };
+
+// The view's image-to-field map shifted in the field to take the aim exactly
+// to aim_field: for whoever reports one map and one point.
+Eigen::Matrix3d image_to_field_through_aim(const Detection& detection);
 
 // Where the field was: the image-to-field homography of a recent frame, and
 // how far (modules) the place may have moved since. Lets the detector confirm
@@ -107,10 +113,9 @@ private:
     // Steps 2 to 7 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                        const EdgelScan& scan, Detection& out) const;
-    // Step 8: the aim point in field coordinates from the module edges around
-    // it (from `field_to_image` alone where too few are found), and the
-    // image-to-field map shifted to take the aim there. False when the aim
-    // maps to infinity.
+    // Step 8: the view's image-to-field map, and the aim point in field
+    // coordinates from the module edges around it (from `field_to_image`
+    // alone where too few are found). False when the aim maps to infinity.
     bool place_aim(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
                    Detection& out) const;
     bool grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family, const GreyView& image,
