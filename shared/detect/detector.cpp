@@ -227,9 +227,7 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
             // A grid labelled wrongly in part (a text line taken for a grid
             // line) still has windows that agree where it is right: the
             // refit grows out from them, and the checks below judge it.
-            const bool provisional = !vote.found && vote.votes >= options_.provisional_votes &&
-                                     vote.votes > vote.runner_up;
-            if (!vote.found && !provisional) {
+            if (!vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up)) {
                 failure = "no agreeing windows";
                 continue;
             }
@@ -256,15 +254,15 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
             // the n-th needs log2(n) bits more than the first. A refit that
             // strayed (pulled by content far from the windows) leaves the
             // voted homography as a candidate of its own.
-            const char* refused = nullptr;
-            for (int attempt = 0; attempt < (edges_fitted > 0 ? 2 : 1); ++attempt) {
-                if (attempt == 1) {
-                    field_to_image = voted_f2i;
-                    edges_fitted = 0;
-                }
+            auto check = [&](const Eigen::Matrix3d& candidate) {
                 ++out.places_checked;
-                refused = confirm_place(im, field_to_image, aim, out, std::log2(static_cast<double>(out.places_checked)));
-                if (!refused) break;
+                return confirm_place(im, candidate, aim, out, std::log2(static_cast<double>(out.places_checked)));
+            };
+            const char* refused = check(field_to_image);
+            if (refused && edges_fitted > 0) {
+                field_to_image = voted_f2i;
+                edges_fitted = 0;
+                refused = check(field_to_image);
             }
             t = Clock::now();
             if (refused) {

@@ -129,8 +129,9 @@ std::optional<Category> category_from_string(const std::string& name) {
 }
 
 std::vector<FrameRecipe> category_recipes(const Scene& scene, Category category, int frames, std::uint64_t seed) {
-    // general, occlusion and low_light share the seed and hence the poses and
-    // the everyday degradations: what they add is then all that differs.
+    // general, occlusion, low_light, smeared and compressed share the seed and
+    // hence the poses and the everyday degradations: what they add is then
+    // all that differs.
     // distant: the near_far sweep from 650 to 1100 mm (modules of 4-7 px
     // at 640 x 480).
     const sim::MotionRange range = category == Category::distant ? sim::MotionRange{900, 650, 1100, 60} : scene.range;
