@@ -45,8 +45,8 @@ TEST(DesktopOverlay, TheFieldIsOverTheDesktopAndNotInSnapshots) {
         return std::string(std::istreambuf_iterator<char>(in), {});
     };
     const auto desktop = std::make_shared<const X11Desktop>(server.display);
-    Process openbox({"openbox", "--sm-disable"}, options("openbox.log"));
-    ASSERT_TRUE(wait_until([&] { return desktop->has_ewmh(); }, 10s)) << log_of("openbox.log");
+    const auto openbox = start_openbox(options("openbox.log"), dir.path / "openbox-ready");
+    ASSERT_TRUE(desktop->has_ewmh());
     Process compositor({"xcompmgr"}, options("xcompmgr.log"));
     // An xterm in grey over the screen's centre, placed once openbox manages it.
     std::unique_ptr<Process> xterm;

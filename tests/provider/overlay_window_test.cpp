@@ -254,9 +254,9 @@ void run_child(const std::string& child, const std::string& screen, const std::v
     Process::Options options;
     options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}});
     options.log = dir.path / "openbox.log";
-    Process openbox({"openbox"}, options);
+    const auto openbox = start_openbox(options, dir.path / "openbox-ready");
     const X11Desktop desktop(server.display);
-    ASSERT_TRUE(wait_until([&] { return desktop.has_ewmh(); }, 5s)) << "openbox did not start";
+    ASSERT_TRUE(desktop.has_ewmh());
     if (check_detection) EXPECT_FALSE(compositor_running(server.display, 0));
     options.log = dir.path / "compositor.log";
     Process running(compositor, options);

@@ -62,8 +62,8 @@ TEST(PutCardOnX, TheCardStaysOutOfSnapshotsAndTheOpenedFileLandsWherePointed) {
         return std::string(std::istreambuf_iterator<char>(in), {});
     };
     const auto desktop = std::make_shared<const X11Desktop>(server.display);
-    Process openbox({"openbox", "--sm-disable"}, options("openbox.log"));
-    ASSERT_TRUE(wait_until([&] { return desktop->has_ewmh(); }, 10s)) << log_of("openbox.log");
+    const auto openbox = start_openbox(options("openbox.log"), dir.path / "openbox-ready");
+    ASSERT_TRUE(desktop->has_ewmh());
     Process compositor({"xcompmgr"}, options("xcompmgr.log"));
     // Grey on grey, 1000 x 600 around the centre: the card beside the centre lies on it.
     Process xterm({"xterm", "-bg", "#808080", "-fg", "#808080", "-geometry", "120x40", "-T", "umf grey", "-e",

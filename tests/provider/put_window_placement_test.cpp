@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include <fstream>
+#include <future>
 
 #include "desktop/x11/x11_desktop.hpp"
 #include "put/desktop_open.hpp"
@@ -102,6 +103,26 @@ private:
     std::optional<std::string> old_;
 };
 
+// The real X11 watch, telling the test when its thread is done with the X
+// server (which the test must outlive: Xlib ends the process when the
+// server goes while a connection is open).
+class WatchDone final : public NewWindowWatch {
+public:
+    explicit WatchDone(std::unique_ptr<NewWindowWatch> inner) : inner_(std::move(inner)) {}
+    std::optional<unsigned long> place(int child_pid, std::chrono::milliseconds wait) override {
+        auto placed = inner_->place(child_pid, wait);
+        inner_.reset();
+        done_.set_value();
+        return placed;
+    }
+    std::shared_future<void> done() const { return future_; }
+
+private:
+    std::unique_ptr<NewWindowWatch> inner_;
+    std::promise<void> done_;
+    std::shared_future<void> future_ = done_.get_future().share();
+};
+
 // Xvfb of 1600x1000 with openbox managing it.
 class PutWindowPlacementOnX : public ::testing::Test {
 protected:
@@ -129,8 +150,8 @@ protected:
         return o;
     }
     void start_openbox() {
-        openbox = std::make_unique<Process>(std::vector<std::string>{"openbox", "--sm-disable"}, options("openbox.log"));
-        ASSERT_TRUE(wait_until([&] { return desktop->has_ewmh(); }, 10s)) << "openbox did not start";
+        openbox = umf::test::start_openbox(options("openbox.log"), dir.path / "openbox-ready");
+        ASSERT_TRUE(desktop->has_ewmh());
     }
     std::optional<WindowInfo> window_titled(const std::string& title) const {
         for (const WindowInfo& w : desktop->windows())
@@ -154,9 +175,15 @@ TEST_F(PutWindowPlacementOnX, XdgOpensWindowLandsCentredOnThePointedPlace) {
     const PlaceRect screen{0, 0, 1600, 1000};
 
     std::string problem;
-    ASSERT_TRUE(open_with_desktop("placed-middle", &problem, X11NewWindowWatch::create(WindowPlacement{1100, 400, screen}))) << problem;
+    std::vector<std::shared_future<void>> watching;
+    const auto watch = [&](WindowPlacement where) {
+        auto watch = std::make_unique<WatchDone>(X11NewWindowWatch::create(where));
+        watching.push_back(watch->done());
+        return watch;
+    };
+    ASSERT_TRUE(open_with_desktop("placed-middle", &problem, watch({1100, 400, screen}))) << problem;
     // Near a corner: kept on the screen, moved in no further than needed.
-    ASSERT_TRUE(open_with_desktop("placed-corner", &problem, X11NewWindowWatch::create(WindowPlacement{1595, 995, screen}))) << problem;
+    ASSERT_TRUE(open_with_desktop("placed-corner", &problem, watch({1595, 995, screen}))) << problem;
     // Without a place: where the window manager puts it.
     ASSERT_TRUE(open_with_desktop("placed-nowhere", &problem)) << problem;
 
@@ -183,6 +210,7 @@ TEST_F(PutWindowPlacementOnX, XdgOpensWindowLandsCentredOnThePointedPlace) {
                  std::abs(nowhere.rect.y + nowhere.rect.height / 2 - 400) <= 1);
     EXPECT_FALSE(nowhere.rect.x + nowhere.rect.width == 1600 && nowhere.rect.y + nowhere.rect.height == 1000);
 
+    for (const auto& done : watching) EXPECT_EQ(done.wait_for(20s), std::future_status::ready);
     std::ifstream in(pids);
     for (int pid = 0; in >> pid;)
         if (pid > 1) ::kill(pid, SIGTERM);

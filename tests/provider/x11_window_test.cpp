@@ -105,10 +105,7 @@ public:
                                 {"XDG_DATA_HOME", (dir.path / "data").string()},
                                 {"XDG_CACHE_HOME", (dir.path / "cache").string()}});
         desktop = std::make_shared<const X11Desktop>(display);
-        openbox = std::make_unique<Process>(std::vector<std::string>{"openbox", "--sm-disable"},
-                                            options("openbox.log"));
-        if (!wait_until([&] { return desktop->has_ewmh(); }, 10s))
-            throw std::runtime_error("openbox did not start: " + log_of("openbox.log"));
+        openbox = start_openbox(options("openbox.log"), dir.path / "openbox-ready");
         start_mupdf();
         start_xterm();
     }

@@ -209,4 +209,21 @@ inline XServer start_xvfb(const fs::path& log, const std::string& screen = "1280
     return server;
 }
 
+// openbox on the display `options.env` names, once it has taken over: it
+// runs its --startup command only after it manages the windows already
+// there and watches for new ones. (Its _NET_SUPPORTING_WM_CHECK comes
+// earlier: a window mapped in between is never managed, so it is neither
+// listed nor moved.) `ready` is a path of the test's own the command touches.
+inline std::unique_ptr<Process> start_openbox(Process::Options options, const fs::path& ready) {
+    fs::remove(ready);
+    const fs::path log = options.log;
+    auto openbox = std::make_unique<Process>(
+        std::vector<std::string>{"openbox", "--sm-disable", "--startup", "touch '" + ready.string() + "'"}, options);
+    if (!wait_until([&] { return fs::exists(ready); }, 10s)) {
+        std::ifstream in(log);
+        throw std::runtime_error("openbox did not start: " + std::string(std::istreambuf_iterator<char>(in), {}));
+    }
+    return openbox;
+}
+
 }  // namespace umf::test

@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <set>
@@ -98,17 +100,32 @@ struct X11NewWindowWatch::Connection {
         return list && std::find(list->begin(), list->end(), atom) != list->end();
     }
 
-    // Moves `window`'s frame so that the whole is centred on the place; false
-    // when the window is gone.
-    bool move(Window window, const WindowPlacement& where) const {
+    // Where `window`'s frame should go for the whole to be centred on the
+    // place, and where its frame's corner is now (root coordinates); nullopt
+    // when the window is gone. The frame's extents are read each time: a
+    // window manager may set them only after it lists the window.
+    struct Spot {
+        PlaceRect to;
+        int x = 0, y = 0;
+    };
+    std::optional<Spot> spot(Window window, const WindowPlacement& where) const {
         XWindowAttributes attributes;
-        if (!XGetWindowAttributes(display, window, &attributes)) return false;
+        if (!XGetWindowAttributes(display, window, &attributes)) return std::nullopt;
+        int x = 0, y = 0;
+        Window child = 0;
+        if (!XTranslateCoordinates(display, window, root, 0, 0, &x, &y, &child)) return std::nullopt;
         std::array<long, 4> extents{0, 0, 0, 0};  // left, right, top, bottom
         if (const auto e = longs(window, frame_extents, XA_CARDINAL); e && e->size() == 4)
             for (std::size_t i = 0; i < 4; ++i) extents[i] = static_cast<long>((*e)[i]);
-        const int width = attributes.width + static_cast<int>(extents[0] + extents[1]);
-        const int height = attributes.height + static_cast<int>(extents[2] + extents[3]);
-        const PlaceRect to = centred_on(width, height, where.x, where.y, where.screen);
+        const int border = attributes.border_width;
+        const int width = attributes.width + 2 * border + static_cast<int>(extents[0] + extents[1]);
+        const int height = attributes.height + 2 * border + static_cast<int>(extents[2] + extents[3]);
+        return Spot{centred_on(width, height, where.x, where.y, where.screen), x - border - static_cast<int>(extents[0]),
+                    y - border - static_cast<int>(extents[2])};
+    }
+
+    // Asks for `window`'s frame to go to `to`'s corner.
+    void move(Window window, const PlaceRect& to) const {
         if (supports(moveresize)) {
             // Gravity north-west: x and y are the frame's corner. Source 2:
             // a pager, whose moves the window manager carries out.
@@ -127,6 +144,30 @@ struct X11NewWindowWatch::Connection {
         XSync(display, False);
         debug_line("moved window " + std::to_string(window) + " to " + std::to_string(to.x) + "," +
                    std::to_string(to.y));
+    }
+
+    // Moves `window` to the place and stays with it until its frame has been
+    // there for a few looks: a window manager may still apply its own
+    // placement (or learn its frame's size) after it lists a new window, and
+    // a move asked for before that is lost. False when the window is gone.
+    bool settle(Window window, const WindowPlacement& where) const {
+        constexpr int kLooks = 15, kMoves = 5, kSteady = 3;
+        int moves = 0, steady = 0;
+        for (int look = 0; look < kLooks && steady < kSteady; ++look) {
+            const auto now = spot(window, where);
+            if (!now) return look > 0;
+            if (std::abs(now->x - now->to.x) <= 1 && std::abs(now->y - now->to.y) <= 1) {
+                ++steady;
+            } else if (moves < kMoves) {
+                steady = 0;
+                move(window, now->to);
+                ++moves;
+            } else {
+                debug_line("window " + std::to_string(window) + " does not stay where it was moved");
+                return true;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        }
         return true;
     }
 };
@@ -169,7 +210,7 @@ std::optional<unsigned long> X11NewWindowWatch::place(int child_pid, std::chrono
     const auto normal = [&](unsigned long w) { return c.normal(w); };
     while (true) {
         if (const auto window = pick_new_window(before_, c.clients(), from_child, normal)) {
-            if (c.move(*window, where_)) return window;
+            if (c.settle(*window, where_)) return window;
             before_.push_back(*window);  // gone already: another may come
         }
         if (std::chrono::steady_clock::now() >= deadline) break;

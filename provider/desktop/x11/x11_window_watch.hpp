@@ -2,8 +2,10 @@
 // the desktop's client list (_NET_CLIENT_LIST) is read before xdg-open
 // starts, then watched for a window that was not there, preferably one whose
 // _NET_WM_PID descends from the xdg-open child; it is moved with
-// _NET_MOVERESIZE_WINDOW. Without an X display, a window manager or a new
-// window, nothing happens; a line on stderr says why when UMF_DEBUG is set.
+// _NET_MOVERESIZE_WINDOW, and moved again while the window manager's own
+// placement still takes it elsewhere. Without an X display, a window manager
+// or a new window, nothing happens; a line on stderr says why when UMF_DEBUG
+// is set.
 #pragma once
 
 #include <chrono>
