@@ -38,6 +38,10 @@ Eigen::Matrix3d placement_matrix(const GridPlacement& p) {
     return a;
 }
 
+bool same_placement(const GridPlacement& a, const GridPlacement& b) {
+    return a.quarter_turns == b.quarter_turns && a.row_offset == b.row_offset && a.col_offset == b.col_offset;
+}
+
 // The placement a prior predicts for a grid: the turn from where the grid's
 // x axis points in the field, the offsets from where the grid's centre lands.
 std::optional<GridPlacement> predict_placement(const Eigen::Matrix3d& image_to_field, const Eigen::Matrix3d& g2i,
@@ -115,6 +119,36 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
         out.failure = "invalid image: " + problem;
         return out;
     }
+    const char* failure = search_sizes(im, aim, prior, out);
+    out.failure = failure ? failure : "";
+    out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    return out;
+}
+
+const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                   Detection& out) const {
+    const char* failure = search_scans(im, aim, prior, out);
+    const int min_side = options_.half_size_min_side;
+    if (!failure || min_side <= 0 || std::min(im.width, im.height) / 2 < min_side) return failure;
+    auto t = Clock::now();
+    std::vector<std::uint8_t> pixels;
+    const GreyView half = half_size(im, pixels);
+    out.times.edgels_ms += ms_since(t);
+    out.pixels_visited += static_cast<long>(im.width) * im.height;
+    const Eigen::Matrix3d to_half = Eigen::Vector3d(0.5, 0.5, 1).asDiagonal();
+    DetectionPrior half_prior;
+    if (prior) half_prior = {prior->image_to_field * to_half.inverse(), prior->radius_modules};
+    // The places checked at full size count against the ones checked here
+    // (confirm_place's extra bits), as for any other candidate.
+    if (search_sizes(half, aim * 0.5, prior ? &half_prior : nullptr, out)) return failure;
+    out.image_to_field = out.image_to_field * to_half;
+    out.aim_image = aim;
+    out.size_divisor *= 2;
+    return nullptr;
+}
+
+const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                   Detection& out) const {
     // Step 1. Edgels on sparse scanlines; when nothing is found on them,
     // again on the scanlines half way between (small modules need closer
     // scanlines for their grid lines to chain), keeping what was read, down
@@ -149,9 +183,7 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
         out.times.edgels_ms += ms_since(t);
         failure = search_all_then_field_like(im, aim, prior, scan, out);
     }
-    out.failure = failure ? failure : "";
-    out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    return out;
+    return failure;
 }
 
 const char* Detector::search_all_then_field_like(const GreyView& im, const Eigen::Vector2d& aim,
@@ -210,61 +242,49 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
             out.times.classify_ms += ms_since(t);
 
             // Step 6. Window lookup and the placement vote: near the
-            // predicted place first, when there is a prior.
+            // predicted place first, when there is a prior; the whole
+            // field's vote when that finds nothing or its place is refused.
             VoteResult vote;
             if (prior) {
                 if (auto predicted = predict_placement(prior->image_to_field, g2i, rows, cols))
                     vote = vote_near(grid, index_, *predicted, prior->radius_modules, options_.vote);
             }
-            const bool near_prior = vote.found;
-            if (!vote.found) vote = vote_placement(grid, index_, options_.vote);
-            out.times.vote_ms += ms_since(t);
-            // Report the accepted vote, or else the strongest one seen.
-            if (vote.found || vote.votes > out.windows) {
+            bool near_prior = vote.found;
+            Eigen::Matrix3d field_to_image;
+            int edges_fitted = 0;
+            const char* refused = nullptr;
+            if (near_prior) {
+                out.times.vote_ms += ms_since(t);
+                refused = place_from_vote(im, aim, g2i, vote, out, field_to_image, edges_fitted);
+                t = Clock::now();
+                near_prior = !refused;
+            }
+            if (!near_prior) {
+                const VoteResult near = vote;
+                vote = vote_placement(grid, index_, options_.vote);
+                out.times.vote_ms += ms_since(t);
+                // Report the accepted vote, or else the strongest one seen.
+                if (vote.found || vote.votes > out.windows) {
+                    out.windows = vote.votes;
+                    out.confidence = vote.agreement;
+                }
+                // A grid labelled wrongly in part (a text line taken for a
+                // grid line) still has windows that agree where it is right:
+                // the refit grows out from them, and the checks judge it.
+                if (!vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up)) {
+                    failure = refused ? refused : "no agreeing windows";
+                    continue;
+                }
+                if (near.found && same_placement(near.placement, vote.placement)) {
+                    failure = refused;  // checked already
+                    continue;
+                }
+                refused = place_from_vote(im, aim, g2i, vote, out, field_to_image, edges_fitted);
+                t = Clock::now();
+            } else {
                 out.windows = vote.votes;
                 out.confidence = vote.agreement;
             }
-            // A grid labelled wrongly in part (a text line taken for a grid
-            // line) still has windows that agree where it is right: the
-            // refit grows out from them, and the checks below judge it.
-            if (!vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up)) {
-                failure = "no agreeing windows";
-                continue;
-            }
-            const Eigen::Matrix3d placement = placement_matrix(vote.placement);
-            const Eigen::Matrix3d voted_f2i = g2i * placement.inverse();
-            Eigen::Matrix3d field_to_image = voted_f2i;
-            // Step 7. Module edges around the voting windows, then outwards.
-            int edges_fitted = 0;
-            if (options_.refine_enabled) {
-                double su, sv;
-                vote.placement.field_point(vote.centre_x, vote.centre_y, su, sv);
-                const Refinement r = refine_homography(im, f, field_to_image, Point2(su, sv), options_.refine,
-                                                       out.pixels_visited);
-                out.times.refine_ms += ms_since(t);
-                if (r.refined) {
-                    field_to_image = r.field_to_image;
-                    edges_fitted = r.edges_fitted;
-                }
-            }
-            // The final homography reaches beyond the windows that voted: the
-            // modules it predicts over the whole view must read as the field,
-            // and those around the aim must single out the place. Each
-            // candidate checked is one more chance for a wrong place to pass:
-            // the n-th needs log2(n) bits more than the first. A refit that
-            // strayed (pulled by content far from the windows) leaves the
-            // voted homography as a candidate of its own.
-            auto check = [&](const Eigen::Matrix3d& candidate) {
-                ++out.places_checked;
-                return confirm_place(im, candidate, aim, out, std::log2(static_cast<double>(out.places_checked)));
-            };
-            const char* refused = check(field_to_image);
-            if (refused && edges_fitted > 0) {
-                field_to_image = voted_f2i;
-                edges_fitted = 0;
-                refused = check(field_to_image);
-            }
-            t = Clock::now();
             if (refused) {
                 failure = refused;
                 continue;
@@ -278,6 +298,44 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
             return nullptr;
         }
     return failure;
+}
+
+const char* Detector::place_from_vote(const GreyView& im, const Eigen::Vector2d& aim, const Eigen::Matrix3d& g2i,
+                                      const VoteResult& vote, Detection& out, Eigen::Matrix3d& field_to_image,
+                                      int& edges_fitted) const {
+    auto t = Clock::now();
+    const Eigen::Matrix3d voted_f2i = g2i * placement_matrix(vote.placement).inverse();
+    field_to_image = voted_f2i;
+    edges_fitted = 0;
+    // Step 7. Module edges around the voting windows, then outwards.
+    if (options_.refine_enabled) {
+        double su, sv;
+        vote.placement.field_point(vote.centre_x, vote.centre_y, su, sv);
+        const Refinement r =
+            refine_homography(im, index_.field(), field_to_image, Point2(su, sv), options_.refine, out.pixels_visited);
+        out.times.refine_ms += ms_since(t);
+        if (r.refined) {
+            field_to_image = r.field_to_image;
+            edges_fitted = r.edges_fitted;
+        }
+    }
+    // The final homography reaches beyond the windows that voted: the
+    // modules it predicts over the whole view must read as the field, and
+    // those around the aim must single out the place. Each candidate checked
+    // is one more chance for a wrong place to pass: the n-th needs log2(n)
+    // bits more than the first. A refit that strayed (pulled by content far
+    // from the windows) leaves the voted homography as a candidate of its own.
+    auto check = [&](const Eigen::Matrix3d& candidate) {
+        ++out.places_checked;
+        return confirm_place(im, candidate, aim, out, std::log2(static_cast<double>(out.places_checked)));
+    };
+    const char* refused = check(field_to_image);
+    if (refused && edges_fitted > 0) {
+        field_to_image = voted_f2i;
+        edges_fitted = 0;
+        refused = check(field_to_image);
+    }
+    return refused;
 }
 
 bool Detector::grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family,

@@ -46,6 +46,12 @@ struct DetectorOptions {
     // the vote does not accept as a whole to go on to the refit and checks.
     int provisional_votes = 4;
     bool rescan = true;  // scans on the lines in between (down to 4 px apart) when a scan finds nothing
+    // When nothing is found, the search again on the frame at half size (and
+    // so on) while its shorter side keeps this many pixels; 0: never. A
+    // smear or defocus spreads a module's edge over more pixels than the
+    // edgels' two pixels a side take in, at a fine sensor most: at half
+    // size the edge is twice as steep.
+    int half_size_min_side = 240;
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
 
@@ -63,6 +69,7 @@ struct Detection {
     Eigen::Vector2d aim_field = Eigen::Vector2d::Zero();
     int windows = 0;          // windows that agreed on the place
     bool from_prior = false;  // confirmed near the predicted place rather than found anew
+    int size_divisor = 1;     // found on the frame at 1 / size_divisor of its size
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
     double confidence = 0;    // fraction of the read modules or edges the place explains
     int places_checked = 0;   // candidate places that reached the final check (each costs evidence)
@@ -106,6 +113,14 @@ public:
     const Field& field() const { return index_.field(); }
 
 private:
+    // Steps 1 to 8 on the image at its own size, then (when nothing is
+    // found) at half size; the failure, or null when found.
+    const char* search_sizes(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                             Detection& out) const;
+    // Steps 1 to 8 on the image at its own size: the scans, each wider or
+    // denser than the last, until one finds the field.
+    const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                             Detection& out) const;
     // search over all of a scan's edgels, then, when that fails, over the
     // field-like ones alone (field_edgels.hpp).
     const char* search_all_then_field_like(const GreyView& image, const Eigen::Vector2d& aim,
@@ -118,6 +133,13 @@ private:
     // alone where too few are found). False when the aim maps to infinity.
     bool place_aim(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
                    Detection& out) const;
+    // Step 7 for one vote on the grid `g2i`: the refit around the voting
+    // windows and the final checks (of the voted homography too, when the
+    // refit's is refused). The reason for refusing, or null; the homography
+    // and the edges it was fitted to either way.
+    const char* place_from_vote(const GreyView& image, const Eigen::Vector2d& aim, const Eigen::Matrix3d& g2i,
+                                const VoteResult& vote, Detection& out, Eigen::Matrix3d& field_to_image,
+                                int& edges_fitted) const;
     bool grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family, const GreyView& image,
                          Eigen::Matrix3d& grid_to_image, int& rows, int& cols) const;
 

@@ -43,4 +43,16 @@ GreyView to_luma(const ColourView& im, std::vector<std::uint8_t>& out) {
     return {out.data(), im.width, im.height, im.width};
 }
 
+GreyView half_size(const GreyView& im, std::vector<std::uint8_t>& out) {
+    const int w = im.width / 2, h = im.height / 2;
+    out.resize(static_cast<std::size_t>(w) * h);
+    for (int y = 0; y < h; ++y) {
+        const std::uint8_t* a = im.row(2 * y);
+        const std::uint8_t* b = im.row(2 * y + 1);
+        std::uint8_t* q = out.data() + static_cast<std::size_t>(y) * w;
+        for (int x = 0; x < w; ++x) q[x] = static_cast<std::uint8_t>((a[2 * x] + a[2 * x + 1] + b[2 * x] + b[2 * x + 1] + 2) >> 2);
+    }
+    return {out.data(), w, h, w};
+}
+
 }  // namespace umf

@@ -38,6 +38,11 @@ struct ColourView {
 // Empty when the colour view can be read; otherwise what is wrong with it.
 std::string describe_invalid(const ColourView& image);
 
+// The image at half its width and height, each pixel the mean of a 2 x 2
+// block, into `out` (reused between frames); a view of it. A point (x, y)
+// of `image` is (x / 2, y / 2) in it. An odd last row or column is dropped.
+GreyView half_size(const GreyView& image, std::vector<std::uint8_t>& out);
+
 // Luma (BT.601 weights in integers) of a colour image into `out`, reused
 // between frames; returns a view of it. Throws std::invalid_argument for a
 // view describe_invalid rejects.

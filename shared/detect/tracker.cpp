@@ -71,8 +71,12 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
     out.aim_field = smoothed_;
     last_raw_aim_ = d.aim_field;
     // The motion per frame is known from two locks in a row only.
-    has_motion_ = continuous;
-    if (continuous) motion_ = last_image_to_field_.inverse() * d.image_to_field;
+    // A map found at half size is right at the aim but coarser elsewhere:
+    // the motion taken from it would throw the next predictions off.
+    const bool full_size = d.size_divisor == 1;
+    has_motion_ = continuous && full_size && last_full_size_;
+    last_full_size_ = full_size;
+    if (has_motion_) motion_ = last_image_to_field_.inverse() * d.image_to_field;
     last_image_to_field_ = d.image_to_field;
     has_prior_ = true;
     frames_since_lock_ = 0;

@@ -65,6 +65,7 @@ private:
     Eigen::Matrix3d last_image_to_field_ = Eigen::Matrix3d::Identity();
     Eigen::Matrix3d motion_ = Eigen::Matrix3d::Identity();  // image motion per frame, A_{t-1}^-1 A_t
     bool has_motion_ = false;
+    bool last_full_size_ = false;  // the last lock's map came from the frame at its own size
     Eigen::Vector2d last_raw_aim_ = Eigen::Vector2d::Zero();
     Eigen::Vector2d smoothed_ = Eigen::Vector2d::Zero();
     int frames_since_lock_ = 0;

@@ -157,9 +157,11 @@ std::vector<FrameRecipe> category_recipes(const Scene& scene, Category category,
         const double smear_px = extra.uniform(4.0, 12.0), smear_deg = extra.uniform(0.0, 180.0);
         const int quality = extra.uniform(25, 56);
         if (category == Category::smeared) {
-            // A hand moving the phone during a long exposure.
+            // A hand moving the phone during a long exposure: 4-12 px at
+            // 640 x 480, 12-36 px at 1920 x 1080.
             r.degradation.motion_blur_px = smear_px;
             r.degradation.motion_angle_deg = smear_deg;
+            r.smear_scales_with_width = true;
         }
         // A screen recording or a video call's frame: low-quality JPEG.
         if (category == Category::compressed) r.degradation.jpeg_quality = quality;
@@ -204,7 +206,9 @@ double pulsing_opacity(int frame) { return sim::pulse_opacity(frame / sim::kFps,
 
 Frame shoot(const Scene& scene, const FrameRecipe& recipe, const cv::Mat& mixed_screen, cv::Size resolution) {
     const sim::CameraModel camera{resolution, scene.hfov_deg};
-    sim::Shot shot = sim::photograph(mixed_screen, scene.screen, camera, recipe.pose, recipe.degradation, scene.module_px);
+    sim::Degradation degradation = recipe.degradation;
+    if (recipe.smear_scales_with_width) degradation.motion_blur_px *= resolution.width / 640.0;
+    sim::Shot shot = sim::photograph(mixed_screen, scene.screen, camera, recipe.pose, degradation, scene.module_px);
     Frame f;
     f.centre_screen_px = shot.centre_screen_px;
     f.centre_on_screen = shot.centre_on_screen;

@@ -54,6 +54,9 @@ struct FrameRecipe {
     sim::Degradation degradation;
     sim::ScreenKind screen = sim::ScreenKind::blank;
     std::optional<std::uint64_t> occluder_seed;  // set: something is held in front of the screen
+    // The motion blur is given for a 640 px wide frame and grows with the
+    // frame's width, as the same hand motion does on a finer sensor.
+    bool smear_scales_with_width = false;
 };
 
 // `frames` consecutive frames at 25 fps of the category's camera motion.

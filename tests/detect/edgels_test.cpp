@@ -125,4 +125,19 @@ TEST(Luma, WeighsChannelsInEveryOrder) {
     EXPECT_THROW(to_luma({rgb, 1, 1, 2, PixelOrder::rgb}, out), std::invalid_argument);
 }
 
+TEST(HalfSize, AveragesTwoByTwoBlocksAndDropsAnOddLastRowAndColumn) {
+    // 5 x 3 with a stride of 6: the sixth byte of a row and the last row
+    // and column are not read.
+    const std::uint8_t pixels[18] = {0,  10, 100, 101, 9, 77,  //
+                                     20, 31, 102, 104, 9, 77,  //
+                                     99, 99, 99,  99,  9, 77};
+    std::vector<std::uint8_t> out;
+    const GreyView half = half_size({pixels, 5, 3, 6}, out);
+    ASSERT_EQ(half.width, 2);
+    ASSERT_EQ(half.height, 1);
+    EXPECT_EQ(half.stride, 2);
+    EXPECT_EQ(half.at(0, 0), 15);   // (0 + 10 + 20 + 31 + 2) / 4
+    EXPECT_EQ(half.at(1, 0), 102);  // (100 + 101 + 102 + 104 + 2) / 4
+}
+
 }  // namespace
