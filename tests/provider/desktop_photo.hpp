@@ -155,7 +155,9 @@ inline cv::Mat expect_documents_and_a_snapshot(const std::string& url, const cv:
     const cv::Mat snapshot = cv::imread(shot.value("saved", ""), cv::IMREAD_COLOR);
     EXPECT_FALSE(snapshot.empty()) << "no snapshot saved";
     // Grey throughout below its title bar: the field was hidden for it.
-    if (!snapshot.empty()) EXPECT_GT(grey_share(snapshot), 0.95) << "the snapshot holds the field";
+    if (!snapshot.empty()) {
+        EXPECT_GT(grey_share(snapshot), 0.95) << "the snapshot holds the field";
+    }
     return snapshot;
 }
 
