@@ -38,10 +38,6 @@ Eigen::Matrix3d placement_matrix(const GridPlacement& p) {
     return a;
 }
 
-bool same_placement(const GridPlacement& a, const GridPlacement& b) {
-    return a.quarter_turns == b.quarter_turns && a.row_offset == b.row_offset && a.col_offset == b.col_offset;
-}
-
 // The placement a prior predicts for a grid: the turn from where the grid's
 // x axis points in the field, the offsets from where the grid's centre lands.
 std::optional<GridPlacement> predict_placement(const Eigen::Matrix3d& image_to_field, const Eigen::Matrix3d& g2i,
@@ -244,24 +240,23 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
             // Step 6. Window lookup and the placement vote: near the
             // predicted place first, when there is a prior; the whole
             // field's vote when that finds nothing or its place is refused.
-            VoteResult vote;
+            VoteResult near;
             if (prior) {
                 if (auto predicted = predict_placement(prior->image_to_field, g2i, rows, cols))
-                    vote = vote_near(grid, index_, *predicted, prior->radius_modules, options_.vote);
+                    near = vote_near(grid, index_, *predicted, prior->radius_modules, options_.vote);
             }
-            bool near_prior = vote.found;
+            out.times.vote_ms += ms_since(t);
             Eigen::Matrix3d field_to_image;
             int edges_fitted = 0;
-            const char* refused = nullptr;
+            const char* refused =
+                near.found ? place_from_vote(im, aim, g2i, near, out, field_to_image, edges_fitted) : nullptr;
+            const bool near_prior = near.found && !refused;
+            t = Clock::now();
             if (near_prior) {
-                out.times.vote_ms += ms_since(t);
-                refused = place_from_vote(im, aim, g2i, vote, out, field_to_image, edges_fitted);
-                t = Clock::now();
-                near_prior = !refused;
-            }
-            if (!near_prior) {
-                const VoteResult near = vote;
-                vote = vote_placement(grid, index_, options_.vote);
+                out.windows = near.votes;
+                out.confidence = near.agreement;
+            } else {
+                const VoteResult vote = vote_placement(grid, index_, options_.vote);
                 out.times.vote_ms += ms_since(t);
                 // Report the accepted vote, or else the strongest one seen.
                 if (vote.found || vote.votes > out.windows) {
@@ -271,19 +266,14 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
                 // A grid labelled wrongly in part (a text line taken for a
                 // grid line) still has windows that agree where it is right:
                 // the refit grows out from them, and the checks judge it.
-                if (!vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up)) {
+                // A place refused near the prior is not checked again.
+                const bool weak = !vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up);
+                if (weak || (near.found && near.placement == vote.placement)) {
                     failure = refused ? refused : "no agreeing windows";
-                    continue;
-                }
-                if (near.found && same_placement(near.placement, vote.placement)) {
-                    failure = refused;  // checked already
                     continue;
                 }
                 refused = place_from_vote(im, aim, g2i, vote, out, field_to_image, edges_fitted);
                 t = Clock::now();
-            } else {
-                out.windows = vote.votes;
-                out.confidence = vote.agreement;
             }
             if (refused) {
                 failure = refused;

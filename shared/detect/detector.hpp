@@ -10,6 +10,9 @@
 //   7. the homography refitted to the field's own module edges (refine.hpp),
 //      then checked: the whole view must read as the field at that place,
 //      and so must the modules around the aim point (aim_check.hpp)
+//   8. the aim point from a refit to the module edges around it
+// When nothing is found, steps 1 to 8 run again on the frame at half size
+// (image.hpp's half_size), while it is large enough.
 // A wrong place is worse than none: every stage may end in "not found".
 #pragma once
 

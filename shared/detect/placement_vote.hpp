@@ -20,6 +20,8 @@ struct GridPlacement {
     // A continuous grid point (x along columns, y along rows, cell (i, j)
     // covering x in [j, j+1], y in [i, i+1]) in field coordinates (u, v).
     void field_point(double x, double y, double& u, double& v) const;
+
+    bool operator==(const GridPlacement&) const = default;
 };
 
 struct VoteOptions {
