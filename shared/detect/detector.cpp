@@ -123,6 +123,19 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
 
 const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                    Detection& out) const {
+    const char* failure = search_smaller(im, aim, prior, out);
+    const int max_side = options_.double_size_max_side;
+    if (!failure || max_side <= 0 || std::max(im.width, im.height) > max_side) return failure;
+    auto t = Clock::now();
+    std::vector<std::uint8_t> pixels;
+    const GreyView twice = double_size(im, pixels);
+    out.times.edgels_ms += ms_since(t);
+    out.pixels_visited += static_cast<long>(im.width) * im.height;
+    return search_resized(twice, 2, aim, prior, false, out) ? failure : nullptr;
+}
+
+const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                     Detection& out) const {
     const char* failure = search_scans(im, aim, prior, out);
     const int min_side = options_.half_size_min_side;
     if (!failure || min_side <= 0 || std::min(im.width, im.height) / 2 < min_side) return failure;
@@ -131,15 +144,23 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     const GreyView half = half_size(im, pixels);
     out.times.edgels_ms += ms_since(t);
     out.pixels_visited += static_cast<long>(im.width) * im.height;
-    const Eigen::Matrix3d to_half = Eigen::Vector3d(0.5, 0.5, 1).asDiagonal();
-    DetectionPrior half_prior;
-    if (prior) half_prior = {prior->image_to_field * to_half.inverse(), prior->radius_modules};
-    // The places checked at full size count against the ones checked here
-    // (confirm_place's extra bits), as for any other candidate.
-    if (search_sizes(half, aim * 0.5, prior ? &half_prior : nullptr, out)) return failure;
-    out.image_to_field = out.image_to_field * to_half;
+    return search_resized(half, 0.5, aim, prior, true, out) ? failure : nullptr;
+}
+
+const char* Detector::search_resized(const GreyView& resized, double scale, const Eigen::Vector2d& aim,
+                                     const DetectionPrior* prior, bool smaller_too, Detection& out) const {
+    const Eigen::Matrix3d to_resized = Eigen::Vector3d(scale, scale, 1).asDiagonal();
+    DetectionPrior resized_prior;
+    if (prior) resized_prior = {prior->image_to_field * to_resized.inverse(), prior->radius_modules};
+    const DetectionPrior* p = prior ? &resized_prior : nullptr;
+    // The places checked at the other sizes count against the ones checked
+    // here (confirm_place's extra bits), as for any other candidate.
+    const char* failure =
+        smaller_too ? search_smaller(resized, aim * scale, p, out) : search_scans(resized, aim * scale, p, out);
+    if (failure) return failure;
+    out.image_to_field = out.image_to_field * to_resized;
     out.aim_image = aim;
-    out.size_divisor *= 2;
+    out.size_scale *= scale;
     return nullptr;
 }
 

@@ -12,7 +12,8 @@
 //      and so must the modules around the aim point (aim_check.hpp)
 //   8. the aim point from a refit to the module edges around it
 // When nothing is found, steps 1 to 8 run again on the frame at half size
-// (image.hpp's half_size), while it is large enough.
+// (image.hpp's half_size), while it is large enough, then, for a small
+// frame, once at double size (double_size).
 // A wrong place is worse than none: every stage may end in "not found".
 #pragma once
 
@@ -55,6 +56,12 @@ struct DetectorOptions {
     // edgels' two pixels a side take in, at a fine sensor most: at half
     // size the edge is twice as steep.
     int half_size_min_side = 240;
+    // When nothing is found at any of those sizes, the search once more on
+    // the frame at twice its size, if its longer side is at most this many
+    // pixels; 0: never. Modules of 3-4 pixels leave the edgels' two pixels
+    // a side and the 3 x 3 gradients reaching into the next module's edge;
+    // at twice the size (cubic interpolation) they reach half as far.
+    int double_size_max_side = 1024;
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
 
@@ -72,7 +79,7 @@ struct Detection {
     Eigen::Vector2d aim_field = Eigen::Vector2d::Zero();
     int windows = 0;          // windows that agreed on the place
     bool from_prior = false;  // confirmed near the predicted place rather than found anew
-    int size_divisor = 1;     // found on the frame at 1 / size_divisor of its size
+    double size_scale = 1;    // found on the frame at this many times its size (0.5: half size, 2: double)
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
     double confidence = 0;    // fraction of the read modules or edges the place explains
     int places_checked = 0;   // candidate places that reached the final check (each costs evidence)
@@ -117,9 +124,18 @@ public:
 
 private:
     // Steps 1 to 8 on the image at its own size, then (when nothing is
-    // found) at half size; the failure, or null when found.
+    // found) at half size and below, then at double size; the failure, or
+    // null when found.
     const char* search_sizes(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              Detection& out) const;
+    // Steps 1 to 8 on the image at its own size, then at half size, and so
+    // on while the image is large enough.
+    const char* search_smaller(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                               Detection& out) const;
+    // Steps 1 to 8 on the image resized by `scale` (`resized` is the image
+    // at that size); the detection is taken back to the image's coordinates.
+    const char* search_resized(const GreyView& resized, double scale, const Eigen::Vector2d& aim,
+                               const DetectionPrior* prior, bool smaller_too, Detection& out) const;
     // Steps 1 to 8 on the image at its own size: the scans, each wider or
     // denser than the last, until one finds the field.
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,

@@ -1,5 +1,7 @@
 #include "detect/image.hpp"
 
+#include <algorithm>
+#include <array>
 #include <stdexcept>
 
 namespace umf {
@@ -51,6 +53,53 @@ GreyView half_size(const GreyView& im, std::vector<std::uint8_t>& out) {
         const std::uint8_t* b = im.row(2 * y + 1);
         std::uint8_t* q = out.data() + static_cast<std::size_t>(y) * w;
         for (int x = 0; x < w; ++x) q[x] = static_cast<std::uint8_t>((a[2 * x] + a[2 * x + 1] + b[2 * x] + b[2 * x + 1] + 2) >> 2);
+    }
+    return {out.data(), w, h, w};
+}
+
+namespace {
+
+// Keys' cubic weights for the four samples around a point t (0..1) past the
+// second of them.
+std::array<float, 4> cubic_weights(float t) {
+    constexpr float a = -0.75f;
+    auto inner = [](float x) { return ((a + 2) * x - (a + 3)) * x * x + 1; };            // |x| <= 1
+    auto outer = [](float x) { return ((a * x - 5 * a) * x + 8 * a) * x - 4 * a; };  // 1 < |x| < 2
+    return {outer(1 + t), inner(t), inner(1 - t), outer(2 - t)};
+}
+
+}  // namespace
+
+GreyView double_size(const GreyView& im, std::vector<std::uint8_t>& out) {
+    const int w = 2 * im.width, h = 2 * im.height;
+    // Output pixel 2i has its centre a quarter pixel before source pixel i's,
+    // 2i + 1 a quarter after: two phases, each a fixed set of four weights.
+    const std::array<std::array<float, 4>, 2> phase = {cubic_weights(0.75f), cubic_weights(0.25f)};
+    auto clamp_x = [&](int x) { return std::clamp(x, 0, im.width - 1); };
+    auto clamp_y = [&](int y) { return std::clamp(y, 0, im.height - 1); };
+    // Rows first, into floats at the doubled width; then columns.
+    std::vector<float> wide(static_cast<std::size_t>(w) * im.height);
+    for (int y = 0; y < im.height; ++y) {
+        const std::uint8_t* r = im.row(y);
+        float* q = wide.data() + static_cast<std::size_t>(y) * w;
+        for (int x = 0; x < w; ++x) {
+            const auto& k = phase[x & 1];
+            const int base = (x >> 1) - 1 + (x & 1);  // the second of the four samples
+            q[x] = k[0] * r[clamp_x(base - 1)] + k[1] * r[clamp_x(base)] + k[2] * r[clamp_x(base + 1)] +
+                   k[3] * r[clamp_x(base + 2)];
+        }
+    }
+    out.resize(static_cast<std::size_t>(w) * h);
+    for (int y = 0; y < h; ++y) {
+        const auto& k = phase[y & 1];
+        const int base = (y >> 1) - 1 + (y & 1);
+        const float* rows[4];
+        for (int j = 0; j < 4; ++j) rows[j] = wide.data() + static_cast<std::size_t>(clamp_y(base - 1 + j)) * w;
+        std::uint8_t* q = out.data() + static_cast<std::size_t>(y) * w;
+        for (int x = 0; x < w; ++x) {
+            const float v = k[0] * rows[0][x] + k[1] * rows[1][x] + k[2] * rows[2][x] + k[3] * rows[3][x];
+            q[x] = static_cast<std::uint8_t>(std::clamp(v + 0.5f, 0.0f, 255.0f));
+        }
     }
     return {out.data(), w, h, w};
 }

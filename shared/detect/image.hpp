@@ -43,6 +43,11 @@ std::string describe_invalid(const ColourView& image);
 // of `image` is (x / 2, y / 2) in it. An odd last row or column is dropped.
 GreyView half_size(const GreyView& image, std::vector<std::uint8_t>& out);
 
+// The image at twice its width and height, interpolated with a cubic (Keys,
+// a = -0.75) through the pixel centres, into `out`; a view of it. A point
+// (x, y) of `image` is (2x, 2y) in it.
+GreyView double_size(const GreyView& image, std::vector<std::uint8_t>& out);
+
 // Luma (BT.601 weights in integers) of a colour image into `out`, reused
 // between frames; returns a view of it. Throws std::invalid_argument for a
 // view describe_invalid rejects.

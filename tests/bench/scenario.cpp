@@ -53,7 +53,8 @@ sim::Motion motion_of(Category category) {
     case Category::horizontal: return sim::Motion::horizontal;
     case Category::rotation: return sim::Motion::rotation;
     case Category::perspective: return sim::Motion::perspective;
-    case Category::distant: return sim::Motion::near_far;
+    case Category::distant:
+    case Category::tiny: return sim::Motion::near_far;
     case Category::general:
     case Category::occlusion:
     case Category::low_light:
@@ -113,6 +114,7 @@ const char* to_string(Category category) {
     case Category::smeared: return "smeared";
     case Category::distant: return "distant";
     case Category::compressed: return "compressed";
+    case Category::tiny: return "tiny";
     }
     return "?";
 }
@@ -133,8 +135,11 @@ std::vector<FrameRecipe> category_recipes(const Scene& scene, Category category,
     // hence the poses and the everyday degradations: what they add is then
     // all that differs.
     // distant: the near_far sweep from 650 to 1100 mm (modules of 4-7 px
-    // at 640 x 480).
-    const sim::MotionRange range = category == Category::distant ? sim::MotionRange{900, 650, 1100, 60} : scene.range;
+    // at 640 x 480); tiny: from 1000 to 1400 mm (3-4 px at 640 x 480, where
+    // the module edges of a grid line lie closer than the edgels' reach).
+    const sim::MotionRange range = category == Category::distant ? sim::MotionRange{900, 650, 1100, 60}
+                                   : category == Category::tiny  ? sim::MotionRange{1200, 1000, 1400, 60}
+                                                                 : scene.range;
     const std::vector<sim::CameraPose> poses =
         sim::pose_trajectory(motion_of(category), frames, scene.screen.pixels, seed, range);
     cv::RNG extra(mix_seed(seed, static_cast<std::uint64_t>(category), 6));

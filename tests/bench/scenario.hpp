@@ -20,15 +20,17 @@
 
 namespace umf::bench {
 
-// The thesis's seven categories, then three that stress what a phone's
-// video adds (strong smear, far views, low-quality compression), each with
+// The thesis's seven categories, then four that stress what a phone's
+// video adds (strong smear, far views, very far views, low-quality
+// compression), each with
 // parameters of its own: the held-out set's are not copied here.
 enum class Category { near_far, horizontal, rotation, perspective, general, occlusion, low_light, smeared, distant,
-                      compressed };
+                      compressed, tiny };
 
-inline constexpr std::array<Category, 10> kAllCategories = {
+inline constexpr std::array<Category, 11> kAllCategories = {
     Category::near_far, Category::horizontal, Category::rotation, Category::perspective, Category::general,
-    Category::occlusion, Category::low_light, Category::smeared, Category::distant, Category::compressed};
+    Category::occlusion, Category::low_light, Category::smeared, Category::distant, Category::compressed,
+    Category::tiny};
 
 // Categories whose frames have no more than the everyday degradations.
 bool is_plain(Category category);

@@ -30,13 +30,14 @@ TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
     std::vector<cv::Mat> screens;
     for (auto kind : sim::kAllScreenKinds)
         screens.push_back(sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), f, placement, 0.3));
-    // Measured at half a module: 19, 20, 20, 20, 20, 20, 19, 17, 20, 20 single
-    // frames; 20 tracked in every category but smeared (18).
+    // Measured at half a module: 20 single frames in every category but
+    // smeared (19) and tiny (16); 20 tracked in every category but smeared (19).
     const Floor floors[] = {{bench::Category::near_far, 18, 19},   {bench::Category::horizontal, 19, 19},
                             {bench::Category::rotation, 19, 19},   {bench::Category::perspective, 19, 19},
                             {bench::Category::general, 19, 19},    {bench::Category::occlusion, 19, 19},
                             {bench::Category::low_light, 17, 19},  {bench::Category::smeared, 15, 16},
-                            {bench::Category::distant, 18, 19},    {bench::Category::compressed, 18, 19}};
+                            {bench::Category::distant, 18, 19},    {bench::Category::compressed, 18, 19},
+                            {bench::Category::tiny, 14, 19}};
     for (const Floor& floor : floors) {
         Tracker tracker(detector);
         int single = 0, video = 0;
@@ -66,46 +67,70 @@ TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
     }
 }
 
-// The smear grows with the sensor: 12-36 px at 1920 x 1080, where a
-// module's edge spreads over more pixels than the edgels take in. The
-// search at half size finds them; its map, scaled back to the frame, must
-// take the aim to the point it reports.
-TEST(CategoryFloors, SmearedFullHdFramesAreFoundAtHalfSize) {
+struct FoundAtSize {
+    int found = 0;             // within half a module of the truth
+    int found_elsewhere = 0;   // of them, at another size than the frame's
+    int found_at_own_size = 0; // by a detector that searches the frame's own size alone
+};
+
+// The first `frames` frames of a category at opacity 0.3, each on its own.
+// A map found at another size, scaled back to the frame, must take the aim
+// to the point it reports.
+FoundAtSize find_at_sizes(bench::Category category, int frames, cv::Size resolution) {
     const Field f = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
     const Detector detector(f);
-    DetectorOptions full_size_only;
-    full_size_only.half_size_min_side = 0;
-    const Detector without_half(f, full_size_only);
+    DetectorOptions own_size_only;
+    own_size_only.half_size_min_side = 0;
+    own_size_only.double_size_max_side = 0;
+    const Detector at_own_size(f, own_size_only);
     const bench::Scene scene;
     const sim::FieldPlacement placement{{0, 0}, scene.module_px};
     std::vector<cv::Mat> screens;
     for (auto kind : sim::kAllScreenKinds)
         screens.push_back(sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), f, placement, 0.3));
-    int found = 0, found_at_half = 0, found_without_half = 0;
-    for (const auto& recipe : bench::category_recipes(scene, bench::Category::smeared, 12, 1)) {
+    FoundAtSize out;
+    for (const auto& recipe : bench::category_recipes(scene, category, frames, 1)) {
         const bench::Frame frame =
-            bench::shoot(scene, recipe, screens[static_cast<std::size_t>(recipe.screen)], {1920, 1080});
+            bench::shoot(scene, recipe, screens[static_cast<std::size_t>(recipe.screen)], resolution);
         if (!frame.centre_on_screen) continue;
         const GreyView view{frame.grey.data, frame.grey.cols, frame.grey.rows,
                             static_cast<std::ptrdiff_t>(frame.grey.step)};
         const Detection d = detector.detect(view);
-        found_without_half += without_half.detect(view).found;
+        out.found_at_own_size += at_own_size.detect(view).found;
         if (!d.found) continue;
         const double error =
             cv::norm(cv::Point2d(d.aim_field.x(), d.aim_field.y()) * scene.module_px - frame.centre_screen_px) /
             scene.module_px;
         EXPECT_LT(error, 0.5) << "frame " << recipe.index;
-        found += error < 0.5;
-        if (d.size_divisor == 1) continue;
-        ++found_at_half;
+        out.found += error < 0.5;
+        if (d.size_scale == 1) continue;
+        ++out.found_elsewhere;
         const Eigen::Vector3d at_aim = d.image_to_field * Eigen::Vector3d(d.aim_image.x(), d.aim_image.y(), 1);
         EXPECT_LT((at_aim.hnormalized() - d.aim_field).norm(), 0.25) << "frame " << recipe.index;
     }
-    std::cout << found << " found, " << found_at_half << " of them at half size; " << found_without_half
-              << " at full size alone\n";
+    std::cout << to_string(category) << " at " << resolution.width << " x " << resolution.height << ": " << out.found
+              << " found, " << out.found_elsewhere << " of them at another size; " << out.found_at_own_size
+              << " at the frame's own size alone\n";
+    return out;
+}
+
+// The smear grows with the sensor: 12-36 px at 1920 x 1080, where a
+// module's edge spreads over more pixels than the edgels take in. The
+// search at half size finds them.
+TEST(CategoryFloors, SmearedFullHdFramesAreFoundAtHalfSize) {
+    const FoundAtSize r = find_at_sizes(bench::Category::smeared, 12, {1920, 1080});
     // Measured: 12 found, 4 of them at half size (8 at full size alone).
-    EXPECT_GE(found, 11);
-    EXPECT_GE(found_at_half, 3);
+    EXPECT_GE(r.found, 11);
+    EXPECT_GE(r.found_elsewhere, 3);
+}
+
+// Modules of 3-4 pixels: a grid line's module edges lie closer than the
+// edgels and gradients reach. The search at double size finds them.
+TEST(CategoryFloors, TinyModulesAreFoundAtDoubleSize) {
+    const FoundAtSize r = find_at_sizes(bench::Category::tiny, 20, {640, 480});
+    // Measured: 16 found, 8 of them at double size (8 at 640 x 480 alone).
+    EXPECT_GE(r.found, 14);
+    EXPECT_GE(r.found_elsewhere, 6);
 }
 
 }  // namespace

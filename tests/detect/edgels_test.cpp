@@ -140,4 +140,37 @@ TEST(HalfSize, AveragesTwoByTwoBlocksAndDropsAnOddLastRowAndColumn) {
     EXPECT_EQ(half.at(1, 0), 102);  // (100 + 101 + 102 + 104 + 2) / 4
 }
 
+TEST(DoubleSize, KeepsARampAndPutsAStepAtTwiceItsPlace) {
+    // 10 x 3 with a stride of 12; every row a ramp 10, 30, ..., 190 (pixel i
+    // centred at i + 0.5 has 20 i + 10), or every row a step at x = 5.
+    std::vector<std::uint8_t> ramp(36, 255), step(36, 255);
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 10; ++x) {
+            ramp[12 * y + x] = static_cast<std::uint8_t>(20 * x + 10);
+            step[12 * y + x] = x < 5 ? 40 : 200;
+        }
+    std::vector<std::uint8_t> out;
+    const GreyView twice = double_size({ramp.data(), 10, 3, 12}, out);
+    ASSERT_EQ(twice.width, 20);
+    ASSERT_EQ(twice.height, 6);
+    EXPECT_EQ(twice.stride, 20);
+    // Pixel j of the doubled ramp is centred at (j + 0.5) / 2 of the
+    // original: 10 j + 5 away from the ends (Keys' cubic with a = -0.75
+    // sharpens a little: within a grey level on this ramp).
+    for (int y = 0; y < 6; ++y)
+        for (int j = 4; j < 16; ++j) EXPECT_NEAR(twice.at(j, y), 10 * j + 5, 1) << j << ", " << y;
+    // The step's edge lands at x = 10, between pixels 9 and 10, symmetric
+    // about the middle grey; the cubic overshoots a little on either side.
+    const GreyView edge = double_size({step.data(), 10, 3, 12}, out);
+    for (int y = 0; y < 6; ++y) {
+        EXPECT_NEAR(edge.at(9, y) + edge.at(10, y), 240, 1);
+        EXPECT_NEAR(edge.at(8, y) + edge.at(11, y), 240, 1);
+        EXPECT_LT(edge.at(8, y), edge.at(9, y));
+        EXPECT_LT(edge.at(9, y), 120);
+        EXPECT_GT(edge.at(10, y), 120);
+        EXPECT_EQ(edge.at(0, y), 40);
+        EXPECT_EQ(edge.at(19, y), 200);
+    }
+}
+
 }  // namespace
