@@ -9,6 +9,8 @@ namespace umf {
 
 namespace {
 
+constexpr double kUnread = std::numeric_limits<double>::quiet_NaN();  // a module not wholly in view
+
 // A module's brightness: the median of nine pixels spread over its middle
 // half (a 3 x 3 pattern a quarter module apart). Text and thin lines under
 // the field darken or brighten a few of them, not the median. NaN when the
@@ -17,14 +19,14 @@ double sample_module(const GreyView& im, const Eigen::Matrix3d& h, double cx, do
     // The module is small enough for the homography to be affine across it:
     // project its centre and a quarter module along each axis, step from there.
     const Eigen::Vector3d c = h * Eigen::Vector3d(cx, cy, 1.0);
-    if (c.z() <= 0) return std::numeric_limits<double>::quiet_NaN();
+    if (c.z() <= 0) return kUnread;
     const Eigen::Vector3d ex = h * Eigen::Vector3d(cx + 0.25, cy, 1.0), ey = h * Eigen::Vector3d(cx, cy + 0.25, 1.0);
     const double px = c.x() / c.z(), py = c.y() / c.z();
     const double dxx = ex.x() / ex.z() - px, dxy = ex.y() / ex.z() - py;
     const double dyx = ey.x() / ey.z() - px, dyy = ey.y() / ey.z() - py;
     // The nine pixels lie within the centre's reach of |dx| + |dy|.
     const double reach = std::abs(dxx) + std::abs(dyx) + std::abs(dxy) + std::abs(dyy);
-    if (px - reach < 0 || py - reach < 0 || px + reach >= im.width || py + reach >= im.height) return std::numeric_limits<double>::quiet_NaN();
+    if (px - reach < 0 || py - reach < 0 || px + reach >= im.width || py + reach >= im.height) return kUnread;
     std::uint8_t v[9];
     int n = 0;
     for (int a = -1; a <= 1; ++a)
@@ -125,7 +127,7 @@ void classify_binary(const std::vector<double>& value, int rows, int cols, doubl
 ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int rows, int cols, int colors,
                             bool edge_key, const ClassifyOptions& o, long& visited) {
     ModuleGrid g(rows, cols);
-    std::vector<double> value(static_cast<std::size_t>(rows) * cols, std::numeric_limits<double>::quiet_NaN());
+    std::vector<double> value(static_cast<std::size_t>(rows) * cols, kUnread);
     std::vector<double> seen;
     for (int i = 0; i < rows; ++i)
         for (int j = 0; j < cols; ++j) {

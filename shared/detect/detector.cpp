@@ -135,12 +135,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
     const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
     const GreyView around{im.row(y0) + x0, w, h, im.stride};
-    auto t = Clock::now();
-    std::vector<std::uint8_t> pixels;
-    const GreyView twice = double_size(around, pixels);
-    out.times.edgels_ms += ms_since(t);
-    out.pixels_visited += static_cast<long>(w) * h;
-    return search_resized(twice, 2, Eigen::Vector2d(x0, y0), aim, prior, false, out) ? failure : nullptr;
+    return search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, out) ? failure : nullptr;
 }
 
 const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
@@ -148,17 +143,16 @@ const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& 
     const char* failure = search_scans(im, aim, prior, out);
     const int min_side = options_.half_size_min_side;
     if (!failure || min_side <= 0 || std::min(im.width, im.height) / 2 < min_side) return failure;
-    auto t = Clock::now();
-    std::vector<std::uint8_t> pixels;
-    const GreyView half = half_size(im, pixels);
-    out.times.edgels_ms += ms_since(t);
-    out.pixels_visited += static_cast<long>(im.width) * im.height;
-    return search_resized(half, 0.5, Eigen::Vector2d::Zero(), aim, prior, true, out) ? failure : nullptr;
+    return search_resized(im, 0.5, Eigen::Vector2d::Zero(), aim, prior, out) ? failure : nullptr;
 }
 
-const char* Detector::search_resized(const GreyView& resized, double scale, const Eigen::Vector2d& origin,
-                                     const Eigen::Vector2d& aim, const DetectionPrior* prior, bool smaller_too,
-                                     Detection& out) const {
+const char* Detector::search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
+                                     const Eigen::Vector2d& aim, const DetectionPrior* prior, Detection& out) const {
+    auto t = Clock::now();
+    std::vector<std::uint8_t> pixels;
+    const GreyView resized = scale < 1 ? half_size(part, pixels) : double_size(part, pixels);
+    out.times.edgels_ms += ms_since(t);
+    out.pixels_visited += static_cast<long>(part.width) * part.height;
     Eigen::Matrix3d to_resized;
     to_resized << scale, 0, -scale * origin.x(), 0, scale, -scale * origin.y(), 0, 0, 1;
     DetectionPrior resized_prior;
@@ -166,9 +160,10 @@ const char* Detector::search_resized(const GreyView& resized, double scale, cons
     const DetectionPrior* p = prior ? &resized_prior : nullptr;
     const Eigen::Vector2d resized_aim = scale * (aim - origin);
     // The places checked at the other sizes count against the ones checked
-    // here (confirm_place's extra bits), as for any other candidate.
+    // here (confirm_place's extra bits), as for any other candidate. Half
+    // size goes on to smaller sizes; double size is the last try.
     const char* failure =
-        smaller_too ? search_smaller(resized, resized_aim, p, out) : search_scans(resized, resized_aim, p, out);
+        scale < 1 ? search_smaller(resized, resized_aim, p, out) : search_scans(resized, resized_aim, p, out);
     if (failure) return failure;
     out.image_to_field = out.image_to_field * to_resized;
     out.aim_image = aim;
@@ -300,7 +295,8 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
                 // grid line) still has windows that agree where it is right:
                 // the refit grows out from them, and the checks judge it.
                 // A place refused near the prior is not checked again.
-                const bool weak = !vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up);
+                const bool weak =
+                    !vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up);
                 if (weak || (near.found && near.placement == vote.placement)) {
                     failure = refused ? refused : "no agreeing windows";
                     continue;

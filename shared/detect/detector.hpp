@@ -136,12 +136,11 @@ private:
     // on while the image is large enough.
     const char* search_smaller(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                Detection& out) const;
-    // Steps 1 to 8 on the part of the image from `origin` on, resized by
-    // `scale` (`resized` is that part at that size); the detection is taken
-    // back to the image's coordinates.
-    const char* search_resized(const GreyView& resized, double scale, const Eigen::Vector2d& origin,
-                               const Eigen::Vector2d& aim, const DetectionPrior* prior, bool smaller_too,
-                               Detection& out) const;
+    // Steps 1 to 8 on `part` of the image (its corner at `origin`) resized
+    // by `scale`, 0.5 (and on down, as search_smaller) or 2; the detection
+    // is taken back to the image's coordinates.
+    const char* search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
+                               const Eigen::Vector2d& aim, const DetectionPrior* prior, Detection& out) const;
     // Steps 1 to 8 on the image at its own size: the scans, each wider or
     // denser than the last, until one finds the field.
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,

@@ -52,7 +52,8 @@ GreyView half_size(const GreyView& im, std::vector<std::uint8_t>& out) {
         const std::uint8_t* a = im.row(2 * y);
         const std::uint8_t* b = im.row(2 * y + 1);
         std::uint8_t* q = out.data() + static_cast<std::size_t>(y) * w;
-        for (int x = 0; x < w; ++x) q[x] = static_cast<std::uint8_t>((a[2 * x] + a[2 * x + 1] + b[2 * x] + b[2 * x + 1] + 2) >> 2);
+        for (int x = 0; x < w; ++x)
+            q[x] = static_cast<std::uint8_t>((a[2 * x] + a[2 * x + 1] + b[2 * x] + b[2 * x + 1] + 2) >> 2);
     }
     return {out.data(), w, h, w};
 }

@@ -17,19 +17,38 @@ namespace {
 
 using namespace umf;
 
+// The benchmark's scenes at opacity 0.3: its field mixed into every screen.
+struct Scenes {
+    Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
+    bench::Scene scene;
+    std::vector<cv::Mat> screens;
+
+    Scenes() {
+        const sim::FieldPlacement placement{{0, 0}, scene.module_px};
+        for (auto kind : sim::kAllScreenKinds)
+            screens.push_back(sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), field, placement, 0.3));
+    }
+    bench::Frame shoot(const bench::FrameRecipe& recipe, cv::Size resolution) const {
+        return bench::shoot(scene, recipe, screens[static_cast<std::size_t>(recipe.screen)], resolution);
+    }
+    // Modules from the truth under the frame's centre to a reported point.
+    double error(const bench::Frame& frame, const Eigen::Vector2d& uv) const {
+        return cv::norm(cv::Point2d(uv.x(), uv.y()) * scene.module_px - frame.centre_screen_px) / scene.module_px;
+    }
+};
+
+GreyView view_of(const cv::Mat& grey) {
+    return {grey.data, grey.cols, grey.rows, static_cast<std::ptrdiff_t>(grey.step)};
+}
+
 struct Floor {
     bench::Category category;
     int single, video;  // of 20 frames
 };
 
 TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
-    const Field f = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
-    const Detector detector(f);
-    const bench::Scene scene;
-    const sim::FieldPlacement placement{{0, 0}, scene.module_px};
-    std::vector<cv::Mat> screens;
-    for (auto kind : sim::kAllScreenKinds)
-        screens.push_back(sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), f, placement, 0.3));
+    const Scenes scenes;
+    const Detector detector(scenes.field);
     // Measured at half a module: 20 single frames in every category but
     // smeared (18) and tiny (14); 20 tracked in every category but smeared (18).
     const Floor floors[] = {{bench::Category::near_far, 18, 19},   {bench::Category::horizontal, 19, 19},
@@ -41,14 +60,10 @@ TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
     for (const Floor& floor : floors) {
         Tracker tracker(detector);
         int single = 0, video = 0;
-        for (const auto& recipe : bench::category_recipes(scene, floor.category, 20, 1)) {
-            const bench::Frame frame =
-                bench::shoot(scene, recipe, screens[static_cast<std::size_t>(recipe.screen)], {640, 480});
-            const GreyView view{frame.grey.data, frame.grey.cols, frame.grey.rows,
-                                static_cast<std::ptrdiff_t>(frame.grey.step)};
-            auto error = [&](const Eigen::Vector2d& uv) {
-                return cv::norm(cv::Point2d(uv.x(), uv.y()) * scene.module_px - frame.centre_screen_px) / scene.module_px;
-            };
+        for (const auto& recipe : bench::category_recipes(scenes.scene, floor.category, 20, 1)) {
+            const bench::Frame frame = scenes.shoot(recipe, {640, 480});
+            const GreyView view = view_of(frame.grey);
+            auto error = [&](const Eigen::Vector2d& uv) { return scenes.error(frame, uv); };
             const Detection d = detector.detect(view);
             const TrackResult t = tracker.update(view);
             if (!frame.centre_on_screen) continue;
@@ -77,30 +92,21 @@ struct FoundAtSize {
 // A map found at another size, scaled back to the frame, must take the aim
 // to the point it reports.
 FoundAtSize find_at_sizes(bench::Category category, int frames, cv::Size resolution) {
-    const Field f = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
-    const Detector detector(f);
+    const Scenes scenes;
+    const Detector detector(scenes.field);
     DetectorOptions own_size_only;
     own_size_only.half_size_min_side = 0;
     own_size_only.double_size_max_side = 0;
-    const Detector at_own_size(f, own_size_only);
-    const bench::Scene scene;
-    const sim::FieldPlacement placement{{0, 0}, scene.module_px};
-    std::vector<cv::Mat> screens;
-    for (auto kind : sim::kAllScreenKinds)
-        screens.push_back(sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), f, placement, 0.3));
+    const Detector at_own_size(scenes.field, own_size_only);
     FoundAtSize out;
-    for (const auto& recipe : bench::category_recipes(scene, category, frames, 1)) {
-        const bench::Frame frame =
-            bench::shoot(scene, recipe, screens[static_cast<std::size_t>(recipe.screen)], resolution);
+    for (const auto& recipe : bench::category_recipes(scenes.scene, category, frames, 1)) {
+        const bench::Frame frame = scenes.shoot(recipe, resolution);
         if (!frame.centre_on_screen) continue;
-        const GreyView view{frame.grey.data, frame.grey.cols, frame.grey.rows,
-                            static_cast<std::ptrdiff_t>(frame.grey.step)};
+        const GreyView view = view_of(frame.grey);
         const Detection d = detector.detect(view);
         out.found_at_own_size += at_own_size.detect(view).found;
         if (!d.found) continue;
-        const double error =
-            cv::norm(cv::Point2d(d.aim_field.x(), d.aim_field.y()) * scene.module_px - frame.centre_screen_px) /
-            scene.module_px;
+        const double error = scenes.error(frame, d.aim_field);
         EXPECT_LT(error, 0.5) << "frame " << recipe.index;
         out.found += error < 0.5;
         if (d.size_scale == 1) continue;

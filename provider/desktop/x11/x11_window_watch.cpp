@@ -120,8 +120,8 @@ struct X11NewWindowWatch::Connection {
         const int border = attributes.border_width;
         const int width = attributes.width + 2 * border + static_cast<int>(extents[0] + extents[1]);
         const int height = attributes.height + 2 * border + static_cast<int>(extents[2] + extents[3]);
-        return Spot{centred_on(width, height, where.x, where.y, where.screen), x - border - static_cast<int>(extents[0]),
-                    y - border - static_cast<int>(extents[2])};
+        const PlaceRect to = centred_on(width, height, where.x, where.y, where.screen);
+        return Spot{to, x - border - static_cast<int>(extents[0]), y - border - static_cast<int>(extents[2])};
     }
 
     // Asks for `window`'s frame to go to `to`'s corner.
