@@ -185,8 +185,11 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     const char* failure = search_all_then_field_like(im, aim, prior, scan, out);
     if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3) {
         // A noisy image (low light): a faint field's edges drown in the
-        // scanlines' noise; three pixels across each line hold them.
+        // scanlines' noise; three pixels across each line hold them, and a
+        // lower bar lets the weaker ones through (the chains and the window
+        // vote keep the peaks the noise makes out of the grid).
         edgel_options.across = 3;
+        edgel_options.noise_deviations = options_.noisy_edge_deviations;
         t = Clock::now();
         scan = find_edgels(im, edgel_options);
         out.pixels_visited += scan.pixels_visited;

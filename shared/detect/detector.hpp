@@ -50,6 +50,11 @@ struct DetectorOptions {
     // the vote does not accept as a whole to go on to the refit and checks.
     int provisional_votes = 4;
     bool rescan = true;  // scans on the lines in between (down to 4 px apart) when a scan finds nothing
+    // When a scan of a noisy image finds nothing, the scan again three pixels
+    // wide, where an edge must stand this many deviations of the scanline's
+    // noise above it (EdgelOptions::noise_deviations), and the scans in
+    // between likewise.
+    double noisy_edge_deviations = 3;
     // When nothing is found, the search again on the frame at half size (and
     // so on) while its shorter side keeps this many pixels; 0: never. A
     // smear or defocus spreads a module's edge over more pixels than the

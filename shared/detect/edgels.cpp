@@ -20,11 +20,12 @@ void sobel(const GreyView& im, int x, int y, float& gx, float& gy) {
 
 // Edges along one line of samples s[0..n): peaks of the smoothed derivative
 // d[i] = s[i+1] + s[i+2] - s[i-1] - s[i-2] that stand out of the line's noise
-// (a robust estimate from the lower quartile of |d|) and reach
+// (a robust estimate from the lower quartile of |d|) by `deviations` and reach
 // the contrast floor. Calls found(position, step) with a sub-pixel position
 // and the grey levels across the edge.
 template <typename Sample, typename Found>
-double scan_line(int n, Sample s, int floor, std::vector<int>& d, std::vector<int>& scratch, Found found) {
+double scan_line(int n, Sample s, int floor, double deviations, std::vector<int>& d, std::vector<int>& scratch,
+                 Found found) {
     if (n < 7) return 0;
     d.assign(n, 0);
     for (int i = 2; i + 2 < n; ++i) d[i] = (s(i + 1) + s(i + 2)) - (s(i - 1) + s(i - 2));
@@ -35,9 +36,8 @@ double scan_line(int n, Sample s, int floor, std::vector<int>& d, std::vector<in
     // The noise's standard deviation from the lower quartile of |d|
     // (3.14 * quartile for Gaussian noise): where modules are small and
     // blurred, edges spread over most of a line and would inflate a median.
-    // 4.5 deviations keep false peaks rare.
     const double sigma_d = 3.14 * *quarter;
-    const double threshold = std::max(2.0 * floor, 4.5 * sigma_d);
+    const double threshold = std::max(2.0 * floor, deviations * sigma_d);
     int prev = std::abs(d[2]), cur = std::abs(d[3]);
     for (int i = 3; i + 3 < n; ++i) {
         const int next = std::abs(d[i + 1]);
@@ -88,7 +88,8 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
             for (int i = 0; i < im.width; ++i) line[i] += row[i];
         }
         out.pixels_visited += static_cast<long>(im.width) * n_across;
-        noise.push_back(scan_line(im.width, [&line](int i) { return line[i]; }, thr * n_across, d, scratch,
+        noise.push_back(scan_line(im.width, [&line](int i) { return line[i]; }, thr * n_across, o.noise_deviations, d,
+                                  scratch,
                                   [&](double x, double step) {
                                       keep(static_cast<float>(x), static_cast<float>(y), true, step / n_across);
                                   }) / std::sqrt(n_across));
@@ -100,7 +101,8 @@ EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
             for (int dx = -half; dx <= half; ++dx) line[i] += row[x + dx];
         }
         out.pixels_visited += static_cast<long>(im.height) * n_across;
-        noise.push_back(scan_line(im.height, [&line](int i) { return line[i]; }, thr * n_across, d, scratch,
+        noise.push_back(scan_line(im.height, [&line](int i) { return line[i]; }, thr * n_across, o.noise_deviations, d,
+                                  scratch,
                                   [&](double y, double step) {
                                       keep(static_cast<float>(x), static_cast<float>(y), false, step / n_across);
                                   }) / std::sqrt(n_across));

@@ -27,6 +27,9 @@ struct EdgelOptions {
     // evidence of a module's edge gathered along it, a few pixels either
     // side, at as many times the reads.
     int across = 1;
+    // Deviations of the scanline's noise an edge must stand out by: 4.5
+    // keep false peaks rare; fewer find a faint field's edges in noise.
+    double noise_deviations = 4.5;
 };
 
 struct EdgelScan {

@@ -17,16 +17,17 @@ namespace {
 
 using namespace umf;
 
-// The benchmark's scenes at opacity 0.3: its field mixed into every screen.
+// The benchmark's scenes: its field mixed into every screen.
 struct Scenes {
     Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
     bench::Scene scene;
     std::vector<cv::Mat> screens;
 
-    Scenes() {
+    explicit Scenes(double opacity = 0.3) {
         const sim::FieldPlacement placement{{0, 0}, scene.module_px};
         for (auto kind : sim::kAllScreenKinds)
-            screens.push_back(sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), field, placement, 0.3));
+            screens.push_back(
+                sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), field, placement, opacity));
     }
     bench::Frame shoot(const bench::FrameRecipe& recipe, cv::Size resolution) const {
         return bench::shoot(scene, recipe, screens[static_cast<std::size_t>(recipe.screen)], resolution);
@@ -50,11 +51,11 @@ TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
     const Scenes scenes;
     const Detector detector(scenes.field);
     // Measured at half a module: 20 single frames in every category but
-    // smeared (18) and tiny (14); 20 tracked in every category but smeared (18).
+    // tiny (14); 20 tracked in every category.
     const Floor floors[] = {{bench::Category::near_far, 18, 19},   {bench::Category::horizontal, 19, 19},
                             {bench::Category::rotation, 19, 19},   {bench::Category::perspective, 19, 19},
                             {bench::Category::general, 19, 19},    {bench::Category::occlusion, 19, 19},
-                            {bench::Category::low_light, 17, 19},  {bench::Category::smeared, 15, 16},
+                            {bench::Category::low_light, 17, 19},  {bench::Category::smeared, 17, 18},
                             {bench::Category::distant, 18, 19},    {bench::Category::compressed, 18, 19},
                             {bench::Category::tiny, 12, 19}};
     for (const Floor& floor : floors) {
@@ -125,9 +126,9 @@ FoundAtSize find_at_sizes(bench::Category category, int frames, cv::Size resolut
 // search at half size finds them.
 TEST(CategoryFloors, SmearedFullHdFramesAreFoundAtHalfSize) {
     const FoundAtSize r = find_at_sizes(bench::Category::smeared, 12, {1920, 1080});
-    // Measured: 12 found, 4 of them at half size (8 at full size alone).
+    // Measured: 12 found, 3 of them at half size (9 at full size alone).
     EXPECT_GE(r.found, 11);
-    EXPECT_GE(r.found_elsewhere, 3);
+    EXPECT_GE(r.found_elsewhere, 2);
 }
 
 // Modules of 3-4 pixels: a grid line's module edges lie closer than the
@@ -138,6 +139,33 @@ TEST(CategoryFloors, TinyModulesAreFoundAtDoubleSize) {
     // Measured: 14 found, 6 of them at double size (8 at 640 x 480 alone).
     EXPECT_GE(r.found, 12);
     EXPECT_GE(r.found_elsewhere, 4);
+}
+
+// A dim room and a faint field (low light at opacity 0.15): when the first
+// scans find nothing in a noisy frame, the scans three pixels wide with a
+// lower bar for edges find the field's faint edges.
+TEST(CategoryFloors, DimFaintFramesAreFoundWithALowerEdgeBar) {
+    const Scenes scenes(0.15);
+    const Detector detector(scenes.field);
+    DetectorOptions strict_bar;
+    strict_bar.noisy_edge_deviations = 4.5;  // as high as the first scans'
+    const Detector strict(scenes.field, strict_bar);
+    int found = 0, found_strict = 0;
+    for (const auto& recipe : bench::category_recipes(scenes.scene, bench::Category::low_light, 20, 1)) {
+        const bench::Frame frame = scenes.shoot(recipe, {640, 480});
+        if (!frame.centre_on_screen) continue;
+        const GreyView view = view_of(frame.grey);
+        for (auto [d, count] : {std::pair{detector.detect(view), &found}, {strict.detect(view), &found_strict}}) {
+            if (!d.found) continue;
+            const double error = scenes.error(frame, d.aim_field);
+            EXPECT_LT(error, 0.5) << "frame " << recipe.index;
+            *count += error < 0.5;
+        }
+    }
+    std::cout << "low light at opacity 0.15: " << found << " found, " << found_strict << " with the first scans' bar\n";
+    // Measured: 17 found, 13 with the first scans' bar.
+    EXPECT_GE(found, 15);
+    EXPECT_GE(found, found_strict + 2);
 }
 
 }  // namespace
