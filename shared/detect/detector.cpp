@@ -140,7 +140,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
 
 const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                      Detection& out) const {
-    const char* failure = search_scans(im, aim, prior, out);
+    const char* failure = search_scans(im, aim, prior, options_.vanishing, out);
     const int min_side = options_.half_size_min_side;
     if (!failure || min_side <= 0 || std::min(im.width, im.height) / 2 < min_side) return failure;
     return search_resized(im, 0.5, Eigen::Vector2d::Zero(), aim, prior, out) ? failure : nullptr;
@@ -162,8 +162,10 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
     // The places checked at the other sizes count against the ones checked
     // here (confirm_place's extra bits), as for any other candidate. Half
     // size goes on to smaller sizes; double size is the last try.
-    const char* failure =
-        scale < 1 ? search_smaller(resized, resized_aim, p, out) : search_scans(resized, resized_aim, p, out);
+    VanishingOptions at_double_size = options_.vanishing;
+    at_double_size.max_inlier_deg = options_.double_size_max_inlier_deg;
+    const char* failure = scale < 1 ? search_smaller(resized, resized_aim, p, out)
+                                    : search_scans(resized, resized_aim, p, at_double_size, out);
     if (failure) return failure;
     out.image_to_field = out.image_to_field * to_resized;
     out.aim_image = aim;
@@ -172,7 +174,7 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
 }
 
 const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                   Detection& out) const {
+                                   const VanishingOptions& vanishing, Detection& out) const {
     // Step 1. Edgels on sparse scanlines; when nothing is found on them,
     // again on the scanlines half way between (small modules need closer
     // scanlines for their grid lines to chain), keeping what was read, down
@@ -182,7 +184,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     EdgelScan scan = find_edgels(im, edgel_options);
     out.pixels_visited += scan.pixels_visited;
     out.times.edgels_ms += ms_since(t);
-    const char* failure = search_all_then_field_like(im, aim, prior, scan, out);
+    const char* failure = search_all_then_field_like(im, aim, prior, vanishing, scan, out);
     if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3) {
         // A noisy image (low light): a faint field's edges drown in the
         // scanlines' noise; three pixels across each line hold them, and a
@@ -194,7 +196,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         scan = find_edgels(im, edgel_options);
         out.pixels_visited += scan.pixels_visited;
         out.times.edgels_ms += ms_since(t);
-        failure = search_all_then_field_like(im, aim, prior, scan, out);
+        failure = search_all_then_field_like(im, aim, prior, vanishing, scan, out);
     }
     int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan.step / 2;  // of the scanlines so far
     while (failure && options_.rescan && scan.step >= 8) {
@@ -208,14 +210,15 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         scan.step /= 2;
         out.pixels_visited += more.pixels_visited;
         out.times.edgels_ms += ms_since(t);
-        failure = search_all_then_field_like(im, aim, prior, scan, out);
+        failure = search_all_then_field_like(im, aim, prior, vanishing, scan, out);
     }
     return failure;
 }
 
 const char* Detector::search_all_then_field_like(const GreyView& im, const Eigen::Vector2d& aim,
-                                                 const DetectionPrior* prior, const EdgelScan& scan, Detection& out) const {
-    const char* failure = search(im, aim, prior, scan, out);
+                                                 const DetectionPrior* prior, const VanishingOptions& vanishing,
+                                                 const EdgelScan& scan, Detection& out) const {
+    const char* failure = search(im, aim, prior, vanishing, scan, out);
     if (!failure) return nullptr;
     // A faint field under strong content: its own edges alone (field_edgels.hpp),
     // when that leaves out enough of the others to matter.
@@ -224,15 +227,15 @@ const char* Detector::search_all_then_field_like(const GreyView& im, const Eigen
     field_like.edgels = edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels));
     out.times.edgels_ms += ms_since(t);
     if (field_like.edgels.size() < 40 || field_like.edgels.size() > scan.edgels.size() * 17 / 20) return failure;
-    const char* again = search(im, aim, prior, field_like, out);
+    const char* again = search(im, aim, prior, vanishing, field_like, out);
     return again ? failure : nullptr;
 }
 
 const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                             const EdgelScan& scan, Detection& out) const {
+                             const VanishingOptions& vanishing, const EdgelScan& scan, Detection& out) const {
     auto t = Clock::now();
     // Step 2. The two vanishing points.
-    const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, options_.vanishing, scan.noise_sigma);
+    const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, vanishing, scan.noise_sigma);
     out.times.vanishing_ms += ms_since(t);
     if (!vp.found) return "no grid directions";
 

@@ -71,6 +71,11 @@ struct DetectorOptions {
     // fraction of its width and height: at a half, as many pixels as the
     // frame itself, and at 3-4 pixels a module still some 80 x 60 modules.
     double double_size_part = 0.5;
+    // At double size an edgel's gradient may stray this far from the
+    // direction to its vanishing point (VanishingOptions::max_inlier_deg,
+    // 15 elsewhere): the interpolated image rounds the corners of modules of
+    // 3-4 pixels, and their edges' gradients turn by 20 degrees and more.
+    double double_size_max_inlier_deg = 25;
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
 
@@ -149,14 +154,15 @@ private:
     // Steps 1 to 8 on the image at its own size: the scans, each wider or
     // denser than the last, until one finds the field.
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                             Detection& out) const;
+                             const VanishingOptions& vanishing, Detection& out) const;
     // search over all of a scan's edgels, then, when that fails, over the
     // field-like ones alone (field_edgels.hpp).
     const char* search_all_then_field_like(const GreyView& image, const Eigen::Vector2d& aim,
-                                           const DetectionPrior* prior, const EdgelScan& scan, Detection& out) const;
+                                           const DetectionPrior* prior, const VanishingOptions& vanishing,
+                                           const EdgelScan& scan, Detection& out) const;
     // Steps 2 to 7 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                       const EdgelScan& scan, Detection& out) const;
+                       const VanishingOptions& vanishing, const EdgelScan& scan, Detection& out) const;
     // Step 8: the view's image-to-field map, and the aim point in field
     // coordinates from the module edges around it (from `field_to_image`
     // alone where too few are found). False when the aim maps to infinity.

@@ -51,13 +51,13 @@ TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
     const Scenes scenes;
     const Detector detector(scenes.field);
     // Measured at half a module: 20 single frames in every category but
-    // tiny (14); 20 tracked in every category.
+    // tiny (17); 20 tracked in every category.
     const Floor floors[] = {{bench::Category::near_far, 18, 19},   {bench::Category::horizontal, 19, 19},
                             {bench::Category::rotation, 19, 19},   {bench::Category::perspective, 19, 19},
                             {bench::Category::general, 19, 19},    {bench::Category::occlusion, 19, 19},
                             {bench::Category::low_light, 17, 19},  {bench::Category::smeared, 17, 18},
                             {bench::Category::distant, 18, 19},    {bench::Category::compressed, 18, 19},
-                            {bench::Category::tiny, 12, 19}};
+                            {bench::Category::tiny, 15, 19}};
     for (const Floor& floor : floors) {
         Tracker tracker(detector);
         int single = 0, video = 0;
@@ -92,10 +92,11 @@ struct FoundAtSize {
 // The first `frames` frames of a category at opacity 0.3, each on its own.
 // A map found at another size, scaled back to the frame, must take the aim
 // to the point it reports.
-FoundAtSize find_at_sizes(bench::Category category, int frames, cv::Size resolution) {
+FoundAtSize find_at_sizes(bench::Category category, int frames, cv::Size resolution,
+                          const DetectorOptions& options = {}) {
     const Scenes scenes;
-    const Detector detector(scenes.field);
-    DetectorOptions own_size_only;
+    const Detector detector(scenes.field, options);
+    DetectorOptions own_size_only = options;
     own_size_only.half_size_min_side = 0;
     own_size_only.double_size_max_side = 0;
     const Detector at_own_size(scenes.field, own_size_only);
@@ -136,9 +137,21 @@ TEST(CategoryFloors, SmearedFullHdFramesAreFoundAtHalfSize) {
 // of the frame) finds them.
 TEST(CategoryFloors, TinyModulesAreFoundAtDoubleSize) {
     const FoundAtSize r = find_at_sizes(bench::Category::tiny, 20, {640, 480});
-    // Measured: 14 found, 6 of them at double size (8 at 640 x 480 alone).
-    EXPECT_GE(r.found, 12);
-    EXPECT_GE(r.found_elsewhere, 4);
+    // Measured: 17 found, 9 of them at double size (8 at 640 x 480 alone).
+    EXPECT_GE(r.found, 15);
+    EXPECT_GE(r.found_elsewhere, 7);
+}
+
+// At double size the corners of such modules are rounded, and their edges'
+// gradients stray from the grid's directions: the vanishing points there
+// take edgels up to 25 degrees off (15 elsewhere).
+TEST(CategoryFloors, TinyModulesNeedWiderDirectionsAtDoubleSize) {
+    DetectorOptions narrow;
+    narrow.double_size_max_inlier_deg = 15;
+    const FoundAtSize wide = find_at_sizes(bench::Category::tiny, 20, {640, 480});
+    const FoundAtSize strict = find_at_sizes(bench::Category::tiny, 20, {640, 480}, narrow);
+    // Measured: 9 and 6 found at double size.
+    EXPECT_GE(wide.found_elsewhere, strict.found_elsewhere + 2);
 }
 
 // A dim room and a faint field (low light at opacity 0.15): when the first
