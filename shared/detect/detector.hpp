@@ -152,7 +152,8 @@ private:
     const char* search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
                                const Eigen::Vector2d& aim, const DetectionPrior* prior, Detection& out) const;
     // Steps 1 to 8 on the image at its own size: the scans, each wider or
-    // denser than the last, until one finds the field.
+    // denser than the last, until one finds the field; `vanishing` is step
+    // 2's options at this size (wider at double size).
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              const VanishingOptions& vanishing, Detection& out) const;
     // search over all of a scan's edgels, then, when that fails, over the
