@@ -9,9 +9,11 @@
 // The page's own origin serves the site (a route over the site folder, so the
 // module and its .wasm load as they do from the provider) and the frames
 // under /bench/. Per frame size it measures, as tests/web/wasm_bench.mjs does
-// under node: "search" (reset, then one frame where the field is found) and
-// "locked" (the sequence in order, frames locked after a locked frame), the
-// module's own time (RGBA to grey included) and the wall time with the copy in.
+// under node: "search" (reset, then one frame where the field is found),
+// "miss" (reset, then one frame where it is not: what a page that has not
+// locked yet pays per frame) and "locked" (the sequence in order, frames
+// locked after a locked frame), the module's own time (RGBA to grey included)
+// and the wall time with the copy in.
 import fs from 'node:fs';
 import path from 'node:path';
 import { createRequire } from 'node:module';
@@ -51,19 +53,24 @@ const results = await page.evaluate(async ({ doc, runs }) => {
   const { createDetector } = await import('/detector.js');
   const field = await (await fetch(`/bench/${doc.field}`)).text();
   const detector = await createDetector(field);
-  const median = (v) => { const s = [...v].sort((a, b) => a - b), m = s.length >> 1; return s.length % 2 ? s[m] : (s[m - 1] + s[m]) / 2; };
+  const median = (v) => {
+    if (!v.length) return null;
+    const s = [...v].sort((a, b) => a - b), m = s.length >> 1;
+    return s.length % 2 ? s[m] : (s[m - 1] + s[m]) / 2;
+  };
   const out = {};
   for (const seq of doc.sequences) {
     const frames = [];
     for (const f of seq.frames) frames.push(new Uint8Array(await (await fetch(`/bench/${f.file}`)).arrayBuffer()));
-    const m = { search: [], locked: [], searchWall: [], lockedWall: [] };
+    const m = { search: [], miss: [], locked: [], searchWall: [], missWall: [], lockedWall: [] };
     const measure = (record) => {
       for (let run = 0; run < runs; ++run) {
         for (const px of frames) {
           detector.reset();
           const t0 = performance.now();
           const r = detector.track(px, seq.width, seq.height, { format: 'rgba' });
-          if (record && r.state === 'locked') { m.search.push(r.ms); m.searchWall.push(performance.now() - t0); }
+          const kind = r.state === 'locked' ? 'search' : 'miss';
+          if (record) { m[kind].push(r.ms); m[`${kind}Wall`].push(performance.now() - t0); }
         }
         detector.reset();
         let previous = null;
@@ -77,8 +84,9 @@ const results = await page.evaluate(async ({ doc, runs }) => {
     };
     measure(false);  // warm-up: the engine tiers the code up
     measure(true);
-    out[seq.name] = { search: median(m.search), locked: median(m.locked), searchWall: median(m.searchWall),
-                      lockedWall: median(m.lockedWall), n: m.search.length + m.locked.length };
+    out[seq.name] = { search: median(m.search), miss: median(m.miss), locked: median(m.locked),
+                      searchWall: median(m.searchWall), missWall: median(m.missWall), lockedWall: median(m.lockedWall),
+                      n: m.search.length + m.miss.length + m.locked.length };
   }
   detector.destroy();
   return out;
@@ -90,7 +98,8 @@ console.log('| size | kind | native | Chromium wasm | wall | wasm / native |');
 console.log('|---|---|---|---|---|---|');
 for (const [name, r] of Object.entries(results)) {
   const n = native?.sequences?.[name];
-  for (const kind of ['search', 'locked']) {
+  for (const kind of ['search', 'miss', 'locked']) {
+    if (r[kind] === null) continue;  // no frame of that kind in this sequence
     const nat = n?.[`${kind}_ms`] ?? NaN;
     console.log(`| ${name} | ${kind} | ${nat.toFixed(2)} | ${r[kind].toFixed(2)} | ${r[`${kind}Wall`].toFixed(2)} | ${(r[kind] / nat).toFixed(2)} |`);
   }
