@@ -162,10 +162,14 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
     // The places checked at the other sizes count against the ones checked
     // here (confirm_place's extra bits), as for any other candidate. Half
     // size goes on to smaller sizes; double size is the last try.
-    VanishingOptions at_double_size = options_.vanishing;
-    at_double_size.max_inlier_deg = options_.double_size_max_inlier_deg;
-    const char* failure = scale < 1 ? search_smaller(resized, resized_aim, p, out)
-                                    : search_scans(resized, resized_aim, p, at_double_size, out);
+    const char* failure = nullptr;
+    if (scale < 1) {
+        failure = search_smaller(resized, resized_aim, p, out);
+    } else {
+        VanishingOptions wider = options_.vanishing;
+        wider.max_inlier_deg = options_.double_size_max_inlier_deg;
+        failure = search_scans(resized, resized_aim, p, wider, out);
+    }
     if (failure) return failure;
     out.image_to_field = out.image_to_field * to_resized;
     out.aim_image = aim;
