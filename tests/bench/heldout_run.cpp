@@ -2,6 +2,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -64,6 +65,12 @@ public:
         report_.pooled_over = "Pooled over all categories but occlusion and low_light, and all resolutions; module px = "
                               "image pixels per module (ArUco cell) at the image centre.";
         for (auto c : sim::kAllHeldoutContents) report_.screen_kinds.emplace_back(sim::to_string(c));
+        report_.pulse_setup_md =
+            "30 fps, the provider's default pulse (opacity 0.1 to 0.4 and back every 1.5 s, from a phase of each video's "
+            "own), the second camera model with every everyday effect; one video per content, on the screen "
+            "content % 3, along one continuous hand path (no cuts): modules of 10-30 px at 1280 px width, tilt to 40 "
+            "degrees, the screen at any roll swinging by 10-30 degrees, the aim wandering over the middle of the "
+            "screen";
         report_.command = opt.command;
         report_.started = now_text();
         settings();
@@ -112,6 +119,52 @@ public:
         }
     }
 
+    // One video per content along one continuous path, the field pulsing as
+    // the provider's default pulse: the opacity changes every frame, so the
+    // screens are mixed per frame, on the frame-making threads.
+    void pulsing(cv::Size res) {
+        const cv::Size modules(field_.width, field_.height);
+        std::vector<std::string> kinds;
+        std::vector<std::vector<Outcome>> umf_out, video_out, aruco_out;
+        for (sim::HeldoutContent content : sim::kAllHeldoutContents) {
+            kinds.emplace_back(sim::to_string(content));
+            const auto rs = heldout_pulsing_recipes(content, opt_.pulse_frames, opt_.seed);
+            const auto s = static_cast<std::size_t>(rs.front().screen);
+            const cv::Mat& screen = screens_[s * sim::kAllHeldoutContents.size() + static_cast<std::size_t>(content)];
+            const Methods& m = *methods_[s];
+            std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
+            parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
+                const auto at = static_cast<std::size_t>(i);
+                const double op = heldout_pulsing_opacity(content, rs[at].index, opt_.seed);
+                field_frames[at] = shoot_heldout(rs[at], sim::mix_field(screen, field_, placements_[s], op), res,
+                                                 placements_[s], modules);
+                if (opt_.aruco) {
+                    board_frames[at] = shoot_heldout(rs[at], m.board().mix(screen, op), res, placements_[s], modules);
+                    board_frames[at].centre_on_screen = field_frames[at].centre_on_screen;
+                }
+            });
+            std::vector<Outcome> u, v, a;
+            for (std::size_t i = 0; i < rs.size(); ++i) {
+                u.push_back(m.umf(field_frames[i]));
+                if (opt_.aruco) a.push_back(m.aruco(board_frames[i]));
+            }
+            if (opt_.video) {
+                Tracker tracker = m.tracker();
+                for (const auto& frame : field_frames) v.push_back(m.video(tracker, frame));
+            }
+            std::cerr << "[pulsing " << res_name(res) << " " << kinds.back() << "] umf " << hits(u);
+            if (opt_.video) std::cerr << ", umf video " << hits(v);
+            if (opt_.aruco) std::cerr << ", ArUco " << hits(a);
+            std::cerr << ", elapsed " << minutes() << " min\n";
+            umf_out.push_back(std::move(u));
+            video_out.push_back(std::move(v));
+            aruco_out.push_back(std::move(a));
+        }
+        report_.pulsing.push_back(summarise_pulse("umf", res_name(res), kinds, umf_out));
+        if (opt_.video) report_.pulsing.push_back(summarise_pulse("umf_video", res_name(res), kinds, video_out));
+        if (opt_.aruco) report_.pulsing.push_back(summarise_pulse("aruco", res_name(res), kinds, aruco_out));
+    }
+
     void write() {
         report_.wall_s = minutes() * 60;
         report_.settings["load_average_at_end"] = load_average();
@@ -124,6 +177,11 @@ public:
     }
 
 private:
+    static std::string hits(const std::vector<Outcome>& out) {
+        const auto n = std::count_if(out.begin(), out.end(), [](const Outcome& o) { return o.success(); });
+        return std::to_string(n) + "/" + std::to_string(out.size());
+    }
+
     static void write_text(const std::filesystem::path& path, const std::string& text) {
         std::ofstream out(path);
         out << text;
@@ -135,6 +193,7 @@ private:
         s["set"] = "heldout";
         s["fps"] = 30;
         s["frames_per_configuration"] = opt_.frames;
+        s["pulse_frames_per_content"] = opt_.pulse_frames;
         for (HeldoutCategory c : opt_.categories) s["categories"].push_back(to_string(c));
         for (cv::Size r : opt_.resolutions) s["resolutions"].push_back(res_name(r));
         s["opacities"] = opt_.opacities;
@@ -245,7 +304,9 @@ bool leave_out(HeldoutRecipe& r, const std::string& effect) {
 int run_heldout(const HeldoutOptions& opt) {
     cv::setNumThreads(1);
     HeldoutBench bench(opt);
-    bench.sweep();
+    if (opt.frames > 0) bench.sweep();
+    if (opt.pulse_frames > 0)
+        for (cv::Size res : opt.resolutions) bench.pulsing(res);
     bench.write();
     return 0;
 }

@@ -16,7 +16,8 @@ namespace umf::bench {
 inline constexpr double kHeldoutRadiusModules = 0.5;
 
 struct HeldoutOptions {
-    int frames = 40;
+    int frames = 40;         // per category x opacity x resolution; 0: no sweep
+    int pulse_frames = 90;   // per content in the pulsing video; 0: none
     std::string out = "docs/benchmarks";
     std::vector<HeldoutCategory> categories{kAllHeldoutCategories.begin(), kAllHeldoutCategories.end()};
     std::vector<cv::Size> resolutions{{640, 480}, {1280, 720}, {1920, 1080}};

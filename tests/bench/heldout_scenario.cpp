@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/sequence.hpp"
+
 namespace umf::bench {
 namespace {
 
@@ -140,9 +142,11 @@ sim::CameraPose clip_pose(const Clip& c, double t) {
     return p;
 }
 
-sim::PoseVelocity clip_velocity(const Clip& c, double t) {
+// The pose's rate of change at t, for the rolling shutter and the smear.
+template <class PoseAt>
+sim::PoseVelocity velocity_of(const PoseAt& pose_at, double t) {
     constexpr double dt = 1e-3;
-    const sim::CameraPose a = clip_pose(c, t - dt), b = clip_pose(c, t + dt);
+    const sim::CameraPose a = pose_at(t - dt), b = pose_at(t + dt);
     sim::PoseVelocity v;
     v.distance_mm = (b.distance_mm - a.distance_mm) / (2 * dt);
     v.pitch_deg = (b.pitch_deg - a.pitch_deg) / (2 * dt);
@@ -151,6 +155,63 @@ sim::PoseVelocity clip_velocity(const Clip& c, double t) {
     v.aim_screen_px = (b.aim_screen_px - a.aim_screen_px) / (2 * dt);
     return v;
 }
+
+// The pulsing video's long path: every quantity a slow swing of its own
+// period and phase, plus a hand's tremor.
+struct Walk {
+    int screen;
+    double hfov;
+    double log_module_mid, log_module_amp, module_period, module_phase;
+    double tilt_period, tilt_phase, tilt_dir0, tilt_dir_rate;
+    double roll0, roll_amp, roll_period, roll_phase;
+    double aim_period, aim_phase_x, aim_phase_y;
+    double tremor_hz, tremor_phase;
+};
+
+Walk make_walk(cv::RNG& rng, int screen, const Spec& spec) {
+    Walk w;
+    w.screen = screen;
+    w.hfov = rng.uniform(70.0, 80.0);
+    w.log_module_mid = (std::log(spec.module_lo) + std::log(spec.module_hi)) / 2;
+    w.log_module_amp = (std::log(spec.module_hi) - std::log(spec.module_lo)) / 2;
+    w.module_period = rng.uniform(4.0, 6.0);
+    w.module_phase = rng.uniform(0.0, kTwoPi);
+    w.tilt_period = rng.uniform(5.0, 7.0);
+    w.tilt_phase = rng.uniform(0.0, kTwoPi);
+    w.tilt_dir0 = rng.uniform(0.0, kTwoPi);
+    w.tilt_dir_rate = rng.uniform(-0.5, 0.5);
+    w.roll0 = rng.uniform(-180.0, 180.0);
+    w.roll_amp = rng.uniform(10.0, 30.0);
+    w.roll_period = rng.uniform(6.0, 9.0);
+    w.roll_phase = rng.uniform(0.0, kTwoPi);
+    w.aim_period = rng.uniform(7.0, 10.0);
+    w.aim_phase_x = rng.uniform(0.0, kTwoPi);
+    w.aim_phase_y = rng.uniform(0.0, kTwoPi);
+    w.tremor_hz = rng.uniform(1.5, 3.0);
+    w.tremor_phase = rng.uniform(0.0, kTwoPi);
+    return w;
+}
+
+sim::CameraPose walk_pose(const Walk& w, const Spec& spec, double t) {
+    const HeldoutScreen& s = heldout_screens()[static_cast<std::size_t>(w.screen)];
+    const double module_mm = s.geometry.width_mm / 64.0;
+    const double tremor = std::sin(kTwoPi * w.tremor_hz * t + w.tremor_phase);
+    const double m = std::exp(w.log_module_mid + w.log_module_amp * std::sin(kTwoPi * t / w.module_period + w.module_phase));
+    sim::CameraPose p;
+    p.distance_mm = focal_at_reference(w.hfov) * module_mm / m + 2 * tremor;
+    const double tilt = spec.tilt_hi / 2 * (1 - std::cos(kTwoPi * t / w.tilt_period + w.tilt_phase));
+    const double dir = w.tilt_dir0 + w.tilt_dir_rate * t;
+    p.pitch_deg = tilt * std::cos(dir) + 0.6 * tremor;
+    p.yaw_deg = tilt * std::sin(dir) + 0.4 * tremor;
+    p.roll_deg = w.roll0 + w.roll_amp * std::sin(kTwoPi * t / w.roll_period + w.roll_phase) + 0.8 * tremor;
+    const cv::Size px = s.geometry.pixels;
+    p.aim_screen_px = {px.width * (0.5 + 0.3 * std::sin(kTwoPi * t / w.aim_period + w.aim_phase_x)),
+                       px.height * (0.5 + 0.2 * std::sin(kTwoPi * t / (1.3 * w.aim_period) + w.aim_phase_y))};
+    return p;
+}
+
+// Pulsing videos draw from streams of their own, apart from the categories'.
+constexpr std::uint64_t kPulseStream = 100;
 
 }  // namespace
 
@@ -210,7 +271,7 @@ std::vector<HeldoutRecipe> heldout_recipes(HeldoutCategory category, int frames,
         r.pose = clip_pose(clip, t);
         const HeldoutScreen& screen = heldout_screens()[static_cast<std::size_t>(clip.screen)];
         r.shot = everyday(rng, screen, i / kFps, mix(seed, cat, 5));
-        r.shot.velocity = clip_velocity(clip, t);
+        r.shot.velocity = velocity_of([&](double at) { return clip_pose(clip, at); }, t);
         // Category-specific draws come after the everyday ones.
         const sim::CurvedBlur fast{rng.uniform(4.0, 14.0), rng.uniform(0.0, 360.0),
                                    rng.uniform(30.0, 180.0) * (rng.uniform(0, 2) ? 1 : -1)};
@@ -237,6 +298,36 @@ std::vector<HeldoutRecipe> heldout_recipes(HeldoutCategory category, int frames,
         out.push_back(r);
     }
     return out;
+}
+
+std::vector<HeldoutRecipe> heldout_pulsing_recipes(sim::HeldoutContent content, int frames, std::uint64_t seed) {
+    const auto stream = kPulseStream + static_cast<std::uint64_t>(content);
+    const Spec spec = spec_of(HeldoutCategory::general);
+    cv::RNG walk_rng(mix(seed, stream, 1000));
+    const Walk walk = make_walk(walk_rng, static_cast<int>(content) % 3, spec);
+    const auto pose_at = [&](double t) { return walk_pose(walk, spec, t); };
+    const HeldoutScreen& screen = heldout_screens()[static_cast<std::size_t>(walk.screen)];
+    std::vector<HeldoutRecipe> out;
+    for (int i = 0; i < frames; ++i) {
+        const double t = i / kFps;
+        cv::RNG rng(mix(seed, stream, static_cast<std::uint64_t>(i)));
+        HeldoutRecipe r;
+        r.index = i;
+        r.screen = walk.screen;
+        r.content = content;
+        r.hfov_deg = walk.hfov;
+        r.pose = pose_at(t);
+        r.shot = everyday(rng, screen, t, mix(seed, stream, 5));
+        r.shot.velocity = velocity_of(pose_at, t);
+        out.push_back(r);
+    }
+    return out;
+}
+
+double heldout_pulsing_opacity(sim::HeldoutContent content, int frame, std::uint64_t seed) {
+    cv::RNG rng(mix(seed, kPulseStream + static_cast<std::uint64_t>(content), 2000));
+    const double phase_s = rng.uniform(0.0, kHeldoutPulsePeriodS);
+    return sim::pulse_opacity(phase_s + frame / kFps, kHeldoutPulseMin, kHeldoutPulseMax, kHeldoutPulsePeriodS);
 }
 
 Frame shoot_heldout(const HeldoutRecipe& r, const cv::Mat& mixed, cv::Size resolution, const sim::FieldPlacement& placement,

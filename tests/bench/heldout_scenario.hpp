@@ -70,6 +70,19 @@ struct HeldoutRecipe {
 // content along one smooth curved hand path; cuts between clips.
 std::vector<HeldoutRecipe> heldout_recipes(HeldoutCategory category, int frames, std::uint64_t seed);
 
+// The pulsing video of one content: `frames` frames at 30 fps along one
+// continuous hand path (no cuts) on screen `content % 3`, the general
+// category's module sizes (10-30 px at the reference width) and tilts (to 40
+// degrees), the screen at any roll; distance, tilt, roll and aim swing with
+// periods of their own, so that they meet the pulse's phases in many
+// combinations.
+std::vector<HeldoutRecipe> heldout_pulsing_recipes(sim::HeldoutContent content, int frames, std::uint64_t seed);
+
+// The field's opacity in frame `frame` of that video: the provider's default
+// pulse (0.1 to 0.4 and back every 1.5 s) from a phase of the video's own.
+double heldout_pulsing_opacity(sim::HeldoutContent content, int frame, std::uint64_t seed);
+inline constexpr double kHeldoutPulseMin = 0.1, kHeldoutPulseMax = 0.4, kHeldoutPulsePeriodS = 1.5;
+
 // Photographs the mixed screen (field or board blended in) at `resolution`.
 // centre_on_screen is true only when the image centre is on the field, so
 // that every method has a right answer.

@@ -52,4 +52,40 @@ TEST(BenchHeldout, FarModulesAreSixToNinePixels) {
     }
 }
 
+// The pulsing video is one continuous path: no cuts between frames, the
+// general category's module sizes, and the pulse's whole range.
+TEST(BenchHeldout, PulsingVideoIsOneContinuousPathThroughThePulse) {
+    for (sim::HeldoutContent content : sim::kAllHeldoutContents) {
+        const auto rs = heldout_pulsing_recipes(content, 90, 1);
+        ASSERT_EQ(rs.size(), 90u);
+        double lowest = 1, highest = 0, smallest = 1e9, largest = 0;
+        for (std::size_t i = 0; i < rs.size(); ++i) {
+            const auto& r = rs[i];
+            EXPECT_EQ(r.screen, rs.front().screen);
+            EXPECT_EQ(r.content, content);
+            const auto& screen = heldout_screens()[static_cast<std::size_t>(r.screen)];
+            const sim::CameraModel camera{{1280, 720}, r.hfov_deg};
+            const cv::Matx33d h = sim::screen_to_image(screen.geometry, camera, r.pose);
+            const double px = sim::screen_px_in_image_at(h, r.pose.aim_screen_px) * screen.geometry.pixels.width / 64.0;
+            smallest = std::min(smallest, px);
+            largest = std::max(largest, px);
+            if (i > 0) {
+                // A 30th of a second moves the aim by a few screen modules at most.
+                const cv::Point2d step = r.pose.aim_screen_px - rs[i - 1].pose.aim_screen_px;
+                EXPECT_LT(std::hypot(step.x, step.y), 0.02 * screen.geometry.pixels.width) << i;
+                EXPECT_LT(std::abs(r.pose.roll_deg - rs[i - 1].pose.roll_deg), 3.0) << i;
+            }
+            const double op = heldout_pulsing_opacity(content, r.index, 1);
+            EXPECT_GE(op, kHeldoutPulseMin - 1e-9);
+            EXPECT_LE(op, kHeldoutPulseMax + 1e-9);
+            lowest = std::min(lowest, op);
+            highest = std::max(highest, op);
+        }
+        EXPECT_LT(lowest, 0.11) << sim::to_string(content);
+        EXPECT_GT(highest, 0.39) << sim::to_string(content);
+        EXPECT_GE(smallest, 10 * 0.7) << sim::to_string(content);
+        EXPECT_LE(largest, 30 * 1.05) << sim::to_string(content);
+    }
+}
+
 }  // namespace

@@ -164,6 +164,57 @@ void reasons_table(std::ostringstream& md, const Report& r, const std::string& n
     md << "\n";
 }
 
+// Section (c): the pulsing video's gaps between successes.
+void write_pulsing(std::ostringstream& md, const Report& r, bool video) {
+    const auto rule = [&](std::size_t columns) {
+        md << "|";
+        for (std::size_t i = 0; i < columns; ++i) md << "---|";
+        md << "\n";
+    };
+    md << "## (c) Pulsing opacity: gaps between successful locations\n\n";
+    if (r.pulsing.empty()) {
+        md << "Not run.\n\n";
+    } else {
+        if (r.pulse_setup_md.empty())
+            md << "25 fps, opacity 0.1..0.4 with a 1.5 s period, pitch swinging over about -20..+60 degrees, distance "
+                  "100..400 mm, aim wandering around the screen centre; one video per screen content";
+        else
+            md << r.pulse_setup_md;
+        if (video) md << " (umf video: one fresh tracker per video)";
+        md << ". A gap is the number of frames from one success to the next (1 = consecutive frames); the longest "
+              "miss also counts the frames before the first and after the last success of a video. Success % and "
+              "false % are of all frames (frames with the centre off the screen count as misses).\n\n";
+        md << "| method | resolution | frames | success % | false % | gaps | gaps <= 3 | gaps <= 5 | gap median | "
+              "gap max | longest miss |";
+        const std::vector<std::string> kinds = r.screen_kinds.empty()
+                                                   ? std::vector<std::string>{"document", "code_dark", "web_page", "photo", "blank"}
+                                                   : r.screen_kinds;
+        for (const auto& kind : kinds) md << " " << kind << " |";
+        md << "\n";
+        rule(11 + kinds.size());
+        // Rows grouped by resolution, methods in report order.
+        std::vector<const PulseSummary*> rows;
+        for (const auto& res : pulse_resolutions(r.pulsing))
+            for (const auto& m : kMethods)
+                for (const auto& p : r.pulsing)
+                    if (p.resolution == res && p.method == m.key) rows.push_back(&p);
+        for (const auto& p : r.pulsing)
+            if (std::find(rows.begin(), rows.end(), &p) == rows.end()) rows.push_back(&p);
+        for (const PulseSummary* p : rows) {
+            md << "| " << method_label(p->method) << " | " << p->resolution << " | " << p->frames << " | "
+               << num(p->success_pct, 1) << " | " << num(p->false_pct, 1) << " | " << p->gaps.size() << " | "
+               << num(p->gaps_le3_pct, 1) << " % | " << num(p->gaps_le5_pct, 1) << " % | " << num(p->gap_median, 0)
+               << " | " << p->gap_max << " | " << p->longest_miss << " |";
+            for (const auto& kind : kinds) {
+                auto it = p->success_pct_by_screen.find(kind);
+                md << " " << (it == p->success_pct_by_screen.end() ? "–" : num(it->second, 0)) << " |";
+            }
+            md << "\n";
+        }
+        md << "\nThe last " << kinds.size() << " columns: success % per screen content.\n\n";
+    }
+}
+
 }  // namespace
 
 std::string method_label(const std::string& key) {
@@ -410,6 +461,11 @@ std::string to_markdown(const Report& r) {
           "one thread); px % is the median share of the image's pixels the umf detector read; module px is the "
           "range of image pixels per module at the image centre.\n\n";
 
+    if (r.configs.empty()) {  // a run of the pulsing video alone
+        write_pulsing(md, r, video);
+        return md.str();
+    }
+
     md << "## (a) Per category at opacity " << num(op, 2) << "\n\n";
     md << "Per resolution two tables: success, false locations and time of every method side by side, then the "
           "aim errors of the located frames and the umf pixels read.\n\n";
@@ -498,41 +554,7 @@ std::string to_markdown(const Report& r) {
     by_opacity(&Summary::false_pct);
     md << "\n";
 
-    md << "## (c) Pulsing opacity: gaps between successful locations\n\n";
-    if (r.pulsing.empty()) {
-        md << "Not run.\n\n";
-    } else {
-        md << "25 fps, opacity 0.1..0.4 with a 1.5 s period, pitch swinging over about -20..+60 degrees, distance "
-              "100..400 mm, aim wandering around the screen centre; one video per screen content";
-        if (video) md << " (umf video: one fresh tracker per video)";
-        md << ". A gap is the number of frames from one success to the next (1 = consecutive frames); the longest "
-              "miss also counts the frames before the first and after the last success of a video. Success % and "
-              "false % are of all frames (frames with the centre off the screen count as misses).\n\n";
-        md << "| method | resolution | frames | success % | false % | gaps | gaps <= 3 | gaps <= 5 | gap median | "
-              "gap max | longest miss |";
-        md << " document | code_dark | web_page | photo | blank |\n";
-        rule(16);
-        // Rows grouped by resolution, methods in report order.
-        std::vector<const PulseSummary*> rows;
-        for (const auto& res : pulse_resolutions(r.pulsing))
-            for (const auto& m : kMethods)
-                for (const auto& p : r.pulsing)
-                    if (p.resolution == res && p.method == m.key) rows.push_back(&p);
-        for (const auto& p : r.pulsing)
-            if (std::find(rows.begin(), rows.end(), &p) == rows.end()) rows.push_back(&p);
-        for (const PulseSummary* p : rows) {
-            md << "| " << method_label(p->method) << " | " << p->resolution << " | " << p->frames << " | "
-               << num(p->success_pct, 1) << " | " << num(p->false_pct, 1) << " | " << p->gaps.size() << " | "
-               << num(p->gaps_le3_pct, 1) << " % | " << num(p->gaps_le5_pct, 1) << " % | " << num(p->gap_median, 0)
-               << " | " << p->gap_max << " | " << p->longest_miss << " |";
-            for (const char* kind : {"document", "code_dark", "web_page", "photo", "blank"}) {
-                auto it = p->success_pct_by_screen.find(kind);
-                md << " " << (it == p->success_pct_by_screen.end() ? "–" : num(it->second, 0)) << " |";
-            }
-            md << "\n";
-        }
-        md << "\nThe last five columns: success % per screen content.\n\n";
-    }
+    write_pulsing(md, r, video);
 
     const std::string stage_res = std::find(resolutions.begin(), resolutions.end(), "640x480") != resolutions.end()
                                       ? "640x480"

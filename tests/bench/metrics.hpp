@@ -119,7 +119,8 @@ struct Report {
     std::string json_name = "detector.json";
     double success_radius_modules = kSuccessRadiusModules;
     std::string pooled_over;                // what (f) and (g) pool, when not the tuning set's
-    std::vector<std::string> screen_kinds;  // rows of (g), when not the tuning set's
+    std::vector<std::string> screen_kinds;  // rows of (g) and columns of (c), when not the tuning set's
+    std::string pulse_setup_md;             // replaces the tuning set's description of its pulsing video
     std::string command;
     std::string started;  // local date and time
     double wall_s = 0;

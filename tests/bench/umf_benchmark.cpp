@@ -51,11 +51,11 @@ constexpr std::uint64_t kScreenSeed = 7;
 const char* const kUsage = R"(umf_benchmark: the umf detector (single frame and video) against ArUco on simulated phone frames.
 
 Usage: umf_benchmark [options]
-  --frames N             frames per category x opacity x resolution (default 40)
+  --frames N             frames per category x opacity x resolution (default 40; 0 = only the pulsing video)
   --set tuning|heldout   tuning (default): the scenes the detector is tuned on, written to
                          detector.{json,md} and two PNGs; heldout: the held-out scenes (other screens,
                          contents, camera model and seeds; success within half a module), written to
-                         heldout.{json,md}, no pulsing video
+                         heldout.{json,md}
   --quick                10 frames, 640x480 only, a short pulsing run (explicit options win)
   --out DIR              where the reports go (default docs/benchmarks)
   --categories a,b       tuning: near_far, horizontal, rotation, perspective, general, occlusion, low_light,
@@ -71,7 +71,8 @@ Usage: umf_benchmark [options]
                          or of compression only flat_macroblocks or video_jpeg)
   --no-aruco             leave ArUco out
   --no-video             leave "umf video" (the tracker over consecutive frames) out
-  --pulse-frames N       frames per screen content in the pulsing video (default 150, quick 50; 0 = skip)
+  --pulse-frames N       frames per screen content in the pulsing video (default 150, heldout 90, quick 50;
+                         0 = skip)
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --dump DIR             also save every frame as PNG there (for looking at them; use with few frames)
@@ -137,7 +138,7 @@ Options parse(int argc, char** argv) {
             std::cout << kUsage;
             std::exit(0);
         } else if (a == "--frames") {
-            o.frames = positive_int(value(), a);
+            o.frames = positive_int(value(), a, 0);
             frames_given = true;
         } else if (a == "--quick") {
             quick = true;
@@ -202,11 +203,13 @@ Options parse(int argc, char** argv) {
             o.categories.push_back(*c);
         }
     }
+    if (o.heldout && !pulse_given) o.pulse_frames = 90;
     if (quick) {
         if (!frames_given) o.frames = 10;
         if (!res_given) o.resolutions = {{640, 480}};
         if (!pulse_given) o.pulse_frames = 50;
     }
+    if (o.frames == 0 && o.pulse_frames == 0) throw std::invalid_argument("nothing to run: no frames and no pulsing video");
     if (o.categories.empty() || o.resolutions.empty() || o.opacities.empty())
         throw std::invalid_argument("nothing to run: empty category, resolution or opacity list");
     return o;
@@ -494,6 +497,7 @@ private:
 int run_heldout_set(const Options& opt, const std::string& command) {
     HeldoutOptions h;
     h.frames = opt.frames;
+    h.pulse_frames = opt.pulse_frames;
     h.out = opt.out;
     if (!opt.category_names.empty()) {
         h.categories.clear();
@@ -523,7 +527,7 @@ int run(const Options& opt, const std::string& command) {
     cv::setNumThreads(1);
     std::filesystem::create_directories(opt.out);
     Bench bench(opt, command);
-    bench.sweep();
+    if (opt.frames > 0) bench.sweep();
     if (opt.pulse_frames > 0)
         for (cv::Size res : opt.resolutions) bench.pulsing(res);
     bench.write();
