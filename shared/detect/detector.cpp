@@ -21,6 +21,10 @@ using Clock = std::chrono::steady_clock;
 // when a first search failed (a phone's camera in dim light).
 constexpr double kNoisyImage = 3.0;
 
+// The one failure that ends a search at once: a place was accepted, but the
+// aim maps to infinity under it.
+constexpr const char* kAimAtInfinity = "aim point at infinity";
+
 double ms_since(Clock::time_point& t) {
     const auto now = Clock::now();
     const double ms = std::chrono::duration<double, std::milli>(now - t).count();
@@ -125,17 +129,37 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
 const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                    Detection& out) const {
     const char* failure = search_smaller(im, aim, prior, out);
+    if (!failure) return nullptr;
     const int max_side = options_.double_size_max_side;
-    if (!failure || max_side <= 0 || std::max(im.width, im.height) > max_side) return failure;
-    // The part around the aim, at double size: as many pixels as the frame.
-    const double part = std::clamp(options_.double_size_part, 0.1, 1.0);
-    const int w = std::max(8, static_cast<int>(std::lround(im.width * part)));
-    const int h = std::max(8, static_cast<int>(std::lround(im.height * part)));
-    if (w > im.width || h > im.height) return failure;
-    const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
-    const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
-    const GreyView around{im.row(y0) + x0, w, h, im.stride};
-    return search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, out) ? failure : nullptr;
+    if (max_side > 0 && std::max(im.width, im.height) <= max_side) {
+        // The part around the aim, at double size: as many pixels as the frame.
+        const double part = std::clamp(options_.double_size_part, 0.1, 1.0);
+        const int w = std::max(8, static_cast<int>(std::lround(im.width * part)));
+        const int h = std::max(8, static_cast<int>(std::lround(im.height * part)));
+        if (w <= im.width && h <= im.height) {
+            const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
+            const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
+            const GreyView around{im.row(y0) + x0, w, h, im.stride};
+            if (!search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, out)) return nullptr;
+        }
+    }
+    if (!options_.lattice_enabled) return failure;
+    return search_lattice(im, aim, prior, out) ? failure : nullptr;
+}
+
+const char* Detector::search_lattice(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                     Detection& out) const {
+    auto t = Clock::now();
+    const std::vector<Lattice> lattices = find_lattices(im, aim, options_.lattice);
+    out.times.grid_ms += ms_since(t);
+    out.pixels_visited += static_cast<long>(options_.lattice.patch_px) * options_.lattice.patch_px;
+    const char* failure = "no lattice";
+    for (const Lattice& l : lattices) {
+        failure = read_grid(im, aim, prior, l.grid_to_image, l.rows, l.cols, out);
+        out.from_lattice = !failure;
+        if (!failure || failure == kAimAtInfinity) return failure;
+    }
+    return failure;
 }
 
 const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
@@ -256,77 +280,76 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
     for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
     out.times.grid_ms += ms_since(t);
 
-    // Steps 4 to 6 for each pair of labellings, the likeliest first, until
+    // Steps 4 to 8 for each pair of labellings, the likeliest first, until
     // the window vote accepts one.
     const char* failure = "no grid homography";
     const int n0 = static_cast<int>(hypotheses[0].size()), n1 = static_cast<int>(hypotheses[1].size());
     for (int sum = 0; sum <= n0 + n1 - 2; ++sum)
         for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0) {
-            const GridLineFamily* lines[2] = {&hypotheses[0][h0], &hypotheses[1][sum - h0]};
+            t = Clock::now();
             Eigen::Matrix3d g2i;
             int rows = 0, cols = 0;
-            const bool fitted = grid_homography(*lines[0], *lines[1], im, g2i, rows, cols);
+            const bool fitted = grid_homography(hypotheses[0][h0], hypotheses[1][sum - h0], im, g2i, rows, cols);
             out.times.grid_ms += ms_since(t);
             if (!fitted) continue;
-
-            // Step 5. Module values or edge signs.
-            const Field& f = index_.field();
-            const ModuleGrid grid = classify_modules(im, g2i, rows, cols, f.colors, f.key == WindowKey::edges,
-                                                     options_.classify, out.pixels_visited);
-            out.times.classify_ms += ms_since(t);
-
-            // Step 6. Window lookup and the placement vote: near the
-            // predicted place first, when there is a prior; the whole
-            // field's vote when that finds nothing or its place is refused.
-            VoteResult near;
-            if (prior) {
-                if (auto predicted = predict_placement(prior->image_to_field, g2i, rows, cols))
-                    near = vote_near(grid, index_, *predicted, prior->radius_modules, options_.vote);
-            }
-            out.times.vote_ms += ms_since(t);
-            Eigen::Matrix3d field_to_image;
-            int edges_fitted = 0;
-            const char* refused =
-                near.found ? place_from_vote(im, aim, g2i, near, out, field_to_image, edges_fitted) : nullptr;
-            const bool near_prior = near.found && !refused;
-            t = Clock::now();
-            if (near_prior) {
-                out.windows = near.votes;
-                out.confidence = near.agreement;
-            } else {
-                const VoteResult vote = vote_placement(grid, index_, options_.vote);
-                out.times.vote_ms += ms_since(t);
-                // Report the accepted vote, or else the strongest one seen.
-                if (vote.found || vote.votes > out.windows) {
-                    out.windows = vote.votes;
-                    out.confidence = vote.agreement;
-                }
-                // A grid labelled wrongly in part (a text line taken for a
-                // grid line) still has windows that agree where it is right:
-                // the refit grows out from them, and the checks judge it.
-                // A place refused near the prior is not checked again.
-                const bool weak =
-                    !vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up);
-                if (weak || (near.found && near.placement == vote.placement)) {
-                    failure = refused ? refused : "no agreeing windows";
-                    continue;
-                }
-                refused = place_from_vote(im, aim, g2i, vote, out, field_to_image, edges_fitted);
-                t = Clock::now();
-            }
-            if (refused) {
-                failure = refused;
-                continue;
-            }
-            out.edges_fitted = edges_fitted;
-            const bool placed = place_aim(im, field_to_image, aim, out);
-            out.times.refine_ms += ms_since(t);
-            if (!placed) return "aim point at infinity";
-            out.from_prior = near_prior;
-            out.found = true;
-            return nullptr;
+            failure = read_grid(im, aim, prior, g2i, rows, cols, out);
+            if (!failure || failure == kAimAtInfinity) return failure;
         }
     return failure;
+}
+
+const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                const Eigen::Matrix3d& g2i, int rows, int cols, Detection& out) const {
+    // Step 5. Module values or edge signs.
+    auto t = Clock::now();
+    const Field& f = index_.field();
+    const ModuleGrid grid = classify_modules(im, g2i, rows, cols, f.colors, f.key == WindowKey::edges,
+                                             options_.classify, out.pixels_visited);
+    out.times.classify_ms += ms_since(t);
+
+    // Step 6. Window lookup and the placement vote: near the predicted place
+    // first, when there is a prior; the whole field's vote when that finds
+    // nothing or its place is refused.
+    t = Clock::now();
+    VoteResult near;
+    if (prior) {
+        if (auto predicted = predict_placement(prior->image_to_field, g2i, rows, cols))
+            near = vote_near(grid, index_, *predicted, prior->radius_modules, options_.vote);
+    }
+    out.times.vote_ms += ms_since(t);
+    Eigen::Matrix3d field_to_image;
+    int edges_fitted = 0;
+    const char* refused = near.found ? place_from_vote(im, aim, g2i, near, out, field_to_image, edges_fitted) : nullptr;
+    const bool near_prior = near.found && !refused;
+    t = Clock::now();
+    if (near_prior) {
+        out.windows = near.votes;
+        out.confidence = near.agreement;
+    } else {
+        const VoteResult vote = vote_placement(grid, index_, options_.vote);
+        out.times.vote_ms += ms_since(t);
+        // Report the accepted vote, or else the strongest one seen.
+        if (vote.found || vote.votes > out.windows) {
+            out.windows = vote.votes;
+            out.confidence = vote.agreement;
+        }
+        // A grid labelled wrongly in part (a text line taken for a grid
+        // line) still has windows that agree where it is right: the refit
+        // grows out from them, and the checks judge it. A place refused near
+        // the prior is not checked again.
+        const bool weak = !vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up);
+        if (weak || (near.found && near.placement == vote.placement)) return refused ? refused : "no agreeing windows";
+        refused = place_from_vote(im, aim, g2i, vote, out, field_to_image, edges_fitted);
+        t = Clock::now();
+    }
+    if (refused) return refused;
+    out.edges_fitted = edges_fitted;
+    const bool placed = place_aim(im, field_to_image, aim, out);
+    out.times.refine_ms += ms_since(t);
+    if (!placed) return kAimAtInfinity;
+    out.from_prior = near_prior;
+    out.found = true;
+    return nullptr;
 }
 
 const char* Detector::place_from_vote(const GreyView& im, const Eigen::Vector2d& aim, const Eigen::Matrix3d& g2i,

@@ -13,7 +13,9 @@
 //   8. the aim point from a refit to the module edges around it
 // When nothing is found, steps 1 to 8 run again on the frame at half size
 // (image.hpp's half_size), while it is large enough, then, for a small
-// frame, once at double size (double_size).
+// frame, once at double size (double_size); last, steps 2 to 4 give way to
+// a lattice read from the spectrum of edge strength around the aim
+// (lattice.hpp), for modules of 3-5 pixels.
 // A wrong place is worse than none: every stage may end in "not found".
 #pragma once
 
@@ -26,6 +28,7 @@
 #include "detect/edgels.hpp"
 #include "detect/grid_lines.hpp"
 #include "detect/image.hpp"
+#include "detect/lattice.hpp"
 #include "detect/placement_vote.hpp"
 #include "detect/refine.hpp"
 #include "detect/vanishing_points.hpp"
@@ -76,6 +79,11 @@ struct DetectorOptions {
     // 15 elsewhere): the interpolated image rounds the corners of modules of
     // 3-4 pixels, and their edges' gradients turn by 20 degrees and more.
     double double_size_max_inlier_deg = 25;
+    // When no size finds the field, its grid as the lattice the spectrum of
+    // edge strength around the aim shows (lattice.hpp): the modules of a far
+    // screen, 3-5 pixels, turn the edgels' gradients too far for steps 2-4.
+    bool lattice_enabled = true;
+    LatticeOptions lattice;
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
 
@@ -94,6 +102,7 @@ struct Detection {
     int windows = 0;          // windows that agreed on the place
     bool from_prior = false;  // confirmed near the predicted place rather than found anew
     double size_scale = 1;    // found on the frame at this many times its size (0.5: half size, 2: double)
+    bool from_lattice = false;  // its grid came from the spectrum around the aim (lattice.hpp)
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
     double confidence = 0;    // fraction of the read modules or edges the place explains
     int places_checked = 0;   // candidate places that reached the final check (each costs evidence)
@@ -138,8 +147,8 @@ public:
 
 private:
     // Steps 1 to 8 on the image at its own size, then (when nothing is
-    // found) at half size and below, then at double size; the failure, or
-    // null when found.
+    // found) at half size and below, then at double size, then on a lattice
+    // around the aim; the failure, or null when found.
     const char* search_sizes(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              Detection& out) const;
     // Steps 1 to 8 on the image at its own size, then at half size, and so
@@ -161,9 +170,18 @@ private:
     const char* search_all_then_field_like(const GreyView& image, const Eigen::Vector2d& aim,
                                            const DetectionPrior* prior, const VanishingOptions& vanishing,
                                            const EdgelScan& scan, Detection& out) const;
-    // Steps 2 to 7 on one scan's edgels; the failure, or null when found.
+    // Steps 2 to 8 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                        const VanishingOptions& vanishing, const EdgelScan& scan, Detection& out) const;
+    // Steps 5 to 8 on the lattices around the aim (lattice.hpp) in place of
+    // steps 1 to 4; the failure, or null when found.
+    const char* search_lattice(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                               Detection& out) const;
+    // Steps 5 to 8 on one grid (`grid_to_image`, rows x cols cells): its
+    // modules read, the vote (near the prior first), the refit and checks,
+    // the aim point; the failure, or null when found.
+    const char* read_grid(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                          const Eigen::Matrix3d& grid_to_image, int rows, int cols, Detection& out) const;
     // Step 8: the view's image-to-field map, and the aim point in field
     // coordinates from the module edges around it (from `field_to_image`
     // alone where too few are found). False when the aim maps to infinity.
