@@ -158,7 +158,9 @@ bool lattice_from(const Eigen::Vector2d f[2], const double phase[2], int x0, int
     const Eigen::Matrix2d inv = a.inverse();
     Eigen::Matrix3d g2i = Eigen::Matrix3d::Identity();
     g2i.topLeftCorner<2, 2>() = inv;
-    g2i.topRightCorner<2, 1>() = inv * (first - offset) + Eigen::Vector2d(x0, y0);
+    // Patch value (x, y) is image pixel (x0 + x, y0 + y), which covers
+    // [x0 + x, x0 + x + 1): its centre lies half a pixel on.
+    g2i.topRightCorner<2, 1>() = inv * (first - offset) + Eigen::Vector2d(x0 + 0.5, y0 + 0.5);
     // The field is never seen from behind: keep the grid's turn that does
     // not mirror the image.
     if (inv.determinant() < 0) {

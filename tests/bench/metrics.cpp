@@ -75,7 +75,8 @@ nlohmann::json to_json(const PulseSummary& p) {
             {"gap_max", p.gap_max},
             {"longest_miss", p.longest_miss},
             {"gap_histogram", hist},
-            {"success_pct_by_screen", p.success_pct_by_screen}};
+            {"success_pct_by_screen", p.success_pct_by_screen},
+            {"false_location_errors_modules", p.false_errors}};
 }
 
 // Opacity of table (a): 0.3, or the nearest one that was run.
@@ -310,7 +311,10 @@ PulseSummary summarise_pulse(const std::string& method, const std::string& resol
         for (int i = 0; i < static_cast<int>(seq.size()); ++i) {
             const Outcome& o = seq[static_cast<std::size_t>(i)];
             p.skipped += o.skipped;
-            p.false_locations += !o.skipped && o.false_location();
+            if (!o.skipped && o.false_location()) {
+                ++p.false_locations;
+                p.false_errors.push_back(o.error_modules);
+            }
             if (o.skipped || !o.success()) continue;
             ++hits;
             if (last >= 0) p.gaps.push_back(i - last);

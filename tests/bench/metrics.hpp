@@ -83,6 +83,7 @@ struct PulseSummary {
     std::string method, resolution;
     int sequences = 0, frames = 0, skipped = 0, successes = 0, false_locations = 0;
     double success_pct = kNaN, false_pct = kNaN;  // of all frames, skipped ones included
+    std::vector<double> false_errors;             // modules: how far off each false location was
     std::vector<int> gaps;  // frames from one success to the next, within each sequence
     double gaps_le3_pct = kNaN, gaps_le5_pct = kNaN, gap_median = kNaN;
     int gap_max = 0;

@@ -59,7 +59,8 @@ sim::Motion motion_of(Category category) {
     case Category::occlusion:
     case Category::low_light:
     case Category::smeared:
-    case Category::compressed: return sim::Motion::general;
+    case Category::compressed:
+    case Category::pixel_grid: return sim::Motion::general;
     }
     return sim::Motion::general;
 }
@@ -115,13 +116,14 @@ const char* to_string(Category category) {
     case Category::distant: return "distant";
     case Category::compressed: return "compressed";
     case Category::tiny: return "tiny";
+    case Category::pixel_grid: return "pixel_grid";
     }
     return "?";
 }
 
 bool is_plain(Category category) {
     return category != Category::occlusion && category != Category::low_light && category != Category::smeared &&
-           category != Category::compressed;
+           category != Category::compressed && category != Category::pixel_grid;
 }
 
 std::optional<Category> category_from_string(const std::string& name) {
@@ -137,9 +139,12 @@ std::vector<FrameRecipe> category_recipes(const Scene& scene, Category category,
     // distant: the near_far sweep from 650 to 1100 mm (modules of 4-7 px
     // at 640 x 480); tiny: from 1000 to 1400 mm (3-4 px at 640 x 480, where
     // the module edges of a grid line lie closer than the edgels' reach).
-    const sim::MotionRange range = category == Category::distant ? sim::MotionRange{900, 650, 1100, 60}
-                                   : category == Category::tiny  ? sim::MotionRange{1200, 1000, 1400, 60}
-                                                                 : scene.range;
+    // pixel_grid: 100 to 280 mm, where a screen pixel is 0.5-1.4 image px
+    // at 640 x 480 (1-2.8 at 1280 x 720) and aliases most.
+    const sim::MotionRange range = category == Category::distant      ? sim::MotionRange{900, 650, 1100, 60}
+                                   : category == Category::tiny       ? sim::MotionRange{1200, 1000, 1400, 60}
+                                   : category == Category::pixel_grid ? sim::MotionRange{170, 100, 280, 40}
+                                                                      : scene.range;
     const std::vector<sim::CameraPose> poses =
         sim::pose_trajectory(motion_of(category), frames, scene.screen.pixels, seed, range);
     cv::RNG extra(mix_seed(seed, static_cast<std::uint64_t>(category), 6));
@@ -170,6 +175,7 @@ std::vector<FrameRecipe> category_recipes(const Scene& scene, Category category,
         }
         // A screen recording or a video call's frame: low-quality JPEG.
         if (category == Category::compressed) r.degradation.jpeg_quality = quality;
+        if (category == Category::pixel_grid) r.degradation.pixel_grid = true;
         out.push_back(r);
     }
     return out;

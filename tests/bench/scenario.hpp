@@ -25,12 +25,12 @@ namespace umf::bench {
 // compression), each with
 // parameters of its own: the held-out set's are not copied here.
 enum class Category { near_far, horizontal, rotation, perspective, general, occlusion, low_light, smeared, distant,
-                      compressed, tiny };
+                      compressed, tiny, pixel_grid };
 
-inline constexpr std::array<Category, 11> kAllCategories = {
+inline constexpr std::array<Category, 12> kAllCategories = {
     Category::near_far, Category::horizontal, Category::rotation, Category::perspective, Category::general,
     Category::occlusion, Category::low_light, Category::smeared, Category::distant, Category::compressed,
-    Category::tiny};
+    Category::tiny, Category::pixel_grid};
 
 // Categories whose frames have no more than the everyday degradations.
 bool is_plain(Category category);

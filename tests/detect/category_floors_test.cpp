@@ -57,7 +57,7 @@ TEST(CategoryFloors, SingleFramesAndTrackerAtOpacity03) {
                             {bench::Category::general, 19, 19},    {bench::Category::occlusion, 19, 19},
                             {bench::Category::low_light, 17, 19},  {bench::Category::smeared, 17, 18},
                             {bench::Category::distant, 18, 19},    {bench::Category::compressed, 18, 19},
-                            {bench::Category::tiny, 17, 19}};
+                            {bench::Category::tiny, 17, 19},       {bench::Category::pixel_grid, 19, 19}};
     for (const Floor& floor : floors) {
         Tracker tracker(detector);
         int single = 0, video = 0;

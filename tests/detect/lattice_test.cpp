@@ -20,8 +20,8 @@ struct Rendered {
 };
 
 // Random binary modules (grey 90 and 150), drawn through an affine map from
-// module coordinates to the image, 4 x 4 samples a pixel; pixel (x, y) is
-// the area around the point (x, y), as the detector reads it.
+// module coordinates to the image, 4 x 4 samples a pixel; pixel (x, y)
+// covers [x, x + 1) x [y, y + 1), as the detector reads it.
 Rendered render(double module_px, double turn_deg, double shear, int w, int h, std::uint32_t seed) {
     Rendered r;
     const double a = turn_deg * M_PI / 180;
@@ -40,7 +40,7 @@ Rendered render(double module_px, double turn_deg, double shear, int w, int h, s
             double sum = 0;
             for (int sy = 0; sy < 4; ++sy)
                 for (int sx = 0; sx < 4; ++sx) {
-                    const Eigen::Vector2d m = r.image_to_module * Eigen::Vector2d(x + (sx - 1.5) / 4, y + (sy - 1.5) / 4);
+                    const Eigen::Vector2d m = r.image_to_module * Eigen::Vector2d(x + (sx + 0.5) / 4, y + (sy + 0.5) / 4);
                     const int i = static_cast<int>(std::floor(m.x())) + 200, j = static_cast<int>(std::floor(m.y())) + 200;
                     sum += bits[static_cast<std::size_t>(j) * 400 + static_cast<std::size_t>(i)] ? 150 : 90;
                 }

@@ -20,6 +20,9 @@ const cv::Vec3b kDeskBgr(40, 52, 66);
 // as in phone shots of LCDs, instead of none (0) or swamping the picture
 // (point sampling).
 constexpr double kStripeAliasing = 1.0;
+// With the pixel grid, a sensor without an optical low-pass filter in front
+// of a screen whose pixels are about its own: two octaves alias.
+constexpr double kGridAliasing = 2.0;
 
 double radians(double deg) { return deg * CV_PI / 180; }
 
@@ -50,7 +53,12 @@ struct ScreenSource {
     cv::Matx33d from_screen;
 };
 
-ScreenSource screen_source(const cv::Mat& screen_bgr, int bezel_px, bool subpixels) {
+ScreenSource screen_source(const cv::Mat& screen_bgr, int bezel_px, bool subpixels, bool grid) {
+    if (grid) {
+        const cv::Vec3f bezel = to_linear(kBezelBgr);
+        return {pad(pixel_grid(to_linear(screen_bgr)), 3 * bezel_px, 3 * bezel_px, cv::Scalar(bezel)),
+                scaling(3, 3) * translation(bezel_px, bezel_px)};
+    }
     if (!subpixels)
         return {to_linear(pad(screen_bgr, bezel_px, bezel_px, cv::Scalar(kBezelBgr))), translation(bezel_px, bezel_px)};
     const cv::Vec3f bezel = to_linear(kBezelBgr);
@@ -99,9 +107,10 @@ Shot photograph(const cv::Mat& screen_bgr, const ScreenGeometry& screen, const C
     shot.image_to_screen = s2i.inv();
 
     const int bezel_px = static_cast<int>(std::lround(kBezelMm / screen_mm_per_px(screen)));
-    const ScreenSource source = screen_source(screen_bgr, bezel_px, d.subpixels);
+    const ScreenSource source = screen_source(screen_bgr, bezel_px, d.subpixels, d.pixel_grid);
+    const double aliasing = d.pixel_grid ? kGridAliasing : d.subpixels ? kStripeAliasing : 0.0;
     cv::Mat light = sample_perspective(source.linear, source.from_screen * shot.image_to_screen, camera.resolution,
-                                       to_linear(kDeskBgr), d.subpixels ? kStripeAliasing : 0.0);
+                                       to_linear(kDeskBgr), aliasing);
 
     // Order of a real camera: the lens blurs the light (defocus, shake during
     // the exposure), reflections add light on the way, the exposure scales

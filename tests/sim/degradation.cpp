@@ -64,6 +64,23 @@ cv::Mat subpixel_stripes(const cv::Mat& linear) {
     return out;
 }
 
+cv::Mat pixel_grid(const cv::Mat& linear) {
+    CV_Assert(linear.type() == CV_32FC3);
+    cv::Mat out(linear.rows * 3, linear.cols * 3, CV_32FC3, cv::Scalar::all(0));
+    for (int y = 0; y < linear.rows; ++y) {
+        const auto* in = linear.ptr<cv::Vec3f>(y);
+        for (int row = 0; row < 2; ++row) {
+            auto* o = out.ptr<cv::Vec3f>(3 * y + row);
+            for (int x = 0; x < linear.cols; ++x) {
+                o[3 * x + 0][2] = 4.5f * in[x][2];  // red on the left (BGR order: channel 2)
+                o[3 * x + 1][1] = 4.5f * in[x][1];
+                o[3 * x + 2][0] = 4.5f * in[x][0];
+            }
+        }
+    }
+    return out;
+}
+
 cv::Mat motion_kernel(double length_px, double angle_deg) {
     const double a = angle_deg * CV_PI / 180;
     const cv::Point2d dir(std::cos(a), std::sin(a));

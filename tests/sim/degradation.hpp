@@ -21,6 +21,11 @@ struct Degradation {
     double gamma = 1.0;            // extra power on the camera's output values; > 1 darkens mid-tones
     double glare = 0;              // 0..1: peak of a bright reflection blob, as a fraction of the screen's white
     bool subpixels = false;        // the screen shows R, G, B stripes per pixel (moire at some distances)
+    // The screen's pixel grid up close: R, G, B stripes and a dark row of
+    // black matrix under each pixel row, sampled with two octaves of detail
+    // let through unfiltered (strong moire where a screen pixel is about an
+    // image pixel). Takes the place of subpixels.
+    bool pixel_grid = false;
     int jpeg_quality = 0;          // 0 = no JPEG
     std::uint64_t seed = 1;        // noise and glare position
 };
@@ -38,6 +43,12 @@ cv::Mat to_output(const cv::Mat& linear, double gamma, double noise_sigma, std::
 // R, G, B from left to right, each three times as bright in its channel, so
 // the average over the pixel is unchanged. Three times as wide as the input.
 cv::Mat subpixel_stripes(const cv::Mat& linear);
+
+// Each pixel as a 3 x 3 block: R, G, B columns in its upper two rows, each
+// 4.5 times as bright in its channel, and a black bottom row (the black
+// matrix between pixel rows), so the average over the pixel is unchanged.
+// Three times as wide and as tall as the input.
+cv::Mat pixel_grid(const cv::Mat& linear);
 
 // A normalised kernel smearing along a straight line (sub-pixel accurate, so
 // fractional lengths make a difference).

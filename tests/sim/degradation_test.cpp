@@ -105,6 +105,37 @@ TEST(SimDegradation, SubpixelStripesKeepTheAverage) {
     }
 }
 
+TEST(SimDegradation, PixelGridKeepsTheAverageAndShowsTheBlackMatrix) {
+    // Each pixel is R, G, B over two rows and a black row: resolved up
+    // close, every image row through the black matrix is dark in every
+    // channel while the rows of stripes are bright; the average stays the
+    // screen's grey. (Stripes are 4.5 times as bright as their pixel: a grey
+    // of 90 keeps them below clipping.)
+    const cv::Mat grey_screen(kScreen.pixels, CV_8UC3, cv::Scalar::all(90));
+    const cv::Mat linear = to_linear(grey_screen(cv::Rect(0, 0, 8, 8)));
+    const cv::Mat grid = pixel_grid(linear);
+    ASSERT_EQ(grid.size(), cv::Size(24, 24));
+    const double expected = std::pow(90 / 255.0, 2.2);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(cv::mean(grid)[c], expected, 1e-4 * expected) << "channel " << c;
+    EXPECT_EQ(cv::norm(grid.row(2)), 0.0);   // the black matrix under the first pixel row
+    EXPECT_GT(cv::norm(grid.row(1)), 0.0);
+
+    Degradation d;
+    d.pixel_grid = true;
+    const CameraPose close{60, 0, 0, 0, {480, 270}};
+    const Shot shot = photograph(grey_screen, kScreen, kCamera, close, d);
+    const cv::Mat centre_linear = to_linear(shot.bgr(cv::Rect(200, 100, 240, 160)));
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(cv::mean(centre_linear)[c], expected, 0.05 * expected) << "channel " << c;
+    // Across the rows: the black matrix makes the brightness swing.
+    cv::Mat grey;
+    cv::cvtColor(shot.bgr(cv::Rect(200, 100, 240, 160)), grey, cv::COLOR_BGR2GRAY);
+    cv::Mat row_means;
+    cv::reduce(grey, row_means, 1, cv::REDUCE_AVG, CV_64F);
+    double lo, hi;
+    cv::minMaxLoc(row_means, &lo, &hi);
+    EXPECT_GT(hi - lo, 30);
+}
+
 TEST(SimDegradation, MotionKernelIsNormalisedAndOriented) {
     const cv::Mat k = motion_kernel(6.5, 90);
     EXPECT_NEAR(cv::sum(k)[0], 1.0, 1e-5);
