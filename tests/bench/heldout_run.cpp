@@ -124,10 +124,8 @@ public:
     // screens are mixed per frame, on the frame-making threads.
     void pulsing(cv::Size res) {
         const cv::Size modules(field_.width, field_.height);
-        std::vector<std::string> kinds;
-        std::vector<std::vector<Outcome>> umf_out, video_out, aruco_out;
+        PulseRun run(res_name(res), opt_.video, opt_.aruco);
         for (sim::HeldoutContent content : sim::kAllHeldoutContents) {
-            kinds.emplace_back(sim::to_string(content));
             const auto rs = heldout_pulsing_recipes(content, opt_.pulse_frames, opt_.seed);
             const auto s = static_cast<std::size_t>(rs.front().screen);
             const cv::Mat& screen = screens_[s * sim::kAllHeldoutContents.size() + static_cast<std::size_t>(content)];
@@ -152,17 +150,9 @@ public:
                 Tracker tracker = m.tracker();
                 for (const auto& frame : field_frames) v.push_back(m.video(tracker, frame));
             }
-            std::cerr << "[pulsing " << res_name(res) << " " << kinds.back() << "] umf " << hits(u);
-            if (opt_.video) std::cerr << ", umf video " << hits(v);
-            if (opt_.aruco) std::cerr << ", ArUco " << hits(a);
-            std::cerr << ", elapsed " << minutes() << " min\n";
-            umf_out.push_back(std::move(u));
-            video_out.push_back(std::move(v));
-            aruco_out.push_back(std::move(a));
+            run.add(sim::to_string(content), std::move(u), std::move(v), std::move(a), minutes());
         }
-        report_.pulsing.push_back(summarise_pulse("umf", res_name(res), kinds, umf_out));
-        if (opt_.video) report_.pulsing.push_back(summarise_pulse("umf_video", res_name(res), kinds, video_out));
-        if (opt_.aruco) report_.pulsing.push_back(summarise_pulse("aruco", res_name(res), kinds, aruco_out));
+        run.summarise_into(report_);
     }
 
     void write() {
@@ -177,11 +167,6 @@ public:
     }
 
 private:
-    static std::string hits(const std::vector<Outcome>& out) {
-        const auto n = std::count_if(out.begin(), out.end(), [](const Outcome& o) { return o.success(); });
-        return std::to_string(n) + "/" + std::to_string(out.size());
-    }
-
     static void write_text(const std::filesystem::path& path, const std::string& text) {
         std::ofstream out(path);
         out << text;

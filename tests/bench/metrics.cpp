@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -337,6 +338,28 @@ PulseSummary summarise_pulse(const std::string& method, const std::string& resol
     p.gap_median = percentile(std::vector<double>(p.gaps.begin(), p.gaps.end()), 50);
     p.gap_max = p.gaps.empty() ? 0 : *std::max_element(p.gaps.begin(), p.gaps.end());
     return p;
+}
+
+void PulseRun::add(const std::string& kind, std::vector<Outcome> umf, std::vector<Outcome> video,
+                   std::vector<Outcome> aruco, double minutes) {
+    const auto hits = [](const std::vector<Outcome>& out) {
+        return std::to_string(std::count_if(out.begin(), out.end(), [](const Outcome& o) { return o.success(); })) + "/" +
+               std::to_string(out.size());
+    };
+    std::cerr << "[pulsing " << resolution_ << " " << kind << "] umf " << hits(umf);
+    if (video_) std::cerr << ", umf video " << hits(video);
+    if (aruco_) std::cerr << ", ArUco " << hits(aruco);
+    std::cerr << ", elapsed " << minutes << " min\n";
+    kinds_.push_back(kind);
+    umf_.push_back(std::move(umf));
+    video_out_.push_back(std::move(video));
+    aruco_out_.push_back(std::move(aruco));
+}
+
+void PulseRun::summarise_into(Report& report) const {
+    report.pulsing.push_back(summarise_pulse("umf", resolution_, kinds_, umf_));
+    if (video_) report.pulsing.push_back(summarise_pulse("umf_video", resolution_, kinds_, video_out_));
+    if (aruco_) report.pulsing.push_back(summarise_pulse("aruco", resolution_, kinds_, aruco_out_));
 }
 
 nlohmann::json to_json(const Report& r) {

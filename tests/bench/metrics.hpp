@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace umf::bench {
@@ -135,6 +136,25 @@ struct Report {
     // own effects would blur what size and content do), all resolutions.
     ModuleBreakdown by_module_px;
     ScreenBreakdown by_screen;
+};
+
+// The pulsing videos of one resolution as they are run: each video's
+// outcomes per method, a line on stderr for each, then their summaries.
+class PulseRun {
+public:
+    PulseRun(std::string resolution, bool video, bool aruco)
+        : resolution_(std::move(resolution)), video_(video), aruco_(aruco) {}
+    // One video on screen content `kind`; `minutes` since the run began.
+    void add(const std::string& kind, std::vector<Outcome> umf, std::vector<Outcome> video, std::vector<Outcome> aruco,
+             double minutes);
+    // summarise_pulse of each method that was run, into report.pulsing.
+    void summarise_into(Report& report) const;
+
+private:
+    std::string resolution_;
+    bool video_, aruco_;
+    std::vector<std::string> kinds_;
+    std::vector<std::vector<Outcome>> umf_, video_out_, aruco_out_;
 };
 
 // Counts one evaluated frame of `method` into the report's breakdowns.

@@ -376,10 +376,8 @@ public:
     // The pulsing video: the opacity changes every frame, so both screens
     // are mixed per frame, on the frame-making threads.
     void pulsing(cv::Size res) {
-        std::vector<std::string> kinds;
-        std::vector<std::vector<Outcome>> umf_out, video_out, aruco_out;
+        PulseRun run(resolution_name(res), opt_.video, opt_.aruco);
         for (std::size_t k = 0; k < screens_.size(); ++k) {
-            kinds.push_back(sim::to_string(sim::kAllScreenKinds[k]));
             const auto rs = pulsing_recipes(scene_, sim::kAllScreenKinds[k], opt_.pulse_frames, opt_.seed);
             std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
             parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
@@ -390,21 +388,9 @@ public:
             });
             std::vector<Outcome> u, v, a;
             run_methods(field_frames, board_frames, u, v, a);
-            const auto hits = [](const std::vector<Outcome>& out) {
-                return std::to_string(std::count_if(out.begin(), out.end(), [](const Outcome& o) { return o.success(); })) +
-                       "/" + std::to_string(out.size());
-            };
-            std::cerr << "[pulsing " << resolution_name(res) << " " << kinds.back() << "] umf " << hits(u);
-            if (opt_.video) std::cerr << ", umf video " << hits(v);
-            if (opt_.aruco) std::cerr << ", ArUco " << hits(a);
-            std::cerr << ", elapsed " << minutes() << " min\n";
-            umf_out.push_back(std::move(u));
-            video_out.push_back(std::move(v));
-            aruco_out.push_back(std::move(a));
+            run.add(sim::to_string(sim::kAllScreenKinds[k]), std::move(u), std::move(v), std::move(a), minutes());
         }
-        report_.pulsing.push_back(summarise_pulse("umf", resolution_name(res), kinds, umf_out));
-        if (opt_.video) report_.pulsing.push_back(summarise_pulse("umf_video", resolution_name(res), kinds, video_out));
-        if (opt_.aruco) report_.pulsing.push_back(summarise_pulse("aruco", resolution_name(res), kinds, aruco_out));
+        run.summarise_into(report_);
     }
 
     void write() {
