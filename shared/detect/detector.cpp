@@ -130,6 +130,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
                                    Detection& out) const {
     const char* failure = search_smaller(im, aim, prior, out);
     if (!failure) return nullptr;
+    if (options_.lattice_enabled && !search_lattice(im, aim, prior, out)) return nullptr;
     const int max_side = options_.double_size_max_side;
     if (max_side > 0 && std::max(im.width, im.height) <= max_side) {
         // The part around the aim, at double size: as many pixels as the frame.
@@ -143,8 +144,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
             if (!search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, out)) return nullptr;
         }
     }
-    if (!options_.lattice_enabled) return failure;
-    return search_lattice(im, aim, prior, out) ? failure : nullptr;
+    return failure;
 }
 
 const char* Detector::search_lattice(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,

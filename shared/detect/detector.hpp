@@ -12,10 +12,10 @@
 //      and so must the modules around the aim point (aim_check.hpp)
 //   8. the aim point from a refit to the module edges around it
 // When nothing is found, steps 1 to 8 run again on the frame at half size
-// (image.hpp's half_size), while it is large enough, then, for a small
-// frame, once at double size (double_size); last, steps 2 to 4 give way to
-// a lattice read from the spectrum of edge strength around the aim
-// (lattice.hpp), for modules of 3-5 pixels.
+// (image.hpp's half_size), while it is large enough; then steps 1 to 4 give
+// way to a lattice read from the spectrum of edge strength around the aim
+// (lattice.hpp), for modules of 3-5 pixels; last, for a small frame, steps
+// 1 to 8 run once at double size (double_size).
 // A wrong place is worse than none: every stage may end in "not found".
 #pragma once
 
@@ -79,9 +79,11 @@ struct DetectorOptions {
     // 15 elsewhere): the interpolated image rounds the corners of modules of
     // 3-4 pixels, and their edges' gradients turn by 20 degrees and more.
     double double_size_max_inlier_deg = 25;
-    // When no size finds the field, its grid as the lattice the spectrum of
-    // edge strength around the aim shows (lattice.hpp): the modules of a far
-    // screen, 3-5 pixels, turn the edgels' gradients too far for steps 2-4.
+    // When the frame's own size and smaller ones do not find the field, its
+    // grid as the lattice the spectrum of edge strength around the aim shows
+    // (lattice.hpp), before the search at double size: the modules of a far
+    // screen, 3-5 pixels, turn the edgels' gradients too far for steps 2-4,
+    // and the lattice costs far less than a search at double size.
     bool lattice_enabled = true;
     LatticeOptions lattice;
     double corner_tolerance_px = 1.5;  // robust grid homography
@@ -147,8 +149,8 @@ public:
 
 private:
     // Steps 1 to 8 on the image at its own size, then (when nothing is
-    // found) at half size and below, then at double size, then on a lattice
-    // around the aim; the failure, or null when found.
+    // found) at half size and below, then on a lattice around the aim, then
+    // at double size; the failure, or null when found.
     const char* search_sizes(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              Detection& out) const;
     // Steps 1 to 8 on the image at its own size, then at half size, and so

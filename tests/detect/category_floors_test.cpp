@@ -137,14 +137,17 @@ TEST(CategoryFloors, SmearedFullHdFramesAreFoundAtHalfSize) {
 // edgels and gradients reach. The search at double size (of the middle
 // of the frame) finds them. There the corners of such modules are rounded
 // and their edges' gradients stray from the grid's directions: the
-// vanishing points take edgels up to 25 degrees off (15 elsewhere).
+// vanishing points take edgels up to 25 degrees off (15 elsewhere). The
+// lattice (tried before double size, and finding most of these) is left
+// out here, so that double size shows on its own.
 TEST(CategoryFloors, TinyModulesAreFoundAtDoubleSize) {
-    const FoundAtSize r = find_at_sizes(bench::Category::tiny, 20, {640, 480});
-    // Measured: 19 found (2 of them on a lattice), 9 at double size (8 at
-    // 640 x 480 alone).
-    EXPECT_GE(r.found, 17);
+    DetectorOptions no_lattice;
+    no_lattice.lattice_enabled = false;
+    const FoundAtSize r = find_at_sizes(bench::Category::tiny, 20, {640, 480}, no_lattice);
+    // Measured: 17 found, 9 at double size (8 at 640 x 480 alone).
+    EXPECT_GE(r.found, 15);
     EXPECT_GE(r.found_elsewhere, 7);
-    DetectorOptions narrow;
+    DetectorOptions narrow = no_lattice;
     narrow.double_size_max_inlier_deg = 15;
     const FoundAtSize strict = find_at_sizes(bench::Category::tiny, 20, {640, 480}, narrow);
     // Measured: 6 found at double size with 15 degrees there.
@@ -178,9 +181,10 @@ TEST(CategoryFloors, DimFaintFramesAreFoundWithALowerEdgeBar) {
     EXPECT_GE(found, found_strict + 2);
 }
 
-// Modules of 3-4 pixels in a faint field (tiny at opacity 0.15): where no
-// size finds the grid's directions, the lattice the spectrum of edge
-// strength shows around the aim (lattice.hpp) does.
+// Modules of 3-4 pixels in a faint field (tiny at opacity 0.15): where the
+// frame's own size and smaller ones do not find the grid's directions, the
+// lattice the spectrum of edge strength shows around the aim (lattice.hpp)
+// does.
 TEST(CategoryFloors, TinyFaintModulesAreFoundOnALattice) {
     const Scenes scenes(0.15);
     const Detector detector(scenes.field);
@@ -202,9 +206,10 @@ TEST(CategoryFloors, TinyFaintModulesAreFoundOnALattice) {
     }
     std::cout << "tiny at opacity 0.15: " << found << " found, " << on_lattice << " of them on a lattice; "
               << found_without << " without the lattice\n";
-    // Measured: 15 found, 6 of them on a lattice; 9 without the lattice.
+    // Measured: 15 found, 10 of them on a lattice; 9 without the lattice
+    // (which finds some of them at double size).
     EXPECT_GE(found, 13);
-    EXPECT_GE(on_lattice, 4);
+    EXPECT_GE(on_lattice, 8);
     EXPECT_GE(found, found_without + 4);
 }
 
