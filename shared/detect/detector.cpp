@@ -156,7 +156,7 @@ const char* Detector::search_lattice(const GreyView& im, const Eigen::Vector2d& 
     const char* failure = "no lattice";
     for (const Lattice& l : lattices) {
         failure = read_grid(im, aim, prior, l.grid_to_image, l.rows, l.cols, out);
-        out.from_lattice = !failure;
+        if (!failure) out.from_lattice = true;
         if (!failure || failure == kAimAtInfinity) return failure;
     }
     return failure;

@@ -9,15 +9,6 @@ namespace umf {
 
 namespace {
 
-// Sobel gradient at an interior pixel.
-void sobel(const GreyView& im, int x, int y, float& gx, float& gy) {
-    const std::uint8_t* a = im.row(y - 1) + x;
-    const std::uint8_t* b = im.row(y) + x;
-    const std::uint8_t* c = im.row(y + 1) + x;
-    gx = static_cast<float>((a[1] + 2 * b[1] + c[1]) - (a[-1] + 2 * b[-1] + c[-1]));
-    gy = static_cast<float>((c[-1] + 2 * c[0] + c[1]) - (a[-1] + 2 * a[0] + a[1]));
-}
-
 // Edges along one line of samples s[0..n): peaks of the smoothed derivative
 // d[i] = s[i+1] + s[i+2] - s[i-1] - s[i-2] that stand out of the line's noise
 // (a robust estimate from the lower quartile of |d|) by `deviations` and reach

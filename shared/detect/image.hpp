@@ -41,6 +41,16 @@ std::string describe_invalid(const ColourView& image);
 // The image at half its width and height, each pixel the mean of a 2 x 2
 // block, into `out` (reused between frames); a view of it. A point (x, y)
 // of `image` is (x / 2, y / 2) in it. An odd last row or column is dropped.
+// The Sobel gradient at an interior pixel (1 <= x < width - 1, likewise y),
+// pointing from dark to bright.
+inline void sobel(const GreyView& im, int x, int y, float& gx, float& gy) {
+    const std::uint8_t* a = im.row(y - 1) + x;
+    const std::uint8_t* b = im.row(y) + x;
+    const std::uint8_t* c = im.row(y + 1) + x;
+    gx = static_cast<float>((a[1] + 2 * b[1] + c[1]) - (a[-1] + 2 * b[-1] + c[-1]));
+    gy = static_cast<float>((c[-1] + 2 * c[0] + c[1]) - (a[-1] + 2 * a[0] + a[1]));
+}
+
 GreyView half_size(const GreyView& image, std::vector<std::uint8_t>& out);
 
 // The image at twice its width and height, interpolated with a cubic (Keys,

@@ -11,19 +11,17 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-// Sobel magnitude over the n x n patch at (x0, y0), its mean removed and a
-// Hann window applied (no edge of the patch makes a line in the spectrum).
+// Sobel magnitude over the n x n patch at (x0, y0), which lies a pixel
+// inside the image, its mean removed and a Hann window applied (no edge of
+// the patch makes a line in the spectrum).
 std::vector<double> edge_strength(const GreyView& im, int x0, int y0, int n) {
     std::vector<double> e(static_cast<std::size_t>(n) * n, 0.0);
     double sum = 0;
     for (int y = 0; y < n; ++y) {
-        const int iy = std::clamp(y0 + y, 1, im.height - 2);
-        const std::uint8_t *up = im.row(iy - 1), *mid = im.row(iy), *down = im.row(iy + 1);
         for (int x = 0; x < n; ++x) {
-            const int ix = std::clamp(x0 + x, 1, im.width - 2);
-            const double gx = (up[ix + 1] + 2.0 * mid[ix + 1] + down[ix + 1]) - (up[ix - 1] + 2.0 * mid[ix - 1] + down[ix - 1]);
-            const double gy = (down[ix - 1] + 2.0 * down[ix] + down[ix + 1]) - (up[ix - 1] + 2.0 * up[ix] + up[ix + 1]);
-            const double m = std::hypot(gx, gy);
+            float gx, gy;
+            sobel(im, x0 + x, y0 + y, gx, gy);
+            const double m = std::hypot(static_cast<double>(gx), static_cast<double>(gy));
             e[static_cast<std::size_t>(y) * n + x] = m;
             sum += m;
         }

@@ -1,4 +1,4 @@
-// The last try for modules of 3-5 camera pixels: the field's grid read from
+// A try for modules of 3-5 camera pixels: the field's grid read from
 // the spectrum of edge strength around the aim, with no edgels, directions
 // or lines. At that size a 3 x 3 gradient reaches into the neighbouring
 // modules' edges and points up to 30 degrees off its line's normal, so the

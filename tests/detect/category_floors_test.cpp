@@ -154,31 +154,45 @@ TEST(CategoryFloors, TinyModulesAreFoundAtDoubleSize) {
     EXPECT_GE(r.found_elsewhere, strict.found_elsewhere + 2);
 }
 
+// The first 20 frames of a category at 640 x 480 and `opacity`, each on its
+// own, by the default detector and by one with `variant` options: how many
+// each placed within half a module of the truth (a wrong place fails the
+// test), and how many of the default's were found on a lattice.
+struct AgainstVariant {
+    int found = 0, found_variant = 0, on_lattice = 0;
+};
+
+AgainstVariant against_variant(bench::Category category, double opacity, const DetectorOptions& variant) {
+    const Scenes scenes(opacity);
+    const Detector detector(scenes.field), other(scenes.field, variant);
+    AgainstVariant out;
+    for (const auto& recipe : bench::category_recipes(scenes.scene, category, 20, 1)) {
+        const bench::Frame frame = scenes.shoot(recipe, {640, 480});
+        if (!frame.centre_on_screen) continue;
+        const GreyView view = view_of(frame.grey);
+        for (auto [d, count] : {std::pair{detector.detect(view), &out.found}, {other.detect(view), &out.found_variant}}) {
+            if (!d.found) continue;
+            const double error = scenes.error(frame, d.aim_field);
+            EXPECT_LT(error, 0.5) << to_string(category) << " frame " << recipe.index;
+            *count += error < 0.5;
+            out.on_lattice += count == &out.found && error < 0.5 && d.from_lattice;
+        }
+    }
+    return out;
+}
+
 // A dim room and a faint field (low light at opacity 0.15): when the first
 // scans find nothing in a noisy frame, the scans three pixels wide with a
 // lower bar for edges find the field's faint edges.
 TEST(CategoryFloors, DimFaintFramesAreFoundWithALowerEdgeBar) {
-    const Scenes scenes(0.15);
-    const Detector detector(scenes.field);
     DetectorOptions strict_bar;
     strict_bar.noisy_edge_deviations = 4.5;  // as high as the first scans'
-    const Detector strict(scenes.field, strict_bar);
-    int found = 0, found_strict = 0;
-    for (const auto& recipe : bench::category_recipes(scenes.scene, bench::Category::low_light, 20, 1)) {
-        const bench::Frame frame = scenes.shoot(recipe, {640, 480});
-        if (!frame.centre_on_screen) continue;
-        const GreyView view = view_of(frame.grey);
-        for (auto [d, count] : {std::pair{detector.detect(view), &found}, {strict.detect(view), &found_strict}}) {
-            if (!d.found) continue;
-            const double error = scenes.error(frame, d.aim_field);
-            EXPECT_LT(error, 0.5) << "frame " << recipe.index;
-            *count += error < 0.5;
-        }
-    }
-    std::cout << "low light at opacity 0.15: " << found << " found, " << found_strict << " with the first scans' bar\n";
+    const AgainstVariant r = against_variant(bench::Category::low_light, 0.15, strict_bar);
+    std::cout << "low light at opacity 0.15: " << r.found << " found, " << r.found_variant
+              << " with the first scans' bar\n";
     // Measured: 17 found, 13 with the first scans' bar.
-    EXPECT_GE(found, 15);
-    EXPECT_GE(found, found_strict + 2);
+    EXPECT_GE(r.found, 15);
+    EXPECT_GE(r.found, r.found_variant + 2);
 }
 
 // Modules of 3-4 pixels in a faint field (tiny at opacity 0.15): where the
@@ -186,31 +200,16 @@ TEST(CategoryFloors, DimFaintFramesAreFoundWithALowerEdgeBar) {
 // lattice the spectrum of edge strength shows around the aim (lattice.hpp)
 // does.
 TEST(CategoryFloors, TinyFaintModulesAreFoundOnALattice) {
-    const Scenes scenes(0.15);
-    const Detector detector(scenes.field);
     DetectorOptions no_lattice;
     no_lattice.lattice_enabled = false;
-    const Detector without(scenes.field, no_lattice);
-    int found = 0, on_lattice = 0, found_without = 0;
-    for (const auto& recipe : bench::category_recipes(scenes.scene, bench::Category::tiny, 20, 1)) {
-        const bench::Frame frame = scenes.shoot(recipe, {640, 480});
-        if (!frame.centre_on_screen) continue;
-        const GreyView view = view_of(frame.grey);
-        for (auto [d, count] : {std::pair{detector.detect(view), &found}, {without.detect(view), &found_without}}) {
-            if (!d.found) continue;
-            const double error = scenes.error(frame, d.aim_field);
-            EXPECT_LT(error, 0.5) << "frame " << recipe.index;
-            *count += error < 0.5;
-            on_lattice += count == &found && d.from_lattice;
-        }
-    }
-    std::cout << "tiny at opacity 0.15: " << found << " found, " << on_lattice << " of them on a lattice; "
-              << found_without << " without the lattice\n";
+    const AgainstVariant r = against_variant(bench::Category::tiny, 0.15, no_lattice);
+    std::cout << "tiny at opacity 0.15: " << r.found << " found, " << r.on_lattice << " of them on a lattice; "
+              << r.found_variant << " without the lattice\n";
     // Measured: 15 found, 10 of them on a lattice; 9 without the lattice
     // (which finds some of them at double size).
-    EXPECT_GE(found, 13);
-    EXPECT_GE(on_lattice, 8);
-    EXPECT_GE(found, found_without + 4);
+    EXPECT_GE(r.found, 13);
+    EXPECT_GE(r.on_lattice, 8);
+    EXPECT_GE(r.found, r.found_variant + 4);
 }
 
 }  // namespace
