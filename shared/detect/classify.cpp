@@ -11,6 +11,20 @@ namespace {
 
 constexpr double kUnread = std::numeric_limits<double>::quiet_NaN();  // a module not wholly in view
 
+// The median of nine values by the 19 exchanges of Paeth's network: no
+// branches, for the millions of modules read a second.
+std::uint8_t median_of_9(std::uint8_t* p) {
+    auto sort2 = [p](int a, int b) {
+        const std::uint8_t lo = std::min(p[a], p[b]), hi = std::max(p[a], p[b]);
+        p[a] = lo;
+        p[b] = hi;
+    };
+    sort2(1, 2), sort2(4, 5), sort2(7, 8), sort2(0, 1), sort2(3, 4), sort2(6, 7), sort2(1, 2), sort2(4, 5);
+    sort2(7, 8), sort2(0, 3), sort2(5, 8), sort2(4, 7), sort2(3, 6), sort2(1, 4), sort2(2, 5), sort2(4, 7);
+    sort2(4, 2), sort2(6, 4), sort2(4, 2);
+    return p[4];
+}
+
 // A module's brightness: the median of nine pixels spread over its middle
 // half (a 3 x 3 pattern a quarter module apart). Text and thin lines under
 // the field darken or brighten a few of them, not the median. NaN when the
@@ -35,8 +49,7 @@ double sample_module(const GreyView& im, const Eigen::Matrix3d& h, double cx, do
             v[n++] = im.row(y)[x];
         }
     visited += 9;
-    std::nth_element(v, v + 4, v + 9);
-    return v[4];
+    return median_of_9(v);
 }
 
 // Otsu's threshold over the sampled values.

@@ -24,32 +24,42 @@ Eigen::Matrix3d normaliser(const std::vector<Point2>& pts) {
     return t;
 }
 
-// The homography through exactly four correspondences, with h22 = 1: an
-// 8 x 8 linear system, far cheaper than the eigen-decomposition of the DLT for
-// the thousands of samples RANSAC draws. Points are centred on the first
-// sample pair so h22 = 0 (the first point mapped to infinity) cannot occur.
+// The homography taking the projective basis (e1, e2, e3, e1 + e2 + e3) to
+// four points: their columns, each scaled so the fourth is their sum.
+// Nothing when three of the four are (nearly) on one line.
+std::optional<Eigen::Matrix3d> from_basis(const Point2* p) {
+    Eigen::Matrix3d m;
+    m << p[0].x(), p[1].x(), p[2].x(), p[0].y(), p[1].y(), p[2].y(), 1, 1, 1;
+    const double det = m.determinant();
+    const double size = std::abs(p[1].x() - p[0].x()) + std::abs(p[1].y() - p[0].y()) + std::abs(p[2].x() - p[0].x()) +
+                        std::abs(p[2].y() - p[0].y()) + std::abs(p[3].x() - p[0].x()) + std::abs(p[3].y() - p[0].y());
+    // det is twice the area of p0 p1 p2; each scale below is an area over it.
+    const double tiny = 1e-10 * size * size;
+    if (!(std::abs(det) > tiny)) return std::nullopt;
+    const Eigen::Vector3d l = m.inverse() * Eigen::Vector3d(p[3].x(), p[3].y(), 1);
+    if (!(std::abs(l(0) * det) > tiny && std::abs(l(1) * det) > tiny && std::abs(l(2) * det) > tiny)) return std::nullopt;
+    return m * l.asDiagonal();
+}
+
+// The homography through exactly four correspondences: the map from the
+// projective basis to `to` after the inverse of the one to `from`, a few
+// dozen operations against a linear solve or an eigen-decomposition for each
+// of the hundreds of samples RANSAC draws. Points are centred on the first
+// sample pair to keep the sums well conditioned.
 std::optional<Eigen::Matrix3d> homography_from_4(const Point2* from, const Point2* to) {
     const Point2 of = from[0], ot = to[0];
-    Eigen::Matrix<double, 8, 8> a;
-    Eigen::Matrix<double, 8, 1> b;
+    Point2 f[4], t[4];
     for (int i = 0; i < 4; ++i) {
-        const double x = from[i].x() - of.x(), y = from[i].y() - of.y();
-        const double u = to[i].x() - ot.x(), v = to[i].y() - ot.y();
-        a.row(2 * i) << x, y, 1, 0, 0, 0, -u * x, -u * y;
-        a.row(2 * i + 1) << 0, 0, 0, x, y, 1, -v * x, -v * y;
-        b(2 * i) = u;
-        b(2 * i + 1) = v;
+        f[i] = from[i] - of;
+        t[i] = to[i] - ot;
     }
-    const Eigen::FullPivLU<Eigen::Matrix<double, 8, 8>> lu(a);
-    if (!lu.isInvertible()) return std::nullopt;
-    const Eigen::Matrix<double, 8, 1> x = lu.solve(b);
-    if (!x.allFinite()) return std::nullopt;
-    Eigen::Matrix3d hc, tf, tt;
-    hc << x(0), x(1), x(2), x(3), x(4), x(5), x(6), x(7), 1;
+    const auto a = from_basis(f), b = from_basis(t);
+    if (!a || !b) return std::nullopt;
+    Eigen::Matrix3d tf, tt;
     tf << 1, 0, -of.x(), 0, 1, -of.y(), 0, 0, 1;
     tt << 1, 0, ot.x(), 0, 1, ot.y(), 0, 0, 1;
-    Eigen::Matrix3d h = tt * hc * tf;
-    if (std::abs(h.determinant()) < 1e-15 * std::pow(h.norm(), 3)) return std::nullopt;
+    Eigen::Matrix3d h = tt * *b * a->inverse() * tf;
+    if (!h.allFinite() || std::abs(h.determinant()) < 1e-15 * std::pow(h.norm(), 3)) return std::nullopt;
     if (std::abs(h(2, 2)) > 1e-12) h /= h(2, 2);
     return h;
 }
@@ -66,17 +76,26 @@ std::optional<Eigen::Matrix3d> fit_homography(const std::vector<Point2>& from, c
     const std::size_t n = from.size();
     if (n < 4 || to.size() != n) return std::nullopt;
     const Eigen::Matrix3d tf = normaliser(from), tt = normaliser(to);
-    // Accumulate A^T A of the 2n x 9 DLT system; its eigenvector of the
-    // smallest eigenvalue is the homography.
-    Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
+    // A^T A of the 2n x 9 DLT system; its eigenvector of the smallest
+    // eigenvalue is the homography. A point's two rows give, in 3 x 3 blocks,
+    // a a^T times [bz^2, 0, -bx bz; 0, bz^2, -by bz; -bx bz, -by bz, bx^2 + by^2]:
+    // four weighted sums of a a^T hold all of it.
+    Eigen::Matrix3d zz = Eigen::Matrix3d::Zero(), xz = zz, yz = zz, xy = zz;
     for (std::size_t i = 0; i < n; ++i) {
         const Eigen::Vector3d a = tf * Eigen::Vector3d(from[i].x(), from[i].y(), 1.0);
         const Eigen::Vector3d b = tt * Eigen::Vector3d(to[i].x(), to[i].y(), 1.0);
-        Eigen::Matrix<double, 9, 1> r1, r2;
-        r1 << 0, 0, 0, -b.z() * a.x(), -b.z() * a.y(), -b.z() * a.z(), b.y() * a.x(), b.y() * a.y(), b.y() * a.z();
-        r2 << b.z() * a.x(), b.z() * a.y(), b.z() * a.z(), 0, 0, 0, -b.x() * a.x(), -b.x() * a.y(), -b.x() * a.z();
-        ata += r1 * r1.transpose() + r2 * r2.transpose();
+        const Eigen::Matrix3d aa = a * a.transpose();
+        zz += b.z() * b.z() * aa;
+        xz += b.x() * b.z() * aa;
+        yz += b.y() * b.z() * aa;
+        xy += (b.x() * b.x() + b.y() * b.y()) * aa;
     }
+    Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
+    ata.block<3, 3>(0, 0) = zz;
+    ata.block<3, 3>(3, 3) = zz;
+    ata.block<3, 3>(0, 6) = ata.block<3, 3>(6, 0) = -xz;
+    ata.block<3, 3>(3, 6) = ata.block<3, 3>(6, 3) = -yz;
+    ata.block<3, 3>(6, 6) = xy;
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 9, 9>> eig(ata);
     if (eig.info() != Eigen::Success) return std::nullopt;
     // A unique solution has one (near) zero eigenvalue; a second one means the
@@ -97,16 +116,23 @@ std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>&
     const std::size_t n = from.size();
     if (n < 4 || to.size() != n) return std::nullopt;
     std::mt19937_64 rng(seed);
+    // Whether H takes from[i] within `tolerance` of to[i], without dividing:
+    // |q.xy - to q.z| <= tolerance |q.z|, and q.z not (nearly) 0.
+    const double tol2 = tolerance * tolerance;
+    auto fits = [&](const Eigen::Matrix3d& h, std::size_t i) {
+        const Eigen::Vector3d q = h * Eigen::Vector3d(from[i].x(), from[i].y(), 1.0);
+        if (std::abs(q.z()) < 1e-12) return false;
+        const double dx = q.x() - to[i].x() * q.z(), dy = q.y() - to[i].y() * q.z();
+        return dx * dx + dy * dy <= tol2 * q.z() * q.z();
+    };
     auto count_inliers = [&](const Eigen::Matrix3d& h, std::vector<bool>& mask) {
         int count = 0;
         mask.assign(n, false);
-        for (std::size_t i = 0; i < n; ++i) {
-            auto q = apply_homography(h, from[i]);
-            if (q && (*q - to[i]).norm() <= tolerance) {
+        for (std::size_t i = 0; i < n; ++i)
+            if (fits(h, i)) {
                 mask[i] = true;
                 ++count;
             }
-        }
         return count;
     };
     // Samples are judged on an evenly spread subset of at most kJudges
@@ -115,10 +141,7 @@ std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>&
     const std::size_t stride = std::max<std::size_t>(1, n / kJudges);
     auto judge = [&](const Eigen::Matrix3d& h) {
         int count = 0;
-        for (std::size_t i = 0; i < n; i += stride) {
-            auto q = apply_homography(h, from[i]);
-            count += q && (*q - to[i]).norm() <= tolerance;
-        }
+        for (std::size_t i = 0; i < n; i += stride) count += fits(h, i);
         return count;
     };
     RobustHomography best;
@@ -126,6 +149,8 @@ std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>&
     std::vector<Point2> sf(4), st(4);
     int best_judged = 0;
     const int all_judges = static_cast<int>((n + stride - 1) / stride);
+    constexpr double kConfidence = 0.9999;
+    double needed = iterations;
     for (int it = 0; it < iterations; ++it) {
         std::size_t idx[4];
         for (int k = 0; k < 4; ++k) {
@@ -145,7 +170,13 @@ std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>&
             best_judged = c;
             best.h = *h;
             if (c == all_judges) break;
+            // Samples enough that one of them was all inliers with
+            // probability kConfidence, were the best one's inliers all there
+            // are; no more than `iterations` either way.
+            const double all_in = std::pow(static_cast<double>(c) / all_judges, 4);
+            needed = std::min<double>(iterations, std::log(1 - kConfidence) / std::log1p(-all_in));
         }
+        if (it + 1 >= needed) break;
     }
     if (best_judged == 0) return std::nullopt;
     best.inliers = count_inliers(best.h, best.inlier);

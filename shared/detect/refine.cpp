@@ -22,8 +22,9 @@ struct ExpectedEdge {
 double bilinear(const GreyView& im, double x, double y, long& visited) {
     x -= 0.5;  // pixel centres are at +0.5
     y -= 0.5;
-    const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
-    if (x0 < 0 || y0 < 0 || x0 + 1 >= im.width || y0 + 1 >= im.height) return std::numeric_limits<double>::quiet_NaN();
+    // Inside, truncation is the floor (and no far-off point overflows an int).
+    if (!(x >= 0 && y >= 0 && x < im.width - 1 && y < im.height - 1)) return std::numeric_limits<double>::quiet_NaN();
+    const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
     const double fx = x - x0, fy = y - y0;
     const std::uint8_t* r0 = im.row(y0) + x0;
     const std::uint8_t* r1 = im.row(y0 + 1) + x0;

@@ -29,6 +29,17 @@ double angle_between_mod_pi(double a, double b) {
     return std::min(d, kPi - d);
 }
 
+// Whether an edgel points at the vanishing point v within its tolerance:
+// alignment(e, v) >= e.cos_tol without the root and division, for the
+// thousands of tests a RANSAC makes.
+bool aligned(const EdgelLine& e, const Eigen::Vector3d& v) {
+    const Eigen::Vector2d w = v.head<2>() - v.z() * e.p;
+    const double n2 = w.squaredNorm();
+    if (n2 < 1e-24) return true;
+    const double dot = w.dot(e.d);
+    return dot * dot >= e.cos_tol * e.cos_tol * n2;
+}
+
 // Cosine of the angle between an edgel's direction and the direction from it
 // to the vanishing point v (homogeneous, normalised coordinates).
 double alignment(const EdgelLine& e, const Eigen::Vector3d& v) {
@@ -161,7 +172,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         auto inliers_of = [&](const Eigen::Vector3d& v) {
             std::vector<int> in;
             for (int i : candidates)
-                if (alignment(lines[i], v) >= lines[i].cos_tol) in.push_back(i);
+                if (aligned(lines[i], v)) in.push_back(i);
             return in;
         };
         // Hypotheses are scored on an evenly spread subset of the candidates:
@@ -172,7 +183,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         for (std::size_t i = 0; i < candidates.size(); i += judge_stride) judges.push_back(candidates[i]);
         auto score = [&](const Eigen::Vector3d& v) {
             int n = 0;
-            for (int i : judges) n += alignment(lines[i], v) >= lines[i].cos_tol;
+            for (int i : judges) n += aligned(lines[i], v);
             return n;
         };
         Eigen::Vector3d best_v = Eigen::Vector3d::Zero();

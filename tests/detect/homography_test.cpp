@@ -89,3 +89,45 @@ TEST(Homography, RobustFitIgnoresWrongMatches) {
 }
 
 }  // namespace
+
+TEST(Homography, RobustFitOfFourPointsIsExactAndRefusesThreeOnALine) {
+    const Eigen::Matrix3d truth = some_perspective();
+    const std::vector<Point2> from{{0, 0}, {300, 10}, {20, 250}, {280, 270}};
+    std::vector<Point2> to;
+    for (const auto& p : from) to.push_back(*apply_homography(truth, p));
+    auto r = fit_homography_robust(from, to, 0.5);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->inliers, 4);
+    EXPECT_LT((*apply_homography(r->h, Point2(150, 140)) - *apply_homography(truth, Point2(150, 140))).norm(), 1e-6);
+    // The fourth point on the line through the first and second: no sample
+    // pins a homography down.
+    std::vector<Point2> on_line = from;
+    on_line[3] = Point2(600, 20);
+    std::vector<Point2> to_line;
+    for (const auto& p : on_line) to_line.push_back(*apply_homography(truth, p));
+    EXPECT_FALSE(fit_homography_robust(on_line, to_line, 0.5));
+}
+
+TEST(Homography, RobustFitDrawsOnWhenMostMatchesAreWrong) {
+    // The sampling stops once a sample of four inliers has surely come up,
+    // judged by the best inlier share so far; with three in five matches
+    // wrong that takes all the draws allowed.
+    const Eigen::Matrix3d truth = some_perspective();
+    auto from = grid_points(10, 20.0);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> anywhere(0, 400);
+    std::vector<Point2> to;
+    int right = 0;
+    for (std::size_t i = 0; i < from.size(); ++i) {
+        if (i % 5 < 3) {
+            to.emplace_back(anywhere(rng), anywhere(rng));
+        } else {
+            to.push_back(*apply_homography(truth, from[i]));
+            ++right;
+        }
+    }
+    auto r = fit_homography_robust(from, to, 1.0, 400);
+    ASSERT_TRUE(r);
+    EXPECT_GE(r->inliers, right);
+    EXPECT_LT((*apply_homography(r->h, Point2(90, 90)) - *apply_homography(truth, Point2(90, 90))).norm(), 1e-6);
+}
