@@ -22,6 +22,23 @@ std::vector<Point2> grid_points(int n, double spacing) {
     return pts;
 }
 
+// The images of `from` under `truth`, but for the points `wrong` picks:
+// those go anywhere in a 400 x 400 square.
+template <typename Wrong>
+std::vector<Point2> with_wrong_matches(const std::vector<Point2>& from, const Eigen::Matrix3d& truth, unsigned seed,
+                                       Wrong wrong) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> anywhere(0, 400);
+    std::vector<Point2> to;
+    for (std::size_t i = 0; i < from.size(); ++i) {
+        if (wrong(i))
+            to.emplace_back(anywhere(rng), anywhere(rng));
+        else
+            to.push_back(*apply_homography(truth, from[i]));
+    }
+    return to;
+}
+
 TEST(Homography, RecoversAnExactMapping) {
     const Eigen::Matrix3d truth = some_perspective();
     auto from = grid_points(5, 37.0);
@@ -64,18 +81,9 @@ TEST(Homography, AveragesNoise) {
 TEST(Homography, RobustFitIgnoresWrongMatches) {
     const Eigen::Matrix3d truth = some_perspective();
     auto from = grid_points(8, 25.0);
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<double> anywhere(0, 400);
-    std::vector<Point2> to;
-    int wrong = 0;
-    for (std::size_t i = 0; i < from.size(); ++i) {
-        if (i % 3 == 1) {  // a third of the matches are wrong
-            to.emplace_back(anywhere(rng), anywhere(rng));
-            ++wrong;
-        } else {
-            to.push_back(*apply_homography(truth, from[i]));
-        }
-    }
+    // A third of the matches are wrong.
+    const std::vector<Point2> to = with_wrong_matches(from, truth, 5, [](std::size_t i) { return i % 3 == 1; });
+    const int wrong = static_cast<int>((from.size() + 1) / 3);
     EXPECT_FALSE(fit_homography(from, to) &&
                  (*apply_homography(*fit_homography(from, to), from[0]) - to[0]).norm() < 0.5);
     auto r = fit_homography_robust(from, to, 1.0);
@@ -114,18 +122,8 @@ TEST(Homography, RobustFitDrawsOnWhenMostMatchesAreWrong) {
     // wrong that takes all the draws allowed.
     const Eigen::Matrix3d truth = some_perspective();
     auto from = grid_points(10, 20.0);
-    std::mt19937 rng(11);
-    std::uniform_real_distribution<double> anywhere(0, 400);
-    std::vector<Point2> to;
-    int right = 0;
-    for (std::size_t i = 0; i < from.size(); ++i) {
-        if (i % 5 < 3) {
-            to.emplace_back(anywhere(rng), anywhere(rng));
-        } else {
-            to.push_back(*apply_homography(truth, from[i]));
-            ++right;
-        }
-    }
+    const std::vector<Point2> to = with_wrong_matches(from, truth, 11, [](std::size_t i) { return i % 5 < 3; });
+    const int right = static_cast<int>(from.size()) * 2 / 5;
     auto r = fit_homography_robust(from, to, 1.0, 400);
     ASSERT_TRUE(r);
     EXPECT_GE(r->inliers, right);
