@@ -38,9 +38,6 @@ struct ColourView {
 // Empty when the colour view can be read; otherwise what is wrong with it.
 std::string describe_invalid(const ColourView& image);
 
-// The image at half its width and height, each pixel the mean of a 2 x 2
-// block, into `out` (reused between frames); a view of it. A point (x, y)
-// of `image` is (x / 2, y / 2) in it. An odd last row or column is dropped.
 // The Sobel gradient at an interior pixel (1 <= x < width - 1, likewise y),
 // pointing from dark to bright.
 inline void sobel(const GreyView& im, int x, int y, float& gx, float& gy) {
@@ -51,6 +48,9 @@ inline void sobel(const GreyView& im, int x, int y, float& gx, float& gy) {
     gy = static_cast<float>((c[-1] + 2 * c[0] + c[1]) - (a[-1] + 2 * a[0] + a[1]));
 }
 
+// The image at half its width and height, each pixel the mean of a 2 x 2
+// block, into `out` (reused between frames); a view of it. A point (x, y)
+// of `image` is (x / 2, y / 2) in it. An odd last row or column is dropped.
 GreyView half_size(const GreyView& image, std::vector<std::uint8_t>& out);
 
 // The image at twice its width and height, interpolated with a cubic (Keys,

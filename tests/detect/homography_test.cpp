@@ -96,13 +96,11 @@ TEST(Homography, RobustFitIgnoresWrongMatches) {
     EXPECT_EQ(again->h, r->h);
 }
 
-}  // namespace
-
 TEST(Homography, RobustFitOfFourPointsIsExactAndRefusesThreeOnALine) {
     const Eigen::Matrix3d truth = some_perspective();
     const std::vector<Point2> from{{0, 0}, {300, 10}, {20, 250}, {280, 270}};
-    std::vector<Point2> to;
-    for (const auto& p : from) to.push_back(*apply_homography(truth, p));
+    const auto none = [](std::size_t) { return false; };
+    const std::vector<Point2> to = with_wrong_matches(from, truth, 1, none);
     auto r = fit_homography_robust(from, to, 0.5);
     ASSERT_TRUE(r);
     EXPECT_EQ(r->inliers, 4);
@@ -111,9 +109,7 @@ TEST(Homography, RobustFitOfFourPointsIsExactAndRefusesThreeOnALine) {
     // pins a homography down.
     std::vector<Point2> on_line = from;
     on_line[3] = Point2(600, 20);
-    std::vector<Point2> to_line;
-    for (const auto& p : on_line) to_line.push_back(*apply_homography(truth, p));
-    EXPECT_FALSE(fit_homography_robust(on_line, to_line, 0.5));
+    EXPECT_FALSE(fit_homography_robust(on_line, with_wrong_matches(on_line, truth, 1, none), 0.5));
 }
 
 TEST(Homography, RobustFitDrawsOnWhenMostMatchesAreWrong) {
@@ -129,3 +125,5 @@ TEST(Homography, RobustFitDrawsOnWhenMostMatchesAreWrong) {
     EXPECT_GE(r->inliers, right);
     EXPECT_LT((*apply_homography(r->h, Point2(90, 90)) - *apply_homography(truth, Point2(90, 90))).norm(), 1e-6);
 }
+
+}  // namespace
