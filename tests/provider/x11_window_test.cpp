@@ -190,16 +190,23 @@ public:
     }
 
     // --sync waits for the move, and would wait forever were the window
-    // already there; the centre's window tells when it is done.
+    // already there; the centre's window, at about the asked size, tells
+    // when it is done. The centre alone is not enough: a new xterm may cover
+    // the centre at its own size before the resize reaches it, and a test
+    // that snapshots it then sees another size than the window had.
     void place(unsigned long window, int x, int y, int width, int height, double cx, double cy) const {
         const std::string id = std::to_string(window);
         run({"xdotool", "windowsize", id, std::to_string(width), std::to_string(height), "windowmove", id,
              std::to_string(x), std::to_string(y)},
             env);
+        // The frame adds up to 40 px across and 60 down; a terminal rounds
+        // its size to whole character cells.
+        const auto near = [](int got, int asked, int frame) { return got >= asked - 20 && got <= asked + frame; };
         const bool placed = wait_until(
             [&] {
                 const auto found = desktop->window_at(cx, cy);
-                return found && found->id == window;
+                return found && found->id == window && near(found->rect.width, width, 40) &&
+                       near(found->rect.height, height, 60);
             },
             5s);
         if (!placed) throw std::runtime_error("window " + id + " did not move to its place");
