@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "detect/aim_check.hpp"
@@ -120,17 +121,28 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
         out.failure = "invalid image: " + problem;
         return out;
     }
-    const char* failure = search_sizes(im, aim, prior, out);
+    Pass pass;
+    pass.end_pair = options_.first_pass_pairs > 0 ? options_.first_pass_pairs : std::numeric_limits<int>::max();
+    const char* failure = search_sizes(im, aim, prior, pass, out);
+    const bool left = std::find(pass.truncated.begin(), pass.truncated.end(), true) != pass.truncated.end();
+    if (failure && failure != kAimAtInfinity && left) {
+        pass.first_pair = pass.end_pair;
+        pass.end_pair = std::numeric_limits<int>::max();
+        pass.first = false;
+        pass.search = 0;
+        const char* again = search_sizes(im, aim, prior, pass, out);
+        if (!again || again == kAimAtInfinity) failure = again;
+    }
     out.failure = failure ? failure : "";
     out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     return out;
 }
 
 const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                   Detection& out) const {
-    const char* failure = search_smaller(im, aim, prior, out);
+                                   Pass& pass, Detection& out) const {
+    const char* failure = search_smaller(im, aim, prior, pass, out);
     if (!failure) return nullptr;
-    if (options_.lattice_enabled && !search_lattice(im, aim, prior, out)) return nullptr;
+    if (pass.first && options_.lattice_enabled && !search_lattice(im, aim, prior, out)) return nullptr;
     const int max_side = options_.double_size_max_side;
     if (max_side > 0 && std::max(im.width, im.height) <= max_side) {
         // The part around the aim, at double size: as many pixels as the frame.
@@ -141,7 +153,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
             const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
             const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
             const GreyView around{im.row(y0) + x0, w, h, im.stride};
-            if (!search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, out)) return nullptr;
+            if (!search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, pass, out)) return nullptr;
         }
     }
     return failure;
@@ -163,15 +175,16 @@ const char* Detector::search_lattice(const GreyView& im, const Eigen::Vector2d& 
 }
 
 const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                     Detection& out) const {
-    const char* failure = search_scans(im, aim, prior, options_.vanishing, out);
+                                     Pass& pass, Detection& out) const {
+    const char* failure = search_scans(im, aim, prior, options_.vanishing, pass, out);
     const int min_side = options_.half_size_min_side;
     if (!failure || min_side <= 0 || std::min(im.width, im.height) / 2 < min_side) return failure;
-    return search_resized(im, 0.5, Eigen::Vector2d::Zero(), aim, prior, out) ? failure : nullptr;
+    return search_resized(im, 0.5, Eigen::Vector2d::Zero(), aim, prior, pass, out) ? failure : nullptr;
 }
 
 const char* Detector::search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
-                                     const Eigen::Vector2d& aim, const DetectionPrior* prior, Detection& out) const {
+                                     const Eigen::Vector2d& aim, const DetectionPrior* prior, Pass& pass,
+                                     Detection& out) const {
     auto t = Clock::now();
     std::vector<std::uint8_t> pixels;
     const GreyView resized = scale < 1 ? half_size(part, pixels) : double_size(part, pixels);
@@ -188,11 +201,11 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
     // size goes on to smaller sizes; double size is the last try.
     const char* failure = nullptr;
     if (scale < 1) {
-        failure = search_smaller(resized, resized_aim, p, out);
+        failure = search_smaller(resized, resized_aim, p, pass, out);
     } else {
         VanishingOptions wider = options_.vanishing;
         wider.max_inlier_deg = options_.double_size_max_inlier_deg;
-        failure = search_scans(resized, resized_aim, p, wider, out);
+        failure = search_scans(resized, resized_aim, p, wider, pass, out);
     }
     if (failure) return failure;
     out.image_to_field = out.image_to_field * to_resized;
@@ -202,7 +215,7 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
 }
 
 const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                   const VanishingOptions& vanishing, Detection& out) const {
+                                   const VanishingOptions& vanishing, Pass& pass, Detection& out) const {
     // Step 1. Edgels on sparse scanlines; when nothing is found on them,
     // again on the scanlines half way between (small modules need closer
     // scanlines for their grid lines to chain), keeping what was read, down
@@ -212,7 +225,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     EdgelScan scan = find_edgels(im, edgel_options);
     out.pixels_visited += scan.pixels_visited;
     out.times.edgels_ms += ms_since(t);
-    const char* failure = search_all_then_field_like(im, aim, prior, vanishing, scan, out);
+    const char* failure = search_all_then_field_like(im, aim, prior, vanishing, scan, pass, out);
     if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3) {
         // A noisy image (low light): a faint field's edges drown in the
         // scanlines' noise; three pixels across each line hold them, and a
@@ -224,7 +237,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         scan = find_edgels(im, edgel_options);
         out.pixels_visited += scan.pixels_visited;
         out.times.edgels_ms += ms_since(t);
-        failure = search_all_then_field_like(im, aim, prior, vanishing, scan, out);
+        failure = search_all_then_field_like(im, aim, prior, vanishing, scan, pass, out);
     }
     int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan.step / 2;  // of the scanlines so far
     while (failure && options_.rescan && scan.step >= 8) {
@@ -238,15 +251,15 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         scan.step /= 2;
         out.pixels_visited += more.pixels_visited;
         out.times.edgels_ms += ms_since(t);
-        failure = search_all_then_field_like(im, aim, prior, vanishing, scan, out);
+        failure = search_all_then_field_like(im, aim, prior, vanishing, scan, pass, out);
     }
     return failure;
 }
 
 const char* Detector::search_all_then_field_like(const GreyView& im, const Eigen::Vector2d& aim,
                                                  const DetectionPrior* prior, const VanishingOptions& vanishing,
-                                                 const EdgelScan& scan, Detection& out) const {
-    const char* failure = search(im, aim, prior, vanishing, scan, out);
+                                                 const EdgelScan& scan, Pass& pass, Detection& out) const {
+    const char* failure = search(im, aim, prior, vanishing, scan, pass, out);
     if (!failure) return nullptr;
     // A faint field under strong content: its own edges alone (field_edgels.hpp),
     // when that leaves out enough of the others to matter.
@@ -255,12 +268,17 @@ const char* Detector::search_all_then_field_like(const GreyView& im, const Eigen
     field_like.edgels = edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels));
     out.times.edgels_ms += ms_since(t);
     if (field_like.edgels.size() < 40 || field_like.edgels.size() > scan.edgels.size() * 17 / 20) return failure;
-    const char* again = search(im, aim, prior, vanishing, field_like, out);
+    const char* again = search(im, aim, prior, vanishing, field_like, pass, out);
     return again ? failure : nullptr;
 }
 
 const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                             const VanishingOptions& vanishing, const EdgelScan& scan, Detection& out) const {
+                             const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
+                             Detection& out) const {
+    // The second pass goes over the searches the first one left pairs in.
+    const std::size_t this_search = pass.search++;
+    if (pass.first) pass.truncated.push_back(false);
+    else if (this_search >= pass.truncated.size() || !pass.truncated[this_search]) return "no grid homography";
     auto t = Clock::now();
     // Step 2. The two vanishing points.
     const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, vanishing, scan.noise_sigma);
@@ -284,8 +302,14 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
     // the window vote accepts one.
     const char* failure = "no grid homography";
     const int n0 = static_cast<int>(hypotheses[0].size()), n1 = static_cast<int>(hypotheses[1].size());
+    int ordinal = 0;
     for (int sum = 0; sum <= n0 + n1 - 2; ++sum)
-        for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0) {
+        for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0, ++ordinal) {
+            if (ordinal < pass.first_pair) continue;
+            if (ordinal >= pass.end_pair) {
+                if (pass.first) pass.truncated[this_search] = true;
+                return failure;
+            }
             t = Clock::now();
             Eigen::Matrix3d g2i;
             int rows = 0, cols = 0;
@@ -302,6 +326,7 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
                                 const Eigen::Matrix3d& g2i, int rows, int cols, Detection& out) const {
     // Step 5. Module values or edge signs.
     auto t = Clock::now();
+    ++out.grids_read;
     const Field& f = index_.field();
     const ModuleGrid grid = classify_modules(im, g2i, rows, cols, f.colors, f.key == WindowKey::edges,
                                              options_.classify, out.pixels_visited);

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "detect/aim_check.hpp"
 #include "detect/classify.hpp"
@@ -85,6 +86,12 @@ struct DetectorOptions {
     // screen, 3-5 pixels, turn the edgels' gradients too far for steps 2-4,
     // and the lattice costs far less than a search at double size.
     bool lattice_enabled = true;
+    // Pairs of grid-line labellings (step 4) each search tries in a first
+    // pass over every search; the rest follow in a second pass (0: all in
+    // one). Of the searches that found the field on the tuning frames at
+    // 640 x 480, nearly all did so within their first nine pairs; a search
+    // that fails tries every pair, most often 15 to 27.
+    int first_pass_pairs = 9;
     LatticeOptions lattice;
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
@@ -108,6 +115,7 @@ struct Detection {
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
     double confidence = 0;    // fraction of the read modules or edges the place explains
     int places_checked = 0;   // candidate places that reached the final check (each costs evidence)
+    int grids_read = 0;       // grids whose modules were read and voted on (step 5): most of a search's work
     StageTimes times;
     long pixels_visited = 0;
     std::string failure;      // the stage that ended the search, when not found
@@ -148,33 +156,48 @@ public:
     const Field& field() const { return index_.field(); }
 
 private:
+    // Which pairs of grid-line labellings a search tries (step 4). The first
+    // pass tries the likeliest few of every search at every size and scan,
+    // the second the rest, so that a field found by a later search at its
+    // likeliest pair does not first pay for every unlikely pair of the
+    // searches before it. `truncated` holds, per search in the order they
+    // run, whether the first pass left pairs for the second.
+    struct Pass {
+        int first_pair = 0;
+        int end_pair = 0;
+        bool first = true;
+        std::vector<bool> truncated;
+        std::size_t search = 0;
+    };
     // Steps 1 to 8 on the image at its own size, then (when nothing is
     // found) at half size and below, then on a lattice around the aim, then
     // at double size; the failure, or null when found.
     const char* search_sizes(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                             Detection& out) const;
+                             Pass& pass, Detection& out) const;
     // Steps 1 to 8 on the image at its own size, then at half size, and so
     // on while the image is large enough.
     const char* search_smaller(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                               Detection& out) const;
+                               Pass& pass, Detection& out) const;
     // Steps 1 to 8 on `part` of the image (its corner at `origin`) resized
     // by `scale`, 0.5 (and on down, as search_smaller) or 2; the detection
     // is taken back to the image's coordinates.
     const char* search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
-                               const Eigen::Vector2d& aim, const DetectionPrior* prior, Detection& out) const;
+                               const Eigen::Vector2d& aim, const DetectionPrior* prior, Pass& pass,
+                               Detection& out) const;
     // Steps 1 to 8 on the image at its own size: the scans, each wider or
     // denser than the last, until one finds the field; `vanishing` is step
     // 2's options at this size (wider at double size).
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                             const VanishingOptions& vanishing, Detection& out) const;
+                             const VanishingOptions& vanishing, Pass& pass, Detection& out) const;
     // search over all of a scan's edgels, then, when that fails, over the
     // field-like ones alone (field_edgels.hpp).
     const char* search_all_then_field_like(const GreyView& image, const Eigen::Vector2d& aim,
                                            const DetectionPrior* prior, const VanishingOptions& vanishing,
-                                           const EdgelScan& scan, Detection& out) const;
+                                           const EdgelScan& scan, Pass& pass, Detection& out) const;
     // Steps 2 to 8 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                       const VanishingOptions& vanishing, const EdgelScan& scan, Detection& out) const;
+                       const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
+                       Detection& out) const;
     // Steps 5 to 8 on the lattices around the aim (lattice.hpp) in place of
     // steps 1 to 4; the failure, or null when found.
     const char* search_lattice(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
