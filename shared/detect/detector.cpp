@@ -124,7 +124,8 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
     Pass pass;
     pass.end_pair = options_.first_pass_pairs > 0 ? options_.first_pass_pairs : std::numeric_limits<int>::max();
     const char* failure = search_sizes(im, aim, prior, pass, out);
-    const bool left = std::find(pass.truncated.begin(), pass.truncated.end(), true) != pass.truncated.end();
+    const bool left = std::any_of(pass.left.begin(), pass.left.end(),
+                                  [](const Pass::Labellings& l) { return !l.family[0].empty(); });
     if (failure && failure != kAimAtInfinity && left) {
         pass.first_pair = pass.end_pair;
         pass.end_pair = std::numeric_limits<int>::max();
@@ -275,28 +276,18 @@ const char* Detector::search_all_then_field_like(const GreyView& im, const Eigen
 const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
                              Detection& out) const {
-    // The second pass goes over the searches the first one left pairs in.
+    // The second pass goes over the searches the first one left pairs in,
+    // with the labellings the first one found.
     const std::size_t this_search = pass.search++;
-    if (pass.first) pass.truncated.push_back(false);
-    else if (this_search >= pass.truncated.size() || !pass.truncated[this_search]) return "no grid homography";
-    auto t = Clock::now();
-    // Step 2. The two vanishing points.
-    const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, vanishing, scan.noise_sigma);
-    out.times.vanishing_ms += ms_since(t);
-    if (!vp.found) return "no grid directions";
-
-    // Step 3. Grid lines of both families: a few labellings of each, best first.
     std::vector<GridLineFamily> hypotheses[2];
-    for (int f = 0; f < 2; ++f) {
-        hypotheses[f] = find_grid_line_hypotheses(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point,
-                                                  im.width, im.height, scan.step, options_.grid);
-        if (hypotheses[f].empty()) {
-            out.times.grid_ms += ms_since(t);
-            return "no grid lines";
-        }
+    if (pass.first) {
+        pass.left.emplace_back();
+        if (const char* failure = find_labellings(im, vanishing, scan, out, hypotheses)) return failure;
+    } else {
+        if (this_search >= pass.left.size() || pass.left[this_search].family[0].empty()) return "no grid homography";
+        for (int f = 0; f < 2; ++f) hypotheses[f] = std::move(pass.left[this_search].family[f]);
     }
-    for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
-    out.times.grid_ms += ms_since(t);
+    auto t = Clock::now();
 
     // Steps 4 to 8 for each pair of labellings, the likeliest first, until
     // the window vote accepts one.
@@ -307,7 +298,8 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
         for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0, ++ordinal) {
             if (ordinal < pass.first_pair) continue;
             if (ordinal >= pass.end_pair) {
-                if (pass.first) pass.truncated[this_search] = true;
+                if (pass.first)
+                    for (int f = 0; f < 2; ++f) pass.left[this_search].family[f] = std::move(hypotheses[f]);
                 return failure;
             }
             t = Clock::now();
@@ -320,6 +312,28 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
             if (!failure || failure == kAimAtInfinity) return failure;
         }
     return failure;
+}
+
+const char* Detector::find_labellings(const GreyView& im, const VanishingOptions& vanishing, const EdgelScan& scan,
+                                      Detection& out, std::vector<GridLineFamily> (&hypotheses)[2]) const {
+    auto t = Clock::now();
+    // Step 2. The two vanishing points.
+    const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, vanishing, scan.noise_sigma);
+    out.times.vanishing_ms += ms_since(t);
+    if (!vp.found) return "no grid directions";
+
+    // Step 3. Grid lines of both families: a few labellings of each, best first.
+    for (int f = 0; f < 2; ++f) {
+        hypotheses[f] = find_grid_line_hypotheses(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point,
+                                                  im.width, im.height, scan.step, options_.grid);
+        if (hypotheses[f].empty()) {
+            out.times.grid_ms += ms_since(t);
+            return "no grid lines";
+        }
+    }
+    for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
+    out.times.grid_ms += ms_since(t);
+    return nullptr;
 }
 
 const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,

@@ -160,13 +160,16 @@ private:
     // pass tries the likeliest few of every search at every size and scan,
     // the second the rest, so that a field found by a later search at its
     // likeliest pair does not first pay for every unlikely pair of the
-    // searches before it. `truncated` holds, per search in the order they
-    // run, whether the first pass left pairs for the second.
+    // searches before it. `left` holds, per search in the order they run,
+    // its labellings when the first pass left pairs of them to the second.
     struct Pass {
+        struct Labellings {
+            std::vector<GridLineFamily> family[2];
+        };
         int first_pair = 0;
         int end_pair = 0;
         bool first = true;
-        std::vector<bool> truncated;
+        std::vector<Labellings> left;
         std::size_t search = 0;
     };
     // Steps 1 to 8 on the image at its own size, then (when nothing is
@@ -198,6 +201,10 @@ private:
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                        const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
                        Detection& out) const;
+    // Steps 2 and 3 on one scan's edgels: the labellings of both families'
+    // grid lines, best first; the failure, or null.
+    const char* find_labellings(const GreyView& image, const VanishingOptions& vanishing, const EdgelScan& scan,
+                                Detection& out, std::vector<GridLineFamily> (&hypotheses)[2]) const;
     // Steps 5 to 8 on the lattices around the aim (lattice.hpp) in place of
     // steps 1 to 4; the failure, or null when found.
     const char* search_lattice(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
