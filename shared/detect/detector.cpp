@@ -263,14 +263,23 @@ const char* Detector::search_all_then_field_like(const GreyView& im, const Eigen
     const char* failure = search(im, aim, prior, vanishing, scan, pass, out);
     if (!failure) return nullptr;
     // A faint field under strong content: its own edges alone (field_edgels.hpp),
-    // when that leaves out enough of the others to matter.
+    // when that leaves out enough of the others to matter; then the edges
+    // less those of thin lines (a spreadsheet's rules).
     auto t = Clock::now();
     EdgelScan field_like = scan;
     field_like.edgels = edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels));
     out.times.edgels_ms += ms_since(t);
-    if (field_like.edgels.size() < 40 || field_like.edgels.size() > scan.edgels.size() * 17 / 20) return failure;
-    const char* again = search(im, aim, prior, vanishing, field_like, pass, out);
-    return again ? failure : nullptr;
+    auto worth_a_search = [&](const EdgelScan& fewer) {
+        return fewer.edgels.size() >= 40 && fewer.edgels.size() <= scan.edgels.size() * 17 / 20;
+    };
+    if (worth_a_search(field_like) && !search(im, aim, prior, vanishing, field_like, pass, out)) return nullptr;
+    if (options_.thin_line_px <= 0) return failure;
+    t = Clock::now();
+    EdgelScan off_lines = scan;
+    off_lines.edgels = edgels_off_thin_lines(scan.edgels, options_.thin_line_px);
+    out.times.edgels_ms += ms_since(t);
+    if (worth_a_search(off_lines) && !search(im, aim, prior, vanishing, off_lines, pass, out)) return nullptr;
+    return failure;
 }
 
 const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,

@@ -86,6 +86,11 @@ struct DetectorOptions {
     // screen, 3-5 pixels, turn the edgels' gradients too far for steps 2-4,
     // and the lattice costs far less than a search at double size.
     bool lattice_enabled = true;
+    // When a scan's edgels and its field-like ones (field_edgels.hpp) find
+    // nothing, they are searched once more without the thin lines among
+    // them, up to this many pixels wide (0: not): a spreadsheet's rules run
+    // with the field's lines and outweigh a faint field's edges.
+    double thin_line_px = 6;
     // Pairs of grid-line labellings (step 4) each search tries in a first
     // pass over every search; the rest follow in a second pass (0: all in
     // one). Of the searches that found the field on the tuning frames at
@@ -193,7 +198,8 @@ private:
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              const VanishingOptions& vanishing, Pass& pass, Detection& out) const;
     // search over all of a scan's edgels, then, when that fails, over the
-    // field-like ones alone (field_edgels.hpp).
+    // field-like ones alone, then over those not on thin lines
+    // (field_edgels.hpp).
     const char* search_all_then_field_like(const GreyView& image, const Eigen::Vector2d& aim,
                                            const DetectionPrior* prior, const VanishingOptions& vanishing,
                                            const EdgelScan& scan, Pass& pass, Detection& out) const;

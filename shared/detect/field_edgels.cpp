@@ -44,4 +44,25 @@ std::vector<Edgel> edgels_stepping_by(const std::vector<Edgel>& edgels, double s
     return out;
 }
 
+std::vector<Edgel> edgels_off_thin_lines(const std::vector<Edgel>& edgels, double max_width_px) {
+    const std::size_t n = edgels.size();
+    std::vector<char> thin(n, 0);
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+        const Edgel &a = edgels[k], &b = edgels[k + 1];
+        if (a.on_row != b.on_row) continue;
+        // Along the scanline: position and the gradient's sign there.
+        const float across_a = a.on_row ? a.y : a.x, across_b = b.on_row ? b.y : b.x;
+        const float at_a = a.on_row ? a.x : a.y, at_b = b.on_row ? b.x : b.y;
+        const float ga = a.on_row ? a.gx : a.gy, gb = b.on_row ? b.gx : b.gy;
+        if (across_a != across_b || at_b - at_a > max_width_px || (ga > 0) == (gb > 0)) continue;
+        if (std::max(a.step, b.step) > 2 * std::min(a.step, b.step)) continue;
+        thin[k] = thin[k + 1] = 1;
+    }
+    std::vector<Edgel> out;
+    out.reserve(n);
+    for (std::size_t k = 0; k < n; ++k)
+        if (!thin[k]) out.push_back(edgels[k]);
+    return out;
+}
+
 }  // namespace umf

@@ -20,4 +20,12 @@ double commonest_edge_step(const std::vector<Edgel>& edgels);
 // The edgels whose step lies within `spread` times of `step` either way.
 std::vector<Edgel> edgels_stepping_by(const std::vector<Edgel>& edgels, double step, double spread = 2.0);
 
+// The edgels less those of thin lines: a table's rules, a chart's axes and
+// text strokes cross a scanline as two edges of opposite sign and like
+// step at most `max_width_px` apart, where the field's edges lie a module
+// apart. A spreadsheet's rules run with the field's lines and, with the
+// field faint, outweigh them; without them the field's lines stand out.
+// `edgels` in the order find_edgels gives them (scanline by scanline).
+std::vector<Edgel> edgels_off_thin_lines(const std::vector<Edgel>& edgels, double max_width_px);
+
 }  // namespace umf

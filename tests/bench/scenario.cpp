@@ -60,7 +60,8 @@ sim::Motion motion_of(Category category) {
     case Category::low_light:
     case Category::smeared:
     case Category::compressed:
-    case Category::pixel_grid: return sim::Motion::general;
+    case Category::pixel_grid:
+    case Category::ruled: return sim::Motion::general;
     }
     return sim::Motion::general;
 }
@@ -117,13 +118,14 @@ const char* to_string(Category category) {
     case Category::compressed: return "compressed";
     case Category::tiny: return "tiny";
     case Category::pixel_grid: return "pixel_grid";
+    case Category::ruled: return "ruled";
     }
     return "?";
 }
 
 bool is_plain(Category category) {
     return category != Category::occlusion && category != Category::low_light && category != Category::smeared &&
-           category != Category::compressed && category != Category::pixel_grid;
+           category != Category::compressed && category != Category::pixel_grid && category != Category::ruled;
 }
 
 std::optional<Category> category_from_string(const std::string& name) {
@@ -153,7 +155,9 @@ std::vector<FrameRecipe> category_recipes(const Scene& scene, Category category,
         FrameRecipe r;
         r.index = i;
         r.pose = poses[static_cast<std::size_t>(i)];
-        r.screen = sim::kAllScreenKinds[static_cast<std::size_t>(i) % sim::kAllScreenKinds.size()];
+        r.screen = category == Category::ruled
+                       ? sim::ScreenKind::spreadsheet
+                       : sim::kEverydayScreenKinds[static_cast<std::size_t>(i) % sim::kEverydayScreenKinds.size()];
         r.degradation = everyday_degradation(seed, i);
         if (category == Category::low_light) {
             // An evening room: the phone underexposes the screen, its tone

@@ -20,19 +20,21 @@
 
 namespace umf::bench {
 
-// The thesis's seven categories, then four that stress what a phone's
+// The thesis's seven categories, then five that stress what a phone's
 // video adds (strong smear, far views, very far views, low-quality
-// compression), each with
-// parameters of its own: the held-out set's are not copied here.
+// compression, the screen's pixel grid), each with parameters of its own
+// (the held-out set's are not copied here), and `ruled`: the general
+// category's views of a spreadsheet, whose rules run with the field's lines.
 enum class Category { near_far, horizontal, rotation, perspective, general, occlusion, low_light, smeared, distant,
-                      compressed, tiny, pixel_grid };
+                      compressed, tiny, pixel_grid, ruled };
 
-inline constexpr std::array<Category, 12> kAllCategories = {
+inline constexpr std::array<Category, 13> kAllCategories = {
     Category::near_far, Category::horizontal, Category::rotation, Category::perspective, Category::general,
     Category::occlusion, Category::low_light, Category::smeared, Category::distant, Category::compressed,
-    Category::tiny, Category::pixel_grid};
+    Category::tiny, Category::pixel_grid, Category::ruled};
 
-// Categories whose frames have no more than the everyday degradations.
+// Categories whose frames have no more than the everyday degradations, on the
+// everyday screens.
 bool is_plain(Category category);
 
 const char* to_string(Category category);

@@ -59,7 +59,7 @@ Usage: umf_benchmark [options]
   --quick                10 frames, 640x480 only, a short pulsing run (explicit options win)
   --out DIR              where the reports go (default docs/benchmarks)
   --categories a,b       tuning: near_far, horizontal, rotation, perspective, general, occlusion, low_light,
-                         smeared, distant, compressed;
+                         smeared, distant, compressed, tiny, pixel_grid, ruled;
                          heldout: general, rotation, perspective, near, far, motion, low_light, occlusion,
                          moire (default all)
   --resolutions WxH,...  camera resolutions (default 640x480,1280x720,1920x1080)
@@ -377,8 +377,8 @@ public:
     // are mixed per frame, on the frame-making threads.
     void pulsing(cv::Size res) {
         PulseRun run(resolution_name(res), opt_.video, opt_.aruco);
-        for (std::size_t k = 0; k < screens_.size(); ++k) {
-            const auto rs = pulsing_recipes(scene_, sim::kAllScreenKinds[k], opt_.pulse_frames, opt_.seed);
+        for (std::size_t k = 0; k < sim::kEverydayScreenKinds.size(); ++k) {
+            const auto rs = pulsing_recipes(scene_, sim::kEverydayScreenKinds[k], opt_.pulse_frames, opt_.seed);
             std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
             parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
                 const auto at = static_cast<std::size_t>(i);
@@ -388,7 +388,7 @@ public:
             });
             std::vector<Outcome> u, v, a;
             run_methods(field_frames, board_frames, u, v, a);
-            run.add(sim::to_string(sim::kAllScreenKinds[k]), std::move(u), std::move(v), std::move(a), minutes());
+            run.add(sim::to_string(sim::kEverydayScreenKinds[k]), std::move(u), std::move(v), std::move(a), minutes());
         }
         run.summarise_into(report_);
     }

@@ -90,5 +90,54 @@ TEST(FieldEdgels, ReadingAcrossTheScanlineHoldsAFaintEdgeInNoise) {
     EXPECT_NEAR(three.noise_sigma, 6, 2);
 }
 
+// A spreadsheet's rule crosses a scanline as a dark line: a falling edge
+// and a rising one, two to four pixels apart, of like step. Such pairs go;
+// the field's edges, a module apart, stay, and so do a step next to a far
+// stronger one and two edges of the same sign.
+TEST(FieldEdgels, ThinLinesLeaveTheFieldsEdges) {
+    const int w = 200, h = 40;
+    std::vector<std::uint8_t> pixels(static_cast<std::size_t>(w) * h, 200);
+    for (int y = 0; y < h; ++y) {
+        std::uint8_t* row = pixels.data() + static_cast<std::size_t>(y) * w;
+        for (int x = 0; x < w; ++x) {
+            int v = 200;
+            if ((x / 20) % 2 == 1) v -= 25;  // the field's modules, 20 px
+            if (x % 60 == 47 || x % 60 == 48) v -= 60;  // a rule 2 px wide inside a module
+            row[x] = static_cast<std::uint8_t>(v);
+        }
+    }
+    const EdgelScan scan = find_edgels(GreyView{pixels.data(), w, h, w}, EdgelOptions{10, 5, 5});
+    const std::vector<Edgel> kept = edgels_off_thin_lines(scan.edgels, 6);
+    auto on_field = [](const Edgel& e) {
+        const float m = std::fmod(e.x, 20.0f);
+        return m < 1.5f || m > 18.5f;
+    };
+    int field = 0, rule = 0;
+    for (const Edgel& e : scan.edgels) {
+        field += on_field(e);
+        rule += !on_field(e);
+    }
+    ASSERT_GT(field, 0);
+    ASSERT_GT(rule, 0) << "the rules give edgels of their own";
+    int field_kept = 0, rule_kept = 0;
+    for (const Edgel& e : kept) {
+        field_kept += on_field(e);
+        rule_kept += !on_field(e);
+    }
+    EXPECT_EQ(field_kept, field) << "every field edge kept";
+    EXPECT_EQ(rule_kept, 0) << "every rule's edge left out";
+
+    // Two edges of the same sign close together, or of unlike steps, are not a line.
+    Edgel a, b;
+    a.x = 10, b.x = 13, a.y = b.y = 5, a.gx = 50, b.gx = 40, a.step = 20, b.step = 18;
+    EXPECT_EQ(edgels_off_thin_lines({a, b}, 6).size(), 2u);
+    b.gx = -40;
+    EXPECT_EQ(edgels_off_thin_lines({a, b}, 6).size(), 0u);
+    b.step = 60;
+    EXPECT_EQ(edgels_off_thin_lines({a, b}, 6).size(), 2u);
+    b.step = 18, b.x = 20;
+    EXPECT_EQ(edgels_off_thin_lines({a, b}, 6).size(), 2u) << "a module apart";
+}
+
 }  // namespace
 }  // namespace umf

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace umf::sim {
 namespace {
@@ -294,6 +295,42 @@ cv::Mat photo(cv::Size size, Rng& rng) {
     return img;
 }
 
+// A spreadsheet: a header row and a column of row numbers, light rules
+// around every cell, numbers right-aligned and labels left-aligned, a few
+// filled cells. Its rules run with the screen's edges, as the field's lines
+// do, at a spacing of their own (rows of 20-26 px, columns of 70-160 px at
+// 1080 lines).
+cv::Mat spreadsheet(cv::Size size, Rng& rng) {
+    cv::Mat img(size, CV_8UC3, cv::Scalar::all(255));
+    const int row_h = px(rng.uniform(20, 27), size), header = px(56, size), gutter = px(46, size);
+    const cv::Scalar rule = bgr(212, 212, 212), ink = bgr(25, 25, 25);
+    const TextStyle cell{cv::FONT_HERSHEY_SIMPLEX, 0.42 * unit(size), 1, ink};
+    cv::rectangle(img, {0, 0, size.width, header + row_h}, bgr(238, 238, 238), cv::FILLED);
+    cv::rectangle(img, {0, header, gutter, size.height - header}, bgr(238, 238, 238), cv::FILLED);
+    std::vector<int> cols{gutter};
+    while (cols.back() < size.width) cols.push_back(cols.back() + px(rng.uniform(70, 161), size));
+    int baseline = 0;
+    for (int y = header, r = 0; y + row_h <= size.height; y += row_h, ++r) {
+        for (std::size_t c = 0; c + 1 < cols.size(); ++c) {
+            const cv::Rect box(cols[c], y, cols[c + 1] - cols[c], row_h);
+            if (r > 0 && rng.uniform(0, 40) == 0) cv::rectangle(img, box, bgr(255, 242, 200), cv::FILLED);
+            if (r > 0 && rng.uniform(0, 10) < 3) continue;  // empty cells
+            const bool label = r == 0 || c == 0;
+            const std::string text =
+                label ? random_word(rng)
+                      : std::to_string(rng.uniform(0, 100000)) + (rng.uniform(0, 2) ? "." + std::to_string(rng.uniform(10, 100)) : "");
+            const int w = cv::getTextSize(text, cell.font, cell.scale, cell.thickness, &baseline).width;
+            const int x = label ? box.x + px(4, size) : box.x + box.width - w - px(4, size);
+            cv::putText(img, text, {x, y + row_h - px(7, size)}, cell.font, cell.scale, ink, cell.thickness, cv::LINE_AA);
+        }
+        cv::putText(img, std::to_string(r + 1), {px(6, size), y + row_h - px(7, size)}, cell.font, cell.scale, ink,
+                    cell.thickness, cv::LINE_AA);
+        cv::line(img, {0, y}, {size.width, y}, rule, 1);
+    }
+    for (int x : cols) cv::line(img, {x, header}, {x, size.height}, rule, 1);
+    return img;
+}
+
 }  // namespace
 
 const char* to_string(ScreenKind kind) {
@@ -303,6 +340,7 @@ const char* to_string(ScreenKind kind) {
     case ScreenKind::web_page: return "web_page";
     case ScreenKind::photo: return "photo";
     case ScreenKind::blank: return "blank";
+    case ScreenKind::spreadsheet: return "spreadsheet";
     }
     return "?";
 }
@@ -317,6 +355,7 @@ cv::Mat make_screen(ScreenKind kind, cv::Size size, std::uint64_t seed) {
     case ScreenKind::code_dark: return code_dark(size, rng);
     case ScreenKind::web_page: return web_page(size, rng);
     case ScreenKind::photo: return photo(size, rng);
+    case ScreenKind::spreadsheet: return spreadsheet(size, rng);
     case ScreenKind::blank: break;
     }
     return cv::Mat(size, CV_8UC3, cv::Scalar::all(128));

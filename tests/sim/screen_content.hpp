@@ -1,7 +1,8 @@
 // Synthetic desktop screens for the camera simulator: what the faint field is
 // mixed into. Each kind stresses the detector differently: black text on
 // white (document), bright thin strokes on dark (code_dark), mixed pictures and
-// text (web_page), texture everywhere (photo) and nothing at all (blank).
+// text (web_page), texture everywhere (photo), nothing at all (blank), and a
+// grid of its own lined up with the field's (spreadsheet: rules every cell).
 // Contents depend only on kind, size and seed.
 #pragma once
 
@@ -12,10 +13,16 @@
 
 namespace umf::sim {
 
-enum class ScreenKind { document, code_dark, web_page, photo, blank };
+enum class ScreenKind { document, code_dark, web_page, photo, blank, spreadsheet };
 
-inline constexpr std::array<ScreenKind, 5> kAllScreenKinds = {
+// The screens the benchmark's categories take turns with, frame by frame.
+inline constexpr std::array<ScreenKind, 5> kEverydayScreenKinds = {
     ScreenKind::document, ScreenKind::code_dark, ScreenKind::web_page, ScreenKind::photo, ScreenKind::blank};
+
+// Every kind, in the enum's order.
+inline constexpr std::array<ScreenKind, 6> kAllScreenKinds = {ScreenKind::document, ScreenKind::code_dark,
+                                                              ScreenKind::web_page, ScreenKind::photo,
+                                                              ScreenKind::blank,    ScreenKind::spreadsheet};
 
 const char* to_string(ScreenKind kind);
 
