@@ -1,3 +1,6 @@
+// Steps 5 to 8 of detection, from a candidate grid to a confirmed place, and
+// the video path (follow). The search that finds candidate grids is in
+// detector_search.cpp.
 #include "detect/detector.hpp"
 
 #include <Eigen/Geometry>
@@ -5,33 +8,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
 #include <optional>
 
 #include "detect/aim_check.hpp"
-#include "detect/field_edgels.hpp"
 #include "detect/homography.hpp"
+#include "detect/stage_time.hpp"
 
 namespace umf {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// Grey levels of pixel noise above which scanlines are read three pixels wide
-// when a first search failed (a phone's camera in dim light).
-constexpr double kNoisyImage = 3.0;
-
-// The one failure that ends a search at once: a place was accepted, but the
-// aim maps to infinity under it.
-constexpr const char* kAimAtInfinity = "aim point at infinity";
-
-double ms_since(Clock::time_point& t) {
-    const auto now = Clock::now();
-    const double ms = std::chrono::duration<double, std::milli>(now - t).count();
-    t = now;
-    return ms;
-}
 
 // Grid point -> field point of a placement, as a matrix.
 Eigen::Matrix3d placement_matrix(const GridPlacement& p) {
@@ -66,34 +51,9 @@ std::optional<GridPlacement> predict_placement(const Eigen::Matrix3d& image_to_f
     return p;
 }
 
-// Small modules: a family's lines labelled at half the module (text lines
-// or a blurred module's two flanks between the true ones) spaces them half
-// as far as the other family's. Modules are square and the view at most
-// moderately foreshortened, so such a labelling also stands for the two
-// that keep every other line: the even labels, and the odd ones.
-void add_halved_labellings(std::vector<GridLineFamily>& family, double other_spacing) {
-    const std::size_t n = family.size();
-    for (std::size_t h = 0; h < n; ++h) {
-        if (!(family[h].spacing_px > 0) || family[h].spacing_px > 0.7 * other_spacing) continue;
-        for (int parity = 0; parity < 2; ++parity) {
-            GridLineFamily halved = family[h];
-            halved.lines.clear();
-            for (const GridLine& line : family[h].lines)
-                if (((line.index % 2) + 2) % 2 == parity) {
-                    halved.lines.push_back(line);
-                    halved.lines.back().index = (line.index - parity) / 2;
-                }
-            if (halved.lines.size() < 3) continue;
-            // Indices from 0, as every labelling's are.
-            const int first = halved.lines.front().index;
-            for (GridLine& line : halved.lines) line.index -= first;
-            halved.spacing_px *= 2;
-            family.push_back(std::move(halved));
-        }
-    }
-}
-
 }  // namespace
+
+const char Detector::kAimAtInfinity[] = "aim point at infinity";
 
 Detector::Detector(const Field& field, DetectorOptions options) : index_(field), options_(std::move(options)) {}
 
@@ -113,242 +73,10 @@ Detection Detector::detect(const ColourView& image) const {
     return detect(to_luma(image, luma));
 }
 
-Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior) const {
-    Detection out;
-    out.aim_image = aim;
-    const auto start = Clock::now();
-    if (auto problem = describe_invalid(im); !problem.empty()) {
-        out.failure = "invalid image: " + problem;
-        return out;
-    }
-    Pass pass;
-    pass.end_pair = options_.first_pass_pairs > 0 ? options_.first_pass_pairs : std::numeric_limits<int>::max();
-    const char* failure = search_sizes(im, aim, prior, pass, out);
-    const bool left = std::any_of(pass.left.begin(), pass.left.end(),
-                                  [](const Pass::Labellings& l) { return !l.family[0].empty(); });
-    if (failure && failure != kAimAtInfinity && left) {
-        pass.first_pair = pass.end_pair;
-        pass.end_pair = std::numeric_limits<int>::max();
-        pass.first = false;
-        pass.search = 0;
-        const char* again = search_sizes(im, aim, prior, pass, out);
-        if (!again || again == kAimAtInfinity) failure = again;
-    }
-    out.failure = failure ? failure : "";
-    out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-    return out;
-}
-
-const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                   Pass& pass, Detection& out) const {
-    const char* failure = search_smaller(im, aim, prior, pass, out);
-    if (!failure) return nullptr;
-    if (pass.first && options_.lattice_enabled && !search_lattice(im, aim, prior, out)) return nullptr;
-    const int max_side = options_.double_size_max_side;
-    if (max_side > 0 && std::max(im.width, im.height) <= max_side) {
-        // The part around the aim, at double size: as many pixels as the frame.
-        const double part = std::clamp(options_.double_size_part, 0.1, 1.0);
-        const int w = std::max(8, static_cast<int>(std::lround(im.width * part)));
-        const int h = std::max(8, static_cast<int>(std::lround(im.height * part)));
-        if (w <= im.width && h <= im.height) {
-            const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
-            const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
-            const GreyView around{im.row(y0) + x0, w, h, im.stride};
-            if (!search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, pass, out)) return nullptr;
-        }
-    }
-    return failure;
-}
-
-const char* Detector::search_lattice(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                     Detection& out) const {
-    auto t = Clock::now();
-    const std::vector<Lattice> lattices = find_lattices(im, aim, options_.lattice);
-    out.times.grid_ms += ms_since(t);
-    out.pixels_visited += static_cast<long>(options_.lattice.patch_px) * options_.lattice.patch_px;
-    const char* failure = "no lattice";
-    for (const Lattice& l : lattices) {
-        failure = read_grid(im, aim, prior, l.grid_to_image, l.rows, l.cols, out);
-        if (!failure) out.from_lattice = true;
-        if (!failure || failure == kAimAtInfinity) return failure;
-    }
-    return failure;
-}
-
-const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                     Pass& pass, Detection& out) const {
-    const char* failure = search_scans(im, aim, prior, options_.vanishing, pass, out);
-    const int min_side = options_.half_size_min_side;
-    if (!failure || min_side <= 0 || std::min(im.width, im.height) / 2 < min_side) return failure;
-    return search_resized(im, 0.5, Eigen::Vector2d::Zero(), aim, prior, pass, out) ? failure : nullptr;
-}
-
-const char* Detector::search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
-                                     const Eigen::Vector2d& aim, const DetectionPrior* prior, Pass& pass,
-                                     Detection& out) const {
-    auto t = Clock::now();
-    std::vector<std::uint8_t> pixels;
-    const GreyView resized = scale < 1 ? half_size(part, pixels) : double_size(part, pixels);
-    out.times.edgels_ms += ms_since(t);
-    out.pixels_visited += static_cast<long>(part.width) * part.height;
-    Eigen::Matrix3d to_resized;
-    to_resized << scale, 0, -scale * origin.x(), 0, scale, -scale * origin.y(), 0, 0, 1;
-    DetectionPrior resized_prior;
-    if (prior) resized_prior = {prior->image_to_field * to_resized.inverse(), prior->radius_modules};
-    const DetectionPrior* p = prior ? &resized_prior : nullptr;
-    const Eigen::Vector2d resized_aim = scale * (aim - origin);
-    // The places checked at the other sizes count against the ones checked
-    // here (confirm_place's extra bits), as for any other candidate. Half
-    // size goes on to smaller sizes; double size is the last try.
-    const char* failure = nullptr;
-    if (scale < 1) {
-        failure = search_smaller(resized, resized_aim, p, pass, out);
-    } else {
-        VanishingOptions wider = options_.vanishing;
-        wider.max_inlier_deg = options_.double_size_max_inlier_deg;
-        failure = search_scans(resized, resized_aim, p, wider, pass, out);
-    }
-    if (failure) return failure;
-    out.image_to_field = out.image_to_field * to_resized;
-    out.aim_image = aim;
-    out.size_scale *= scale;
-    return nullptr;
-}
-
-const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                   const VanishingOptions& vanishing, Pass& pass, Detection& out) const {
-    // Step 1. Edgels on sparse scanlines; when nothing is found on them,
-    // again on the scanlines half way between (small modules need closer
-    // scanlines for their grid lines to chain), keeping what was read, down
-    // to scanlines 4 pixels apart.
-    auto t = Clock::now();
-    EdgelOptions edgel_options = options_.edgels;
-    EdgelScan scan = find_edgels(im, edgel_options);
-    out.pixels_visited += scan.pixels_visited;
-    out.times.edgels_ms += ms_since(t);
-    const char* failure = search_all_then_field_like(im, aim, prior, vanishing, scan, pass, out);
-    if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3) {
-        // A noisy image (low light): a faint field's edges drown in the
-        // scanlines' noise; three pixels across each line hold them, and a
-        // lower bar lets the weaker ones through (the chains and the window
-        // vote keep the peaks the noise makes out of the grid).
-        edgel_options.across = 3;
-        edgel_options.noise_deviations = options_.noisy_edge_deviations;
-        t = Clock::now();
-        scan = find_edgels(im, edgel_options);
-        out.pixels_visited += scan.pixels_visited;
-        out.times.edgels_ms += ms_since(t);
-        failure = search_all_then_field_like(im, aim, prior, vanishing, scan, pass, out);
-    }
-    int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan.step / 2;  // of the scanlines so far
-    while (failure && options_.rescan && scan.step >= 8) {
-        EdgelOptions between = edgel_options;
-        between.step = scan.step;
-        between.offset = (offset + scan.step / 2) % scan.step;
-        offset = std::min(offset, between.offset);
-        t = Clock::now();
-        const EdgelScan more = find_edgels(im, between);
-        scan.edgels.insert(scan.edgels.end(), more.edgels.begin(), more.edgels.end());
-        scan.step /= 2;
-        out.pixels_visited += more.pixels_visited;
-        out.times.edgels_ms += ms_since(t);
-        failure = search_all_then_field_like(im, aim, prior, vanishing, scan, pass, out);
-    }
-    return failure;
-}
-
-const char* Detector::search_all_then_field_like(const GreyView& im, const Eigen::Vector2d& aim,
-                                                 const DetectionPrior* prior, const VanishingOptions& vanishing,
-                                                 const EdgelScan& scan, Pass& pass, Detection& out) const {
-    const char* failure = search(im, aim, prior, vanishing, scan, pass, out);
-    if (!failure) return nullptr;
-    // A faint field under strong content: its own edges alone (field_edgels.hpp),
-    // when that leaves out enough of the others to matter; then the edges
-    // less those of thin lines (a spreadsheet's rules).
-    auto t = Clock::now();
-    EdgelScan field_like = scan;
-    field_like.edgels = edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels));
-    out.times.edgels_ms += ms_since(t);
-    auto worth_a_search = [&](const EdgelScan& fewer) {
-        return fewer.edgels.size() >= 40 && fewer.edgels.size() <= scan.edgels.size() * 17 / 20;
-    };
-    if (worth_a_search(field_like) && !search(im, aim, prior, vanishing, field_like, pass, out)) return nullptr;
-    if (options_.thin_line_px <= 0) return failure;
-    t = Clock::now();
-    EdgelScan off_lines = scan;
-    off_lines.edgels = edgels_off_thin_lines(scan.edgels, options_.thin_line_px);
-    out.times.edgels_ms += ms_since(t);
-    if (worth_a_search(off_lines) && !search(im, aim, prior, vanishing, off_lines, pass, out)) return nullptr;
-    return failure;
-}
-
-const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                             const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
-                             Detection& out) const {
-    // The second pass goes over the searches the first one left pairs in,
-    // with the labellings the first one found.
-    const std::size_t this_search = pass.search++;
-    std::vector<GridLineFamily> hypotheses[2];
-    if (pass.first) {
-        pass.left.emplace_back();
-        if (const char* failure = find_labellings(im, vanishing, scan, out, hypotheses)) return failure;
-    } else {
-        if (this_search >= pass.left.size() || pass.left[this_search].family[0].empty()) return "no grid homography";
-        for (int f = 0; f < 2; ++f) hypotheses[f] = std::move(pass.left[this_search].family[f]);
-    }
-    auto t = Clock::now();
-
-    // Steps 4 to 8 for each pair of labellings, the likeliest first, until
-    // the window vote accepts one.
-    const char* failure = "no grid homography";
-    const int n0 = static_cast<int>(hypotheses[0].size()), n1 = static_cast<int>(hypotheses[1].size());
-    int ordinal = 0;
-    for (int sum = 0; sum <= n0 + n1 - 2; ++sum)
-        for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0, ++ordinal) {
-            if (ordinal < pass.first_pair) continue;
-            if (ordinal >= pass.end_pair) {
-                if (pass.first)
-                    for (int f = 0; f < 2; ++f) pass.left[this_search].family[f] = std::move(hypotheses[f]);
-                return failure;
-            }
-            t = Clock::now();
-            Eigen::Matrix3d g2i;
-            int rows = 0, cols = 0;
-            const bool fitted = grid_homography(hypotheses[0][h0], hypotheses[1][sum - h0], im, g2i, rows, cols);
-            out.times.grid_ms += ms_since(t);
-            if (!fitted) continue;
-            failure = read_grid(im, aim, prior, g2i, rows, cols, out);
-            if (!failure || failure == kAimAtInfinity) return failure;
-        }
-    return failure;
-}
-
-const char* Detector::find_labellings(const GreyView& im, const VanishingOptions& vanishing, const EdgelScan& scan,
-                                      Detection& out, std::vector<GridLineFamily> (&hypotheses)[2]) const {
-    auto t = Clock::now();
-    // Step 2. The two vanishing points.
-    const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, vanishing, scan.noise_sigma);
-    out.times.vanishing_ms += ms_since(t);
-    if (!vp.found) return "no grid directions";
-
-    // Step 3. Grid lines of both families: a few labellings of each, best first.
-    for (int f = 0; f < 2; ++f) {
-        hypotheses[f] = find_grid_line_hypotheses(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point,
-                                                  im.width, im.height, scan.step, options_.grid);
-        if (hypotheses[f].empty()) {
-            out.times.grid_ms += ms_since(t);
-            return "no grid lines";
-        }
-    }
-    for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
-    out.times.grid_ms += ms_since(t);
-    return nullptr;
-}
-
 const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                 const Eigen::Matrix3d& g2i, int rows, int cols, Detection& out) const {
     // Step 5. Module values or edge signs.
-    auto t = Clock::now();
+    auto t = StageClock::now();
     ++out.grids_read;
     const Field& f = index_.field();
     const ModuleGrid grid = classify_modules(im, g2i, rows, cols, f.colors, f.key == WindowKey::edges,
@@ -358,7 +86,7 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
     // Step 6. Window lookup and the placement vote: near the predicted place
     // first, when there is a prior; the whole field's vote when that finds
     // nothing or its place is refused.
-    t = Clock::now();
+    t = StageClock::now();
     VoteResult near;
     if (prior) {
         if (auto predicted = predict_placement(prior->image_to_field, g2i, rows, cols))
@@ -369,7 +97,7 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
     int edges_fitted = 0;
     const char* refused = near.found ? place_from_vote(im, aim, g2i, near, out, field_to_image, edges_fitted) : nullptr;
     const bool near_prior = near.found && !refused;
-    t = Clock::now();
+    t = StageClock::now();
     if (near_prior) {
         out.windows = near.votes;
         out.confidence = near.agreement;
@@ -388,7 +116,7 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
         const bool weak = !vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up);
         if (weak || (near.found && near.placement == vote.placement)) return refused ? refused : "no agreeing windows";
         refused = place_from_vote(im, aim, g2i, vote, out, field_to_image, edges_fitted);
-        t = Clock::now();
+        t = StageClock::now();
     }
     if (refused) return refused;
     out.edges_fitted = edges_fitted;
@@ -403,7 +131,7 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
 const char* Detector::place_from_vote(const GreyView& im, const Eigen::Vector2d& aim, const Eigen::Matrix3d& g2i,
                                       const VoteResult& vote, Detection& out, Eigen::Matrix3d& field_to_image,
                                       int& edges_fitted) const {
-    auto t = Clock::now();
+    auto t = StageClock::now();
     const Eigen::Matrix3d voted_f2i = g2i * placement_matrix(vote.placement).inverse();
     field_to_image = voted_f2i;
     edges_fitted = 0;
@@ -438,50 +166,12 @@ const char* Detector::place_from_vote(const GreyView& im, const Eigen::Vector2d&
     return refused;
 }
 
-bool Detector::grid_homography(const GridLineFamily& rows_family, const GridLineFamily& cols_family,
-                               const GreyView& im, Eigen::Matrix3d& g2i, int& rows, int& cols) const {
-    // Step 4. The grid homography from the crossings of the lines. Family 1
-    // lines are x = const, family 0 lines y = const, unless that mirrors the
-    // image: the field is never seen from behind.
-    std::vector<Point2> grid_pts, image_pts;
-    for (const auto& a : rows_family.lines)
-        for (const auto& b : cols_family.lines) {
-            const Eigen::Vector3d p = a.line.cross(b.line);
-            if (std::abs(p.z()) < 1e-12) continue;
-            const Point2 q(p.x() / p.z(), p.y() / p.z());
-            if (q.x() < 0 || q.y() < 0 || q.x() > im.width || q.y() > im.height) continue;
-            grid_pts.emplace_back(b.index, a.index);
-            image_pts.push_back(q);
-        }
-    auto fit = fit_homography_robust(grid_pts, image_pts, options_.corner_tolerance_px, 100, 1);
-    if (!fit || fit->inliers < 8) return false;
-    g2i = fit->h;
-    rows = rows_family.lines.back().index;
-    cols = cols_family.lines.back().index;
-    const Point2 c(cols / 2.0, rows / 2.0);
-    auto p0 = apply_homography(g2i, c), px = apply_homography(g2i, c + Point2(1, 0)),
-         py = apply_homography(g2i, c + Point2(0, 1));
-    if (!p0 || !px || !py) return false;
-    const Point2 ex = *px - *p0, ey = *py - *p0;
-    if (ex.x() * ey.y() - ex.y() * ey.x() < 0) {
-        Eigen::Matrix3d swap;
-        swap << 0, 1, 0, 1, 0, 0, 0, 0, 1;
-        g2i = g2i * swap;
-        std::swap(rows, cols);
-    }
-    return true;
-}
-
-}  // namespace umf
-
-namespace umf {
-
 const char* Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
                                     Detection& out, double extra_bits) const {
     // The modules of the field's visible box, read under the homography: the
     // grid is the field itself, so the expected placement is a plain offset,
     // and it must beat its neighbours one module away.
-    auto t = Clock::now();
+    auto t = StageClock::now();
     const Field& f = index_.field();
     const Eigen::Matrix3d i2f = field_to_image.inverse();
     double u0 = f.width, v0 = f.height, u1 = 0, v1 = 0;
@@ -550,11 +240,11 @@ Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
                            const Eigen::Matrix3d& predicted_image_to_field) const {
     Detection out;
     out.aim_image = aim;
-    const auto start = Clock::now();
+    const auto start = StageClock::now();
     auto t = start;
     auto finish = [&](const char* failure) {
         out.failure = failure ? failure : "";
-        out.times.total_ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+        out.times.total_ms = std::chrono::duration<double, std::milli>(StageClock::now() - start).count();
         return out;
     };
     if (auto problem = describe_invalid(im); !problem.empty()) return finish("invalid image");

@@ -161,6 +161,9 @@ public:
     const Field& field() const { return index_.field(); }
 
 private:
+    // The one failure that ends a search at once: a place was accepted, but
+    // the aim maps to infinity under it. Compared by address.
+    static const char kAimAtInfinity[];
     // Which pairs of grid-line labellings a search tries (step 4). The first
     // pass tries the likeliest few of every search at every size and scan,
     // the second the rest, so that a field found by a later search at its
@@ -200,9 +203,9 @@ private:
     // search over all of a scan's edgels, then, when that fails, over the
     // field-like ones alone, then over those not on thin lines
     // (field_edgels.hpp).
-    const char* search_all_then_field_like(const GreyView& image, const Eigen::Vector2d& aim,
-                                           const DetectionPrior* prior, const VanishingOptions& vanishing,
-                                           const EdgelScan& scan, Pass& pass, Detection& out) const;
+    const char* search_all_then_subsets(const GreyView& image, const Eigen::Vector2d& aim,
+                                        const DetectionPrior* prior, const VanishingOptions& vanishing,
+                                        const EdgelScan& scan, Pass& pass, Detection& out) const;
     // Steps 2 to 8 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                        const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
