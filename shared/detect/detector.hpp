@@ -169,16 +169,20 @@ private:
     // the second the rest, so that a field found by a later search at its
     // likeliest pair does not first pay for every unlikely pair of the
     // searches before it. `left` holds, per search in the order they run,
-    // its labellings when the first pass left pairs of them to the second.
+    // its labellings when the first pass left pairs of them to the second;
+    // the second pass ends after the last such search.
     struct Pass {
         struct Labellings {
             std::vector<GridLineFamily> family[2];
         };
         int first_pair = 0;
         int end_pair = 0;
-        bool first = true;
         std::vector<Labellings> left;
-        std::size_t search = 0;
+        std::size_t end_of_left = 0;  // one past the last search with pairs left
+        std::size_t search = 0;       // the searches run so far in this pass
+
+        bool first() const { return first_pair == 0; }
+        bool nothing_left() const { return !first() && search >= end_of_left; }
     };
     // Steps 1 to 8 on the image at its own size, then (when nothing is
     // found) at half size and below, then on a lattice around the aim, then

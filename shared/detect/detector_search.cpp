@@ -62,12 +62,11 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
     Pass pass;
     pass.end_pair = options_.first_pass_pairs > 0 ? options_.first_pass_pairs : std::numeric_limits<int>::max();
     const char* failure = search_sizes(im, aim, prior, pass, out);
-    const bool left = std::any_of(pass.left.begin(), pass.left.end(),
-                                  [](const Pass::Labellings& l) { return !l.family[0].empty(); });
-    if (failure && failure != kAimAtInfinity && left) {
+    for (std::size_t k = 0; k < pass.left.size(); ++k)
+        if (!pass.left[k].family[0].empty()) pass.end_of_left = k + 1;
+    if (failure && failure != kAimAtInfinity && pass.end_of_left > 0) {
         pass.first_pair = pass.end_pair;
         pass.end_pair = std::numeric_limits<int>::max();
-        pass.first = false;
         pass.search = 0;
         const char* again = search_sizes(im, aim, prior, pass, out);
         if (!again || again == kAimAtInfinity) failure = again;
@@ -81,7 +80,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
                                    Pass& pass, Detection& out) const {
     const char* failure = search_smaller(im, aim, prior, pass, out);
     if (!failure) return nullptr;
-    if (pass.first && options_.lattice_enabled && !search_lattice(im, aim, prior, out)) return nullptr;
+    if (pass.first() && options_.lattice_enabled && !search_lattice(im, aim, prior, out)) return nullptr;
     const int max_side = options_.double_size_max_side;
     if (max_side > 0 && std::max(im.width, im.height) <= max_side) {
         // The part around the aim, at double size: as many pixels as the frame.
@@ -124,6 +123,7 @@ const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& 
 const char* Detector::search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
                                      const Eigen::Vector2d& aim, const DetectionPrior* prior, Pass& pass,
                                      Detection& out) const {
+    if (pass.nothing_left()) return "no grid homography";
     auto t = StageClock::now();
     std::vector<std::uint8_t> pixels;
     const GreyView resized = scale < 1 ? half_size(part, pixels) : double_size(part, pixels);
@@ -159,13 +159,15 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     // again on the scanlines half way between (small modules need closer
     // scanlines for their grid lines to chain), keeping what was read, down
     // to scanlines 4 pixels apart.
+    if (pass.nothing_left()) return "no grid homography";
     auto t = StageClock::now();
     EdgelOptions edgel_options = options_.edgels;
     EdgelScan scan = find_edgels(im, edgel_options);
     out.pixels_visited += scan.pixels_visited;
     out.times.edgels_ms += ms_since(t);
     const char* failure = search_all_then_subsets(im, aim, prior, vanishing, scan, pass, out);
-    if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3) {
+    if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3 &&
+        !pass.nothing_left()) {
         // A noisy image (low light): a faint field's edges drown in the
         // scanlines' noise; three pixels across each line hold them, and a
         // lower bar lets the weaker ones through (the chains and the window
@@ -179,7 +181,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         failure = search_all_then_subsets(im, aim, prior, vanishing, scan, pass, out);
     }
     int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan.step / 2;  // of the scanlines so far
-    while (failure && options_.rescan && scan.step >= 8) {
+    while (failure && options_.rescan && scan.step >= 8 && !pass.nothing_left()) {
         EdgelOptions between = edgel_options;
         between.step = scan.step;
         between.offset = (offset + scan.step / 2) % scan.step;
@@ -227,14 +229,13 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
     // with the labellings the first one found.
     const std::size_t this_search = pass.search++;
     std::vector<GridLineFamily> hypotheses[2];
-    if (pass.first) {
+    if (pass.first()) {
         pass.left.emplace_back();
         if (const char* failure = find_labellings(im, vanishing, scan, out, hypotheses)) return failure;
     } else {
         if (this_search >= pass.left.size() || pass.left[this_search].family[0].empty()) return "no grid homography";
         for (int f = 0; f < 2; ++f) hypotheses[f] = std::move(pass.left[this_search].family[f]);
     }
-    auto t = StageClock::now();
 
     // Steps 4 to 8 for each pair of labellings, the likeliest first, until
     // the window vote accepts one.
@@ -245,11 +246,11 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
         for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0, ++ordinal) {
             if (ordinal < pass.first_pair) continue;
             if (ordinal >= pass.end_pair) {
-                if (pass.first)
+                if (pass.first())
                     for (int f = 0; f < 2; ++f) pass.left[this_search].family[f] = std::move(hypotheses[f]);
                 return failure;
             }
-            t = StageClock::now();
+            auto t = StageClock::now();
             Eigen::Matrix3d g2i;
             int rows = 0, cols = 0;
             const bool fitted = grid_homography(hypotheses[0][h0], hypotheses[1][sum - h0], im, g2i, rows, cols);
