@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/args.hpp"
+#include "commands/browser_command.hpp"
 #include "commands/common_options.hpp"
 #include "commands/compose_command.hpp"
 #include "commands/desktop_keeper.hpp"
@@ -45,6 +46,8 @@ usage:
   umf-provider share --list | --remove ID [--port P]
   umf-provider puts [--json] [--port P]
   umf-provider puts --accept ID [--open] [--always] | --dismiss ID [--port P]
+  umf-provider browser install [--system [--prefix DIR]] [--host PATH]
+  umf-provider browser status [--json] [--port P]
   umf-provider gnome install
   umf-provider kde install
   umf-provider compose --content SCREEN.png [--board BOARD.json] --preset NAME
@@ -77,6 +80,14 @@ puts     lists the puts (a phone giving the screen a URL or a file) waiting for
          the file in the put folder (a URL: opens it), --open also opens the
          file, --always accepts that phone's puts from now on without asking;
          --dismiss ID refuses it. --json prints the list as JSON.
+browser  install sets up the browser companion, so that pointing at a Chromium,
+         Chrome, Edge or Firefox window takes its page (not a picture of it):
+         it writes the native-messaging host manifests (per user; --system:
+         /etc/... and /usr/lib/mozilla/... under --prefix, default /) naming
+         umf-browser-host (beside this program, or --host PATH) and says how
+         to load the extension. status lists the browsers connected to the
+         running provider and the page each window shows (private windows
+         are never reported).
 gnome    install installs and enables the umf GNOME Shell extension, which
          shows the field and answers the provider on GNOME (Wayland); GNOME
          loads it at the next login.
@@ -117,7 +128,8 @@ compose  writes the screen exactly as shown at time T (content, the board over
 
 exit codes: 0 success; 2 wrong usage; 3 the configuration directory, TLS
             identity, token, board or an input could not be read or written;
-            4 the server could not start, or (share, puts) no provider is running.
+            4 the server could not start, or (share, puts, browser status) no
+            provider is running.
 )";
 
 // The tray and tuning window as the serve command knows its controls.
@@ -137,7 +149,7 @@ std::optional<int> serve_under_keeper(umf::cli::Args& args, bool& headless, Serv
     if (session.wayland_display.empty() && session.x_display.empty()) return std::nullopt;
     const char* runtime = std::getenv("XDG_RUNTIME_DIR");
     KeeperSettings keeper;
-    keeper.shares_file = provider_runtime_dir() / ("shared-items-" + std::to_string(::getpid()) + ".json");
+    keeper.shares_file = umf::runtime_dir() / ("shared-items-" + std::to_string(::getpid()) + ".json");
     keeper.display_answers = [session, runtime = std::string(runtime ? runtime : "")] {
         return displays_answer(session, runtime);
     };
@@ -217,6 +229,8 @@ int dispatch(int argc, char** argv) {
         auto app = make_gui_application(argc, argv, true);
         return run_compose(compose_args, config_dir);
     }
+    if (command == "browser")
+        return run_browser(parse_command_args(argc, argv, first, {"host", "prefix", "port"}, {"system", "json"}, 1));
     if (command == "kde") {
         if (first >= argc || std::strcmp(argv[first], "install") != 0 || first + 1 != argc)
             throw umf::cli::UsageError("kde takes one word: install");

@@ -37,6 +37,8 @@
 #include "screen/screen_field.hpp"
 #include "screen/screen_image.hpp"
 #include "server/config_dir.hpp"
+#include "browser/browser_link.hpp"
+#include "browser/browser_resolver.hpp"
 #include "server/control_socket.hpp"
 #include "server/pairing.hpp"
 #include "server/pairing_qr.hpp"
@@ -247,6 +249,9 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     }
 
     std::vector<std::shared_ptr<const Resolver>> resolvers;
+    // Browsers tell what their windows show once the server knows its port;
+    // only a desktop's windows are looked into.
+    std::shared_ptr<BrowserLink> browser_link;
     auto shared_items = std::make_shared<SharedItems>();
     if (hooks.keeper) keep_shared_items(*shared_items, hooks.keeper->shares_file);
     QImage screen_image(width, height, QImage::Format_RGB32);
@@ -266,6 +271,8 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
                 const std::shared_ptr<const Desktop> windows = desktop.desktop;
                 WindowResolverOptions options;
                 options.filter.own_pids.insert(static_cast<int>(::getpid()));
+                browser_link = std::make_shared<BrowserLink>();
+                resolvers.push_back(std::make_shared<BrowserResolver>(windows, options.filter, browser_link, &std::cout));
                 resolvers.push_back(std::make_shared<WindowResolver>(windows, options));
                 auto snapshots = std::make_shared<SnapshotResolver>(windows, options.filter, desktop.abilities.snapshots);
                 if (overlay_manager || put_prompt) {
@@ -372,9 +379,17 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         server = std::make_unique<Server>(service, identity, options);
         server->start();
         if (hooks.keeper) tell_keeper_port(*hooks.keeper, server->port());
+        if (browser_link) {
+            try {
+                browser_link->listen(browser_socket_path(server->port()));
+            } catch (const std::exception& e) {
+                std::cerr << "umf-provider: no browser companion this time: " << e.what() << "\n";
+                browser_link.reset();
+            }
+        }
         if (!public_mode || put_answers)
             control = std::make_unique<ControlSocket>(control_socket_path(server->port()),
-                                                      public_mode ? nullptr : shared_items, put_answers);
+                                                      public_mode ? nullptr : shared_items, put_answers, browser_link);
     } catch (const std::exception& e) {
         std::cerr << "umf-provider: " << e.what() << "\n";
         return kServeError;
@@ -392,6 +407,9 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     std::cout << (headless ? "headless: a virtual " : "screen: ") << width << "x" << height << ", preset "
               << preset.name << (public_mode ? ", public mode (board items only, no pairing needed)" : "") << "\n";
     if (control && !public_mode) std::cout << "share with: umf-provider share FILE|URL --rect x,y,w,h\n";
+    if (browser_link)
+        std::cout << "browsers: pointing at a browser window takes its page once the companion is set up "
+                     "(umf-provider browser install; browser status lists them)\n";
     std::cout << "puts: "
               << (put_decider ? puts_mode + ", files to " + put_settings.folder.string() +
                                     (put_answers ? " (answer with: umf-provider puts)" : "")

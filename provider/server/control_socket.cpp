@@ -14,7 +14,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "browser/browser_status.hpp"
 #include "put/put_text.hpp"
+#include "server/owner_socket.hpp"
 
 namespace umf::provider {
 
@@ -22,15 +24,6 @@ namespace {
 
 using json = nlohmann::json;
 constexpr std::size_t kMaxLine = 64 * 1024;
-
-sockaddr_un address_of(const std::filesystem::path& path) {
-    sockaddr_un addr{};
-    addr.sun_family = AF_UNIX;
-    const std::string s = path.string();
-    if (s.size() >= sizeof addr.sun_path) throw std::runtime_error("the control socket path is too long: " + s);
-    std::memcpy(addr.sun_path, s.c_str(), s.size() + 1);
-    return addr;
-}
 
 std::string error_answer(const std::string& what) { return json{{"ok", false}, {"error", what}}.dump(); }
 
@@ -93,21 +86,12 @@ std::string put_answer_answer(const json& request, ControlPutDecider& puts) {
 
 }  // namespace
 
-std::filesystem::path provider_runtime_dir() {
-    const char* runtime = std::getenv("XDG_RUNTIME_DIR");
-    return runtime && *runtime ? std::filesystem::path(runtime) / "umf"
-                               : std::filesystem::path("/tmp") / ("umf-" + std::to_string(::getuid()));
-}
-
-std::filesystem::path control_socket_path(unsigned short port) {
-    return provider_runtime_dir() / ("provider-" + std::to_string(port) + ".sock");
-}
-
 std::string handle_control_request(const std::string& line, SharedItems& items) {
-    return handle_control_request(line, &items, nullptr);
+    return handle_control_request(line, &items, nullptr, nullptr);
 }
 
-std::string handle_control_request(const std::string& line, SharedItems* shared, ControlPutDecider* puts) {
+std::string handle_control_request(const std::string& line, SharedItems* shared, ControlPutDecider* puts,
+                                   const BrowserLink* browsers) {
     try {
         const json request = json::parse(line);
         if (!request.is_object() || !request.contains("cmd") || !request["cmd"].is_string())
@@ -119,6 +103,11 @@ std::string handle_control_request(const std::string& line, SharedItems* shared,
                                     "--puts always or never, or takes no puts)");
             if (cmd == "puts") return put_list_answer(*puts);
             return put_answer_answer(request, *puts);
+        }
+        if (cmd == "browsers") {
+            if (!browsers) return error_answer("this provider does not look into browsers (public or headless mode)");
+            return json{{"ok", true}, {"browsers", browser_status(browsers->browsers())}}.dump(
+                -1, ' ', false, json::error_handler_t::replace);
         }
         if (!shared) return error_answer("this provider shares nothing (public mode)");
         SharedItems& items = *shared;
@@ -154,37 +143,20 @@ std::string handle_control_request(const std::string& line, SharedItems* shared,
 }
 
 ControlSocket::ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items,
-                             std::shared_ptr<ControlPutDecider> puts)
-    : path_(std::move(path)), items_(std::move(items)), puts_(std::move(puts)) {
-    const auto dir = path_.parent_path();
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    struct stat st {};
-    if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::getuid())
-        throw std::runtime_error("the control socket folder " + dir.string() + " is not this user's own folder");
-    ::chmod(dir.c_str(), 0700);
-    const sockaddr_un addr = address_of(path_);
-    listen_fd_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    if (listen_fd_ < 0) throw std::runtime_error(std::string("cannot make a socket: ") + std::strerror(errno));
-    // A socket file left by a provider that died is replaced; one that
-    // answers belongs to a running provider and is not.
-    if (std::filesystem::exists(path_, ec)) {
-        bool alive = false;
+                             std::shared_ptr<ControlPutDecider> puts, std::shared_ptr<const BrowserLink> browsers)
+    : path_(std::move(path)), items_(std::move(items)), puts_(std::move(puts)), browsers_(std::move(browsers)) {
+    listen_fd_ = listen_owner_only(path_, [](const std::filesystem::path& p) {
         try {
-            control_request(path_, R"({"cmd":"list"})");
-            alive = true;
+            control_request(p, R"({"cmd":"list"})");
+            return true;
         } catch (const std::exception&) {
+            return false;
         }
-        if (alive) {
-            ::close(listen_fd_);
-            throw std::runtime_error("another provider already answers at " + path_.string());
-        }
-        ::unlink(path_.c_str());
-    }
-    if (::bind(listen_fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0 || ::chmod(path_.c_str(), 0600) != 0 ||
-        ::listen(listen_fd_, 8) != 0 || ::pipe2(wake_, O_CLOEXEC) != 0) {
+    });
+    if (::pipe2(wake_, O_CLOEXEC) != 0) {
         const std::string why = std::strerror(errno);
         ::close(listen_fd_);
+        ::unlink(path_.c_str());
         throw std::runtime_error("cannot listen on " + path_.string() + ": " + why);
     }
     thread_ = std::thread([this] { serve(); });
@@ -219,9 +191,7 @@ void ControlSocket::serve() {
 }
 
 void ControlSocket::answer(int fd) {
-    ucred cred{};
-    socklen_t len = sizeof cred;
-    if (::getsockopt(fd, SOL_SOCKET, SO_PEERCRED, &cred, &len) != 0 || cred.uid != ::getuid()) return;
+    if (!peer_is_this_user(fd)) return;
     // A client that says nothing does not hold the socket up for long.
     timeval timeout{2, 0};
     ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
@@ -237,13 +207,13 @@ void ControlSocket::answer(int fd) {
     std::string reply = line.size() > kMaxLine ? error_answer("request too long")
                         : line.find('\n') == std::string::npos
                             ? error_answer("a request ends with a newline")
-                            : handle_control_request(line.substr(0, line.find('\n')), items_.get(), puts_.get());
+                            : handle_control_request(line.substr(0, line.find('\n')), items_.get(), puts_.get(), browsers_.get());
     reply += '\n';
     [[maybe_unused]] auto n = ::write(fd, reply.data(), reply.size());
 }
 
 std::string control_request(const std::filesystem::path& path, const std::string& line) {
-    const sockaddr_un addr = address_of(path);
+    const sockaddr_un addr = unix_address(path);
     const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
     if (fd < 0) throw std::runtime_error(std::string("cannot make a socket: ") + std::strerror(errno));
     struct Closer {

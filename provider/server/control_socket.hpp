@@ -9,6 +9,8 @@
 // and, when the provider asks about puts here (`umf-provider puts`):
 //   {"cmd":"puts"} -> {"ok":true,"puts":[{"id":7,"kind":"file","name":"report.pdf","mime":"application/pdf",
 //                      "size":2411724,"title":"","client":"...","device":"...","age_s":4}]}   (a URL: "url")
+//   {"cmd":"browsers"} -> {"ok":true,"browsers":[{"name":"chromium","version":"156.0","pid":4242,
+//                          "windows":[{"id":1,"bounds":[0,0,1280,800],"focused":true,"url":"https://...","title":"..."}]}]}
 //   {"cmd":"put_answer","id":7,"answer":"save"|"open"|"dismiss","always":false}
 //       -> {"ok":true,"id":7,"answer":"save","name":"report.pdf"}
 //   anything wrong -> {"ok":false,"error":"what is wrong"}
@@ -20,31 +22,28 @@
 #include <string>
 #include <thread>
 
+#include "browser/browser_link.hpp"
 #include "content/shared_items.hpp"
+#include "io/runtime_dir.hpp"  // control_socket_path
 #include "put/put_deciders.hpp"
 
 namespace umf::provider {
 
-// $XDG_RUNTIME_DIR/umf, else /tmp/umf-UID: the provider's files that live
-// as long as it runs.
-std::filesystem::path provider_runtime_dir();
-
-// provider_runtime_dir()/provider-PORT.sock.
-std::filesystem::path control_socket_path(unsigned short port);
-
 // One request line's answer (what the socket thread does per line; tests
 // call it directly).
 std::string handle_control_request(const std::string& line, SharedItems& items);
-// The same with either part missing (nullptr): a provider in public mode
-// shares nothing, one started with `--puts always|never` asks nothing.
-std::string handle_control_request(const std::string& line, SharedItems* items, ControlPutDecider* puts);
+// The same with any part missing (nullptr): a provider in public mode
+// shares nothing, one started with `--puts always|never` asks nothing, one
+// without a desktop has no browser link.
+std::string handle_control_request(const std::string& line, SharedItems* items, ControlPutDecider* puts,
+                                   const BrowserLink* browsers = nullptr);
 
 class ControlSocket {
 public:
     // Binds (replacing a stale socket file) and starts answering. Throws
     // std::runtime_error naming the path when it cannot.
     ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items,
-                  std::shared_ptr<ControlPutDecider> puts = nullptr);
+                  std::shared_ptr<ControlPutDecider> puts = nullptr, std::shared_ptr<const BrowserLink> browsers = nullptr);
     ~ControlSocket();
     ControlSocket(const ControlSocket&) = delete;
     ControlSocket& operator=(const ControlSocket&) = delete;
@@ -57,6 +56,7 @@ private:
     std::filesystem::path path_;
     std::shared_ptr<SharedItems> items_;
     std::shared_ptr<ControlPutDecider> puts_;
+    std::shared_ptr<const BrowserLink> browsers_;
     int listen_fd_ = -1;
     int wake_[2] = {-1, -1};
     std::thread thread_;

@@ -108,7 +108,7 @@ TEST(PutControl, ThePutsCommandListsAcceptsAndDismissesOverTheSocket) {
     TempDir runtime;
     ScopedEnv env("XDG_RUNTIME_DIR", runtime.path.string());
     auto puts = std::make_shared<ControlPutDecider>();
-    ControlSocket socket(control_socket_path(kPort), std::make_shared<SharedItems>(), puts);
+    ControlSocket socket(umf::control_socket_path(kPort), std::make_shared<SharedItems>(), puts);
     EXPECT_EQ(socket.path(), runtime.path / "umf" / ("provider-" + std::to_string(kPort) + ".sock"));
 
     Outcome none = run(puts_args());

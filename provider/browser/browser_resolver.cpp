@@ -1,0 +1,64 @@
+#include "browser/browser_resolver.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <stdexcept>
+
+#include "browser/element_content.hpp"
+
+namespace umf::provider {
+
+namespace {
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return s;
+}
+
+}  // namespace
+
+bool is_browser_window(const WindowInfo& window) {
+    static const char* const kBrowsers[] = {"chromium", "google-chrome", "chrome", "microsoft-edge",
+                                            "firefox",  "firefox-esr",   "navigator", "brave-browser"};
+    for (const std::string& name : {lower(window.wm_class), lower(window.instance)})
+        for (const char* browser : kBrowsers)
+            if (name == browser || name.rfind(std::string(browser) + "-", 0) == 0 ||
+                name.rfind(std::string("org.mozilla.") + browser, 0) == 0)
+                return true;
+    return false;
+}
+
+BrowserResolver::BrowserResolver(std::shared_ptr<const Desktop> desktop, WindowFilter filter,
+                                 std::shared_ptr<BrowserLink> link, std::ostream* hints, BrowserResolverOptions options)
+    : desktop_(std::move(desktop)), filter_(std::move(filter)), link_(std::move(link)), hints_(hints), options_(options) {
+    if (!desktop_ || !link_) throw std::invalid_argument("BrowserResolver: no desktop or no browser link");
+}
+
+std::optional<Resolved> BrowserResolver::resolve(const ScreenPoint& point, Purpose purpose) const {
+    const auto window = desktop_->window_at(point.root_x, point.root_y, filter_);
+    if (!window) return std::nullopt;
+    const auto browsers = link_->browsers();
+    const auto match = match_browser_window(browsers, *window);
+    if (!match) {
+        if (purpose == Purpose::grab && browsers.empty() && hints_ && is_browser_window(*window) && !hinted_.exchange(true))
+            *hints_ << "browser: a grab on " << (window->wm_class.empty() ? "a browser" : window->wm_class)
+                    << " gave a picture of it; with the browser companion it gives the page: umf-provider browser install\n"
+                    << std::flush;
+        return std::nullopt;
+    }
+    const BrowserTab& tab = match->window.tab;
+    if (tab.url.empty()) return std::nullopt;  // a browser's own page, or not http(s)
+    // What lies at the point, from the page; the page itself when it does
+    // not answer in time (an aim waits little: it only wants a title).
+    const nlohmann::json question{{"type", "element_at"},
+                                  {"window", match->window.id},
+                                  {"tab", tab.id},
+                                  {"screen_x", point.root_x},
+                                  {"screen_y", point.root_y}};
+    const auto answer = link_->ask(match->connection, question,
+                                   purpose == Purpose::grab ? options_.grab_timeout : options_.aim_timeout);
+    const auto element = answer ? answer->find("element") : nlohmann::json::const_iterator();
+    return content_of_element(answer && element != answer->end() ? *element : nlohmann::json(), tab);
+}
+
+}  // namespace umf::provider

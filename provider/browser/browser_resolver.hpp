@@ -1,0 +1,45 @@
+// Resolver 3a (docs/ARCHITECTURE.md, "Content"): a browser window under the
+// point gives its active tab's page, as a URL, when the browser companion
+// (browser/) is connected; otherwise the window and snapshot resolvers
+// answer as before, and the first time a browser window is pointed at the
+// console says how to install the companion.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <ostream>
+
+#include "browser/browser_link.hpp"
+#include "content/resolver.hpp"
+#include "desktop/desktop.hpp"
+
+namespace umf::provider {
+
+// Whether a desktop window's class or app id is a web browser's.
+bool is_browser_window(const WindowInfo& window);
+
+struct BrowserResolverOptions {
+    // How long the page may take to say what is at the point.
+    std::chrono::milliseconds grab_timeout{1000};
+    std::chrono::milliseconds aim_timeout{40};
+};
+
+class BrowserResolver final : public Resolver {
+public:
+    // `hints` (may be null) hears the one-time install hint.
+    BrowserResolver(std::shared_ptr<const Desktop> desktop, WindowFilter filter, std::shared_ptr<BrowserLink> link,
+                    std::ostream* hints = nullptr, BrowserResolverOptions options = {});
+    const char* name() const override { return "browser"; }
+    std::optional<Resolved> resolve(const ScreenPoint& point, Purpose purpose) const override;
+
+private:
+    std::shared_ptr<const Desktop> desktop_;
+    WindowFilter filter_;
+    std::shared_ptr<BrowserLink> link_;
+    std::ostream* hints_;
+    BrowserResolverOptions options_;
+    mutable std::atomic<bool> hinted_{false};
+};
+
+}  // namespace umf::provider

@@ -1,0 +1,131 @@
+#include "commands/browser_command.hpp"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "browser/browser_status.hpp"
+#include "browser/host_manifests.hpp"
+#include "commands/common_options.hpp"
+#include "io/atomic_file.hpp"
+#include "put/put_text.hpp"
+#include "server/control_socket.hpp"
+
+namespace umf::provider {
+
+namespace {
+
+namespace fs = std::filesystem;
+using cli::get;
+using cli::has_flag;
+using cli::UsageError;
+
+fs::path program_dir() {
+    std::error_code ec;
+    const auto self = fs::read_symlink("/proc/self/exe", ec);
+    return ec ? fs::path() : self.parent_path();
+}
+
+// PREFIX/share/umf/browser-extension beside an installed provider, else the
+// source tree's browser/extension.
+std::optional<fs::path> extension_dir() {
+    std::error_code ec;
+    const auto installed = program_dir().parent_path() / "share" / "umf" / "browser-extension";
+    if (fs::is_regular_file(installed / "manifest.json", ec)) return installed;
+#ifdef UMF_BROWSER_EXTENSION_DIR
+    if (fs::is_regular_file(fs::path(UMF_BROWSER_EXTENSION_DIR) / "manifest.json", ec))
+        return fs::path(UMF_BROWSER_EXTENSION_DIR);
+#endif
+    return std::nullopt;
+}
+
+int run_install(const cli::Args& a, std::ostream& out, std::ostream& err) {
+    if (get(a, "prefix") && !has_flag(a, "system")) throw UsageError("--prefix goes with --system");
+    fs::path host = get(a, "host") ? fs::path(*get(a, "host")) : program_dir() / "umf-browser-host";
+    std::error_code ec;
+    host = fs::absolute(host, ec);
+    if (::access(host.c_str(), X_OK) != 0) {
+        err << "umf-provider: no umf-browser-host at " << host.string()
+            << " (it is installed beside umf-provider; give its place with --host PATH)\n";
+        return kConfigError;
+    }
+    HostManifestPlaces places;
+    const char* home = std::getenv("HOME");
+    const char* config = std::getenv("XDG_CONFIG_HOME");
+    places.home = home && *home ? fs::path(home) : fs::path();
+    places.config_home = config && *config ? fs::path(config) : fs::path();
+    places.system = has_flag(a, "system");
+    if (get(a, "prefix")) places.prefix = fs::absolute(*get(a, "prefix"), ec);
+    if (!places.system && places.home.empty()) {
+        err << "umf-provider: HOME is not set, so there is no per-user place for the host manifests\n";
+        return kConfigError;
+    }
+    for (const HostManifest& m : host_manifests(host, places)) {
+        fs::create_directories(m.file.parent_path(), ec);
+        try {
+            write_file_atomically(m.file.string(), m.text);
+            ::chmod(m.file.c_str(), 0644);
+        } catch (const std::exception& e) {
+            err << "umf-provider: " << e.what() << "\n";
+            return kConfigError;
+        }
+        out << m.browser << ": " << m.file.string() << "\n";
+    }
+    const auto ext = extension_dir();
+    const std::string dir = ext ? ext->string() : std::string("PREFIX/share/umf/browser-extension");
+    out << "host: " << host.string() << "\n"
+        << "Now load the extension (" << dir << "):\n"
+        << "  Chromium, Chrome, Edge: open chrome://extensions, turn on Developer mode, \"Load unpacked\", choose "
+        << dir << "\n"
+        << "  Firefox: open about:debugging#/runtime/this-firefox, \"Load Temporary Add-on...\", choose " << dir
+        << "/manifest.json\n"
+        << "Then `umf-provider browser status` lists the browser while a provider runs.\n";
+    return kOk;
+}
+
+int run_status(const cli::Args& a, std::ostream& out, std::ostream& err) {
+    using json = nlohmann::json;
+    std::string answer;
+    try {
+        answer = control_request(control_socket_path(port_option(a)), R"({"cmd":"browsers"})");
+    } catch (const std::exception& e) {
+        err << "umf-provider: " << e.what() << "\n";
+        return kServeError;
+    }
+    const json parsed = json::parse(answer, nullptr, false);
+    if (!parsed.is_object()) {
+        err << "umf-provider: the provider answered something else than JSON: " << printable_text(answer) << "\n";
+        return kServeError;
+    }
+    if (!parsed.value("ok", false)) {
+        err << "umf-provider: " << printable_text(parsed.value("error", std::string("the provider refused"))) << "\n";
+        return kConfigError;
+    }
+    if (has_flag(a, "json"))
+        out << answer << "\n";
+    else
+        out << browser_status_text(parsed.value("browsers", json::array()));
+    return kOk;
+}
+
+}  // namespace
+
+int run_browser(const cli::Args& a, std::ostream& out, std::ostream& err) {
+    if (a.positional.size() != 1) throw UsageError("browser takes one word: install or status");
+    const std::string& word = a.positional.front();
+    if (word == "install") {
+        if (get(a, "port") || has_flag(a, "json")) throw UsageError("--port and --json go with browser status");
+        return run_install(a, out, err);
+    }
+    if (word == "status") {
+        if (get(a, "host") || get(a, "prefix") || has_flag(a, "system"))
+            throw UsageError("--host, --prefix and --system go with browser install");
+        return run_status(a, out, err);
+    }
+    throw UsageError("browser takes one word: install or status, not \"" + word + "\"");
+}
+
+}  // namespace umf::provider
