@@ -38,7 +38,7 @@ std::optional<Resolved> BrowserResolver::resolve(const ScreenPoint& point, Purpo
     const auto window = desktop_->window_at(point.root_x, point.root_y, filter_);
     if (!window) return std::nullopt;
     const auto browsers = link_->browsers();
-    const auto match = match_browser_window(browsers, *window);
+    const auto match = browsers.empty() ? std::nullopt : match_browser_window(browsers, *window, desktop_->windows());
     if (!match) {
         if (purpose == Purpose::grab && browsers.empty() && hints_ && is_browser_window(*window) && !hinted_.exchange(true))
             *hints_ << "browser: a grab on " << (window->wm_class.empty() ? "a browser" : window->wm_class)

@@ -106,7 +106,23 @@ std::vector<BrowserWindow> parse_browser_windows(const json& message) {
     return windows;
 }
 
-std::optional<BrowserMatch> match_browser_window(const std::vector<BrowserState>& browsers, const WindowInfo& window) {
+namespace {
+
+bool titles_agree(const BrowserWindow& w, const WindowInfo& window) {
+    return w.tab.title.empty() || window.title.empty() || window.title.compare(0, w.tab.title.size(), w.tab.title) == 0;
+}
+
+// Whether a desktop window could be the reported one.
+bool could_be(const BrowserWindow& w, const WindowInfo& window) {
+    if (!titles_agree(w, window)) return false;
+    if (w.bounds.empty() || window.rect.empty()) return !w.tab.title.empty() && !window.title.empty();
+    return overlap(w.bounds, window.rect) >= kMinOverlap;
+}
+
+}  // namespace
+
+std::optional<BrowserMatch> match_browser_window(const std::vector<BrowserState>& browsers, const WindowInfo& window,
+                                                 const std::vector<WindowInfo>& others) {
     const BrowserWindow* best = nullptr;
     int best_connection = 0;
     double best_overlap = 0;
@@ -136,6 +152,9 @@ std::optional<BrowserMatch> match_browser_window(const std::vector<BrowserState>
         }
     }
     if (!best || title_matches > 1) return std::nullopt;
+    for (const WindowInfo& other : others)
+        if (other.id != window.id && (window.pid == 0 || other.pid == window.pid) && could_be(*best, other))
+            return std::nullopt;
     return BrowserMatch{best_connection, *best};
 }
 

@@ -57,7 +57,11 @@ struct BrowserMatch {
 // The reported window that is `window` (a desktop window of process
 // window.pid), or nullopt. Bounds must overlap well and, where both have a
 // title, the desktop's title must begin with the tab's; on Wayland (empty
-// bounds) the title alone decides, and must be unique.
-std::optional<BrowserMatch> match_browser_window(const std::vector<BrowserState>& browsers, const WindowInfo& window);
+// bounds) the title alone decides, and must be unique. `others` are the
+// desktop's other windows: when one of them would match the same reported
+// window, which of the two it is cannot be told (a private window, never
+// reported, over a normal one showing the same page), and nothing matches.
+std::optional<BrowserMatch> match_browser_window(const std::vector<BrowserState>& browsers, const WindowInfo& window,
+                                                 const std::vector<WindowInfo>& others = {});
 
 }  // namespace umf::provider

@@ -169,6 +169,8 @@ public:
     // The top-most shown window containing the point that the filter does
     // not skip; nullopt on the bare desktop or when windows cannot be known.
     virtual std::optional<WindowInfo> window_at(double x, double y, const WindowFilter& filter) const = 0;
+    // Every shown window (X11: top-most first); empty where windows cannot be listed.
+    virtual std::vector<WindowInfo> windows() const { return {}; }
     // The screen's pixels in `rect` as shown (the field hidden by the caller),
     // clipped to the desktop. Throws DesktopError.
     virtual Capture capture(const WindowRect& rect) const = 0;

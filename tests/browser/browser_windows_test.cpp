@@ -104,6 +104,27 @@ TEST(BrowserWindows, DesktopWindowsMatchByProcessBoundsAndTitle) {
     EXPECT_FALSE(match_browser_window({wayland}, x11)) << "two windows with that title: neither";
 }
 
+TEST(BrowserWindows, AWindowThatCannotBeToldFromAnotherMatchesNothing) {
+    BrowserState chromium;
+    chromium.pid = 4242;
+    chromium.windows = parse_browser_windows(json{{"windows", {window_json(1, "https://a.org/", "Page A")}}});
+    WindowInfo normal, hidden_private;
+    normal.id = 10;
+    hidden_private.id = 11;
+    for (WindowInfo* w : {&normal, &hidden_private}) {
+        w->pid = 4242;
+        w->rect = {100, 50, 900, 650};
+        w->title = "Page A - Chromium";
+    }
+    EXPECT_TRUE(match_browser_window({chromium}, normal, {normal}));
+    // The private window over the normal one, showing the same page: the
+    // report fits both, so neither is taken for it.
+    EXPECT_FALSE(match_browser_window({chromium}, hidden_private, {normal, hidden_private}));
+    EXPECT_FALSE(match_browser_window({chromium}, normal, {normal, hidden_private}));
+    hidden_private.rect = {400, 300, 500, 400};
+    EXPECT_TRUE(match_browser_window({chromium}, normal, {normal, hidden_private}));
+}
+
 TEST(ElementContent, LinksImagesVideosAndPassages) {
     BrowserTab tab;
     tab.url = "https://docs.example/book/start.html";

@@ -60,6 +60,7 @@ public:
         std::vector<std::string> env = environment_with({});
         fs::path log;          // stdout and stderr; /dev/null when empty
         int stdout_fd = -1;    // instead of the log for stdout
+        int stdin_fd = -1;     // instead of /dev/null for stdin
         int inherited_fd = -1;  // kept open across exec
     };
 
@@ -121,7 +122,7 @@ private:
         const int null = ::open("/dev/null", O_RDONLY);
         const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0600);
         if (null < 0 || out < 0 || ::chdir(options.cwd.c_str()) != 0) ::_exit(126);
-        ::dup2(null, STDIN_FILENO);
+        ::dup2(options.stdin_fd >= 0 ? options.stdin_fd : null, STDIN_FILENO);
         ::dup2(options.stdout_fd >= 0 ? options.stdout_fd : out, STDOUT_FILENO);
         ::dup2(out, STDERR_FILENO);
         if (options.inherited_fd >= 0) ::fcntl(options.inherited_fd, F_SETFD, 0);

@@ -55,7 +55,7 @@ public:
     bool has_ewmh() const;
     // Client windows that are shown (mapped, not minimised, not the desktop
     // background), top-most first.
-    std::vector<WindowInfo> windows() const;
+    std::vector<WindowInfo> windows() const override;
     // The top-most shown window containing the point that the filter does
     // not skip; nullopt on the bare desktop.
     std::optional<WindowInfo> window_at(double root_x, double root_y, const WindowFilter& filter) const override;

@@ -1,0 +1,297 @@
+// The browser companion with the real Chromium: Xvfb and openbox, Debian's
+// Chromium with the extension loaded (browser/extension), the host it starts
+// (umf-browser-host, set up by `umf-provider browser install`), the
+// provider's browser link and resolver over the real X11 desktop. A local
+// page (served on 127.0.0.1) holds a link, an image, a video and a long text
+// scrolled to its middle; grabs and aims at each must give the right kind,
+// title and URL; a private window gives nothing of its own. Skipped when
+// Chromium, Xvfb, openbox or python3 are missing.
+#ifdef UMF_PROVIDER_TESTS
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "browser/browser_link.hpp"
+#include "browser/browser_resolver.hpp"
+#include "desktop/x11/x11_desktop.hpp"
+#include "support/temp_dir.hpp"
+#include "support/x11_session.hpp"
+
+namespace umf::provider {
+namespace {
+
+using json = nlohmann::json;
+using namespace umf::test;
+namespace fs = std::filesystem;
+
+// Everything on the page is placed from the viewport's bottom-left corner,
+// which is the window's (Chromium draws nothing below or beside the page;
+// openbox's frame adds a pixel or few), so screen points follow from the
+// window's rectangle alone.
+constexpr int kWindowX = 60, kWindowY = 40, kWindowW = 1000, kWindowH = 720;
+struct Spot {
+    int left, bottom, width, height;
+};
+constexpr Spot kLink{20, 470, 400, 70}, kImage{20, 260, 200, 150}, kVideo{300, 260, 240, 150}, kText{20, 100, 900, 100};
+
+std::string page_html() {
+    auto fixed = [](const Spot& s) {
+        return "position:fixed;left:" + std::to_string(s.left) + "px;bottom:" + std::to_string(s.bottom) +
+               "px;width:" + std::to_string(s.width) + "px;height:" + std::to_string(s.height) + "px;";
+    };
+    std::string html = "<!doctype html><html><head><meta charset=utf-8><title>Companion test page</title><style>"
+                       "body{margin:0;font:18px sans-serif} p{height:100px;margin:0;overflow:hidden;white-space:nowrap}"
+                       "</style></head><body>\n";
+    for (int i = 1; i <= 30; ++i)
+        html += "<p id=p" + std::to_string(i) + ">Passage number " + std::to_string(i) +
+                " begins here and goes on about the river, the hills and the slow evening light over field " +
+                std::to_string(i) + "</p>\n";
+    html += "<a id=link href=\"https://example.org/release-notes\" style=\"" + fixed(kLink) +
+            "display:block;background:#fff;font-size:40px\">Release notes</a>\n";
+    html += "<img id=image src=\"chart.png\" alt=\"A chart\" style=\"" + fixed(kImage) + "\">\n";
+    html += "<video id=video src=\"clip.webm\" style=\"" + fixed(kVideo) + "background:#000\"></video>\n";
+    // Passage 15 under kText's centre: the long text scrolled to its middle.
+    html += "<script>addEventListener('load',()=>{const p=document.getElementById('p15');"
+            "scrollTo(0,p.offsetTop+50-(innerHeight-" +
+            std::to_string(kText.bottom + kText.height / 2) + "));document.title='Companion test page';});</script>\n";
+    return html + "</body></html>\n";
+}
+
+// A solid PNG (stored, not compressed: no zlib needed to make one).
+std::string tiny_png() {
+    static const unsigned char png[] = {
+        0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+        0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xde, 0x00, 0x00, 0x00,
+        0x0c, 0x49, 0x44, 0x41, 0x54, 0x08, 0xd7, 0x63, 0xf8, 0xcf, 0xc0, 0x00, 0x00, 0x03, 0x01, 0x01, 0x00, 0x18,
+        0xdd, 0x8d, 0xb0, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+    return std::string(reinterpret_cast<const char*>(png), sizeof png);
+}
+
+class ChromiumCompanion : public ::testing::Test {
+protected:
+    static inline std::string skip_;
+    TempDir dir;
+    std::vector<std::string> env;
+    std::unique_ptr<Process> xvfb, openbox, http, chromium;
+    std::shared_ptr<const X11Desktop> desktop;
+    std::shared_ptr<BrowserLink> link = std::make_shared<BrowserLink>();
+    std::unique_ptr<BrowserResolver> resolver;
+    std::string origin;  // http://127.0.0.1:PORT
+
+    static void SetUpTestSuite() {
+        for (const char* program : {"Xvfb", "openbox", "chromium", "python3", "xdotool"})
+            if (!find_program(program)) {
+                skip_ = std::string(program) + " is not installed (scripts/install-deps.sh installs it)";
+                return;
+            }
+    }
+
+    void SetUp() override {
+        if (!skip_.empty()) GTEST_SKIP() << skip_;
+        const fs::path runtime = dir.path / "run";
+        fs::create_directories(runtime);
+        ::chmod(runtime.c_str(), 0700);
+        auto server = start_xvfb(dir.path / "xvfb.log", "1280x800x24");
+        xvfb = std::move(server.process);
+        env = environment_with({{"DISPLAY", server.display},
+                                {"HOME", dir.path.string()},
+                                {"XDG_CONFIG_HOME", (dir.path / "config").string()},
+                                {"XDG_CACHE_HOME", (dir.path / "cache").string()},
+                                {"XDG_RUNTIME_DIR", runtime.string()}});
+        desktop = std::make_shared<const X11Desktop>(server.display);
+        openbox = start_openbox(options("openbox.log"), dir.path / "openbox-ready");
+        serve_page();
+        const std::string install = run({UMF_PROVIDER_TOOL, "browser", "install", "--host", UMF_BROWSER_HOST_TOOL}, env);
+        ASSERT_NE(install.find("Chromium: " + (dir.path / "config/chromium/NativeMessagingHosts").string()),
+                  std::string::npos)
+            << install;
+        link->listen(runtime / "umf" / "browser-47990.sock");
+        WindowFilter filter;
+        filter.own_pids.insert(static_cast<int>(::getpid()));
+        BrowserResolverOptions o;
+        o.aim_timeout = std::chrono::milliseconds(300);  // a loaded test machine; the default is measured apart
+        resolver = std::make_unique<BrowserResolver>(desktop, filter, link, nullptr, o);
+    }
+
+    void TearDown() override {
+        resolver.reset();
+        chromium.reset();
+        http.reset();
+        desktop.reset();  // before the X server goes
+        openbox.reset();
+        xvfb.reset();
+    }
+
+    Process::Options options(const std::string& log) const {
+        Process::Options o;
+        o.cwd = dir.path;
+        o.env = env;
+        o.log = dir.path / log;
+        return o;
+    }
+
+    std::string log_of(const std::string& log) const {
+        std::ifstream in(dir.path / log);
+        return std::string(std::istreambuf_iterator<char>(in), {});
+    }
+
+    void serve_page() {
+        const fs::path www = dir.path / "www";
+        fs::create_directories(www);
+        std::ofstream(www / "index.html") << page_html();
+        std::ofstream(www / "chart.png", std::ios::binary) << tiny_png();
+        auto o = options("http.log");
+        o.cwd = www;
+        o.env.push_back("PYTHONUNBUFFERED=1");
+        http = std::make_unique<Process>(
+            std::vector<std::string>{"python3", "-m", "http.server", "0", "--bind", "127.0.0.1"}, o);
+        std::smatch m;
+        std::string text;
+        ASSERT_TRUE(wait_until(
+            [&] {
+                text = log_of("http.log");
+                return std::regex_search(text, m, std::regex("port ([0-9]+)"));
+            },
+            10s))
+            << text;
+        origin = "http://127.0.0.1:" + m[1].str();
+    }
+
+    void start_chromium(const std::vector<std::string>& extra) {
+        std::vector<std::string> argv = {"chromium",
+                                         "--no-first-run",
+                                         "--no-default-browser-check",
+                                         "--password-store=basic",
+                                         "--disable-gpu",
+                                         "--force-device-scale-factor=1",
+                                         "--disable-features=DisableLoadExtensionCommandLineSwitch",
+                                         "--load-extension=" + std::string(UMF_BROWSER_EXTENSION_DIR),
+                                         "--window-position=" + std::to_string(kWindowX) + "," + std::to_string(kWindowY),
+                                         "--window-size=" + std::to_string(kWindowW) + "," + std::to_string(kWindowH)};
+        if (::getuid() == 0) argv.insert(argv.begin() + 1, "--no-sandbox");
+        argv.insert(argv.end(), extra.begin(), extra.end());
+        chromium = std::make_unique<Process>(argv, options("chromium.log"));
+    }
+
+    // The browser's report of the window showing `url`, once it came.
+    std::optional<BrowserWindow> reported(const std::string& url) const {
+        for (const auto& b : link->browsers())
+            for (const auto& w : b.windows)
+                if (w.tab.url == url && w.tab.title == "Companion test page") return w;
+        return std::nullopt;
+    }
+
+    std::optional<WindowInfo> chromium_window() const {
+        for (const auto& w : desktop->windows())
+            if (w.title.rfind("Companion test page", 0) == 0) return w;
+        return std::nullopt;
+    }
+
+    ScreenPoint point_on(const WindowInfo& w, const Spot& s) const {
+        const double x = w.rect.x + s.left + s.width / 2.0;
+        const double y = w.rect.y + w.rect.height - s.bottom - s.height / 2.0;
+        return ScreenPoint{0, x, y, x, y};
+    }
+};
+
+TEST_F(ChromiumCompanion, GrabsAndAimsTakeTheLinkImageVideoAndPassageUnderThePoint) {
+    const std::string page = origin + "/index.html";
+    start_chromium({page});
+    ASSERT_TRUE(wait_until([&] { return reported(page).has_value() && chromium_window().has_value(); }, 90s))
+        << "chromium said: " << log_of("chromium.log").substr(0, 4000);
+    const WindowInfo window = *chromium_window();
+    EXPECT_EQ(window.pid, link->browsers().at(0).pid) << "the host's parent is the browser that owns the window";
+
+    struct Case {
+        const char* what;
+        Spot spot;
+        std::string title, url;
+    };
+    const std::vector<Case> cases = {
+        {"link", kLink, "Link: Release notes", "https://example.org/release-notes"},
+        {"image", kImage, "Image: chart.png", origin + "/chart.png"},
+        {"video", kVideo, "Video at 0:00", origin + "/clip.webm"},
+        {"passage", kText, "Page: Companion test page",
+         page + "#:~:text=Passage%20number%2015%20begins%20here,evening%20light%20over%20field%2015"},
+    };
+    for (const Case& c : cases) {
+        for (const Purpose purpose : {Purpose::grab, Purpose::preview}) {
+            const auto resolved = resolver->resolve(point_on(window, c.spot), purpose);
+            ASSERT_TRUE(resolved) << c.what;
+            EXPECT_EQ(resolved->kind, protocol::ContentKind::url) << c.what;
+            EXPECT_EQ(resolved->title, c.title) << c.what << (purpose == Purpose::grab ? " grab" : " aim");
+            EXPECT_EQ(resolved->url, c.url) << c.what << (purpose == Purpose::grab ? " grab" : " aim");
+        }
+    }
+    // Off the page (the browser's toolbar): the page itself.
+    const auto toolbar = resolver->resolve(ScreenPoint{0, window.rect.x + 300.0, window.rect.y + 10.0,
+                                                       window.rect.x + 300.0, window.rect.y + 10.0},
+                                           Purpose::grab);
+    ASSERT_TRUE(toolbar);
+    EXPECT_EQ(toolbar->url, page);
+    EXPECT_EQ(toolbar->title, "Page: Companion test page");
+}
+
+TEST_F(ChromiumCompanion, APrivateWindowGivesNothingOfItsOwn) {
+    const std::string page = origin + "/index.html", secret = origin + "/index.html?secret=1";
+    start_chromium({page});
+    ASSERT_TRUE(wait_until([&] { return reported(page).has_value() && chromium_window().has_value(); }, 90s))
+        << log_of("chromium.log").substr(0, 4000);
+    const WindowInfo normal = *chromium_window();
+    // A private window of the same browser, on top of the normal one.
+    // Handed to the running browser, which opens the window; this one ends.
+    std::vector<std::string> argv = {"chromium", "--incognito", secret};
+    if (::getuid() == 0) argv.insert(argv.begin() + 1, "--no-sandbox");
+    run(argv, env);
+    std::optional<WindowInfo> incognito;
+    ASSERT_TRUE(wait_until(
+        [&] {
+            for (const auto& w : desktop->windows())
+                if (w.id != normal.id && w.pid == normal.pid && w.title.find("Companion") != std::string::npos) incognito = w;
+            return incognito.has_value();
+        },
+        30s));
+    std::this_thread::sleep_for(2s);  // what the extension would report, it has reported by now
+    for (const auto& b : link->browsers())
+        for (const auto& w : b.windows) EXPECT_EQ(w.tab.url.find("secret"), std::string::npos) << w.tab.url;
+    const double cx = incognito->rect.x + incognito->rect.width / 2.0, cy = incognito->rect.y + incognito->rect.height / 2.0;
+    const auto over_private = desktop->window_at(cx, cy);
+    ASSERT_TRUE(over_private);
+    if (over_private->id == incognito->id) {
+        const auto resolved = resolver->resolve(ScreenPoint{0, cx, cy, cx, cy}, Purpose::grab);
+        EXPECT_FALSE(resolved) << "a private window gave " << resolved->url;
+    } else {
+        ADD_FAILURE() << "the private window is not on top at its centre";
+    }
+}
+
+// Not a test: the resolver's time for a browser window, which an aim waits
+// for before the phone shows the title (docs/BENCHMARKS.md). Run with
+// --gtest_also_run_disabled_tests --gtest_filter=ChromiumCompanion.DISABLED_ResolveTime
+TEST_F(ChromiumCompanion, DISABLED_ResolveTime) {
+    const std::string page = origin + "/index.html";
+    start_chromium({page});
+    ASSERT_TRUE(wait_until([&] { return reported(page).has_value() && chromium_window().has_value(); }, 90s));
+    const WindowInfo window = *chromium_window();
+    for (const auto& [what, spot] : {std::pair{"link", kLink}, std::pair{"passage", kText}}) {
+        for (const Purpose purpose : {Purpose::preview, Purpose::grab}) {
+            std::vector<double> ms;
+            for (int i = 0; i < 500; ++i) {
+                const auto t0 = Clock::now();
+                const auto resolved = resolver->resolve(point_on(window, spot), purpose);
+                ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+                ASSERT_TRUE(resolved);
+            }
+            std::sort(ms.begin(), ms.end());
+            std::printf("%-8s %-5s 500 resolves: p50 %.2f ms, p99 %.2f ms, max %.2f ms\n", what,
+                        purpose == Purpose::grab ? "grab" : "aim", ms[249], ms[494], ms.back());
+        }
+    }
+}
+
+}  // namespace
+}  // namespace umf::provider
+#endif
