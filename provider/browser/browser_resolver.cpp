@@ -34,11 +34,29 @@ BrowserResolver::BrowserResolver(std::shared_ptr<const Desktop> desktop, WindowF
     if (!desktop_ || !link_) throw std::invalid_argument("BrowserResolver: no desktop or no browser link");
 }
 
-std::optional<Resolved> BrowserResolver::resolve(const ScreenPoint& point, Purpose purpose) const {
+std::optional<BrowserMatch> BrowserResolver::browser_window_at(const ScreenPoint& point,
+                                                              const std::vector<BrowserState>& browsers,
+                                                              std::optional<WindowInfo>* desktop_window) const {
     const auto window = desktop_->window_at(point.root_x, point.root_y, filter_);
-    if (!window) return std::nullopt;
+    if (desktop_window) *desktop_window = window;
+    if (!window || browsers.empty()) return std::nullopt;
+    return match_browser_window(browsers, *window, desktop_->windows());
+}
+
+bool BrowserResolver::open_tab_at(const ScreenPoint& point, const std::string& url) const {
+    if (!is_shareable_url(url)) return false;
+    const auto match = browser_window_at(point, link_->browsers());
+    if (!match) return false;
+    const auto answer = link_->ask(match->connection, {{"type", "open_tab"}, {"window", match->window.id}, {"url", url}},
+                                   options_.open_timeout);
+    return answer && answer->value("opened", false);
+}
+
+std::optional<Resolved> BrowserResolver::resolve(const ScreenPoint& point, Purpose purpose) const {
     const auto browsers = link_->browsers();
-    const auto match = browsers.empty() ? std::nullopt : match_browser_window(browsers, *window, desktop_->windows());
+    std::optional<WindowInfo> window;
+    const auto match = browser_window_at(point, browsers, &window);
+    if (!window) return std::nullopt;
     if (!match) {
         if (purpose == Purpose::grab && browsers.empty() && hints_ && is_browser_window(*window) && !hinted_.exchange(true))
             *hints_ << "browser: a grab on " << (window->wm_class.empty() ? "a browser" : window->wm_class)

@@ -23,6 +23,7 @@ struct BrowserResolverOptions {
     // How long the page may take to say what is at the point.
     std::chrono::milliseconds grab_timeout{1000};
     std::chrono::milliseconds aim_timeout{40};
+    std::chrono::milliseconds open_timeout{3000};
 };
 
 class BrowserResolver final : public Resolver {
@@ -32,8 +33,14 @@ public:
                     std::ostream* hints = nullptr, BrowserResolverOptions options = {});
     const char* name() const override { return "browser"; }
     std::optional<Resolved> resolve(const ScreenPoint& point, Purpose purpose) const override;
+    // Opens `url` (http or https) as a new tab in the browser window at the
+    // point; false when no reported window is there or the browser did not.
+    bool open_tab_at(const ScreenPoint& point, const std::string& url) const;
 
 private:
+    std::optional<BrowserMatch> browser_window_at(const ScreenPoint& point, const std::vector<BrowserState>& browsers,
+                                                  std::optional<WindowInfo>* desktop_window = nullptr) const;
+
     std::shared_ptr<const Desktop> desktop_;
     WindowFilter filter_;
     std::shared_ptr<BrowserLink> link_;

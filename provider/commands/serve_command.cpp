@@ -252,6 +252,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     // Browsers tell what their windows show once the server knows its port;
     // only a desktop's windows are looked into.
     std::shared_ptr<BrowserLink> browser_link;
+    std::shared_ptr<BrowserResolver> browsers;
     auto shared_items = std::make_shared<SharedItems>();
     if (hooks.keeper) keep_shared_items(*shared_items, hooks.keeper->shares_file);
     QImage screen_image(width, height, QImage::Format_RGB32);
@@ -272,7 +273,8 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
                 WindowResolverOptions options;
                 options.filter.own_pids.insert(static_cast<int>(::getpid()));
                 browser_link = std::make_shared<BrowserLink>();
-                resolvers.push_back(std::make_shared<BrowserResolver>(windows, options.filter, browser_link, &std::cout));
+                browsers = std::make_shared<BrowserResolver>(windows, options.filter, browser_link, &std::cout);
+                resolvers.push_back(browsers);
                 resolvers.push_back(std::make_shared<WindowResolver>(windows, options));
                 auto snapshots = std::make_shared<SnapshotResolver>(windows, options.filter, desktop.abilities.snapshots);
                 if (overlay_manager || put_prompt) {
@@ -346,6 +348,10 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         config.public_mode = public_mode;
         config.put_decider = put_decider;
         config.puts = put_settings;
+        if (browsers)
+            config.puts.open_url_at = [browsers](const ScreenPoint& at, const std::string& url) {
+                return browsers->open_tab_at(at, url);
+            };
         if (desktop.desktop && desktop.abilities.placement)
             config.puts.watch_new_window = [d = desktop.desktop](const WindowPlacement& where) {
                 return d->watch_new_window(where);

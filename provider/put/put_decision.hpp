@@ -68,6 +68,10 @@ struct PutSettings {
     // How an opened put's window is moved to the pointed place: the
     // desktop's (Desktop::watch_new_window); empty or nullptr: not moved.
     std::function<std::unique_ptr<NewWindowWatch>(const WindowPlacement&)> watch_new_window;
+    // Opens a URL put at a point in the application shown there (a new tab
+    // in the browser window pointed at, through the browser companion); false
+    // when nothing there can, and xdg-open opens it. Empty: always xdg-open.
+    std::function<bool(const ScreenPoint&, const std::string& url)> open_url_at;
 };
 
 }  // namespace umf::provider

@@ -286,7 +286,8 @@ p::Message PutDesk::act(const Pending& pending, const PutReply& reply, Via via) 
     }
     if (url) {
         std::string problem;
-        if (!open_with_desktop(offer.url, &problem, window_watch(offer.at))) {
+        const bool in_place = offer.at && settings_.open_url_at && settings_.open_url_at(*offer.at, offer.url);
+        if (!in_place && !open_with_desktop(offer.url, &problem, window_watch(offer.at))) {
             report(offer, pending.session, PutStage::failed, problem);
             return p::Error{pending.id, p::ErrorCode::internal, problem};
         }

@@ -235,6 +235,23 @@ TEST_F(ChromiumCompanion, GrabsAndAimsTakeTheLinkImageVideoAndPassageUnderThePoi
     EXPECT_EQ(toolbar->title, "Page: Companion test page");
 }
 
+TEST_F(ChromiumCompanion, AUrlPutOnTheWindowOpensAsATabThere) {
+    const std::string page = origin + "/index.html", put = origin + "/index.html?put=1";
+    start_chromium({page});
+    ASSERT_TRUE(wait_until([&] { return reported(page).has_value() && chromium_window().has_value(); }, 90s))
+        << log_of("chromium.log").substr(0, 4000);
+    const BrowserWindow before = *reported(page);
+    const WindowInfo window = *chromium_window();
+    const ScreenPoint at = point_on(window, kText);
+    EXPECT_FALSE(resolver->open_tab_at(at, "javascript:alert(1)"));
+    EXPECT_FALSE(resolver->open_tab_at(at, "file:///etc/passwd"));
+    EXPECT_FALSE(resolver->open_tab_at(ScreenPoint{0, 1250, 780, 1250, 780}, put)) << "the bare desktop";
+    ASSERT_TRUE(resolver->open_tab_at(at, put));
+    ASSERT_TRUE(wait_until([&] { return reported(put).has_value(); }, 20s));
+    EXPECT_EQ(reported(put)->id, before.id) << "a tab in the window pointed at";
+    EXPECT_NE(reported(put)->tab.id, before.tab.id) << "a new tab";
+}
+
 TEST_F(ChromiumCompanion, APrivateWindowGivesNothingOfItsOwn) {
     const std::string page = origin + "/index.html", secret = origin + "/index.html?secret=1";
     start_chromium({page});

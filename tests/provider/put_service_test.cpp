@@ -62,9 +62,12 @@ protected:
     std::condition_variable pushed_cv;
     std::vector<std::string> pushed;  // what the session's outbox got
 
+    std::function<bool(const ScreenPoint&, const std::string&)> open_url_at;
+
     void make(std::shared_ptr<PutDecider> d, std::chrono::milliseconds timeout = std::chrono::seconds(30),
               std::int64_t max_bytes = std::int64_t{4} << 30) {
         ServiceConfig config = default_service_config();
+        config.puts.open_url_at = open_url_at;
         config.put_decider = std::move(d);
         config.puts.folder = folder;
         config.puts.answer_timeout = timeout;
@@ -154,6 +157,32 @@ TEST_F(PutService, AnAcceptedUrlOpensInTheBrowserAndIsPushedAsDone) {
     decider->answer(offer.id, {PutAnswer::dismiss, false});
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     EXPECT_EQ(push_count(), 1u);
+}
+
+TEST_F(PutService, AUrlPutOnABrowserWindowOpensThereAndNotThroughXdgOpen) {
+    std::vector<std::pair<double, std::string>> opened_in_place;
+    bool browser_there = true;
+    open_url_at = [&](const ScreenPoint& at, const std::string& url) {
+        if (!browser_there) return false;
+        opened_in_place.emplace_back(at.x, url);
+        return true;
+    };
+    make(decider);
+    welcome(state);
+    put(state, url_put());
+    decider->answer(decider->offers(1).at(0).id, {PutAnswer::save, false});
+    const auto pushed = push();
+    ASSERT_TRUE(pushed);
+    EXPECT_EQ(status(*pushed).outcome, p::PutOutcome::opened);
+    ASSERT_EQ(opened_in_place.size(), 1u);
+    EXPECT_EQ(opened_in_place[0].second, "https://example.org/talk");
+    EXPECT_TRUE(xdg.opened(1, std::chrono::milliseconds(300)).empty());
+    // No browser window there: the desktop's default opens it.
+    browser_there = false;
+    put(state, url_put());
+    decider->answer(decider->offers(2).at(1).id, {PutAnswer::save, false});
+    ASSERT_TRUE(push(1));
+    EXPECT_EQ(xdg.opened(), std::vector<std::string>{"https://example.org/talk"});
 }
 
 TEST_F(PutService, AnAcceptedFileGetsASingleUseUploadLink) {
