@@ -17,7 +17,7 @@ packages=(
   # requester/ and the camera simulator
   libopencv-dev libopencv-contrib-dev libapriltag-dev
   # web/: WebAssembly build and browser tests
-  emscripten chromium
+  emscripten chromium firefox-esr
   # headless desktop for overlay and window tests
   xvfb xauth x11-utils x11-xserver-utils xdotool openbox mupdf xterm xcompmgr picom libxext-dev
   # Wayland desktops: the client library and scanner for the layer-shell field,
