@@ -161,6 +161,44 @@ async function elementAt(question) {
   return result && result.result ? { element: result.result } : { error: "no-answer" };
 }
 
+function toBase64(bytes) {
+  let text = "";
+  for (let i = 0; i < bytes.length; i += 0x8000) text += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+  return btoa(text);
+}
+
+// An image's bytes, fetched as the page would (its cookies), never more than
+// the provider takes: a larger one is stopped as soon as it shows.
+async function imageBytes(question) {
+  if (!shareable(question.url)) return { error: "not-shareable" };
+  const tab = await api.tabs.get(question.tab);
+  if (!tab || tab.incognito) return { error: "not-shown" };
+  const max = Number(question.max_bytes) || 0;
+  const response = await fetch(question.url, { credentials: "include" });
+  if (!response.ok) return { error: "http-" + response.status };
+  if (Number(response.headers.get("content-length") || 0) > max) return { error: "too-large" };
+  const reader = response.body.getReader();
+  const chunks = [];
+  let total = 0;
+  for (;;) {
+    const { done, value } = await reader.read();
+    if (done) break;
+    total += value.length;
+    if (total > max) {
+      reader.cancel();
+      return { error: "too-large" };
+    }
+    chunks.push(value);
+  }
+  const bytes = new Uint8Array(total);
+  let at = 0;
+  for (const chunk of chunks) {
+    bytes.set(chunk, at);
+    at += chunk.length;
+  }
+  return { mime: clip(response.headers.get("content-type") || "", 100), base64: toBase64(bytes) };
+}
+
 async function openTab(question) {
   if (!shareable(question.url)) return { error: "not-shareable" };
   const w = await api.windows.get(question.window);
@@ -181,7 +219,7 @@ function onMessage(message) {
     return;
   }
   const req = message.req;
-  const handlers = { element_at: elementAt, open_tab: openTab };
+  const handlers = { element_at: elementAt, image_bytes: imageBytes, open_tab: openTab };
   const handler = handlers[message.type];
   if (!handler) return answer(req, { error: "unknown-question" });
   handler(message)

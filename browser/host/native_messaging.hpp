@@ -12,7 +12,7 @@ namespace umf::browser {
 // Most a browser takes in one message from a host (Chromium: 1 MB).
 inline constexpr std::size_t kMaxToBrowser = 1024 * 1024;
 // Most this host takes from its extension in one message.
-inline constexpr std::size_t kMaxFromBrowser = 4 * 1024 * 1024;
+inline constexpr std::size_t kMaxFromBrowser = 48 * 1024 * 1024;  // an image of 32 MiB in base64
 
 class FramingError : public std::runtime_error {
 public:

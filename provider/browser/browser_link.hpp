@@ -47,7 +47,7 @@ public:
     std::optional<nlohmann::json> ask(int connection, nlohmann::json question, std::chrono::milliseconds timeout);
 
     // Longest line taken from a host; a longer one closes its connection.
-    static constexpr std::size_t kMaxLine = 4 * 1024 * 1024;
+    static constexpr std::size_t kMaxLine = 48 * 1024 * 1024;  // an image of 32 MiB in base64
 
 private:
     struct Client;

@@ -4,7 +4,9 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "browser/base64.hpp"
 #include "browser/element_content.hpp"
+#include "content/file_facts.hpp"
 
 namespace umf::provider {
 
@@ -43,6 +45,28 @@ std::optional<BrowserMatch> BrowserResolver::browser_window_at(const ScreenPoint
     return match_browser_window(browsers, *window, desktop_->windows());
 }
 
+std::optional<Resolved> BrowserResolver::image_file(const BrowserMatch& match, const Resolved& as_url) const {
+    const auto answer = link_->ask(match.connection,
+                                   {{"type", "image_bytes"},
+                                    {"tab", match.window.tab.id},
+                                    {"url", as_url.url},
+                                    {"max_bytes", options_.max_image_bytes}},
+                                   options_.image_timeout);
+    if (!answer || !answer->contains("base64") || !(*answer)["base64"].is_string()) return std::nullopt;
+    auto bytes = base64_decode((*answer)["base64"].get_ref<const std::string&>());
+    if (!bytes || static_cast<std::int64_t>(bytes->size()) > options_.max_image_bytes) return std::nullopt;
+    Resolved file;
+    file.kind = protocol::ContentKind::file;
+    file.title = as_url.title;
+    file.name = protocol::safe_file_name(as_url.title.substr(std::string("Image: ").size()));
+    const std::string mime = answer->value("mime", std::string());
+    file.mime = mime.rfind("image/", 0) == 0 && mime.size() < 64 && mime.find_first_of("\r\n") == std::string::npos
+                    ? mime.substr(0, mime.find(';'))
+                    : mime_for(file.name);
+    file.bytes = std::make_shared<const std::string>(std::move(*bytes));
+    return file;
+}
+
 bool BrowserResolver::open_tab_at(const ScreenPoint& point, const std::string& url) const {
     if (!is_shareable_url(url)) return false;
     const auto match = browser_window_at(point, link_->browsers());
@@ -76,7 +100,12 @@ std::optional<Resolved> BrowserResolver::resolve(const ScreenPoint& point, Purpo
     const auto answer = link_->ask(match->connection, question,
                                    purpose == Purpose::grab ? options_.grab_timeout : options_.aim_timeout);
     const auto element = answer ? answer->find("element") : nlohmann::json::const_iterator();
-    return content_of_element(answer && element != answer->end() ? *element : nlohmann::json(), tab);
+    const nlohmann::json found = answer && element != answer->end() ? *element : nlohmann::json();
+    Resolved resolved = content_of_element(found, tab);
+    if (purpose == Purpose::grab && found.is_object() && found.value("kind", "") == "image" &&
+        resolved.title.rfind("Image: ", 0) == 0)
+        if (auto file = image_file(*match, resolved)) return file;
+    return resolved;
 }
 
 }  // namespace umf::provider

@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <memory>
 #include <ostream>
 
@@ -24,6 +25,10 @@ struct BrowserResolverOptions {
     std::chrono::milliseconds grab_timeout{1000};
     std::chrono::milliseconds aim_timeout{40};
     std::chrono::milliseconds open_timeout{3000};
+    // An image's bytes, fetched by the browser with the page's cookies; a
+    // larger one, or one not fetched in time, is given as its URL.
+    std::chrono::milliseconds image_timeout{10'000};
+    std::int64_t max_image_bytes = 32 * 1024 * 1024;
 };
 
 class BrowserResolver final : public Resolver {
@@ -38,6 +43,9 @@ public:
     bool open_tab_at(const ScreenPoint& point, const std::string& url) const;
 
 private:
+    // The image `as_url` names, as a file of its bytes; nullopt when the
+    // browser cannot give them.
+    std::optional<Resolved> image_file(const BrowserMatch& match, const Resolved& as_url) const;
     std::optional<BrowserMatch> browser_window_at(const ScreenPoint& point, const std::vector<BrowserState>& browsers,
                                                   std::optional<WindowInfo>* desktop_window = nullptr) const;
 

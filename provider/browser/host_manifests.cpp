@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "browser/base64.hpp"
 #include "content/sha256.hpp"
 
 namespace umf::provider {
@@ -21,28 +22,6 @@ std::string manifest_text(const fs::path& host, bool firefox) {
     else
         j["allowed_origins"] = {std::string("chrome-extension://") + kChromiumExtensionId + "/"};
     return j.dump(2) + "\n";
-}
-
-std::string base64_decode(const std::string& in) {
-    std::string out;
-    int bits = 0, value = 0;
-    for (char c : in) {
-        int d;
-        if (c >= 'A' && c <= 'Z') d = c - 'A';
-        else if (c >= 'a' && c <= 'z') d = c - 'a' + 26;
-        else if (c >= '0' && c <= '9') d = c - '0' + 52;
-        else if (c == '+') d = 62;
-        else if (c == '/') d = 63;
-        else if (c == '=') break;
-        else throw std::invalid_argument("the key is not base64");
-        value = (value << 6) | d;
-        bits += 6;
-        if (bits >= 8) {
-            bits -= 8;
-            out += static_cast<char>((value >> bits) & 0xff);
-        }
-    }
-    return out;
 }
 
 }  // namespace
@@ -70,7 +49,9 @@ std::vector<HostManifest> host_manifests(const fs::path& host, const HostManifes
 }
 
 std::string chromium_extension_id(const std::string& key_base64) {
-    const std::string der = base64_decode(key_base64);
+    const auto decoded = base64_decode(key_base64);
+    if (!decoded) throw std::invalid_argument("the key is not base64");
+    const std::string& der = *decoded;
     Sha256 sha;
     sha.update(der.data(), der.size());
     const std::string hex = sha.hex();

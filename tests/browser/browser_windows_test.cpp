@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "browser/base64.hpp"
 #include "browser/browser_windows.hpp"
 #include "browser/element_content.hpp"
 #include "browser/host_manifests.hpp"
@@ -158,6 +159,15 @@ TEST(ElementContent, LinksImagesVideosAndPassages) {
     tab.url = "https://app.example/#/inbox";
     r = content_of_element(json{{"kind", "text"}, {"start", "Hello"}, {"page", "javascript:x"}}, tab);
     EXPECT_EQ(r.url, "https://app.example/#/inbox:~:text=Hello");
+}
+
+TEST(Base64, DecodesWhatBrowsersEncodeAndRefusesTheRest) {
+    EXPECT_EQ(base64_decode(""), "");
+    EXPECT_EQ(base64_decode("aGk="), "hi");
+    EXPECT_EQ(base64_decode("aGk"), "hi");
+    EXPECT_EQ(base64_decode("AP8A/w=="), std::string("\0\xff\0\xff", 4));
+    EXPECT_EQ(base64_decode("+/+/"), std::string("\xfb\xff\xbf", 3));
+    for (const char* bad : {"aG k=", "aGk=a", "a===", "aGk-", "\n"}) EXPECT_FALSE(base64_decode(bad)) << bad;
 }
 
 TEST(HostManifests, EveryBrowserGetsItsOwnPlaceAndOnlyTheExtension) {

@@ -262,7 +262,7 @@ TEST_P(BrowserCompanion, GrabsAndAimsTakeTheLinkImageVideoAndPassageUnderThePoin
     };
     const std::vector<Case> cases = {
         {"link", kLink, "Link: Release notes", "https://example.org/release-notes"},
-        {"image", kImage, "Image: chart.png", origin + "/chart.png"},
+        {"image", kImage, "Image: chart.png", origin + "/chart.png"},  // an aim; a grab brings the bytes
         {"video", kVideo, "Video at 0:00", origin + "/clip.webm"},
         {"passage", kText, "Page: Companion test page",
          page + "#:~:text=Passage%20number%2015%20begins%20here,evening%20light%20over%20field%2015"},
@@ -271,6 +271,15 @@ TEST_P(BrowserCompanion, GrabsAndAimsTakeTheLinkImageVideoAndPassageUnderThePoin
         for (const Purpose purpose : {Purpose::grab, Purpose::preview}) {
             const auto resolved = resolver->resolve(point_on(window, c.spot), purpose);
             ASSERT_TRUE(resolved) << c.what;
+            if (purpose == Purpose::grab && c.spot.left == kImage.left && c.spot.bottom == kImage.bottom) {
+                EXPECT_EQ(resolved->kind, protocol::ContentKind::file);
+                EXPECT_EQ(resolved->title, "Image: chart.png");
+                EXPECT_EQ(resolved->name, "chart.png");
+                EXPECT_EQ(resolved->mime, "image/png");
+                ASSERT_TRUE(resolved->bytes);
+                EXPECT_EQ(*resolved->bytes, tiny_png()) << "the image's own bytes";
+                continue;
+            }
             EXPECT_EQ(resolved->kind, protocol::ContentKind::url) << c.what;
             EXPECT_EQ(resolved->title, c.title) << c.what << (purpose == Purpose::grab ? " grab" : " aim");
             EXPECT_EQ(resolved->url, c.url) << c.what << (purpose == Purpose::grab ? " grab" : " aim");
