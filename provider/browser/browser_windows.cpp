@@ -18,6 +18,7 @@ using json = nlohmann::json;
 constexpr std::size_t kMaxWindows = 256;
 // Bounds a desktop reports include its frame; the browser's may not.
 constexpr double kMinOverlap = 0.8;
+constexpr std::size_t kLongTitleBytes = 64;
 
 std::string text_of(const json& object, const char* key) {
     const auto it = object.find(key);
@@ -67,6 +68,25 @@ double overlap(const WindowRect& a, const WindowRect& b) {
     return either > 0 ? static_cast<double>(both) / static_cast<double>(either) : 0.0;
 }
 
+// The desktop's title begins with the tab's ("Page - Chromium"), or, for a
+// long one that browsers cut short their own way ("Page of 300 charact… —
+// Mozilla Firefox"), with its first 64 bytes.
+bool titles_agree(const BrowserWindow& w, const WindowInfo& window) {
+    const std::string& tab = w.tab.title;
+    if (tab.empty() || window.title.empty()) return true;
+    const std::size_t n = std::min(tab.size(), window.title.size());
+    const std::size_t same = static_cast<std::size_t>(
+        std::mismatch(tab.begin(), tab.begin() + static_cast<std::ptrdiff_t>(n), window.title.begin()).first - tab.begin());
+    return same >= std::min<std::size_t>(tab.size(), kLongTitleBytes);
+}
+
+// Whether a desktop window could be the reported one.
+bool could_be(const BrowserWindow& w, const WindowInfo& window) {
+    if (!titles_agree(w, window)) return false;
+    if (w.bounds.empty() || window.rect.empty()) return !w.tab.title.empty() && !window.title.empty();
+    return overlap(w.bounds, window.rect) >= kMinOverlap;
+}
+
 }  // namespace
 
 bool is_shareable_url(const std::string& url) {
@@ -106,21 +126,6 @@ std::vector<BrowserWindow> parse_browser_windows(const json& message) {
     return windows;
 }
 
-namespace {
-
-bool titles_agree(const BrowserWindow& w, const WindowInfo& window) {
-    return w.tab.title.empty() || window.title.empty() || window.title.compare(0, w.tab.title.size(), w.tab.title) == 0;
-}
-
-// Whether a desktop window could be the reported one.
-bool could_be(const BrowserWindow& w, const WindowInfo& window) {
-    if (!titles_agree(w, window)) return false;
-    if (w.bounds.empty() || window.rect.empty()) return !w.tab.title.empty() && !window.title.empty();
-    return overlap(w.bounds, window.rect) >= kMinOverlap;
-}
-
-}  // namespace
-
 std::optional<BrowserMatch> match_browser_window(const std::vector<BrowserState>& browsers, const WindowInfo& window,
                                                  const std::vector<WindowInfo>& others) {
     const BrowserWindow* best = nullptr;
@@ -131,7 +136,7 @@ std::optional<BrowserMatch> match_browser_window(const std::vector<BrowserState>
         if (window.pid != 0 && browser.pid != 0 && browser.pid != window.pid) continue;
         for (const BrowserWindow& w : browser.windows) {
             const bool titled = !w.tab.title.empty() && !window.title.empty();
-            const bool same_title = titled && window.title.compare(0, w.tab.title.size(), w.tab.title) == 0;
+            const bool same_title = titled && titles_agree(w, window);
             if (titled && !same_title) continue;
             if (w.bounds.empty() || window.rect.empty()) {
                 // Only the title can tell (Wayland): it must, and alone.

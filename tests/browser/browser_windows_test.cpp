@@ -90,6 +90,16 @@ TEST(BrowserWindows, DesktopWindowsMatchByProcessBoundsAndTitle) {
     x11.pid = 4242;
     x11.title = "Private page - Chromium";  // a private window where a reported one is
     EXPECT_FALSE(match_browser_window({chromium}, x11));
+    x11.title = "Page - Chromium";
+    EXPECT_FALSE(match_browser_window({chromium}, x11)) << "a shorter title is not the tab's";
+    // A long title the browser cut its own way: its first 64 bytes decide.
+    const std::string long_title = "A page whose title goes on and on " + std::string(200, 'x');
+    chromium.windows[0].tab.title = long_title;
+    x11.title = long_title.substr(0, 100) + "… — Mozilla Firefox";
+    EXPECT_TRUE(match_browser_window({chromium}, x11));
+    x11.title = long_title.substr(0, 40) + "… — Mozilla Firefox";
+    EXPECT_FALSE(match_browser_window({chromium}, x11));
+    chromium.windows[0].tab.title = "Page A";
     x11.title = "Page A - Chromium";
     x11.rect = {1000, 0, 600, 400};
     EXPECT_FALSE(match_browser_window({chromium}, x11));

@@ -63,6 +63,24 @@ std::string page_html() {
     return html + "</body></html>\n";
 }
 
+// A page that is no friend: a title of 1 MB, a javascript: and a data: link,
+// an image of 100 MB, its document rewritten every few milliseconds.
+std::string hostile_html() {
+    auto fixed = [](const Spot& s) {
+        return "position:fixed;left:" + std::to_string(s.left) + "px;bottom:" + std::to_string(s.bottom) +
+               "px;width:" + std::to_string(s.width) + "px;height:" + std::to_string(s.height) + "px;display:block;";
+    };
+    return "<!doctype html><html><head><meta charset=utf-8><title>x</title></head><body>"
+           "<a href=\"javascript:alert(1)\" style=\"" + fixed(kLink) + "\">Run me</a>"
+           "<img src=\"big.png\" style=\"" + fixed(kImage) + "\">"
+           "<a href=\"data:text/html,<h1>hi</h1>\" style=\"" + fixed(kVideo) + "\">Data</a>"
+           "<div id=churn style=\"" + fixed(kText) + "\"></div>"
+           "<script>document.title='Hostile '+'T'.repeat(1<<20);let n=0;"
+           "setInterval(()=>{const d=document.getElementById('churn');d.innerHTML='';"
+           "for(let i=0;i<50;++i){const s=document.createElement('span');s.textContent='churn '+(n++)+' ';d.appendChild(s);}},4);"
+           "</script></body></html>\n";
+}
+
 // A solid PNG (stored, not compressed: no zlib needed to make one).
 std::string tiny_png() {
     static const unsigned char png[] = {
@@ -141,6 +159,8 @@ protected:
         fs::create_directories(www);
         std::ofstream(www / "index.html") << page_html();
         std::ofstream(www / "chart.png", std::ios::binary) << tiny_png();
+        std::ofstream(www / "hostile.html") << hostile_html();
+        fs::resize_file((std::ofstream(www / "big.png"), www / "big.png"), 100ull * 1024 * 1024);  // sparse
         auto o = options("http.log");
         o.cwd = www;
         o.env.push_back("PYTHONUNBUFFERED=1");
@@ -307,6 +327,49 @@ TEST_P(BrowserCompanion, AUrlPutOnTheWindowOpensAsATabThere) {
     ASSERT_TRUE(wait_until([&] { return reported(put).has_value(); }, 20s));
     EXPECT_EQ(reported(put)->id, before.id) << "a tab in the window pointed at";
     EXPECT_NE(reported(put)->tab.id, before.tab.id) << "a new tab";
+}
+
+TEST_P(BrowserCompanion, AHostilePageGetsClearBoundedAnswers) {
+    const std::string page = origin + "/hostile.html";
+    start_browser(page);
+    std::optional<WindowInfo> window;
+    ASSERT_TRUE(wait_until(
+        [&] {
+            window = window_titled("Hostile TTTT");
+            for (const auto& b : link->browsers())
+                for (const auto& w : b.windows)
+                    if (w.tab.url == page && w.tab.title.rfind("Hostile TTTT", 0) == 0) return window.has_value();
+            return false;
+        },
+        90s))
+        << log_of("browser.log").substr(0, 4000);
+    for (const auto& b : link->browsers())
+        for (const auto& w : b.windows) EXPECT_LE(w.tab.title.size(), 512u);
+    struct Case {
+        const char* what;
+        Spot spot;
+        protocol::ContentKind kind;
+        std::string title_start, url;
+    };
+    const std::vector<Case> cases = {
+        {"javascript: link", kLink, protocol::ContentKind::url, "Page: Hostile TTTT", page},
+        {"data: link", kVideo, protocol::ContentKind::url, "Page: Hostile TTTT", page},
+        {"100 MB image", kImage, protocol::ContentKind::url, "Image: big.png", origin + "/big.png"},
+        {"churning text", kText, protocol::ContentKind::url, "Page: Hostile TTTT", page},
+    };
+    for (const Case& c : cases) {
+        const auto t0 = Clock::now();
+        const auto resolved = resolver->resolve(point_on(*window, c.spot), Purpose::grab);
+        EXPECT_LT(Clock::now() - t0, 15s) << c.what;
+        ASSERT_TRUE(resolved) << c.what;
+        EXPECT_EQ(resolved->kind, c.kind) << c.what;
+        EXPECT_EQ(resolved->title.rfind(c.title_start, 0), 0u) << c.what << ": " << resolved->title.substr(0, 80);
+        EXPECT_LE(resolved->title.size(), 520u) << c.what;
+        EXPECT_EQ(resolved->url.substr(0, c.url.size()), c.url) << c.what;
+        EXPECT_EQ(resolved->url.find("javascript:"), std::string::npos);
+        EXPECT_EQ(resolved->url.find("data:"), std::string::npos);
+    }
+    EXPECT_EQ(link->browsers().size(), 1u) << "the host is still there";
 }
 
 // A private window of the same browser over a normal one showing the same
