@@ -14,10 +14,22 @@ cleanup() {
 trap cleanup EXIT
 
 cmake --install "$build" --prefix "$prefix" >/dev/null
-for f in bin/umf-provider bin/umf-requester share/umf/web/index.html share/umf/web/app.js \
-         share/umf/web/umf-detector.wasm share/umf/web/sw.js; do
+for f in bin/umf-provider bin/umf-requester bin/umf-browser-host share/umf/web/index.html share/umf/web/app.js \
+         share/umf/web/umf-detector.wasm share/umf/web/sw.js share/umf/browser-extension/manifest.json \
+         share/umf/browser-extension/background.js; do
   [ -f "$prefix/$f" ] || { echo "FAIL: $f was not installed"; exit 1; }
 done
+
+# The browser companion's set-up names the installed host and extension.
+setup=$(HOME="$prefix/home" XDG_CONFIG_HOME= "$prefix/bin/umf-provider" browser install)
+manifest="$prefix/home/.config/chromium/NativeMessagingHosts/org.umf.browser.json"
+grep -q "\"path\": \"$prefix/bin/umf-browser-host\"" "$manifest" ||
+  { echo "FAIL: the host manifest does not name the installed host:"; cat "$manifest"; exit 1; }
+grep -q "$prefix/share/umf/browser-extension" <<<"$setup" ||
+  { echo "FAIL: browser install does not point at the installed extension:"; echo "$setup"; exit 1; }
+HOME="$prefix/home" "$prefix/bin/umf-provider" browser install --system --prefix "$prefix/root" >/dev/null
+[ -f "$prefix/root/usr/lib/mozilla/native-messaging-hosts/org.umf.browser.json" ] ||
+  { echo "FAIL: browser install --system --prefix wrote no Firefox manifest"; exit 1; }
 
 "$prefix/bin/umf-provider" --headless --port 0 --config-dir "$prefix/cfg" --no-qr --puts never \
   >"$prefix/provider.log" 2>&1 &
