@@ -15,6 +15,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <sstream>
 
 #include "browser/browser_link.hpp"
 #include "browser/browser_resolver.hpp"
@@ -461,6 +462,31 @@ TEST_P(BrowserCompanion, TheProviderGivesAPhoneWhatTheBrowserShows) {
         run({"curl", "-sk", "--max-time", "20", base + content["download"].get<std::string>()}, env, 30s);
     EXPECT_EQ(downloaded, tiny_png());
     provider.reset();
+}
+
+// Without the companion set up, a grab on a browser window gives what it
+// gave before (the snapshot resolver's picture), and the console says once
+// how to set the companion up.
+TEST_P(BrowserCompanion, WithoutTheCompanionTheConsoleSaysOnceHowToSetItUp) {
+    fs::remove_all(dir.path / "config" / "chromium" / "NativeMessagingHosts");
+    fs::remove_all(dir.path / ".mozilla" / "native-messaging-hosts");
+    std::ostringstream console;
+    WindowFilter filter;
+    filter.own_pids.insert(static_cast<int>(::getpid()));
+    const BrowserResolver without(desktop, filter, link, &console);
+    start_browser(origin + "/index.html");
+    ASSERT_TRUE(wait_until([&] { return page_window().has_value(); }, 90s)) << log_of("browser.log").substr(0, 4000);
+    const WindowInfo w = *page_window();
+    EXPECT_TRUE(link->browsers().empty());
+    const ScreenPoint centre{0, w.rect.x + w.rect.width / 2.0, w.rect.y + w.rect.height / 2.0,
+                             w.rect.x + w.rect.width / 2.0, w.rect.y + w.rect.height / 2.0};
+    EXPECT_FALSE(without.resolve(centre, Purpose::preview));
+    EXPECT_EQ(console.str(), "") << "an aim says nothing";
+    EXPECT_FALSE(without.resolve(centre, Purpose::grab));
+    EXPECT_NE(console.str().find("umf-provider browser install"), std::string::npos) << console.str();
+    const std::string once = console.str();
+    EXPECT_FALSE(without.resolve(centre, Purpose::grab));
+    EXPECT_EQ(console.str(), once) << "said once";
 }
 
 // A private window of the same browser over a normal one showing the same
