@@ -51,12 +51,7 @@ void BrowserLink::listen(std::filesystem::path path) {
     // A provider on the same port would have failed to serve; a socket file
     // here is one a provider left when it died.
     listen_fd_ = listen_owner_only(path_, nullptr);
-    if (::pipe2(wake_, O_CLOEXEC) != 0) {
-        const std::string why = std::strerror(errno);
-        ::close(listen_fd_);
-        ::unlink(path_.c_str());
-        throw std::runtime_error("cannot listen on " + path_.string() + ": " + why);
-    }
+    open_wake_pipe(wake_, listen_fd_, path_);
     thread_ = std::thread([this] { serve(); });
 }
 

@@ -10,9 +10,8 @@
 #include "browser/browser_status.hpp"
 #include "browser/host_manifests.hpp"
 #include "commands/common_options.hpp"
+#include "commands/control_client.hpp"
 #include "io/atomic_file.hpp"
-#include "put/put_text.hpp"
-#include "server/control_socket.hpp"
 
 namespace umf::provider {
 
@@ -87,27 +86,12 @@ int run_install(const cli::Args& a, std::ostream& out, std::ostream& err) {
 }
 
 int run_status(const cli::Args& a, std::ostream& out, std::ostream& err) {
-    using json = nlohmann::json;
-    std::string answer;
-    try {
-        answer = control_request(control_socket_path(port_option(a)), R"({"cmd":"browsers"})");
-    } catch (const std::exception& e) {
-        err << "umf-provider: " << e.what() << "\n";
-        return kServeError;
-    }
-    const json parsed = json::parse(answer, nullptr, false);
-    if (!parsed.is_object()) {
-        err << "umf-provider: the provider answered something else than JSON: " << printable_text(answer) << "\n";
-        return kServeError;
-    }
-    if (!parsed.value("ok", false)) {
-        err << "umf-provider: " << printable_text(parsed.value("error", std::string("the provider refused"))) << "\n";
-        return kConfigError;
-    }
+    const ControlAnswer answer = ask_running_provider(port_option(a), {{"cmd", "browsers"}}, err);
+    if (answer.exit != kOk) return answer.exit;
     if (has_flag(a, "json"))
-        out << answer << "\n";
+        out << answer.text << "\n";
     else
-        out << browser_status_text(parsed.value("browsers", json::array()));
+        out << browser_status_text(answer.json.value("browsers", nlohmann::json::array()));
     return kOk;
 }
 

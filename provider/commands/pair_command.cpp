@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands/common_options.hpp"
+#include "commands/control_client.hpp"
 #include "put/put_text.hpp"
 #include "server/control_socket.hpp"
 #include "server/pairing.hpp"
@@ -142,24 +143,11 @@ int run_puts(const cli::Args& a, std::ostream& out, std::ostream& err) {
     } else {
         request = {{"cmd", "puts"}};
     }
-    std::string answer;
-    try {
-        answer = control_request(control_socket_path(port_option(a)), request.dump());
-    } catch (const std::exception& e) {
-        err << "umf-provider: " << e.what() << "\n";
-        return kServeError;
-    }
-    const json parsed = json::parse(answer, nullptr, false);
-    if (!parsed.is_object()) {
-        err << "umf-provider: the provider answered something else than JSON: " << printable_text(answer) << "\n";
-        return kServeError;
-    }
-    if (!parsed.value("ok", false)) {
-        err << "umf-provider: " << printable_text(parsed.value("error", std::string("the provider refused"))) << "\n";
-        return kConfigError;
-    }
+    const ControlAnswer answer = ask_running_provider(port_option(a), request, err);
+    if (answer.exit != kOk) return answer.exit;
+    const json& parsed = answer.json;
     if (has_flag(a, "json")) {
-        out << answer << "\n";
+        out << answer.text << "\n";
         return kOk;
     }
     if (parsed.contains("puts") && parsed["puts"].is_array()) {

@@ -153,12 +153,7 @@ ControlSocket::ControlSocket(std::filesystem::path path, std::shared_ptr<SharedI
             return false;
         }
     });
-    if (::pipe2(wake_, O_CLOEXEC) != 0) {
-        const std::string why = std::strerror(errno);
-        ::close(listen_fd_);
-        ::unlink(path_.c_str());
-        throw std::runtime_error("cannot listen on " + path_.string() + ": " + why);
-    }
+    open_wake_pipe(wake_, listen_fd_, path_);
     thread_ = std::thread([this] { serve(); });
 }
 

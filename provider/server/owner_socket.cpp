@@ -1,5 +1,6 @@
 #include "server/owner_socket.hpp"
 
+#include <fcntl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -43,6 +44,14 @@ int listen_owner_only(const std::filesystem::path& path,
         throw std::runtime_error("cannot listen on " + path.string() + ": " + why);
     }
     return fd;
+}
+
+void open_wake_pipe(int (&wake)[2], int listen_fd, const std::filesystem::path& path) {
+    if (::pipe2(wake, O_CLOEXEC) == 0) return;
+    const std::string why = std::strerror(errno);
+    ::close(listen_fd);
+    ::unlink(path.c_str());
+    throw std::runtime_error("cannot listen on " + path.string() + ": " + why);
 }
 
 bool peer_is_this_user(int fd) {

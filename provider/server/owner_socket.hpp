@@ -20,6 +20,11 @@ sockaddr_un unix_address(const std::filesystem::path& path);
 int listen_owner_only(const std::filesystem::path& path,
                       const std::function<bool(const std::filesystem::path&)>& answers);
 
+// A pipe whose write end wakes the socket's thread when it is to stop. On
+// failure closes `listen_fd`, removes the socket file at `path` and throws
+// std::runtime_error.
+void open_wake_pipe(int (&wake)[2], int listen_fd, const std::filesystem::path& path);
+
 // Whether the process at the other end of a connected Unix socket runs as
 // this user.
 bool peer_is_this_user(int fd);

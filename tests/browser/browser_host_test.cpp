@@ -75,10 +75,7 @@ protected:
         }
     }
 
-    std::string log() const {
-        std::ifstream in(dir.path / "host.log");
-        return std::string(std::istreambuf_iterator<char>(in), {});
-    }
+    std::string log() const { return read_text(dir.path / "host.log"); }
 };
 
 TEST_F(BrowserHost, RelaysWindowsAndQuestionsAndGivesTheBrowsersPid) {

@@ -117,18 +117,8 @@ public:
         xvfb.reset();
     }
 
-    Process::Options options(const std::string& log) const {
-        Process::Options o;
-        o.cwd = dir.path;
-        o.env = env;
-        o.log = dir.path / log;
-        return o;
-    }
-
-    std::string log_of(const std::string& log) const {
-        std::ifstream in(dir.path / log);
-        return std::string(std::istreambuf_iterator<char>(in), {});
-    }
+    Process::Options options(const std::string& log) const { return logged_in(dir.path, env, log); }
+    std::string log_of(const std::string& log) const { return read_text(dir.path / log); }
 
     // mupdf sets no _NET_WM_PID: its PID can only come from the X server.
     void start_mupdf() {

@@ -133,6 +133,21 @@ private:
     pid_t pid_ = -1;
 };
 
+// A process started in `dir` with `env`, its output in dir/log.
+inline Process::Options logged_in(const fs::path& dir, const std::vector<std::string>& env, const std::string& log) {
+    Process::Options o;
+    o.cwd = dir;
+    o.env = env;
+    o.log = dir / log;
+    return o;
+}
+
+// A file's whole text ("" when it cannot be read).
+inline std::string read_text(const fs::path& file) {
+    std::ifstream in(file);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
 // Reads from `fd` until EOF, `stop_at` or the deadline.
 inline std::string read_until(int fd, Clock::time_point deadline, char stop_at = '\0') {
     std::string text;
