@@ -78,6 +78,8 @@ bool BrowserResolver::open_tab_at(const ScreenPoint& point, const std::string& u
 
 std::optional<Resolved> BrowserResolver::resolve(const ScreenPoint& point, Purpose purpose) const {
     const auto browsers = link_->browsers();
+    // Nothing to match and nothing to say: the window resolver looks the window up itself.
+    if (browsers.empty() && (purpose != Purpose::grab || !hints_ || hinted_)) return std::nullopt;
     std::optional<WindowInfo> window;
     const auto match = browser_window_at(point, browsers, &window);
     if (!window) return std::nullopt;
