@@ -92,6 +92,9 @@ std::optional<Resolved> BrowserResolver::resolve(const ScreenPoint& point, Purpo
     }
     const BrowserTab& tab = match->window.tab;
     if (tab.url.empty()) return std::nullopt;  // a browser's own page, or not http(s)
+    // A browser that cannot tell where its window is (Wayland) cannot turn a
+    // screen point into a place in the page either: the page, never a wrong link.
+    if (match->window.bounds.empty()) return content_of_element(nlohmann::json(), tab);
     // What lies at the point, from the page; the page itself when it does
     // not answer in time (an aim waits little: it only wants a title).
     const nlohmann::json question{{"type", "element_at"},

@@ -3,13 +3,18 @@
 // (a real BrowserLink on a real Unix socket here) and relays both ways.
 #ifdef UMF_PROVIDER_TESTS
 #include <gtest/gtest.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 
+#include <atomic>
 #include <cstring>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "browser/browser_link.hpp"
+#include "browser/browser_resolver.hpp"
+#include "desktop/x11/x11_desktop.hpp"
+#include "server/owner_socket.hpp"
 #include "host/native_messaging.hpp"
 #include "support/temp_dir.hpp"
 #include "support/x11_session.hpp"
@@ -174,6 +179,65 @@ TEST_F(BrowserHost, TakesNoSocketFromAFolderOthersMayEnter) {
     EXPECT_TRUE(link.browsers().empty()) << "the host connected through a folder others may enter";
     ::chmod((runtime / "umf").c_str(), 0700);
     EXPECT_TRUE(wait_until([&] { return !link.browsers().empty(); }, 10s)) << log();
+}
+
+// A browser that reports no bounds (as on Wayland) cannot place the point in
+// its page: the page is given, and the page is not even asked. The browser
+// here is the test speaking the host's protocol on the link; the window is an
+// xterm titled as the browser's would be.
+TEST_F(BrowserHost, AWindowWithoutBoundsGivesItsPageNotAGuess) {
+    for (const char* program : {"Xvfb", "xterm"})
+        if (!find_program(program)) GTEST_SKIP() << program << " is not installed";
+    auto server = start_xvfb(dir.path / "xvfb.log", "800x600x24");
+    const auto env = environment_with({{"DISPLAY", server.display}});
+    auto desktop = std::make_shared<const X11Desktop>(server.display);
+    Process::Options o = logged_in(dir.path, env, "xterm.log");
+    Process xterm({"xterm", "-T", "Fake page - Chromium", "-geometry", "80x24+10+10", "-e", "sleep", "60"}, o);
+    std::optional<WindowInfo> window;
+    ASSERT_TRUE(wait_until([&] { return (window = desktop->window_at(100, 100, {})).has_value() && window->pid > 0; }, 20s));
+    auto link = std::make_shared<BrowserLink>();
+    link->listen(runtime / "umf" / "browser-47995.sock");
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    const sockaddr_un addr = unix_address(link->path());
+    ASSERT_EQ(::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+    const std::string lines =
+        json{{"type", "hello"}, {"browser", "chromium"}, {"pid", window->pid}}.dump() + "\n" +
+        json{{"type", "windows"},
+             {"windows", {{{"id", 1}, {"tab", {{"id", 2}, {"url", "https://example.org/page"}, {"title", "Fake page"}}}}}}}
+            .dump() +
+        "\n";
+    ASSERT_EQ(::write(fd, lines.data(), lines.size()), static_cast<ssize_t>(lines.size()));
+    ASSERT_TRUE(wait_until([&] { return !link->browsers().empty() && !link->browsers()[0].windows.empty(); }, 10s));
+    // Were the page asked, it would answer with a link.
+    std::atomic<int> asked{0};
+    std::thread browser([&] {
+        std::string got;
+        char c;
+        while (::read(fd, &c, 1) == 1) {
+            if (c != '\n') {
+                got += c;
+                continue;
+            }
+            const json q = json::parse(got);
+            got.clear();
+            ++asked;
+            const std::string answer = json{{"type", "answer"}, {"req", q["req"]},
+                                            {"element", {{"kind", "link"}, {"url", "https://example.org/wrong"}}}}
+                                           .dump() +
+                                       "\n";
+            [[maybe_unused]] auto n = ::write(fd, answer.data(), answer.size());
+        }
+    });
+    const BrowserResolver resolver(desktop, {}, link);
+    const auto resolved = resolver.resolve(ScreenPoint{0, 100, 100, 100, 100}, Purpose::grab);
+    ASSERT_TRUE(resolved);
+    EXPECT_EQ(resolved->url, "https://example.org/page");
+    EXPECT_EQ(resolved->title, "Page: Fake page");
+    EXPECT_EQ(asked.load(), 0) << resolved->url << " " << resolved->title;
+    ::shutdown(fd, SHUT_RDWR);
+    browser.join();
+    ::close(fd);
+    desktop.reset();
 }
 
 }  // namespace
