@@ -74,7 +74,15 @@ inline std::string hostile_html() {
            "<img src=\"big.png\" style=\"" + fixed(kImage) + "\">"
            "<a href=\"data:text/html,<h1>hi</h1>\" style=\"" + fixed(kVideo) + "\">Data</a>"
            "<div id=churn style=\"" + fixed(kText) + "\"></div>"
+           // It also tries to reach the extension (and through it the host):
+           // were it answered, its title would say OPEN.
            "<script>document.title='Hostile '+'T'.repeat(1<<20);let n=0;"
+           "try{const r=window.chrome&&chrome.runtime;if(r&&r.sendMessage)r.sendMessage('" +
+           std::string(kChromiumExtensionId) +
+           "',{type:'open_tab',url:'https://evil.example/'},(a)=>{if(a)document.title='Hostile OPEN';});"
+           "if(r&&r.connect){const p=r.connect('" + std::string(kChromiumExtensionId) +
+           "');p.onMessage.addListener(()=>{document.title='Hostile OPEN';});p.postMessage({type:'hello'});}"
+           "}catch(e){}window.postMessage({type:'open_tab',url:'https://evil.example/'},'*');"
            "setInterval(()=>{const d=document.getElementById('churn');d.innerHTML='';"
            "for(let i=0;i<50;++i){const s=document.createElement('span');s.textContent='churn '+(n++)+' ';d.appendChild(s);}},4);"
            "</script></body></html>\n";

@@ -108,6 +108,13 @@ TEST_P(BrowserCompanion, AHostilePageGetsClearBoundedAnswers) {
         EXPECT_EQ(resolved->url.find("data:"), std::string::npos);
     }
     EXPECT_EQ(link->browsers().size(), 1u) << "the host is still there";
+    // The page's tries to reach the extension came to nothing.
+    std::this_thread::sleep_for(1s);
+    for (const auto& b : link->browsers())
+        for (const auto& w : b.windows) {
+            EXPECT_EQ(w.tab.title.rfind("Hostile TTTT", 0), 0u) << "the page was answered: " << w.tab.title.substr(0, 40);
+            EXPECT_EQ(w.tab.url.find("evil.example"), std::string::npos) << "the page opened a tab";
+        }
 }
 
 TEST_P(BrowserCompanion, WithoutTheCompanionTheConsoleSaysOnceHowToSetItUp) {
