@@ -23,6 +23,7 @@
 #include "put/put_folder.hpp"
 #include "put/put_text.hpp"
 #include "server/control_socket.hpp"
+#include "support/scoped_env.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -69,18 +70,7 @@ struct Answers {
 };
 
 // An environment variable set for one test, restored after it.
-struct ScopedEnv {
-    std::string name;
-    std::optional<std::string> before;
-    ScopedEnv(std::string n, const std::string& value) : name(std::move(n)) {
-        if (const char* v = std::getenv(name.c_str())) before = v;
-        ::setenv(name.c_str(), value.c_str(), 1);
-    }
-    ~ScopedEnv() {
-        if (before) ::setenv(name.c_str(), before->c_str(), 1);
-        else ::unsetenv(name.c_str());
-    }
-};
+using umf::test::ScopedEnv;
 
 constexpr unsigned short kPort = 47999;
 
