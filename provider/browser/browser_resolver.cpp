@@ -41,7 +41,8 @@ std::optional<BrowserMatch> BrowserResolver::browser_window_at(const ScreenPoint
                                                               std::optional<WindowInfo>* desktop_window) const {
     const auto window = desktop_->window_at(point.root_x, point.root_y, filter_);
     if (desktop_window) *desktop_window = window;
-    if (!window || browsers.empty()) return std::nullopt;
+    if (!window || browsers.empty() || !match_browser_window(browsers, *window)) return std::nullopt;
+    // Only a browser's window is worth listing the others for.
     return match_browser_window(browsers, *window, desktop_->windows());
 }
 

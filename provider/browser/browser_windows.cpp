@@ -38,17 +38,13 @@ bool is_private(const json& object) {
     return it != object.end() && (!it->is_boolean() || it->get<bool>());
 }
 
-std::string display_text(const std::string& raw) {
-    return printable_text(protocol::clip_text(raw, protocol::kMaxTitleBytes));
-}
-
 BrowserTab tab_of(const json& j) {
     if (!j.is_object()) throw std::invalid_argument("a window's \"tab\" must be an object");
     BrowserTab tab;
     if (j.contains("id") && j["id"].is_number_integer()) tab.id = j["id"].get<long>();
     const std::string url = text_of(j, "url");
     if (is_shareable_url(url)) tab.url = url;
-    tab.title = display_text(text_of(j, "title"));
+    tab.title = browser_text(text_of(j, "title"));
     if (j.contains("zoom") && j["zoom"].is_number()) {
         const double zoom = j["zoom"].get<double>();
         if (std::isfinite(zoom) && zoom > 0.05 && zoom < 20) tab.zoom = zoom;
@@ -88,6 +84,10 @@ bool could_be(const BrowserWindow& w, const WindowInfo& window) {
 }
 
 }  // namespace
+
+std::string browser_text(const std::string& raw) {
+    return printable_text(protocol::clip_text(raw, protocol::kMaxTitleBytes));
+}
 
 bool is_shareable_url(const std::string& url) {
     if (url.empty() || url.size() > protocol::kMaxUrlBytes) return false;

@@ -39,6 +39,10 @@ struct BrowserState {
     std::vector<BrowserWindow> windows;
 };
 
+// Text from a browser as the phone may show it: valid UTF-8 of at most
+// protocol::kMaxTitleBytes, control and bidirectional characters replaced.
+std::string browser_text(const std::string& raw);
+
 // Whether a URL may leave the machine: http or https, at most
 // protocol::kMaxUrlBytes, no spaces or control characters.
 bool is_shareable_url(const std::string& url);

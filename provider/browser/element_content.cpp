@@ -20,8 +20,6 @@ std::string text_of(const json& j, const char* key) {
     return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
 }
 
-std::string display(const std::string& s) { return printable_text(protocol::clip_text(s, protocol::kMaxTitleBytes)); }
-
 std::string without_fragment(const std::string& url) { return url.substr(0, url.find('#')); }
 
 // The last path segment of a URL, for an image's title.
@@ -104,19 +102,19 @@ Resolved content_of_element(const json& element, const BrowserTab& tab) {
     r.kind = protocol::ContentKind::url;
     const std::string answered_page = text_of(element, "page");
     const std::string page = is_shareable_url(answered_page) ? answered_page : tab.url;
-    const std::string page_title = display(text_of(element, "title").empty() ? tab.title : text_of(element, "title"));
+    const std::string page_title = browser_text(text_of(element, "title").empty() ? tab.title : text_of(element, "title"));
     const std::string kind = text_of(element, "kind");
     const std::string url = text_of(element, "url");
     const std::string text = text_of(element, "text");
     if (kind == "link" && is_shareable_url(url)) {
         r.url = url;
-        r.title = "Link: " + display(text.empty() ? url : text);
+        r.title = "Link: " + browser_text(text.empty() ? url : text);
         return r;
     }
     if (kind == "image" && is_shareable_url(url)) {
         r.url = url;
         const std::string name = file_name_of(url);
-        r.title = "Image: " + display(name.empty() ? (text.empty() ? url : text) : name);
+        r.title = "Image: " + browser_text(name.empty() ? (text.empty() ? url : text) : name);
         return r;
     }
     if (kind == "video" || kind == "audio") {

@@ -205,9 +205,16 @@ const char* Detector::search_all_then_subsets(const GreyView& im, const Eigen::V
     // A faint field under strong content: its own edges alone (field_edgels.hpp),
     // when that leaves out enough of the others to matter; then the edges
     // less those of thin lines (a spreadsheet's rules).
+    // The same scan with fewer edgels (its pixels are counted already).
+    auto subset = [&](std::vector<Edgel> edgels) {
+        EdgelScan fewer;
+        fewer.edgels = std::move(edgels);
+        fewer.step = scan.step;
+        fewer.noise_sigma = scan.noise_sigma;
+        return fewer;
+    };
     auto t = StageClock::now();
-    EdgelScan field_like = scan;
-    field_like.edgels = edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels));
+    const EdgelScan field_like = subset(edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels)));
     out.times.edgels_ms += ms_since(t);
     auto worth_a_search = [&](const EdgelScan& fewer) {
         return fewer.edgels.size() >= 40 && fewer.edgels.size() <= scan.edgels.size() * 17 / 20;
@@ -215,8 +222,7 @@ const char* Detector::search_all_then_subsets(const GreyView& im, const Eigen::V
     if (worth_a_search(field_like) && !search(im, aim, prior, vanishing, field_like, pass, out)) return nullptr;
     if (options_.thin_line_px <= 0) return failure;
     t = StageClock::now();
-    EdgelScan off_lines = scan;
-    off_lines.edgels = edgels_off_thin_lines(scan.edgels, options_.thin_line_px);
+    const EdgelScan off_lines = subset(edgels_off_thin_lines(scan.edgels, options_.thin_line_px));
     out.times.edgels_ms += ms_since(t);
     if (worth_a_search(off_lines) && !search(im, aim, prior, vanishing, off_lines, pass, out)) return nullptr;
     return failure;
