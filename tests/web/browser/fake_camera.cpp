@@ -5,6 +5,7 @@
 //
 //   umf_fake_camera --provider BIN --board BOARD.json --out VIDEO.y4m [options]
 //   umf_fake_camera --provider BIN --demo-board --out VIDEO.y4m [options]
+//   umf_fake_camera --provider BIN --content SCREEN.png --aim X,Y,W,H --out VIDEO.y4m [options]
 //
 // The screen is what the provider shows: `umf-provider compose` paints the
 // board with the field mixed in at several phases of the pulse, and each frame
@@ -24,6 +25,7 @@
 #include <iostream>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
@@ -52,12 +54,18 @@ const char* const kUsage = R"(umf_fake_camera: a hand-held phone filming one boa
 usage:
   umf_fake_camera --provider BIN --board BOARD.json --out VIDEO.y4m [options]
   umf_fake_camera --provider BIN --demo-board --out VIDEO.y4m [options]
+  umf_fake_camera --provider BIN --content SCREEN.png --aim X,Y,W,H --out VIDEO.y4m [options]
 
 --provider BIN    umf-provider (its compose command paints the screen)
 --board FILE      the board the provider serves (umf-board/1)
 --demo-board      instead of --board: the built-in demo board (what
                   `umf-provider serve --headless` serves without --board),
                   written into the --work folder's demo-board/
+--content FILE    instead of a board: a screenshot of a desktop, with the
+                  field mixed in as the provider's overlay shows it
+                  (`compose --content`); the screen is its size
+--aim X,Y,W,H     the screen rectangle to aim at, in screen pixels (needed
+                  with --content; with a board it replaces --tile's)
 --out FILE        the video: YUV4MPEG2, 4:2:0 (C420jpeg), what Chromium's
                   --use-file-for-fake-video-capture plays in a loop
                   (BT.601 video range, as Chromium reads it)
@@ -79,11 +87,13 @@ usage:
 
 exit codes: 0 written (the check's result is in the summary, and a failed
 check is reported on stderr); 2 usage; 3 compose or the board failed;
-4 the check failed: fewer than half the frames locked on the tile.
+4 the check failed: fewer than half the frames locked on the tile (or
+the --aim rectangle).
 )";
 
 struct Options {
-    std::string provider, board, out, still, work, preset = "kiosk";
+    std::string provider, board, content, out, still, work, preset = "kiosk";
+    std::optional<umf::provider::PixelRect> aim;
     int tile = 0, frames = 45, phases = 9;
     double fps = 30, distance_mm = 350;
     cv::Size size{640, 480}, still_size{1280, 720}, screen{1920, 1080};
@@ -102,6 +112,15 @@ cv::Size parse_size(const std::string& name, const std::string& text) {
         h > 8192)
         throw Usage("--" + name + " takes WxH, for example 640x480");
     return {w, h};
+}
+
+umf::provider::PixelRect parse_rect(const std::string& text) {
+    umf::provider::PixelRect r;
+    char c1 = 0, c2 = 0, c3 = 0;
+    if (std::sscanf(text.c_str(), "%d%c%d%c%d%c%d", &r.x, &c1, &r.y, &c2, &r.width, &c3, &r.height) != 7 ||
+        c1 != ',' || c2 != ',' || c3 != ',' || r.width < 1 || r.height < 1)
+        throw Usage("--aim takes X,Y,W,H in screen pixels, for example 100,200,400,70");
+    return r;
 }
 
 Options parse(int argc, char** argv) {
@@ -124,6 +143,8 @@ Options parse(int argc, char** argv) {
         const std::string v = argv[++i];
         if (a == "--provider") o.provider = v;
         else if (a == "--board") o.board = v;
+        else if (a == "--content") o.content = v;
+        else if (a == "--aim") o.aim = parse_rect(v);
         else if (a == "--out") o.out = v;
         else if (a == "--still") o.still = v;
         else if (a == "--work") o.work = v;
@@ -139,9 +160,11 @@ Options parse(int argc, char** argv) {
         else if (a == "--screen") o.screen = parse_size("screen", v);
         else throw Usage("unknown option " + a);
     }
-    if (!o.board.empty() && o.demo_board) throw Usage("--board or --demo-board, not both");
-    if (o.provider.empty() || (o.board.empty() && !o.demo_board))
-        throw Usage("--provider and --board (or --demo-board) are needed");
+    if (!o.board.empty() + o.demo_board + !o.content.empty() > 1)
+        throw Usage("one of --board, --demo-board and --content");
+    if (o.provider.empty() || (o.board.empty() && !o.demo_board && o.content.empty()))
+        throw Usage("--provider and --board (or --demo-board, or --content) are needed");
+    if (!o.content.empty() && !o.aim) throw Usage("--content needs --aim: where on the screen to point");
     if (o.frames > 0 && o.out.empty()) throw Usage("--out is needed (or --frames 0 and --still)");
     if (o.frames == 0 && o.still.empty()) throw Usage("--frames 0 makes only the still: --still is needed");
     if (o.size.width % 2 || o.size.height % 2) throw Usage("--size must be even in both directions (4:2:0)");
@@ -171,9 +194,11 @@ Phase compose(const Options& o, double t, int index) {
     const fs::path map = fs::path(o.work) / ("map-" + std::to_string(index) + ".json");
     char time[32];
     std::snprintf(time, sizeof time, "%.4f", t);
-    const std::string command = quoted(o.provider) + " compose --board " + quoted(o.board) + " --screen " +
-                                std::to_string(o.screen.width) + "x" + std::to_string(o.screen.height) +
-                                " --preset " + quoted(o.preset) + " --time " + time + " --out " +
+    const std::string what = o.content.empty() ? " --board " + quoted(o.board) + " --screen " +
+                                                     std::to_string(o.screen.width) + "x" +
+                                                     std::to_string(o.screen.height)
+                                               : " --content " + quoted(o.content);
+    const std::string command = quoted(o.provider) + " compose" + what + " --preset " + quoted(o.preset) + " --time " + time + " --out " +
                                 quoted(png.string()) + " --map " + quoted(map.string()) + " --config-dir " +
                                 quoted((fs::path(o.work) / "config").string());
     const fs::path log = fs::path(o.work) / "compose.log";
@@ -243,12 +268,19 @@ int main(int argc, char** argv) {
             umf::provider::write_demo_board(fs::path(o.work) / "demo-board");
             o.board = (fs::path(o.work) / "demo-board" / "board.json").string();
         }
-        const auto board = umf::provider::load_board(o.board);
-        if (o.tile < 0 || o.tile >= static_cast<int>(board.items.size()))
-            throw Usage("--tile " + std::to_string(o.tile) + ": the board has " + std::to_string(board.items.size()) +
-                        " items");
-        tile = umf::provider::layout_board(board, o.screen.width, o.screen.height)[o.tile];
-        item = board.items[o.tile];
+        if (!o.content.empty()) {
+            const cv::Mat content = cv::imread(o.content, cv::IMREAD_COLOR);
+            if (content.empty()) throw std::runtime_error("--content " + o.content + " is not an image");
+            o.screen = content.size();
+        } else {
+            const auto board = umf::provider::load_board(o.board);
+            if (o.tile < 0 || o.tile >= static_cast<int>(board.items.size()))
+                throw Usage("--tile " + std::to_string(o.tile) + ": the board has " +
+                            std::to_string(board.items.size()) + " items");
+            tile = umf::provider::layout_board(board, o.screen.width, o.screen.height)[o.tile];
+            item = board.items[o.tile];
+        }
+        if (o.aim) tile = *o.aim;
         fs::create_directories(o.work);
         // The pulse period: the built-in preset's (a static preset: one phase).
         const auto presets = umf::overlay::built_in_presets();
@@ -332,11 +364,12 @@ int main(int argc, char** argv) {
                     {"frames", o.frames},
                     {"fps", o.fps},
                     {"bytes", o.frames > 0 ? fs::file_size(o.out) : 0},
-                    {"board", o.board},
+                    {"board", o.board.empty() ? Json(nullptr) : Json(o.board)},
+                    {"content", o.content.empty() ? Json(nullptr) : Json(o.content)},
                     {"preset", o.preset},
                     {"tile", o.tile},
                     {"title", item.title},
-                    {"kind", item.file ? "file" : "url"},
+                    {"kind", !o.content.empty() ? "window" : item.file ? "file" : "url"},
                     {"tile_rect", {tile.x, tile.y, tile.width, tile.height}},
                     {"aim_screen_px", {centre.x, centre.y}},
                     {"pose", {{"distance_mm", o.distance_mm}, {"yaw_deg", base_yaw}, {"pitch_deg", base_pitch},
