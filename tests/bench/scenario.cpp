@@ -61,7 +61,8 @@ sim::Motion motion_of(Category category) {
     case Category::smeared:
     case Category::compressed:
     case Category::pixel_grid:
-    case Category::ruled: return sim::Motion::general;
+    case Category::ruled:
+    case Category::sensor: return sim::Motion::general;
     }
     return sim::Motion::general;
 }
@@ -102,6 +103,27 @@ void draw_blob(cv::Mat& mask, const Blob& b, double scale) {
     cv::circle(mask, fixed(b.root), cvRound(s * b.lobe * 1.6 * kOne), cv::Scalar(255), cv::FILLED, cv::LINE_AA, kShift);
 }
 
+// The third camera model's draws for frame i, from a stream of its own (the
+// other categories' draws stay as they were). The optics are sharp at the
+// photosite's scale (a phone lens resolves about its sensor's pitch); the
+// screen shows its RGB stripes in half the frames.
+sim::SensorPipeline sensor_pipeline(std::uint64_t seed, int frame, sim::Degradation& d) {
+    cv::RNG rng(mix_seed(seed, static_cast<std::uint64_t>(frame), 7));
+    sim::SensorPipeline p;
+    p.demosaic = static_cast<sim::Demosaic>(rng.uniform(0, 3));
+    p.scaler = static_cast<sim::Scaler>(rng.uniform(0, 3));
+    p.read_noise = rng.uniform(1.0, 3.0);
+    p.shot_noise = rng.uniform(0.15, 0.4);
+    p.sharpen = rng.uniform(0.0, 1.0);
+    p.jpeg_quality = rng.uniform(70, 93);
+    p.seed = mix_seed(seed, static_cast<std::uint64_t>(frame), 8);
+    d.defocus_sigma_px = rng.uniform(0.3, 1.0);
+    d.subpixels = rng.uniform(0.0, 1.0) < 0.5;
+    d.noise_sigma = 0;
+    d.jpeg_quality = 0;
+    return p;
+}
+
 }  // namespace
 
 const char* to_string(Category category) {
@@ -119,13 +141,15 @@ const char* to_string(Category category) {
     case Category::tiny: return "tiny";
     case Category::pixel_grid: return "pixel_grid";
     case Category::ruled: return "ruled";
+    case Category::sensor: return "sensor";
     }
     return "?";
 }
 
 bool is_plain(Category category) {
     return category != Category::occlusion && category != Category::low_light && category != Category::smeared &&
-           category != Category::compressed && category != Category::pixel_grid && category != Category::ruled;
+           category != Category::compressed && category != Category::pixel_grid && category != Category::ruled &&
+           category != Category::sensor;
 }
 
 std::optional<Category> category_from_string(const std::string& name) {
@@ -180,6 +204,7 @@ std::vector<FrameRecipe> category_recipes(const Scene& scene, Category category,
         // A screen recording or a video call's frame: low-quality JPEG.
         if (category == Category::compressed) r.degradation.jpeg_quality = quality;
         if (category == Category::pixel_grid) r.degradation.pixel_grid = true;
+        if (category == Category::sensor) r.sensor = sensor_pipeline(seed, i, r.degradation);
         out.push_back(r);
     }
     return out;
@@ -220,9 +245,23 @@ std::vector<FrameRecipe> pulsing_recipes(const Scene& scene, sim::ScreenKind kin
 double pulsing_opacity(int frame) { return sim::pulse_opacity(frame / sim::kFps, 0.1, 0.4, 1.5); }
 
 Frame shoot(const Scene& scene, const FrameRecipe& recipe, const cv::Mat& mixed_screen, cv::Size resolution) {
-    const sim::CameraModel camera{resolution, scene.hfov_deg};
     sim::Degradation degradation = recipe.degradation;
     if (recipe.smear_scales_with_width) degradation.motion_blur_px *= resolution.width / 640.0;
+    if (recipe.sensor) {
+        // A 4K-wide sensor (1920 photosites after 2 x 2 binning for 640 px).
+        sim::SensorPipeline pipeline = *recipe.sensor;
+        pipeline.scale = resolution.width >= 1920 ? 2 : 3;
+        degradation.motion_blur_px *= pipeline.scale;
+        const sim::CameraModel sensor{resolution * pipeline.scale, scene.hfov_deg};
+        sim::Shot shot = sim::photograph(mixed_screen, scene.screen, sensor, recipe.pose, degradation, scene.module_px);
+        Frame f;
+        f.centre_screen_px = shot.centre_screen_px;
+        f.centre_on_screen = shot.centre_on_screen;
+        f.module_px_in_image = shot.module_px_in_image / pipeline.scale;
+        cv::cvtColor(sim::develop(shot.bgr, pipeline), f.grey, cv::COLOR_BGR2GRAY);
+        return f;
+    }
+    const sim::CameraModel camera{resolution, scene.hfov_deg};
     sim::Shot shot = sim::photograph(mixed_screen, scene.screen, camera, recipe.pose, degradation, scene.module_px);
     Frame f;
     f.centre_screen_px = shot.centre_screen_px;

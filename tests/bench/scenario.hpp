@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "sim/camera.hpp"
+#include "sim/sensor_pipeline.hpp"
 #include "sim/screen_content.hpp"
 #include "sim/sequence.hpp"
 
@@ -23,15 +24,18 @@ namespace umf::bench {
 // The thesis's seven categories, then five that stress what a phone's
 // video adds (strong smear, far views, very far views, low-quality
 // compression, the screen's pixel grid), each with parameters of its own
-// (the held-out set's are not copied here), and `ruled`: the general
-// category's views of a spreadsheet, whose rules run with the field's lines.
+// (the held-out set's are not copied here), `ruled`: the general
+// category's views of a spreadsheet, whose rules run with the field's lines,
+// and `sensor`: the general category's views through a third camera model,
+// a sensor several times finer than the frame behind a colour filter array,
+// demosaiced and scaled down (sim/sensor_pipeline.hpp).
 enum class Category { near_far, horizontal, rotation, perspective, general, occlusion, low_light, smeared, distant,
-                      compressed, tiny, pixel_grid, ruled };
+                      compressed, tiny, pixel_grid, ruled, sensor };
 
-inline constexpr std::array<Category, 13> kAllCategories = {
+inline constexpr std::array<Category, 14> kAllCategories = {
     Category::near_far, Category::horizontal, Category::rotation, Category::perspective, Category::general,
     Category::occlusion, Category::low_light, Category::smeared, Category::distant, Category::compressed,
-    Category::tiny, Category::pixel_grid, Category::ruled};
+    Category::tiny, Category::pixel_grid, Category::ruled, Category::sensor};
 
 // Categories whose frames have no more than the everyday degradations, on the
 // everyday screens.
@@ -61,6 +65,9 @@ struct FrameRecipe {
     // The motion blur is given for a 640 px wide frame and grows with the
     // frame's width, as the same hand motion does on a finer sensor.
     bool smear_scales_with_width = false;
+    // Set: photographed at the sensor's size (`degradation` in sensor
+    // pixels, without its noise and JPEG) and developed into the frame.
+    std::optional<sim::SensorPipeline> sensor;
 };
 
 // `frames` consecutive frames at 25 fps of the category's camera motion.

@@ -59,7 +59,7 @@ Usage: umf_benchmark [options]
   --quick                10 frames, 640x480 only, a short pulsing run (explicit options win)
   --out DIR              where the reports go (default docs/benchmarks)
   --categories a,b       tuning: near_far, horizontal, rotation, perspective, general, occlusion, low_light,
-                         smeared, distant, compressed, tiny, pixel_grid, ruled;
+                         smeared, distant, compressed, tiny, pixel_grid, ruled, sensor;
                          heldout: general, rotation, perspective, near, far, motion, low_light, occlusion,
                          moire (default all)
   --resolutions WxH,...  camera resolutions (default 640x480,1280x720,1920x1080)
