@@ -50,7 +50,7 @@ usage:
   umf-provider browser status [--json] [--port P]
   umf-provider gnome install
   umf-provider kde install
-  umf-provider compose --content SCREEN.png [--board BOARD.json] --preset NAME
+  umf-provider compose (--content SCREEN.png | --board BOARD.json | both) --preset NAME
                        --time T --out OUT.png --map MAP.json [--screen WxH]
                        [preset settings, as for serve: --module-px P --blur B ...]
   umf-provider --help
@@ -107,6 +107,9 @@ compose  writes the screen exactly as shown at time T (content, the board over
 --fade S --palette #rrggbb,#rrggbb
               change the preset's settings for this run (see the tuning
               window to keep them).
+--port        serve: the port to listen on. pair, share, puts, browser status:
+              the running provider's port; without it the one provider of
+              yours that runs (name one when several run), else 47470.
 --config-dir  where the TLS identity and the pairing token are kept
               (default $XDG_CONFIG_HOME/umf, else ~/.config/umf); made on first use.
 --host        the host name or address put in the pairing URL (default: the
@@ -172,7 +175,18 @@ std::vector<std::string> names(const char* const* list) {
     return out;
 }
 
+// Without XDG_RUNTIME_DIR (a server started over ssh, a container) Qt warns
+// on every start that it falls back to /tmp/runtime-USER. The provider's
+// own sockets go to /tmp/umf-UID then (io/runtime_dir.hpp) and Qt's
+// fallback does no harm, so that one warning is left out; every other
+// message is printed as Qt would.
+void print_qt_message(QtMsgType type, const QMessageLogContext& context, const QString& message) {
+    if (message.startsWith(QLatin1String("QStandardPaths: XDG_RUNTIME_DIR not set"))) return;
+    std::cerr << qFormatLogMessage(type, context, message).toStdString() << std::endl;
+}
+
 int dispatch(int argc, char** argv) {
+    qInstallMessageHandler(print_qt_message);
     // The command word is optional: `umf-provider --board B` serves.
     std::string command = "serve";
     int first = 1;

@@ -6,6 +6,21 @@
 
 namespace umf::provider {
 
+unsigned short running_provider_port(const cli::Args& a) {
+    if (cli::get(a, "port")) return port_option(a);
+    const std::vector<unsigned short> ports = running_provider_ports();
+    if (ports.size() == 1) return ports[0];
+    if (ports.empty()) return kDefaultPort;
+    std::string list;
+    for (std::size_t i = 0; i < ports.size(); ++i)
+        list += (i == 0 ? "" : i + 1 == ports.size() ? " and " : ", ") + std::to_string(ports[i]);
+    throw cli::UsageError("providers run on ports " + list + ": say which with --port");
+}
+
+std::string with_port(const std::string& command, unsigned short port) {
+    return port == kDefaultPort ? command : command + " --port " + std::to_string(port);
+}
+
 ControlAnswer ask_running_provider(unsigned short port, const nlohmann::json& request, std::ostream& err) {
     using json = nlohmann::json;
     ControlAnswer answer;

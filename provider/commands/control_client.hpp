@@ -6,6 +6,8 @@
 #include <ostream>
 #include <string>
 
+#include "cli/args.hpp"
+
 namespace umf::provider {
 
 struct ControlAnswer {
@@ -13,6 +15,16 @@ struct ControlAnswer {
     std::string text;      // the answer as it came
     nlohmann::json json;   // parsed, when exit is kOk
 };
+
+// The port of the running provider a command talks to: --port when given;
+// else the one provider of this user that runs, when exactly one does; with
+// none running the default port (the request then says that none runs).
+// Several running: a UsageError naming their ports.
+unsigned short running_provider_port(const cli::Args& a);
+
+// A command line for the console's hints: `command` with " --port P" when
+// P is not the default port.
+std::string with_port(const std::string& command, unsigned short port);
 
 // Sends `request` to the provider on `port`. When none runs, it does not
 // answer JSON, or it refuses, says why on `err` (provider text cleaned for a

@@ -15,6 +15,7 @@
 
 #include "board/board.hpp"
 #include "commands/common_options.hpp"
+#include "commands/control_client.hpp"
 #include "commands/preset_options.hpp"
 #include "content/board_resolver.hpp"
 #include "content/image_snapshot.hpp"
@@ -412,13 +413,17 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
                   << " from " << board_source.string() << "\n";
     std::cout << (headless ? "headless: a virtual " : "screen: ") << width << "x" << height << ", preset "
               << preset.name << (public_mode ? ", public mode (board items only, no pairing needed)" : "") << "\n";
-    if (control && !public_mode) std::cout << "share with: umf-provider share FILE|URL --rect x,y,w,h\n";
+    // The hints name this provider's port when it is not the default one.
+    const unsigned short listening = server->port();
+    if (control && !public_mode)
+        std::cout << "share with: " << with_port("umf-provider share FILE|URL --rect x,y,w,h", listening) << "\n";
     if (browser_link)
         std::cout << "browsers: pointing at a browser window takes its page once the companion is set up "
-                     "(umf-provider browser install; browser status lists them)\n";
+                     "(umf-provider browser install; "
+                  << with_port("umf-provider browser status", listening) << " lists them)\n";
     std::cout << "puts: "
               << (put_decider ? puts_mode + ", files to " + put_settings.folder.string() +
-                                    (put_answers ? " (answer with: umf-provider puts)" : "")
+                                    (put_answers ? " (answer with: " + with_port("umf-provider puts", listening) + ")" : "")
                               : std::string("off"))
               << "\n";
     std::cout << "certificate fingerprint (SHA-256): " << identity.fingerprint << "\n";

@@ -28,6 +28,15 @@ struct WelcomeActivity {
     std::string peer;    // the remote address
 };
 
+// A hello turned away: a wrong pairing token, or an address that sent too
+// many of them (then once, as the refusals begin).
+struct RefusedActivity {
+    std::string client;  // as the hello said
+    std::string device;
+    std::string peer;    // the remote address
+    bool rate_limited = false;
+};
+
 struct GrabActivity {
     std::uint64_t session = 0;
     protocol::ContentKind kind = protocol::ContentKind::none;
@@ -71,6 +80,7 @@ class ActivityListener {
 public:
     virtual ~ActivityListener() = default;
     virtual void welcomed(const WelcomeActivity&) {}
+    virtual void refused(const RefusedActivity&) {}
     virtual void seeking(std::uint64_t session) = 0;
     virtual void aimed(const AimActivity& aim) = 0;
     // A grab answered with content (not with an error).

@@ -76,6 +76,16 @@ void ConsoleActivity::welcomed(const WelcomeActivity& w) {
     if (next_) next_->welcomed(w);
 }
 
+void ConsoleActivity::refused(const RefusedActivity& r) {
+    std::string who = r.client.empty() ? std::string("a requester") : "requester " + quoted(r.client);
+    if (!r.device.empty()) who += " (" + quoted(r.device) + ")";
+    if (!r.peer.empty()) who += " from " + printable(r.peer, 64);
+    line(r.rate_limited ? who + " refused: too many wrong pairing tokens from its address; refusing it for a minute"
+                        : who + " refused: its pairing token is not this provider's (pair it again: " +
+                              "scan the QR code, or umf-provider pair)");
+    if (next_) next_->refused(r);
+}
+
 void ConsoleActivity::seeking(std::uint64_t session) {
     if (next_) next_->seeking(session);
 }

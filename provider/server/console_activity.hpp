@@ -19,6 +19,7 @@ public:
     ConsoleActivity(std::ostream& out, std::shared_ptr<ActivityListener> next);
 
     void welcomed(const WelcomeActivity& welcome) override;
+    void refused(const RefusedActivity& refused) override;
     void seeking(std::uint64_t session) override;
     void aimed(const AimActivity& aim) override;
     void grabbed(const GrabActivity& grab) override;

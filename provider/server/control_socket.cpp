@@ -1,5 +1,7 @@
 #include "server/control_socket.hpp"
 
+#include <algorithm>
+
 #include <fcntl.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -97,6 +99,7 @@ std::string handle_control_request(const std::string& line, SharedItems* shared,
         if (!request.is_object() || !request.contains("cmd") || !request["cmd"].is_string())
             return error_answer("a request is an object with \"cmd\"");
         const std::string cmd = request["cmd"];
+        if (cmd == "ping") return json{{"ok", true}}.dump();  // is a provider here (running_provider_ports)
         if (cmd == "puts" || cmd == "put_answer") {
             if (!puts)
                 return error_answer("this provider does not take answers about puts here (it was started with "
@@ -147,7 +150,7 @@ ControlSocket::ControlSocket(std::filesystem::path path, std::shared_ptr<SharedI
     : path_(std::move(path)), items_(std::move(items)), puts_(std::move(puts)), browsers_(std::move(browsers)) {
     listen_fd_ = listen_owner_only(path_, [](const std::filesystem::path& p) {
         try {
-            control_request(p, R"({"cmd":"list"})");
+            control_request(p, R"({"cmd":"ping"})");
             return true;
         } catch (const std::exception&) {
             return false;
@@ -204,7 +207,8 @@ void ControlSocket::answer(int fd) {
                             ? error_answer("a request ends with a newline")
                             : handle_control_request(line.substr(0, line.find('\n')), items_.get(), puts_.get(), browsers_.get());
     reply += '\n';
-    [[maybe_unused]] auto n = ::write(fd, reply.data(), reply.size());
+    // A client gone before the answer must not end the provider with SIGPIPE.
+    [[maybe_unused]] auto n = ::send(fd, reply.data(), reply.size(), MSG_NOSIGNAL);
 }
 
 std::string control_request(const std::filesystem::path& path, const std::string& line) {
@@ -232,6 +236,23 @@ std::string control_request(const std::filesystem::path& path, const std::string
     }
     if (answer.empty()) throw std::runtime_error("the provider at " + path.string() + " did not answer");
     return answer.substr(0, answer.find('\n'));
+}
+
+std::vector<unsigned short> running_provider_ports() {
+    std::vector<unsigned short> ports;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(runtime_dir(), ec)) {
+        const auto port = provider_socket_port(entry.path().filename().string());
+        if (!port) continue;
+        try {
+            control_request(entry.path(), R"({"cmd":"ping"})");
+            ports.push_back(*port);
+        } catch (const std::exception&) {
+            // A socket file a provider left behind when it was killed.
+        }
+    }
+    std::sort(ports.begin(), ports.end());
+    return ports;
 }
 
 }  // namespace umf::provider

@@ -11,6 +11,7 @@
 //                      "size":2411724,"title":"","client":"...","device":"...","age_s":4}]}   (a URL: "url")
 //   {"cmd":"browsers"} -> {"ok":true,"browsers":[{"name":"chromium","version":"156.0","pid":4242,
 //                          "windows":[{"id":1,"bounds":[0,0,1280,800],"focused":true,"url":"https://...","title":"..."}]}]}
+//   {"cmd":"ping"} -> {"ok":true}   (whether a provider answers there)
 //   {"cmd":"put_answer","id":7,"answer":"save"|"open"|"dismiss","always":false}
 //       -> {"ok":true,"id":7,"answer":"save","name":"report.pdf"}
 //   anything wrong -> {"ok":false,"error":"what is wrong"}
@@ -21,6 +22,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "browser/browser_link.hpp"
 #include "content/shared_items.hpp"
@@ -65,5 +67,10 @@ private:
 // The client side: sends one request line, returns the answer line. Throws
 // std::runtime_error when no provider answers at `path`.
 std::string control_request(const std::filesystem::path& path, const std::string& line);
+
+// The ports of the providers of this user that answer on their control
+// sockets now (runtime_dir()'s provider-PORT.sock), in increasing order;
+// socket files no provider answers on are left out.
+std::vector<unsigned short> running_provider_ports();
 
 }  // namespace umf::provider

@@ -199,16 +199,22 @@ Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime no
         if (it != wrong_tokens_.end() && it->second.count >= kMaxWrongTokens) {
             out.replies.push_back(p::Error{hello.id, p::ErrorCode::rate_limited,
                                            "too many wrong pairing tokens from this address; wait a minute"});
+            // The console hears of the first refusal only, not of a flood.
+            if (activity_ && it->second.count++ == kMaxWrongTokens)
+                activity_->refused({hello.client, hello.device.value_or(""), state.peer, true});
             return out;
         }
     }
     if (!config_.public_mode && !token_matches(hello.token)) {
-        std::lock_guard lock(wrong_mutex_);
-        if (wrong_tokens_.size() > 4096) wrong_tokens_.clear();  // bounded, whatever the addresses
-        auto& wrong = wrong_tokens_[state.peer];
-        if (wrong.count == 0) wrong.since = now;
-        ++wrong.count;
+        {
+            std::lock_guard lock(wrong_mutex_);
+            if (wrong_tokens_.size() > 4096) wrong_tokens_.clear();  // bounded, whatever the addresses
+            auto& wrong = wrong_tokens_[state.peer];
+            if (wrong.count == 0) wrong.since = now;
+            ++wrong.count;
+        }
         out.replies.push_back(p::Error{hello.id, p::ErrorCode::unauthorized, "unknown pairing token"});
+        if (activity_) activity_->refused({hello.client, hello.device.value_or(""), state.peer, false});
         return out;
     }
     state.welcomed = true;

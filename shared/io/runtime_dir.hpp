@@ -5,6 +5,8 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
+#include <string>
 
 namespace umf {
 
@@ -15,6 +17,9 @@ std::filesystem::path control_socket_path(unsigned short port);
 
 // runtime_dir()/browser-PORT.sock: where the browser companion's host connects.
 std::filesystem::path browser_socket_path(unsigned short port);
+
+// PORT when `name` is a control socket's file name, "provider-PORT.sock".
+std::optional<unsigned short> provider_socket_port(const std::string& name);
 
 // Whether `name` is a browser link's socket file name, "browser-PORT.sock".
 bool is_browser_socket_name(const std::string& name);

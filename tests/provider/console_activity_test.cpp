@@ -45,6 +45,22 @@ TEST(ConsoleActivity, OneLineForEachWelcomeGrabAndDeparture) {
     EXPECT_EQ(next->lefts, 1);
 }
 
+TEST(ConsoleActivity, ARefusedHelloSaysWhoAndWhy) {
+    std::ostringstream out;
+    auto next = std::make_shared<Counting>();
+    ConsoleActivity console(out, next);
+    console.refused({"umf-web/0.1 (Android)", "Pixel 7", "192.168.1.5", false});
+    console.refused({"", "", "192.168.1.6", true});
+    console.refused({"\x1b[31mred", "", "", false});
+    EXPECT_EQ(out.str(),
+              "requester \"umf-web/0.1 (Android)\" (\"Pixel 7\") from 192.168.1.5 refused: its pairing token is not "
+              "this provider's (pair it again: scan the QR code, or umf-provider pair)\n"
+              "a requester from 192.168.1.6 refused: too many wrong pairing tokens from its address; refusing it for "
+              "a minute\n"
+              "requester \"?[31mred\" refused: its pairing token is not this provider's (pair it again: scan the QR "
+              "code, or umf-provider pair)\n");
+}
+
 TEST(ConsoleActivity, RequesterTextCannotDriveTheTerminal) {
     std::ostringstream out;
     ConsoleActivity console(out, nullptr);

@@ -214,6 +214,39 @@ TEST_F(ProviderContent, WrongTokensAreLimitedPerAddress) {
     EXPECT_TRUE(s.welcomed);
 }
 
+// The screen's console hears of each refused hello, and of a flood once.
+TEST_F(ProviderContent, RefusedHellosAreToldToTheActivityListenerOnceAFlood) {
+    struct Refusals : ActivityListener {
+        std::vector<RefusedActivity> seen;
+        void seeking(std::uint64_t) override {}
+        void aimed(const AimActivity&) override {}
+        void left(std::uint64_t) override {}
+        void refused(const RefusedActivity& r) override { seen.push_back(r); }
+    };
+    auto refusals = std::make_shared<Refusals>();
+    service = std::make_unique<Service>(default_service_config(1920, 1080), kToken,
+                                        std::vector<std::shared_ptr<const Resolver>>{}, nullptr, refusals);
+    p::Hello hello{std::nullopt, "wrong-token-0123456789abc", "umf-web/0.1 (Android)"};
+    hello.device = "Pixel 7";
+    for (int i = 0; i < kMaxWrongTokens + 10; ++i) {
+        SessionState s;
+        s.peer = "198.51.100.7";
+        service->handle_text(s, p::encode(hello), now);
+    }
+    ASSERT_EQ(refusals->seen.size(), static_cast<std::size_t>(kMaxWrongTokens) + 1);
+    EXPECT_EQ(refusals->seen[0].client, "umf-web/0.1 (Android)");
+    EXPECT_EQ(refusals->seen[0].device, "Pixel 7");
+    EXPECT_EQ(refusals->seen[0].peer, "198.51.100.7");
+    EXPECT_FALSE(refusals->seen[0].rate_limited);
+    EXPECT_TRUE(refusals->seen.back().rate_limited);
+    // The right token is no refusal.
+    SessionState good;
+    good.peer = "198.51.100.8";
+    service->handle_text(good, p::encode(p::Hello{std::nullopt, kToken, "x"}), now);
+    EXPECT_TRUE(good.welcomed);
+    EXPECT_EQ(refusals->seen.size(), static_cast<std::size_t>(kMaxWrongTokens) + 1);
+}
+
 TEST_F(ProviderContent, PublicModeWelcomesAnyoneToTheBoardOnly) {
     Board board;
     board.items.push_back({"Report", report, std::nullopt, std::nullopt, std::nullopt});
