@@ -43,6 +43,7 @@ PutActivity PutDesk::activity_of(const PutOffer& offer, std::uint64_t session, P
     a.name = offer.kind == p::ContentKind::url ? offer.title : offer.name;
     a.url = offer.url;
     a.size = offer.size;
+    a.client = offer.client;
     a.device = offer.device;
     return a;
 }

@@ -66,6 +66,7 @@ struct PutActivity {
     std::string name;    // a file's safe name, or a URL's title (may be empty)
     std::string url;     // kind url
     std::int64_t size = 0;
+    std::string client;  // the hello's `client`: what the phone calls itself ("Pixel 7 (umf web, Android)")
     std::string device;  // the hello's `device` (may be empty)
     std::string answer;  // accepted: "save" or "open"
     bool asked = false;    // accepted or refused: after an `asking` step (else by a trusted

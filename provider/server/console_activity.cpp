@@ -37,7 +37,9 @@ std::string put_line(const PutActivity& a) {
     std::string what = url ? "url " + (a.name.empty() ? std::string() : quoted(a.name) + " ") + "<" +
                                  printable(a.url, 200) + ">"
                            : "file " + quoted(a.name) + " (" + std::to_string(a.size) + " bytes)";
-    if (!a.device.empty()) what += " from " + quoted(a.device);
+    // The phone's own name for itself; its device id only when it gave none.
+    if (!a.client.empty()) what += " from " + quoted(a.client);
+    else if (!a.device.empty()) what += " from " + quoted(a.device);
     // The first line of a put says what it is; the later ones name it.
     const std::string first = who + " puts " + what;
     const std::string later = who + "'s put " + put_label(a);

@@ -81,7 +81,8 @@ TEST(ConsoleActivity, OneLineForEachStepOfAPut) {
     file.kind = umf::protocol::ContentKind::file;
     file.name = "report.pdf";
     file.size = 2411724;
-    file.device = "Pixel 7";
+    file.client = "Pixel 7 (umf web, Android)";
+    file.device = "umf-web-1dd5e5b3a0c4f9e2";
     file.stage = PutStage::asking;
     console.put(file);
     file.stage = PutStage::accepted;
@@ -105,7 +106,7 @@ TEST(ConsoleActivity, OneLineForEachStepOfAPut) {
     url.detail = "declined at the screen";
     console.put(url);
     EXPECT_EQ(out.str(),
-              "requester 3 puts file \"report.pdf\" (2411724 bytes) from \"Pixel 7\": asking the screen\n"
+              "requester 3 puts file \"report.pdf\" (2411724 bytes) from \"Pixel 7 (umf web, Android)\": asking the screen\n"
               "requester 3's put \"report.pdf\": accepted (open, always from now on)\n"
               "requester 3 put report.pdf (2411724 bytes) \u2192 saved as /home/ana/Downloads/report (1).pdf and "
               "opened\n"

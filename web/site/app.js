@@ -17,7 +17,6 @@ const options = {
   transport: ['ws', 'http'].includes(params.get('transport')) ? params.get('transport') : undefined,
   photo: params.get('photo') === '1',
 };
-const CLIENT = `umf-web/0.1 (${navigator.userAgentData?.platform || navigator.platform || 'web'})`;
 const STEADY_MS = 500;            // a lock this long, ...
 const STEADY_MODULES = 0.5;       // ... moving less than this, is steady (as the native requester)
 const HINT_AFTER_MS = 6000;       // searching this long: say how to help the detector
@@ -31,7 +30,7 @@ const PUT_ASKING_MS = (PUT_ASKING_S + 10) * 1000;
 const PUT_TITLE_MAX = 512;
 
 const debug = { transport: null, frames: 0, locks: 0, firstLockMs: null, lastResult: null, detectMs: null,
-                device: null, features: [], serviceWorker: null, share: null, put: null };
+                device: null, client: null, features: [], serviceWorker: null, share: null, put: null };
 window.umfDebug = debug;
 const pageStart = performance.now();
 
@@ -47,7 +46,7 @@ let lastSeekingAt = 0;
 let aimInterval = 200;
 let lock = null;          // {point, since, origin} while locked
 let searchingSince = performance.now();
-let pendingGrab = null;   // {id, timer}
+let pendingGrab = null;   // {id, timer, receiving}: from the tap on Grab to its result
 let objectUrl = null;
 let mode = 'grab';        // 'put' while aiming a chosen thing at the screen
 let putItem = null;       // what Put mode gives the screen: {kind: 'url', url, title} or
@@ -73,6 +72,7 @@ function setMode(m) {
   document.body.dataset.mode = m;
   $('grab').textContent = m === 'put' ? 'Put' : 'Grab';
   $('put-bar').hidden = m !== 'put';
+  if (m === 'put') $('target-title').textContent = '';
   if (m === 'put' && putItem) {
     $('put-bar-what').textContent = putItem.kind === 'url' ? putItem.url
       : `${putItem.name} · ${formatSize(putItem.size)}`;
@@ -91,7 +91,7 @@ const ERRORS = {
   'no-camera': ['No camera', 'No camera could be opened. If another app is using it, close that app — or take a photo instead.'],
   'insecure-context': ['Live camera not available here', 'The browser allows the live camera only on a secure (https) page. Take a photo of the screen instead.'],
   'unpaired': ['Not paired with a screen', 'Scan the QR code the screen shows (umf-provider prints it, and its tray menu shows it) to pair this phone.'],
-  'token-rejected': ['This pairing is no longer valid', 'The screen did not accept this phone\'s pairing (it may have been renewed). Scan the screen\'s QR code again.'],
+  'token-rejected': ['Not paired with this screen', 'The screen does not know this phone\'s pairing code: it belongs to another screen, or this screen made a new one. Scan the QR code the screen shows now.'],
   'unreachable': ['Cannot reach the screen', 'The screen\'s computer did not answer. Check that the phone is on the same network and that umf-provider is running, then try again.'],
   'protocol': ['Unexpected answer', 'The screen answered in a way this page does not understand. Update umf-provider or reload this page.'],
 };
@@ -118,8 +118,8 @@ function showError(code, detail) {
   $('error').dataset.code = code;
   $('error-title').textContent = title;
   $('error-text').textContent = detail ? `${text} (${detail})` : text;
-  // Only a new QR code helps an unpaired phone.
-  $('error-retry').hidden = code === 'unpaired';
+  // Only a new QR code helps an unpaired phone, or one the screen does not know.
+  $('error-retry').hidden = code === 'unpaired' || code === 'token-rejected';
   $('error').hidden = false;
   setState('error', title);
 }
@@ -150,11 +150,14 @@ function onMessage(message) {
   if (pendingPut && message.id === pendingPut.id && (message.type === 'put_status' || message.type === 'error')) {
     onPutMessage(message);
   } else if (message.type === 'target') {
-    if (document.body.dataset.state === 'locked') $('target-title').textContent = message.title || describeKind(message.kind);
+    // In Put mode what lies there is not where the put goes (the screen keeps
+    // it, or opens it there): the put bar names what is being put instead.
+    if (document.body.dataset.state === 'locked' && mode === 'grab')
+      $('target-title').textContent = message.title || describeKind(message.kind);
   } else if (message.type === 'content') {
-    if (pendingGrab && message.id === pendingGrab.id) finishGrab(message);
+    if (pendingGrab && !pendingGrab.receiving && message.id === pendingGrab.id) finishGrab(message);
   } else if (message.type === 'error') {
-    if (pendingGrab && message.id === pendingGrab.id) {
+    if (pendingGrab && !pendingGrab.receiving && message.id === pendingGrab.id) {
       clearTimeout(pendingGrab.timer);
       pendingGrab = null;
       showResult({ kind: 'none', title: message.code === 'not_found' ? 'No screen there' : 'Not taken',
@@ -181,7 +184,8 @@ function describeKind(kind) {
 
 async function connectToProvider() {
   setState('connecting', 'Connecting to the screen…');
-  const hello = { type: 'hello', v: 1, id: nextId++, token: pairing.token, client: CLIENT, device: deviceName() };
+  const hello = { type: 'hello', v: 1, id: nextId++, token: pairing.token, client: await clientName(),
+                  device: deviceName() };
   try {
     link = await connect(hello, { prefer: options.transport, onMessage, onClose });
   } catch (e) {
@@ -364,7 +368,17 @@ function grab(point = lock?.point) {
 
 async function finishGrab(content) {
   clearTimeout(pendingGrab.timer);
-  pendingGrab = null;
+  // The grab lasts until its result shows: while a file arrives no frame is
+  // looked at, Grab stays off and a second tap starts nothing.
+  pendingGrab.receiving = true;
+  try {
+    await showGrabbed(content);
+  } finally {
+    pendingGrab = null;
+  }
+}
+
+async function showGrabbed(content) {
   if (content.kind === 'url') {
     showResult({ kind: 'url', title: content.title || content.url, url: content.url });
   } else if (content.kind === 'file' || content.kind === 'snapshot') {
@@ -542,6 +556,26 @@ function onStill(r) {
 }
 
 // ---- put ---------------------------------------------------------------------------
+
+// What the screen calls this phone (its console, the put prompt's "from"):
+// the model where the browser tells it ("Pixel 7 (umf web, Android)"), else
+// the kind of device ("iPhone (umf web, iOS)", "Linux (umf web)").
+async function clientName() {
+  const ua = navigator.userAgent;
+  let model = '';
+  try {
+    model = (await navigator.userAgentData?.getHighEntropyValues?.(['model']))?.model || '';
+  } catch { /* not told: from the user agent below */ }
+  // Android user agents name the model after the version, unless reduced to "K".
+  const android = /Android [\d.]+; ([^;)]+)[;)]/.exec(ua);
+  if (!model && android && android[1].trim() !== 'K') model = android[1].trim();
+  if (!model) model = /iPad/.test(ua) ? 'iPad' : /iPhone/.test(ua) ? 'iPhone' : '';
+  const platform = navigator.userAgentData?.platform ||
+    (/Android/.test(ua) ? 'Android' : /iPhone|iPad/.test(ua) ? 'iOS' : navigator.platform || '');
+  const name = model ? `${model} (umf web${platform ? `, ${platform}` : ''})` : `${platform || 'Browser'} (umf web)`;
+  debug.client = name;
+  return name.replace(/[^\x20-\x7e]/g, '?').slice(0, 100);
+}
 
 // The name this phone gives itself in every hello, so that the person at the
 // screen can accept its puts "always": random, made once, kept. Printable

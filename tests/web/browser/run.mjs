@@ -71,7 +71,7 @@ try {
 } catch (e) {
   skip(`playwright-core is not installed in ${opts.modules} (the test web.browser.npm_install installs it): ${e.message}`);
 }
-const SCENARIOS = ['camera_file', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
+const SCENARIOS = ['camera_file', 'slow_download', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
                    'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
                    'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'share_target', 'kiosk_lock'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
@@ -470,12 +470,51 @@ const scenarios = {
     log(`states: ${await statesSeen(page)}`);
     await checkFileResult(page, expected);
     // And at the provider: the page's client name and the grab on its console.
-    check(/requester \d+ connected: umf-web\//.test(provider.output()), 'the provider saw the page connect');
+    check(/requester \d+ connected: \S.* \(umf web(, [^)]+)?\)/.test(provider.output()),
+          'the provider saw the page connect, named by its device ("... (umf web, ...)")');
     check(provider.output().includes(`took "${expected.title}" (file ${expected.name}, ${expected.size} bytes)`),
           `the provider says the file "${expected.title}" was taken`);
     const d = await reportTiming(page, loadStart);
     check(d && (d.transport === 'ws' || d.transport === 'http'), `umfDebug.transport is set (${d?.transport})`);
     check(typeof d.firstLockMs === 'number' && d.locks > 0, 'umfDebug counted a lock and its time');
+  },
+
+  // (a') The same grab over a slow link: the file's download is held for
+  // 2 s. From Grab to the result the page stays in "grabbing" with Grab
+  // disabled (no lock shown, no second grab offered), and it takes one grab.
+  async slow_download() {
+    const expected = item(0);
+    const provider = await startProvider();
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    let held = 0;
+    const route = async (r) => {
+      if (new URL(r.request().url()).pathname.startsWith('/dl/')) {
+        held += 1;
+        await new Promise((resolve) => setTimeout(resolve, 2000));
+      }
+      await r.continue();
+    };
+    const page = await openPage(browser, pageUrl(provider.pairing, {}), { route });
+    await waitForState(page, ['locked'], 45000);
+    await page.evaluate(() => {
+      window.__umfGrabEnabledWhileGrabbing = 0;
+      new MutationObserver(() => {
+        if (document.body.dataset.state === 'grabbing' && !document.getElementById('grab').disabled)
+          window.__umfGrabEnabledWhileGrabbing += 1;
+      }).observe(document, { subtree: true, attributes: true, attributeFilter: ['data-state', 'disabled'] });
+    });
+    await page.click('#grab');
+    await waitForState(page, ['result'], 30000);
+    const states = await page.evaluate(() => window.__umfStates.map(([, s]) => s));
+    log(`states: ${await statesSeen(page)}`);
+    const fromGrab = states.slice(states.lastIndexOf('locked') + 1);
+    check(held === 1, `the page downloaded once (${held} downloads)`);
+    check(fromGrab.length === 2 && fromGrab[0] === 'grabbing' && fromGrab[1] === 'result',
+          `from the tap on Grab: grabbing, then result (${fromGrab.join(' → ')})`);
+    check(await page.evaluate(() => window.__umfGrabEnabledWhileGrabbing) === 0, '#grab stayed disabled while grabbing');
+    await checkFileResult(page, expected);
+    const grabs = provider.output().split('\n').filter((l) => l.includes(`took "${expected.title}"`)).length;
+    check(grabs === 1, `the provider saw one grab (${grabs})`);
   },
 
   // (b) The film of a URL tile over the HTTPS transport.
@@ -551,6 +590,9 @@ const scenarios = {
     log(`states: ${await statesSeen(page)}; #error: ${JSON.stringify(e)}`);
     check(e && e.code === 'token-rejected', `#error[data-code=token-rejected] (${e?.code})`);
     check(e.visible && e.text.length > 0, '#error is visible and says why');
+    // Only a new QR code helps: no "Try again" that can only fail again.
+    check(/QR code/.test(e.text), `it says to scan the screen's QR code ("${e.text}")`);
+    check(await page.evaluate(() => document.getElementById('error-retry').hidden), '#error-retry is not offered');
   },
 
   // (e) Nothing listening: the page's own files come from disk (as from a
@@ -656,6 +698,21 @@ const scenarios = {
     check(h && h.code === 'detection-failing', `#hint[data-code=detection-failing] (${h?.code})`);
     check(/closer|still|light/.test(h.text), `the hint says what to do ("${h.text}")`);
     check((await stateOf(page)) === 'searching', 'the page keeps searching meanwhile');
+    // The hint covers none of the buttons (Put, History, Pairing, Grab).
+    const covered = await page.evaluate(() => {
+      const box = document.getElementById('hint').getBoundingClientRect();
+      return [...document.querySelectorAll('#toolbar button, #grab')]
+        .filter((b) => !b.hidden && getComputedStyle(b).display !== 'none')
+        .filter((b) => {
+          const r = b.getBoundingClientRect();
+          return r.left < box.right && box.left < r.right && r.top < box.bottom && box.top < r.bottom;
+        }).map((b) => b.id);
+    });
+    check(covered.length === 0, `the hint covers no button (${covered.join(', ') || 'none'})`);
+    // Words in the pairing sheet wrap between words; long fingerprints anywhere.
+    const breaks = await page.evaluate(() => ['#pairing .small', '#pairing-fingerprint', '#pairing-origin']
+      .map((q) => getComputedStyle(document.querySelector(q)).wordBreak));
+    check(breaks.every((b) => b !== 'break-all'), `no word-break: break-all in the pairing sheet (${breaks.join(', ')})`);
   },
 
   // (j) An insecure context (plain http, where browsers allow no live
