@@ -205,7 +205,7 @@ TEST_F(PutActivityTest, OpenedUrlsAndFilesSaySo) {
     const auto lines = console_lines();
     ASSERT_EQ(lines.size(), 6u);
     const std::string n = std::to_string(state.id);
-    EXPECT_EQ(lines[0], "requester " + n + " puts url \"Talk page\" <https://example.org/talk>: asking the screen");
+    EXPECT_EQ(lines[0], "requester " + n + " puts url \"Talk page\" <https://example.org/talk> from \"Pixel 7\": asking the screen");
     EXPECT_EQ(lines[2], "requester " + n + " put url <https://example.org/talk> \u2192 opened");
     EXPECT_EQ(lines[5], "requester " + n + " put deck.pdf (6 bytes) \u2192 saved as " + (folder / "deck.pdf").string() +
                             " and opened");
@@ -245,7 +245,7 @@ TEST_F(PutActivityTest, RefusalsTimeoutsDeparturesAndFailuresAreTold) {
     const auto lines = console_lines();
     const std::string n = std::to_string(state.id);
     ASSERT_GE(lines.size(), 10u);
-    EXPECT_EQ(lines[0], "requester " + n + " puts file \"report.pdf\" (101 bytes): refused (report.pdf is 101 bytes, "
+    EXPECT_EQ(lines[0], "requester " + n + " puts file \"report.pdf\" (101 bytes) from \"Pixel 7\": refused (report.pdf is 101 bytes, "
                         "more than the limit of 100)");
     EXPECT_EQ(lines[2], "requester " + n + "'s put \"Talk page\": refused (declined at the screen)");
     EXPECT_EQ(lines[4], "requester " + n + "'s put \"Talk page\": timed out (no answer within 1 s)");
@@ -337,7 +337,7 @@ TEST_F(PutActivityTest, AStandingAnswerIsToldWithoutAsking) {
     put(state, file_put("hi", "a"));
     const std::string n = std::to_string(state.id);
     EXPECT_EQ(console_lines(),
-              std::vector<std::string>{"requester " + n + " puts file \"report.pdf\" (2 bytes): accepted (save)"});
+              std::vector<std::string>{"requester " + n + " puts file \"report.pdf\" (2 bytes) from \"Pixel 7\": accepted (save)"});
     EXPECT_FALSE(recorder->steps().at(0).asked);
 }
 
