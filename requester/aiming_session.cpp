@@ -65,8 +65,8 @@ PointingOptions parse_pointing_args(const Args& a, const std::string& verb) {
     const auto url = a.get("url");
     if (!url) throw UsageError(verb + " needs --url URL, the provider's pairing URL (umf-provider pair prints it)");
     try {
-        o.url = parse_pairing_url(*url);
-    } catch (const PairingUrlError& e) {
+        o.url = protocol::parse_pairing_url(*url);
+    } catch (const protocol::PairingUrlError& e) {
         throw UsageError(std::string("--url: ") + e.what());
     }
     const int inputs = (a.get("camera") ? 1 : 0) + (a.get("video") ? 1 : 0) + (a.get("image") ? 1 : 0);

@@ -15,7 +15,7 @@
 #include "cli.hpp"
 #include "detect/detector.hpp"
 #include "frame_source.hpp"
-#include "pairing_url.hpp"
+#include "protocol/pairing_url.hpp"
 #include "preview.hpp"
 #include "protocol/messages.hpp"
 #include "provider_connection.hpp"
@@ -25,7 +25,7 @@ namespace umf::requester {
 enum class FrameInput { camera, video, image };
 
 struct PointingOptions {
-    PairingUrl url;
+    protocol::PairingUrl url;
     FrameInput input = FrameInput::camera;
     int camera_index = 0;
     std::string path;                 // the video or image file

@@ -96,7 +96,7 @@ std::string store_without_overwriting(const fs::path& temp, const fs::path& dir,
     }
 }
 
-SavedFile download_file(const PairingUrl& provider, const DownloadRequest& request, const fs::path& dir_in,
+SavedFile download_file(const protocol::PairingUrl& provider, const DownloadRequest& request, const fs::path& dir_in,
                         const NetTimeouts& timeouts) {
     std::error_code fec;
     fs::path dir = fs::absolute(dir_in, fec);

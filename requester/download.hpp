@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "pairing_url.hpp"
+#include "protocol/pairing_url.hpp"
 #include "pinned_tls.hpp"
 
 namespace umf::requester {
@@ -34,7 +34,7 @@ struct SavedFile {
 // directory or the file, "connection"/"certificate" for the network,
 // the provider's code ("not_found", "too_large", "internal") for an HTTP
 // error it explains, "download" for a short, long or corrupt transfer.
-SavedFile download_file(const PairingUrl& provider, const DownloadRequest& request, const std::filesystem::path& dir,
+SavedFile download_file(const protocol::PairingUrl& provider, const DownloadRequest& request, const std::filesystem::path& dir,
                         const NetTimeouts& timeouts = {});
 
 // Links (or renames without replacing) the finished temporary file at

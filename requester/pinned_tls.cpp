@@ -41,7 +41,7 @@ std::string fingerprint_of(X509* cert) {
 
 GrabFailure connection_failure(const std::string& message) { return {"connection", message, kConnection}; }
 
-GrabFailure certificate_failure(const PairingUrl& url, const std::string& seen) {
+GrabFailure certificate_failure(const protocol::PairingUrl& url, const std::string& seen) {
     return {"certificate",
             "the provider at " + url.authority() + " has another certificate than the pairing URL names (" +
                 (seen.empty() ? std::string("none") : seen.substr(0, 16) + "...") + " instead of " +
@@ -90,7 +90,7 @@ bool run_until(net::io_context& io, const bool& done, Clock::time_point deadline
     return false;
 }
 
-void connect_pinned(net::io_context& io, TlsStream& stream, const PairingUrl& url, const NetTimeouts& timeouts) {
+void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::PairingUrl& url, const NetTimeouts& timeouts) {
     // Resolve (a name may take a DNS round trip; an address resolves at once).
     net::ip::tcp::resolver resolver(io);
     net::ip::tcp::resolver::results_type endpoints;

@@ -16,7 +16,7 @@
 #include <functional>
 #include <string>
 
-#include "pairing_url.hpp"
+#include "protocol/pairing_url.hpp"
 
 namespace umf::requester {
 
@@ -68,7 +68,7 @@ boost::beast::error_code run_step(boost::asio::io_context& io, TlsStream& stream
 // only when its certificate's SHA-256 is url.fingerprint. Throws GrabFailure:
 // "connection" when the provider cannot be reached, "certificate" when it
 // shows another certificate (nothing has been sent to it then).
-void connect_pinned(boost::asio::io_context& io, TlsStream& stream, const PairingUrl& url,
+void connect_pinned(boost::asio::io_context& io, TlsStream& stream, const protocol::PairingUrl& url,
                     const NetTimeouts& timeouts);
 
 // "umf-requester/VERSION", what every connection says it is.
@@ -79,12 +79,12 @@ std::string user_agent();
 // throws as connect_pinned does), and the request headers every such
 // exchange sends: Host, User-Agent, Connection: close.
 struct PinnedExchange {
-    PinnedExchange(const PairingUrl& url, const NetTimeouts& timeouts)
+    PinnedExchange(const protocol::PairingUrl& url, const NetTimeouts& timeouts)
         : tls(make_pinned_client_context()), stream(io.get_executor(), tls) {
         connect_pinned(io, stream, url, timeouts);
     }
     template <class Request>
-    static void set_headers(Request& request, const PairingUrl& url) {
+    static void set_headers(Request& request, const protocol::PairingUrl& url) {
         request.set(boost::beast::http::field::host, url.authority());
         request.set(boost::beast::http::field::user_agent, user_agent());
         request.set(boost::beast::http::field::connection, "close");

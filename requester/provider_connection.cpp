@@ -38,7 +38,7 @@ std::optional<p::RequestId> reply_id(const p::Message& m) {
 
 }  // namespace
 
-ProviderConnection::ProviderConnection(PairingUrl url, NetTimeouts timeouts)
+ProviderConnection::ProviderConnection(protocol::PairingUrl url, NetTimeouts timeouts)
     : url_(std::move(url)), timeouts_(timeouts), work_(io_.get_executor()), tls_(make_pinned_client_context()) {}
 
 ProviderConnection::~ProviderConnection() {

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "pairing_url.hpp"
+#include "protocol/pairing_url.hpp"
 #include "pinned_tls.hpp"
 #include "protocol/messages.hpp"
 
@@ -25,7 +25,7 @@ namespace umf::requester {
 
 class ProviderConnection {
 public:
-    ProviderConnection(PairingUrl url, NetTimeouts timeouts = {});
+    ProviderConnection(protocol::PairingUrl url, NetTimeouts timeouts = {});
     ~ProviderConnection();
     ProviderConnection(const ProviderConnection&) = delete;
     ProviderConnection& operator=(const ProviderConnection&) = delete;
@@ -57,7 +57,7 @@ public:
     // A normal WebSocket close, waited for briefly. Never throws.
     void close();
 
-    const PairingUrl& url() const { return url_; }
+    const protocol::PairingUrl& url() const { return url_; }
 
 private:
     using Ws = boost::beast::websocket::stream<TlsStream>;
@@ -67,7 +67,7 @@ private:
     // Throws the failure that ended the session, if any.
     void check_alive() const;
 
-    PairingUrl url_;
+    protocol::PairingUrl url_;
     NetTimeouts timeouts_;
     boost::asio::io_context io_;
     boost::asio::executor_work_guard<boost::asio::io_context::executor_type> work_;

@@ -101,7 +101,7 @@ p::PutStatus interpret(const http::response<http::string_body>& answer) {
 
 }  // namespace
 
-p::PutStatus upload_file(const PairingUrl& provider, const UploadRequest& request, const UploadProgress& progress,
+p::PutStatus upload_file(const protocol::PairingUrl& provider, const UploadRequest& request, const UploadProgress& progress,
                          const NetTimeouts& timeouts) {
     if (request.size < 0) throw input_failure("a negative size cannot be uploaded");
     ReadOnlyFile file(request.file);

@@ -9,7 +9,7 @@
 #include <functional>
 #include <string>
 
-#include "pairing_url.hpp"
+#include "protocol/pairing_url.hpp"
 #include "pinned_tls.hpp"
 #include "protocol/messages.hpp"
 
@@ -29,7 +29,7 @@ using UploadProgress = std::function<void(std::int64_t sent, std::int64_t size)>
 // "connection"/"certificate" for the network, "upload" when the transfer
 // broke off or stalled, and the provider's code for an answer it explains
 // ("interrupted", "too_large", "not_found", "bad_request").
-protocol::PutStatus upload_file(const PairingUrl& provider, const UploadRequest& request,
+protocol::PutStatus upload_file(const protocol::PairingUrl& provider, const UploadRequest& request,
                                 const UploadProgress& progress = {}, const NetTimeouts& timeouts = {});
 
 }  // namespace umf::requester

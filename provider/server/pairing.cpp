@@ -1,5 +1,7 @@
 #include "server/pairing.hpp"
 
+#include "protocol/pairing_url.hpp"
+
 #include <openssl/crypto.h>
 #include <openssl/evp.h>
 #include <openssl/rand.h>
@@ -71,9 +73,7 @@ std::string load_or_create_token(const std::filesystem::path& dir, bool rotate) 
 
 std::string pairing_url(const std::string& host, unsigned short port, const std::string& token,
                         const std::string& fingerprint) {
-    const bool ipv6 = host.find(':') != std::string::npos && host.front() != '[';
-    return "https://" + (ipv6 ? "[" + host + "]" : host) + ":" + std::to_string(port) + "/#t=" + token +
-           "&fp=" + fingerprint;
+    return protocol::format_pairing_url(host, port, token, fingerprint);
 }
 
 }  // namespace umf::provider

@@ -1,23 +1,17 @@
-// The requester's pure helpers, header-only so they are tested without the
-// requester's program: the pairing URL parser, the names a download takes
-// when its own is used, and the default download directory.
-#if defined(UMF_PROVIDER_TESTS) && defined(UMF_REQUESTER_TOOL)
-
+// The pairing URL's one codec (shared/protocol/pairing_url.hpp): what the
+// provider makes, the requester reads, and what pasting does to it.
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "../../requester/download_dir.hpp"
-#include "../../requester/pairing_url.hpp"
-#include "io/unique_name.hpp"
+#include "protocol/pairing_url.hpp"
 
 namespace {
 
-using umf::io::numbered_name;
-using umf::requester::PairingUrl;
-using umf::requester::PairingUrlError;
-using umf::requester::parse_pairing_url;
-using umf::requester::parse_user_dirs_download;
+using umf::protocol::format_pairing_url;
+using umf::protocol::PairingUrl;
+using umf::protocol::PairingUrlError;
+using umf::protocol::parse_pairing_url;
 
 const std::string kToken = "3q2-7wEe9KcFzE1p0xH4aA";  // 22 characters, the shortest allowed
 const std::string kFp = "9f86d081884c7d659a2feaa0c55ad015a3bf4f1b2b0b822cd15d6c15b0f00a08";
@@ -117,62 +111,25 @@ TEST(PairingUrl, RefusesWithAMessageSayingWhat) {
 }
 
 TEST(PairingUrl, AcceptsWhatTheProviderPrints) {
-    // provider/server/pairing.cpp's pairing_url(): bracketed IPv6 and the
-    // 32-character tokens make_token() gives.
+    // The 32-character tokens the provider's make_token() gives.
     const std::string token = "abcdefghijklmnopqrstuvwxyz012345";
     EXPECT_EQ(parse_pairing_url("https://[fe80::1]:443/#t=" + token + "&fp=" + kFp).token, token);
 }
 
-TEST(RequesterUniqueName, NumbersBeforeTheExtension) {
-    EXPECT_EQ(numbered_name("report.pdf", 0), "report.pdf");
-    EXPECT_EQ(numbered_name("report.pdf", 1), "report (1).pdf");
-    EXPECT_EQ(numbered_name("report.pdf", 12), "report (12).pdf");
-    EXPECT_EQ(numbered_name("archive.tar.gz", 2), "archive.tar (2).gz");
-    EXPECT_EQ(numbered_name("README", 1), "README (1)");
-    EXPECT_EQ(numbered_name("notes.", 1), "notes. (1)");
-    // Hidden files are all stem; their own extension still counts.
-    EXPECT_EQ(numbered_name(".bashrc", 1), ".bashrc (1)");
-    EXPECT_EQ(numbered_name(".config.json", 1), ".config (1).json");
-    EXPECT_EQ(numbered_name("..", 1), ".. (1)");
-    EXPECT_EQ(numbered_name("Bericht über Öl.pdf", 3), "Bericht über Öl (3).pdf");
-}
-
-TEST(RequesterUniqueName, StaysWithinTheFileSystemsLimit) {
-    const std::string longest = std::string(251, 'a') + ".pdf";
-    const std::string n = numbered_name(longest, 7);
-    EXPECT_EQ(n.size(), 255u);
-    EXPECT_EQ(n.substr(n.size() - 8), " (7).pdf");
-    // Cut at a character boundary: "ö" is two bytes.
-    std::string umlauts;
-    while (umlauts.size() < 251) umlauts += "ö";
-    const std::string u = numbered_name(umlauts + ".txt", 1);
-    EXPECT_LE(u.size(), 255u);
-    EXPECT_EQ(u.substr(u.size() - 8), " (1).txt");
-    const std::string stem = u.substr(0, u.size() - 8);
-    EXPECT_EQ(stem.size() % 2, 0u);
-    EXPECT_EQ(stem.substr(stem.size() - 2), "ö");
-    // An extension too long to keep is treated as stem.
-    const std::string ext = "a." + std::string(253, 'x');
-    EXPECT_LE(numbered_name(ext, 1).size(), 255u);
-}
-
-TEST(RequesterDownloadDir, ReadsXdgUserDirs) {
-    EXPECT_EQ(parse_user_dirs_download("XDG_DOWNLOAD_DIR=\"$HOME/Downloads\"\n", "/home/ann"), "/home/ann/Downloads");
-    EXPECT_EQ(parse_user_dirs_download("# comment\nXDG_DESKTOP_DIR=\"$HOME/Desktop\"\n"
-                                       "XDG_DOWNLOAD_DIR=\"$HOME/Téléchargements\"\n",
-                                       "/home/ann"),
-              "/home/ann/Téléchargements");
-    EXPECT_EQ(parse_user_dirs_download("XDG_DOWNLOAD_DIR=\"/data/in\"", "/home/ann"), "/data/in");
-    EXPECT_EQ(parse_user_dirs_download("XDG_DOWNLOAD_DIR=\"$HOME/with \\\"quote\"", "/h"), "/h/with \"quote");
-    // Switched off ("$HOME/"), missing, relative or unquoted: the caller's default.
-    EXPECT_FALSE(parse_user_dirs_download("XDG_DOWNLOAD_DIR=\"$HOME/\"", "/h"));
-    EXPECT_FALSE(parse_user_dirs_download("XDG_MUSIC_DIR=\"$HOME/Music\"", "/h"));
-    EXPECT_FALSE(parse_user_dirs_download("XDG_DOWNLOAD_DIR=\"dl\"", "/h"));
-    EXPECT_FALSE(parse_user_dirs_download("XDG_DOWNLOAD_DIR=$HOME/dl", "/h"));
-    EXPECT_FALSE(parse_user_dirs_download("XDG_DOWNLOAD_DIR=\"$HOMEWORK/dl\"", "/h"));
-    EXPECT_FALSE(parse_user_dirs_download("", "/h"));
+TEST(PairingUrl, WhatIsMadeIsReadBack) {
+    const std::string token = "abcdefghijklmnopqrstuvwxyz012345";
+    for (const auto& [host, authority] : {std::pair<std::string, std::string>{"192.168.1.20", "192.168.1.20:47470"},
+                                          {"fe80::1", "[fe80::1]:47470"},
+                                          {"screen.local", "screen.local:47470"}}) {
+        const std::string url = format_pairing_url(host, 47470, token, kFp);
+        EXPECT_EQ(url, "https://" + authority + "/#t=" + token + "&fp=" + kFp);
+        const PairingUrl p = parse_pairing_url(url);
+        EXPECT_EQ(p.host, host);
+        EXPECT_EQ(p.port, 47470);
+        EXPECT_EQ(p.token, token);
+        EXPECT_EQ(p.fingerprint, kFp);
+        EXPECT_EQ(p.authority(), authority);
+    }
 }
 
 }  // namespace
-
-#endif

@@ -1,45 +1,18 @@
-// The pairing URL a provider shows as a QR code (docs/PROTOCOL.md, "Pairing"):
-//   https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT
-// Header-only and free of sockets, so the tests check the parser directly.
-// People paste these from a phone or a screenshot, so the errors say which
-// part is wrong rather than just "invalid URL".
-#pragma once
+#include "protocol/pairing_url.hpp"
 
 #include <arpa/inet.h>
 
 #include <cstddef>
-#include <optional>
-#include <stdexcept>
-#include <string>
-#include <string_view>
 
-namespace umf::requester {
+namespace umf::protocol {
+namespace {
 
-struct PairingUrlError : std::invalid_argument {
-    using std::invalid_argument::invalid_argument;
-};
 
-struct PairingUrl {
-    std::string host;          // a name, dotted IPv4, or IPv6 without brackets
-    bool host_is_ipv6 = false;
-    bool host_is_ip = false;   // IPv4 or IPv6: no SNI for these (RFC 6066)
-    unsigned short port = 443;
-    std::string token;         // base64url, 22..128 characters
-    std::string fingerprint;   // 64 lowercase hex digits
-
-    // "host:port" as an HTTP Host header and for messages: IPv6 in brackets.
-    std::string authority() const {
-        return (host_is_ipv6 ? "[" + host + "]" : host) + ":" + std::to_string(port);
-    }
-};
-
-namespace pairing_detail {
-
-inline bool is_base64url(char c) {
+bool is_base64url(char c) {
     return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_';
 }
 
-inline int hex_value(char c) {
+int hex_value(char c) {
     if (c >= '0' && c <= '9') return c - '0';
     if (c >= 'a' && c <= 'f') return c - 'a' + 10;
     if (c >= 'A' && c <= 'F') return c - 'A' + 10;
@@ -48,7 +21,7 @@ inline int hex_value(char c) {
 
 // QR generators and chat programs sometimes percent-encode the fragment
 // (":" as %3A); a malformed escape is an error, not passed through.
-inline std::string percent_decode(std::string_view s, const char* what) {
+std::string percent_decode(std::string_view s, const char* what) {
     std::string out;
     for (std::size_t i = 0; i < s.size(); ++i) {
         if (s[i] != '%') {
@@ -63,7 +36,7 @@ inline std::string percent_decode(std::string_view s, const char* what) {
     return out;
 }
 
-inline bool iequals(std::string_view a, std::string_view b) {
+bool iequals(std::string_view a, std::string_view b) {
     if (a.size() != b.size()) return false;
     for (std::size_t i = 0; i < a.size(); ++i) {
         char x = a[i], y = b[i];
@@ -75,7 +48,7 @@ inline bool iequals(std::string_view a, std::string_view b) {
 }
 
 // A DNS name (RFC 1123 labels) or a dotted IPv4 address.
-inline bool is_host_name(std::string_view h) {
+bool is_host_name(std::string_view h) {
     if (h.empty() || h.size() > 253) return false;
     std::size_t label = 0;
     char prev = '.';
@@ -94,17 +67,22 @@ inline bool is_host_name(std::string_view h) {
     return prev != '-';
 }
 
-inline bool looks_like_ipv4(std::string_view h) {
+bool looks_like_ipv4(std::string_view h) {
     for (char c : h)
         if (c != '.' && (c < '0' || c > '9')) return false;
     return !h.empty();
 }
 
-}  // namespace pairing_detail
+}  // namespace
 
-// The fingerprint as 64 lowercase hex digits: accepts upper case and the
-// colon-separated form ("AB:CD:...") that `openssl x509 -fingerprint` prints.
-inline std::optional<std::string> normalise_fingerprint(std::string_view text) {
+std::string format_pairing_url(const std::string& host, unsigned short port, const std::string& token,
+                               const std::string& fingerprint) {
+    const bool ipv6 = host.find(':') != std::string::npos && host.front() != '[';
+    return "https://" + (ipv6 ? "[" + host + "]" : host) + ":" + std::to_string(port) + "/#t=" + token +
+           "&fp=" + fingerprint;
+}
+
+std::optional<std::string> normalise_fingerprint(std::string_view text) {
     const bool colons = text.find(':') != std::string_view::npos;
     std::string hex;
     for (std::size_t i = 0; i < text.size(); ++i) {
@@ -114,7 +92,7 @@ inline std::optional<std::string> normalise_fingerprint(std::string_view text) {
             if (c != ':') return std::nullopt;
             continue;
         }
-        const int v = pairing_detail::hex_value(c);
+        const int v = hex_value(c);
         if (v < 0) return std::nullopt;
         hex += "0123456789abcdef"[v];
     }
@@ -122,9 +100,7 @@ inline std::optional<std::string> normalise_fingerprint(std::string_view text) {
     return hex;
 }
 
-// Throws PairingUrlError with what is wrong.
-inline PairingUrl parse_pairing_url(std::string_view url) {
-    using namespace pairing_detail;
+PairingUrl parse_pairing_url(std::string_view url) {
     // Pasted from a terminal or a QR app, it may carry surrounding spaces.
     while (!url.empty() && (url.front() == ' ' || url.front() == '\t' || url.front() == '\n' || url.front() == '\r'))
         url.remove_prefix(1);
@@ -236,4 +212,4 @@ inline PairingUrl parse_pairing_url(std::string_view url) {
     return out;
 }
 
-}  // namespace umf::requester
+}  // namespace umf::protocol
