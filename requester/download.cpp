@@ -18,7 +18,7 @@
 #include "grab_failure.hpp"
 #include "protocol/messages.hpp"
 #include "io/store_file.hpp"
-#include "sha256.hpp"
+#include "native/sha256.hpp"
 
 namespace umf::requester {
 
@@ -128,7 +128,7 @@ SavedFile download_file(const protocol::PairingUrl& provider, const DownloadRequ
 
     const unsigned status = parser.get().result_int();
     std::array<char, 64 * 1024> chunk{};
-    Sha256 sha;
+    native::Sha256 sha;
     std::uint64_t received = 0;
     std::string error_body;
     const auto expected = static_cast<std::uint64_t>(request.size);

@@ -1,5 +1,7 @@
 #include "pinned_tls.hpp"
 
+#include "native/certificate_fingerprint.hpp"
+
 #include <openssl/evp.h>
 #include <openssl/ssl.h>
 #include <openssl/x509.h>
@@ -29,15 +31,7 @@ struct PinCheck {
     bool mismatch = false;
 };
 
-std::string fingerprint_of(X509* cert) {
-    if (!cert) return {};
-    unsigned char* der = nullptr;
-    const int len = i2d_X509(cert, &der);
-    if (len <= 0) return {};
-    std::string fp = der_sha256_hex(der, static_cast<std::size_t>(len));
-    OPENSSL_free(der);
-    return fp;
-}
+std::string fingerprint_of(X509* cert) { return native::certificate_fingerprint(cert); }
 
 GrabFailure connection_failure(const std::string& message) { return {"connection", message, kConnection}; }
 
@@ -53,17 +47,6 @@ GrabFailure certificate_failure(const protocol::PairingUrl& url, const std::stri
 
 }  // namespace
 
-std::string der_sha256_hex(const unsigned char* der, std::size_t size) {
-    unsigned char md[EVP_MAX_MD_SIZE];
-    unsigned int md_len = 0;
-    if (EVP_Digest(der, size, md, &md_len, EVP_sha256(), nullptr) != 1) return {};
-    std::string hex;
-    for (unsigned int i = 0; i < md_len; ++i) {
-        hex += "0123456789abcdef"[md[i] >> 4];
-        hex += "0123456789abcdef"[md[i] & 15];
-    }
-    return hex;
-}
 
 ssl::context make_pinned_client_context() {
     ssl::context ctx(ssl::context::tls_client);

@@ -31,9 +31,6 @@ struct NetTimeouts {
 
 using TlsStream = boost::beast::ssl_stream<boost::beast::tcp_stream>;
 
-// SHA-256 of a certificate's DER bytes as 64 lowercase hex digits.
-std::string der_sha256_hex(const unsigned char* der, std::size_t size);
-
 // A client context with no trust store: verification is left entirely to
 // the pin that connect_pinned installs on each stream.
 boost::asio::ssl::context make_pinned_client_context();

@@ -11,7 +11,7 @@
 #include "grab_failure.hpp"
 #include "protocol/media_types.hpp"
 #include "protocol/messages.hpp"
-#include "sha256.hpp"
+#include "file_digest.hpp"
 #include "upload.hpp"
 
 namespace umf::requester {

@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "browser/base64.hpp"
-#include "content/sha256.hpp"
+#include "native/sha256.hpp"
 
 namespace umf::provider {
 
@@ -52,7 +52,7 @@ std::string chromium_extension_id(const std::string& key_base64) {
     const auto decoded = base64_decode(key_base64);
     if (!decoded) throw std::invalid_argument("the key is not base64");
     const std::string& der = *decoded;
-    Sha256 sha;
+    native::Sha256 sha;
     sha.update(der.data(), der.size());
     const std::string hex = sha.hex();
     std::string id;

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "content/sha256.hpp"
+#include "native/sha256.hpp"
 #include "protocol/media_types.hpp"
 
 namespace umf::provider {
@@ -22,7 +22,7 @@ namespace umf::provider {
 namespace {
 
 std::string hash_fd(int fd, const std::string& what) {
-    Sha256 hash;
+    native::Sha256 hash;
     std::vector<char> buffer(1 << 20);
     for (;;) {
         const ssize_t n = ::read(fd, buffer.data(), buffer.size());
@@ -39,7 +39,7 @@ std::string hash_fd(int fd, const std::string& what) {
 std::string mime_for(const std::filesystem::path& file) { return protocol::media_type_for(file.filename().string()); }
 
 std::string sha256_hex(const std::string& bytes) {
-    Sha256 hash;
+    native::Sha256 hash;
     hash.update(bytes.data(), bytes.size());
     return hash.hex();
 }

@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "content/sha256.hpp"
+#include "native/sha256.hpp"
 #include "io/store_file.hpp"
 
 namespace umf::provider {
@@ -57,7 +57,7 @@ std::optional<std::uintmax_t> free_bytes(const fs::path& dir) {
     return static_cast<std::uintmax_t>(st.f_bavail) * st.f_frsize;
 }
 
-struct UploadSink::Hash : Sha256 {};
+struct UploadSink::Hash : native::Sha256 {};
 
 UploadSink::UploadSink(const fs::path& folder, std::int64_t size, std::string sha256)
     : folder_(folder), size_(size), sha256_(std::move(sha256)), hash_(std::make_unique<Hash>()) {

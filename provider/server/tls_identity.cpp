@@ -1,5 +1,7 @@
 #include "server/tls_identity.hpp"
 
+#include "native/certificate_fingerprint.hpp"
+
 #include <openssl/err.h>
 #include <openssl/evp.h>
 #include <openssl/pem.h>
@@ -66,26 +68,10 @@ void add_extension(X509* cert, int nid, const char* value) {
 
 }  // namespace
 
-std::string der_fingerprint(const unsigned char* der, std::size_t size) {
-    unsigned char md[EVP_MAX_MD_SIZE];
-    unsigned int len = 0;
-    if (EVP_Digest(der, size, md, &len, EVP_sha256(), nullptr) != 1) fail("SHA-256 failed");
-    static constexpr char kHex[] = "0123456789abcdef";
-    std::string hex;
-    for (unsigned int i = 0; i < len; ++i) {
-        hex += kHex[md[i] >> 4];
-        hex += kHex[md[i] & 15];
-    }
-    return hex;
-}
-
 std::string certificate_fingerprint(const std::string& certificate_pem) {
     X509Ptr cert = read_certificate(certificate_pem);
-    unsigned char* der = nullptr;
-    const int len = i2d_X509(cert.get(), &der);
-    if (len <= 0) fail("cannot encode the certificate");
-    std::string fp = der_fingerprint(der, static_cast<std::size_t>(len));
-    OPENSSL_free(der);
+    std::string fp = native::certificate_fingerprint(cert.get());
+    if (fp.empty()) fail("cannot encode the certificate");
     return fp;
 }
 

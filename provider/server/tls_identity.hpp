@@ -40,8 +40,6 @@ TlsIdentity load_or_create_tls_identity(const std::filesystem::path& dir);
 
 // SHA-256 of the first certificate in `pem`, as 64 lowercase hex digits.
 std::string certificate_fingerprint(const std::string& certificate_pem);
-// The same for a DER encoding.
-std::string der_fingerprint(const unsigned char* der, std::size_t size);
 
 // TLS 1.2 and later, the identity's certificate and key.
 void configure_server_context(boost::asio::ssl::context& context, const TlsIdentity& identity);

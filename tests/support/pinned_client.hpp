@@ -9,6 +9,7 @@
 #include <boost/asio/ssl/verify_context.hpp>
 #include <string>
 
+#include "native/certificate_fingerprint.hpp"
 #include "server/tls_identity.hpp"
 
 namespace umf::test {
@@ -24,7 +25,7 @@ inline boost::asio::ssl::context pinned_client_context(const std::string& finger
         unsigned char* der = nullptr;
         const int len = i2d_X509(cert, &der);
         if (len <= 0) return false;
-        const bool ok = umf::provider::der_fingerprint(der, static_cast<std::size_t>(len)) == fingerprint;
+        const bool ok = umf::native::der_fingerprint(der, static_cast<std::size_t>(len)) == fingerprint;
         OPENSSL_free(der);
         return ok;
     });

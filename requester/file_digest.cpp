@@ -1,4 +1,4 @@
-#include "sha256.hpp"
+#include "file_digest.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -9,26 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "native/sha256.hpp"
+
 namespace umf::requester {
-
-Sha256::Sha256() : ctx_(EVP_MD_CTX_new(), EVP_MD_CTX_free) {
-    if (!ctx_ || EVP_DigestInit_ex(ctx_.get(), EVP_sha256(), nullptr) != 1)
-        throw std::runtime_error("OpenSSL cannot compute SHA-256");
-}
-
-void Sha256::update(const void* data, std::size_t size) { EVP_DigestUpdate(ctx_.get(), data, size); }
-
-std::string Sha256::hex() {
-    unsigned char md[EVP_MAX_MD_SIZE];
-    unsigned int len = 0;
-    EVP_DigestFinal_ex(ctx_.get(), md, &len);
-    std::string out;
-    for (unsigned int i = 0; i < len; ++i) {
-        out += "0123456789abcdef"[md[i] >> 4];
-        out += "0123456789abcdef"[md[i] & 15];
-    }
-    return out;
-}
 
 FileDigest digest_file(const std::filesystem::path& file) {
     const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
@@ -40,7 +23,7 @@ FileDigest digest_file(const std::filesystem::path& file) {
     struct stat st {};
     if (::fstat(fd, &st) != 0) throw std::runtime_error("cannot read " + file.string() + ": " + std::strerror(errno));
     if (!S_ISREG(st.st_mode)) throw std::runtime_error(file.string() + " is not a regular file");
-    Sha256 hash;
+    native::Sha256 hash;
     FileDigest d;
     std::vector<char> buffer(1 << 20);
     for (;;) {

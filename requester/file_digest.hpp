@@ -1,27 +1,13 @@
-// SHA-256 as the requester checks downloads and announces puts: OpenSSL's,
-// fed piece by piece, so no file is ever held whole in memory.
+// A file's size and SHA-256, as the requester announces a put: read once,
+// piece by piece, so no file is ever held whole in memory.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <memory>
 #include <string>
 
-#include <openssl/evp.h>
-
 namespace umf::requester {
-
-class Sha256 {
-public:
-    Sha256();
-    void update(const void* data, std::size_t size);
-    // 64 lowercase hex digits; the object is used up.
-    std::string hex();
-
-private:
-    std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> ctx_;
-};
 
 struct FileDigest {
     std::int64_t size = 0;

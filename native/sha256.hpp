@@ -1,5 +1,5 @@
-// SHA-256 through OpenSSL, fed piece by piece: files hashed from disk
-// (file_facts.hpp) and uploads hashed as they arrive (put/upload_sink.hpp).
+// SHA-256 through OpenSSL, fed piece by piece so no file is ever held whole:
+// the provider's files and uploads, the requester's downloads and puts.
 #pragma once
 
 #include <cstddef>
@@ -8,7 +8,7 @@
 
 struct evp_md_ctx_st;
 
-namespace umf::provider {
+namespace umf::native {
 
 class Sha256 {
 public:
@@ -19,11 +19,14 @@ public:
     Sha256& operator=(const Sha256&) = delete;
 
     void update(const void* data, std::size_t size);
-    // Lowercase hex; the hasher is used up.
+    // 64 lowercase hex digits; the hasher is used up.
     std::string hex();
 
 private:
     std::unique_ptr<evp_md_ctx_st, void (*)(evp_md_ctx_st*)> ctx_;
 };
 
-}  // namespace umf::provider
+// Lowercase hex of `size` bytes.
+std::string to_hex(const unsigned char* bytes, std::size_t size);
+
+}  // namespace umf::native
