@@ -345,7 +345,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         ServiceConfig config = layout ? service_config_for(*layout)
                                       : default_service_config(width, height, headless ? "headless" : "screen",
                                                                board_module_px);
-        config.overlay = protocol::overlay_info(preset);
+        config.overlay = overlay_info(preset);
         config.public_mode = public_mode;
         config.put_decider = put_decider;
         config.puts = put_settings;

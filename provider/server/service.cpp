@@ -60,9 +60,18 @@ ServiceConfig service_config_for(const DesktopLayout& layout) {
     const auto presets = overlay::built_in_presets();
     const overlay::Preset* balanced = overlay::find_preset(presets, "balanced");
     if (!balanced) throw std::logic_error("the built-in preset \"balanced\" is missing");
-    c.overlay = p::overlay_info(*balanced);
+    c.overlay = overlay_info(*balanced);
     c.limits = p::Limits{};
     return c;
+}
+
+// The wire's limits are the presets' own.
+static_assert(p::kMaxOverlayNameBytes == overlay::kMaxPresetNameBytes);
+static_assert(p::kMinPulsePeriodS == overlay::kMinPeriodS && p::kMaxPulsePeriodS == overlay::kMaxPeriodS);
+
+protocol::OverlayInfo overlay_info(const overlay::Preset& preset) {
+    return {preset.name, preset.opacity_min, preset.opacity_max, preset.period_s,
+            preset.waveform == overlay::Waveform::triangle ? p::PulseWaveform::triangle : p::PulseWaveform::sine};
 }
 
 ServiceConfig default_service_config(int screen_width_px, int screen_height_px, const std::string& screen_name,

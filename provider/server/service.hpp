@@ -20,6 +20,7 @@
 #include "content/file_facts.hpp"
 #include "content/resolver.hpp"
 #include "screen/desktop_layout.hpp"
+#include "overlay/preset.hpp"
 #include "server/activity.hpp"
 #include "overlay/placement.hpp"
 #include "protocol/messages.hpp"
@@ -62,6 +63,9 @@ struct ServiceConfig {
 // The screens and the field of a desktop layout, the `balanced` preset, the
 // protocol's default limits and this host's name.
 ServiceConfig service_config_for(const DesktopLayout& layout);
+// What the welcome says of a preset: the protocol's own description of it.
+protocol::OverlayInfo overlay_info(const overlay::Preset& preset);
+
 // The same for one screen of the given size at the desktop's origin, with
 // modules of module_px (0: the size that covers the screen). Throws when the
 // field file cannot be loaded.

@@ -194,19 +194,19 @@ Welcome read_welcome(MemberReader& r) {
     if (const json* field = r.object("field")) m.field = read_field_info(*field, r);
     if (const json* overlay = r.object("overlay")) {
         MemberReader o(*overlay, "overlay");
-        m.overlay.preset = o.text("preset", 1, overlay::kMaxPresetNameBytes);
+        m.overlay.preset = o.text("preset", 1, kMaxOverlayNameBytes);
         m.overlay.opacity_min = o.number("opacity_min", 0.0, 1.0);
         m.overlay.opacity_max = o.number("opacity_max", 0.0, 1.0);
-        m.overlay.period_s = o.number("period_s", 0.0, overlay::kMaxPeriodS);
+        m.overlay.period_s = o.number("period_s", 0.0, kMaxPulsePeriodS);
         std::string waveform = o.text("waveform", 1, 16);
         if (o.ok() && m.overlay.opacity_min > m.overlay.opacity_max)
             o.fail("\"overlay.opacity_min\" is above \"overlay.opacity_max\"");
-        if (o.ok() && m.overlay.period_s != 0.0 && m.overlay.period_s < overlay::kMinPeriodS)
+        if (o.ok() && m.overlay.period_s != 0.0 && m.overlay.period_s < kMinPulsePeriodS)
             o.fail("\"overlay.period_s\" must be 0 or at least 0.5");
         if (o.ok()) {
-            auto w = overlay::waveform_from_string(waveform);
+            auto w = pulse_waveform_from_string(waveform);
             if (!w) o.fail("\"overlay.waveform\" must be \"sine\" or \"triangle\"");
-            m.overlay.waveform = w.value_or(overlay::Waveform::sine);
+            m.overlay.waveform = w.value_or(PulseWaveform::sine);
         }
         if (!o.ok()) r.fail(o.problem());
     }
@@ -513,11 +513,11 @@ struct Writer {
         field["screens"] = std::move(screens);
         o["field"] = std::move(field);
         ordered_json overlay;
-        overlay["preset"] = clip_text(m.overlay.preset, overlay::kMaxPresetNameBytes);
+        overlay["preset"] = clip_text(m.overlay.preset, kMaxOverlayNameBytes);
         overlay["opacity_min"] = m.overlay.opacity_min;
         overlay["opacity_max"] = m.overlay.opacity_max;
         overlay["period_s"] = m.overlay.period_s;
-        overlay["waveform"] = overlay::to_string(m.overlay.waveform);
+        overlay["waveform"] = to_string(m.overlay.waveform);
         o["overlay"] = std::move(overlay);
         ordered_json limits;
         limits["max_message_bytes"] = m.limits.max_message_bytes;
@@ -635,8 +635,12 @@ const char* to_string(PutOutcome outcome) {
     return "saved";
 }
 
-OverlayInfo overlay_info(const overlay::Preset& p) {
-    return OverlayInfo{p.name, p.opacity_min, p.opacity_max, p.period_s, p.waveform};
+const char* to_string(PulseWaveform waveform) { return waveform == PulseWaveform::triangle ? "triangle" : "sine"; }
+
+std::optional<PulseWaveform> pulse_waveform_from_string(std::string_view name) {
+    if (name == "sine") return PulseWaveform::sine;
+    if (name == "triangle") return PulseWaveform::triangle;
+    return std::nullopt;
 }
 
 const char* type_name(const Message& message) {

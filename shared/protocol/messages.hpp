@@ -23,7 +23,6 @@
 #include <vector>
 
 #include "field/field.hpp"
-#include "overlay/preset.hpp"
 #include "protocol/error_codes.hpp"
 
 namespace umf::protocol {
@@ -123,16 +122,25 @@ struct FieldInfo {
     bool operator==(const FieldInfo& other) const;
 };
 
-// How the field is mixed, so a requester can expect its contrast.
+// How the field is mixed, so a requester can expect its contrast: the wire's
+// own description of the provider's preset (the provider fills it in from
+// its overlay settings; the protocol knows nothing of them).
+enum class PulseWaveform { sine, triangle };
+const char* to_string(PulseWaveform waveform);
+std::optional<PulseWaveform> pulse_waveform_from_string(std::string_view name);
+
+inline constexpr std::size_t kMaxOverlayNameBytes = 64;
+inline constexpr double kMinPulsePeriodS = 0.5;  // a period is 0 (static) or at least this
+inline constexpr double kMaxPulsePeriodS = 60.0;
+
 struct OverlayInfo {
     std::string preset;
     double opacity_min = 0.0;
     double opacity_max = 0.0;
     double period_s = 0.0;  // 0: static
-    overlay::Waveform waveform = overlay::Waveform::sine;
+    PulseWaveform waveform = PulseWaveform::sine;
     bool operator==(const OverlayInfo&) const = default;
 };
-OverlayInfo overlay_info(const overlay::Preset& preset);
 
 // What the provider accepts. seeking and aim messages share aims_per_s.
 struct Limits {

@@ -22,7 +22,7 @@ Welcome sample_welcome() {
     w.provider = {"desk-1", "umf-provider/0.1.0"};
     w.field.definition = shipped_field();
     w.field.screens = {{"DP-1", {0, 0, 32, 36}, 1920, 2160}, {"HDMI-1 \xe2\x80\x94 TV", {32, 0, 64, 36}, 1920, 2160}};
-    w.overlay = overlay_info(*overlay::find_preset(overlay::built_in_presets(), "balanced"));
+    w.overlay = {"balanced", 0.1, 0.4, 1.5, PulseWaveform::sine};
     w.limits = Limits{};
     return w;
 }
@@ -541,6 +541,19 @@ TEST(ProtocolMessages, MutatedMessagesNeverCrashTheParser) {
     // number, a character of a title); most are refused.
     EXPECT_GT(accepted, 100);
     EXPECT_LT(accepted, 9000);
+}
+
+// The welcome's overlay is the wire's own type: its waveform names and its
+// limits stand without the overlay's presets.
+TEST(ProtocolMessages, TheOverlaysWaveformIsTheWiresOwn) {
+    EXPECT_STREQ(to_string(PulseWaveform::sine), "sine");
+    EXPECT_STREQ(to_string(PulseWaveform::triangle), "triangle");
+    EXPECT_EQ(pulse_waveform_from_string("triangle"), PulseWaveform::triangle);
+    EXPECT_FALSE(pulse_waveform_from_string("square").has_value());
+    Welcome w = sample_welcome();
+    w.overlay.waveform = PulseWaveform::triangle;
+    const auto back = std::get<Welcome>(parsed(parse_message(encode(w))));
+    EXPECT_EQ(back.overlay, w.overlay);
 }
 
 }  // namespace
