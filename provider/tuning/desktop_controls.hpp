@@ -11,7 +11,7 @@
 #include <memory>
 #include <string>
 
-#include "overlay/overlay_manager.hpp"
+#include "field_overlay/overlay_manager.hpp"
 #include "tuning/preset_store.hpp"
 #include "tuning/tray_menu.hpp"
 #include "tuning/tuning_window.hpp"

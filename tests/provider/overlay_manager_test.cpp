@@ -16,7 +16,7 @@
 #include <thread>
 
 #include "overlay/background_blur.hpp"
-#include "overlay/overlay_manager.hpp"
+#include "field_overlay/overlay_manager.hpp"
 #include "provider/gui_test_app.hpp"
 #include "provider/qt_pump.hpp"
 #include "screen/board_window.hpp"

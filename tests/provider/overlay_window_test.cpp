@@ -11,7 +11,7 @@
 // clean and makes its own on xcb. fork() alone would copy the parent's
 // threads' state and maybe its application; exec gives a fresh process.
 //
-// UMF_PROVIDER_OVERLAY: defined once provider/overlay/ is built into the
+// UMF_PROVIDER_OVERLAY: defined once provider/field_overlay/ is built into the
 // provider core; until then this file would not link.
 #if defined(UMF_PROVIDER_TESTS) && defined(UMF_PROVIDER_OVERLAY)
 
@@ -31,7 +31,7 @@
 
 #include "desktop/x11/x11_desktop.hpp"
 #include "desktop/x11/compositor.hpp"
-#include "overlay/overlay_manager.hpp"
+#include "field_overlay/overlay_manager.hpp"
 #include "desktop/x11/overlay_window.hpp"
 #include "screen/board_window.hpp"
 #include "screen/screen_field.hpp"

@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "overlay/overlay_manager.hpp"
+#include "field_overlay/overlay_manager.hpp"
 #include "server/activity.hpp"
 
 namespace umf::provider {

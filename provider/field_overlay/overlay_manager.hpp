@@ -33,7 +33,7 @@
 
 #include "overlay/adaptive.hpp"
 #include "desktop/x11/overlay_window.hpp"
-#include "overlay/pointer_window.hpp"
+#include "field_overlay/pointer_window.hpp"
 #include "overlay/preset.hpp"
 #include "screen/desktop_layout.hpp"
 

@@ -1,4 +1,4 @@
-#include "overlay/overlay_activity.hpp"
+#include "field_overlay/overlay_activity.hpp"
 
 #include <QMetaObject>
 

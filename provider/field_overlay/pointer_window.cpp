@@ -1,4 +1,4 @@
-#include "overlay/pointer_window.hpp"
+#include "field_overlay/pointer_window.hpp"
 
 #include "screen/pointer_mark.hpp"
 

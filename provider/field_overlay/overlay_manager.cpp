@@ -1,4 +1,4 @@
-#include "overlay/overlay_manager.hpp"
+#include "field_overlay/overlay_manager.hpp"
 
 #include <QElapsedTimer>
 #include <QGuiApplication>
