@@ -14,6 +14,7 @@
 
 #include "field/png_writer.hpp"
 #include "io/atomic_file.hpp"
+#include "io/pdf_objects.hpp"
 
 namespace umf::provider {
 
@@ -281,8 +282,7 @@ std::string demo_png() {
 }
 
 // A one-page PDF 1.4 written by hand: Helvetica (one of the standard 14
-// fonts, so nothing is embedded), an info dictionary, and a cross-reference
-// table with the exact byte offsets readers check.
+// fonts, so nothing is embedded) and an info dictionary.
 std::string demo_pdf() {
     const std::string text =
         "BT /F1 28 Tf 72 760 Td (umf demo leaflet) Tj ET\n"
@@ -298,22 +298,7 @@ std::string demo_pdf() {
         "<< /Type /Font /Subtype /Type1 /BaseFont /Helvetica /Encoding /WinAnsiEncoding >>",
         "<< /Title (umf demo leaflet) /Producer (umf-provider) >>",
     };
-    std::string pdf = "%PDF-1.4\n%\xE2\xE3\xCF\xD3\n";  // the binary comment marks the file as binary
-    std::vector<std::size_t> offsets;
-    for (std::size_t i = 0; i < objects.size(); ++i) {
-        offsets.push_back(pdf.size());
-        pdf += std::to_string(i + 1) + " 0 obj\n" + objects[i] + "\nendobj\n";
-    }
-    const std::size_t xref = pdf.size();
-    pdf += "xref\n0 " + std::to_string(objects.size() + 1) + "\n0000000000 65535 f \n";
-    for (std::size_t offset : offsets) {
-        char entry[32];
-        std::snprintf(entry, sizeof entry, "%010zu 00000 n \n", offset);
-        pdf += entry;
-    }
-    pdf += "trailer\n<< /Size " + std::to_string(objects.size() + 1) + " /Root 1 0 R /Info 6 0 R >>\nstartxref\n" +
-           std::to_string(xref) + "\n%%EOF\n";
-    return pdf;
+    return io::pdf_from_objects(objects, 6);
 }
 
 }  // namespace

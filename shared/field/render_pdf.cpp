@@ -4,6 +4,7 @@
 #include <map>
 
 #include "field/render_internal.hpp"
+#include "io/pdf_objects.hpp"
 
 namespace umf::render_detail {
 
@@ -68,23 +69,7 @@ std::string render_pdf(const Field& field, const Style& style, const RenderOptio
         "<< /Title " + pdf_string(to_printable_ascii(decode_text(field.id))) + " /Producer (umf) >>",
     };
 
-    // The second line's high bytes tell transfer tools that the file is binary.
-    std::string pdf = "%PDF-1.4\n%\xE2\xE3\xCF\xD3\n";
-    std::vector<std::size_t> offsets;
-    for (std::size_t i = 0; i < objects.size(); ++i) {
-        offsets.push_back(pdf.size());
-        pdf += std::to_string(i + 1) + " 0 obj\n" + objects[i] + "\nendobj\n";
-    }
-    std::size_t xref = pdf.size();
-    pdf += "xref\n0 " + std::to_string(objects.size() + 1) + "\n0000000000 65535 f \n";
-    for (std::size_t offset : offsets) {
-        char entry[21];  // every entry is exactly 20 bytes, the end of line included
-        std::snprintf(entry, sizeof entry, "%010zu 00000 n \n", offset);
-        pdf += entry;
-    }
-    pdf += "trailer\n<< /Size " + std::to_string(objects.size() + 1) + " /Root 1 0 R /Info 6 0 R >>\nstartxref\n" +
-           std::to_string(xref) + "\n%%EOF\n";
-    return pdf;
+    return io::pdf_from_objects(objects, 6);
 }
 
 }  // namespace umf::render_detail

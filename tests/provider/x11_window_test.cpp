@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "content/snapshot_resolver.hpp"
+#include "io/pdf_objects.hpp"
 #include "content/file_facts.hpp"
 #include "content/window_resolver.hpp"
 #include "desktop/x11/x11_desktop.hpp"
@@ -58,22 +59,7 @@ std::string minimal_pdf() {
         "<< /Length " + std::to_string(text.size()) + " >>\nstream\n" + text + "\nendstream",
         "<< /Type /Font /Subtype /Type1 /BaseFont /Helvetica >>",
     };
-    std::string pdf = "%PDF-1.4\n";
-    std::vector<std::size_t> offsets;
-    for (std::size_t i = 0; i < objects.size(); ++i) {
-        offsets.push_back(pdf.size());
-        pdf += std::to_string(i + 1) + " 0 obj\n" + objects[i] + "\nendobj\n";
-    }
-    const std::size_t xref = pdf.size();
-    pdf += "xref\n0 " + std::to_string(objects.size() + 1) + "\n0000000000 65535 f \n";
-    for (const std::size_t offset : offsets) {
-        char line[24];
-        std::snprintf(line, sizeof line, "%010zu 00000 n \n", offset);
-        pdf += line;
-    }
-    pdf += "trailer\n<< /Size " + std::to_string(objects.size() + 1) + " /Root 1 0 R >>\nstartxref\n" +
-           std::to_string(xref) + "\n%%EOF\n";
-    return pdf;
+    return umf::io::pdf_from_objects(objects);
 }
 
 // Where the windows are put: apart, with bare desktop around them.
