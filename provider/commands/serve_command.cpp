@@ -17,19 +17,16 @@
 #include "commands/common_options.hpp"
 #include "commands/control_client.hpp"
 #include "commands/preset_options.hpp"
+#include "commands/serve_parts.hpp"
 #include "content/board_resolver.hpp"
 #include "content/image_snapshot.hpp"
 #include "content/shared_items.hpp"
 #include "content/shared_items_file.hpp"
-#include "content/snapshot_resolver.hpp"
-#include "content/window_resolver.hpp"
 #include "desktop/open_desktop.hpp"
 #include "desktop/session.hpp"
 #include "field_overlay/overlay_activity.hpp"
 #include "put/put_deciders.hpp"
-#include "put/put_folder.hpp"
 #include "put/put_prompt_window.hpp"
-#include "put/trusted_devices.hpp"
 #include "server/console_activity.hpp"
 #include "field_overlay/overlay_manager.hpp"
 #include "overlay/preset.hpp"
@@ -133,21 +130,9 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
     }
     const bool headless = has_flag(a, "headless") || !have_display() || desktop_choice.kind == DesktopKind::headless;
     const bool public_mode = has_flag(a, "public");
-    // Puts: a phone giving this screen a URL or a file. Kiosks take none
-    // unless told (a shared-photo wall: --public --puts always).
-    const std::string puts_mode = get(a, "puts").value_or(public_mode ? "never" : "ask");
-    if (puts_mode != "ask" && puts_mode != "always" && puts_mode != "never")
-        throw UsageError("--puts takes ask, always or never, not '" + puts_mode + "'");
-    PutSettings put_settings;
-    put_settings.folder = get(a, "put-dir") ? std::filesystem::path(*get(a, "put-dir")) : default_put_folder();
-    put_settings.trusted_devices = dir / kTrustedDevicesFile;
-    if (const auto mb = get(a, "put-max-mb")) {
-        // Whole megabytes (10^6 bytes), up to 1 TB: a wall of photos wants a few, a desk gigabytes.
-        if (mb->empty() || mb->size() > 7 || mb->find_first_not_of("0123456789") != std::string::npos ||
-            std::stoll(*mb) < 1 || std::stoll(*mb) > 1'000'000)
-            throw UsageError("--put-max-mb takes a whole number of megabytes from 1 to 1000000, not '" + *mb + "'");
-        put_settings.max_bytes = std::stoll(*mb) * 1'000'000;
-    }
+    const PutChoice puts = put_choice(a, dir, public_mode);
+    const std::string& puts_mode = puts.mode;
+    const PutSettings& put_settings = puts.settings;
     if (puts_mode != "never") {
         std::error_code ec;
         std::filesystem::create_directories(put_settings.folder, ec);
@@ -221,33 +206,10 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         }
     }
 
-    // Who answers puts. Made before the server and released after it, on
-    // this (the Qt) thread.
-    std::shared_ptr<ControlPutDecider> put_answers;  // `umf-provider puts`
-    std::shared_ptr<PutPromptDecider> put_prompt;     // the card at the pointed place
-    std::shared_ptr<PutDecider> put_decider;          // null: no puts, and no "put" in the welcome
-    if (puts_mode == "always") {
-        put_decider = std::make_shared<FixedPutDecider>(PutAnswer::save);
-    } else if (puts_mode == "ask") {
-        put_answers = std::make_shared<ControlPutDecider>();
-        put_decider = put_answers;
-        if (!headless) {
-            // The welcome's screen i is the manager's screen layout_indices()[i]; one screen otherwise.
-            put_prompt = std::make_shared<PutPromptDecider>(
-                std::chrono::duration_cast<std::chrono::seconds>(put_settings.answer_timeout), [m = overlay_manager.get()](int index) -> QScreen* {
-                    if (!m) return QGuiApplication::primaryScreen();
-                    const auto indices = m->layout_indices();
-                    if (index < 0 || index >= static_cast<int>(indices.size())) return nullptr;
-                    for (const OverlayScreen& s : m->screens())
-                        if (s.index == indices[index])
-                            for (QScreen* q : QGuiApplication::screens())
-                                if (q->name() == s.name) return q;
-                    return nullptr;
-                });
-            put_decider = std::make_shared<FirstAnswerDecider>(
-                std::vector<std::shared_ptr<PutDecider>>{put_prompt, put_answers});
-        }
-    }
+    const PutAnswerers answerers = put_answerers(puts, headless, overlay_manager.get());
+    const std::shared_ptr<ControlPutDecider>& put_answers = answerers.control;
+    const std::shared_ptr<PutPromptDecider>& put_prompt = answerers.prompt;
+    const std::shared_ptr<PutDecider>& put_decider = answerers.decider;
 
     std::vector<std::shared_ptr<const Resolver>> resolvers;
     // Browsers tell what their windows show once the server knows its port;
@@ -270,44 +232,8 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         } else if (desktop.desktop && desktop.abilities.windows) {
             // The windows under the point, never the provider's own.
             try {
-                const std::shared_ptr<const Desktop> windows = desktop.desktop;
-                WindowResolverOptions options;
-                options.filter.own_pids.insert(static_cast<int>(::getpid()));
-                browser_link = std::make_shared<BrowserLink>();
-                browsers = std::make_shared<BrowserResolver>(windows, options.filter, browser_link, &std::cout);
-                resolvers.push_back(browsers);
-                resolvers.push_back(std::make_shared<WindowResolver>(windows, options));
-                auto snapshots = std::make_shared<SnapshotResolver>(windows, options.filter, desktop.abilities.snapshots);
-                if (overlay_manager || put_prompt) {
-                    // A snapshot shows the screen without the field and
-                    // without the put cards. Called from a server thread; the
-                    // server stops before the Qt loop does, so the blocking
-                    // call always returns.
-                    OverlayManager* m = overlay_manager.get();
-                    PutPromptDecider* cards = put_prompt.get();
-                    QObject* qt = QGuiApplication::instance();
-                    snapshots->set_around_capture(
-                        [m, cards, qt] {
-                            QMetaObject::invokeMethod(
-                                qt,
-                                [m, cards] {
-                                    if (m) m->hide_for_snapshot();
-                                    if (cards) cards->hide_for_snapshot();
-                                },
-                                Qt::BlockingQueuedConnection);
-                            std::this_thread::sleep_for(std::chrono::milliseconds(OverlayManager::kSnapshotSettleMs));
-                        },
-                        [m, cards, qt] {
-                            QMetaObject::invokeMethod(
-                                qt,
-                                [m, cards] {
-                                    if (m) m->show_after_snapshot();
-                                    if (cards) cards->show_after_snapshot();
-                                },
-                                Qt::QueuedConnection);
-                        });
-                }
-                resolvers.push_back(std::move(snapshots));
+                add_window_resolvers(desktop, overlay_manager.get(), put_prompt.get(), resolvers, browser_link,
+                                     browsers);
             } catch (const std::exception& e) {
                 std::cerr << "umf-provider: windows cannot be looked up (" << e.what()
                           << "); serving board and shared items only\n";
