@@ -47,28 +47,12 @@ for f in bin/umf-provider bin/umf-browser-host tests/web/umf_fake_camera web/sit
 done
 [[ -d $modules/playwright-core ]] || lacks "no playwright-core in $modules: run ctest --preset release -R web.browser.npm first"
 
-pids=()  # newest first
-work=$(mktemp -d)
-cleanup() {
-    for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-    for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
-    rm -rf "$work"
-}
-trap cleanup EXIT
-trap 'exit 130' INT TERM
-spawn() {
+source "$root/scripts/background.sh"  # work, pids, spawn, stop, wait_for; cleanup on exit
+# spawn with its output in $work/LOG.
+spawn_logged() {
     local log=$1
     shift
-    "$@" >"$work/$log" 2>&1 &
-    pids=("$!" "${pids[@]}")
-}
-wait_for() {
-    local what=$1 limit=${2:-10} i
-    for ((i = 0; i < limit * 10; ++i)); do
-        eval "$what" >/dev/null 2>&1 && return 0
-        sleep 0.1
-    done
-    return 1
+    spawn "$@" >"$work/$log" 2>&1
 }
 mkdir -p "$out" "$work/run" "$work/www" "$work/config"
 chmod 700 "$work/run"
@@ -114,10 +98,10 @@ page="http://127.0.0.1:$(grep -o 'port [0-9]*' "$work/http.log" | head -1 | cut 
 # --- The desktop --------------------------------------------------------------
 number=90
 while [[ -e /tmp/.X11-unix/X$number || -e /tmp/.X$number-lock ]]; do number=$((number + 1)); done
-spawn xvfb.log Xvfb ":$number" -screen 0 1920x1080x24 -dpi 96 -nolisten tcp
+spawn_logged xvfb.log Xvfb ":$number" -screen 0 1920x1080x24 -dpi 96 -nolisten tcp
 wait_for "[[ -S /tmp/.X11-unix/X$number ]]" 10 || die "Xvfb did not start: $(cat "$work/xvfb.log")"
 export DISPLAY=:$number
-spawn openbox.log openbox
+spawn_logged openbox.log openbox
 wait_for "xdotool getactivewindow || xprop -root _NET_SUPPORTING_WM_CHECK | grep -q window" 10 || true
 command -v xsetroot >/dev/null && xsetroot -solid '#4a5570'
 
@@ -130,7 +114,7 @@ chromium_args=(--no-first-run --no-default-browser-check --password-store=basic 
                "--window-position=$window_x,$window_y" "--window-size=$window_w,$window_h")
 # As root Chromium needs --no-sandbox; --test-type keeps its warning bar about it out of the picture.
 [[ $(id -u) == 0 ]] && chromium_args=(--no-sandbox --test-type "${chromium_args[@]}")
-spawn chromium.log "$chromium" "${chromium_args[@]}" "$page"
+spawn_logged chromium.log "$chromium" "${chromium_args[@]}" "$page"
 wait_for "xdotool search --name '^umf news'" 60 || die "Chromium showed no page: $(tail -20 "$work/chromium.log")"
 sleep 3  # the page drawn, the window settled
 window=$(xdotool search --name '^umf news' | head -1)
@@ -170,7 +154,7 @@ with open(sys.argv[1], "wb") as f:
 PY
 
 # --- The provider, and the camera's video of its screen ------------------------
-spawn provider.log "$build/bin/umf-provider" serve --desktop x11 --port 0 --bind 127.0.0.1 --no-qr \
+spawn_logged provider.log "$build/bin/umf-provider" serve --desktop x11 --port 0 --bind 127.0.0.1 --no-qr \
     --config-dir "$work/provider" --web "$build/web/site"
 wait_for "grep -q '^pairing URL: ' '$work/provider.log'" 20 || die "the provider did not start: $(cat "$work/provider.log")"
 pairing=$(grep -m1 '^pairing URL: ' "$work/provider.log" | cut -d' ' -f3)

@@ -42,39 +42,7 @@ tray=1
 command -v trayer >/dev/null || { tray=0; echo "$0: trayer is not installed: no tray-menu.png (apt-get install trayer)" >&2; }
 
 started=$(date +%s)
-pids=()  # newest first
-work=$(mktemp -d)
-cleanup() {
-    # Only what this script started, by PID, newest first: the X server last.
-    for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-    for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
-    rm -rf "$work"
-}
-trap cleanup EXIT
-trap 'exit 130' INT TERM
-
-# Starts a program in the background and remembers its PID.
-spawn() {
-    "$@" &
-    pids=("$!" "${pids[@]}")
-}
-# Stops one program this script started.
-stop() {
-    local pid=$1 kept=() p
-    kill "$pid" 2>/dev/null || true
-    wait "$pid" 2>/dev/null || true
-    for p in "${pids[@]}"; do [[ $p == "$pid" ]] || kept+=("$p"); done
-    pids=("${kept[@]}")
-}
-# Waits up to $2 seconds (default 10) for the command $1 to succeed.
-wait_for() {
-    local what=$1 limit=${2:-10} i
-    for ((i = 0; i < limit * 20; ++i)); do
-        eval "$what" >/dev/null 2>&1 && return 0
-        sleep 0.05
-    done
-    return 1
-}
+source "$root/scripts/background.sh"  # work, pids, spawn, stop, wait_for; cleanup on exit
 
 mkdir -p "$out"
 
