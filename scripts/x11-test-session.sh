@@ -18,26 +18,18 @@ for program in Xvfb openbox; do
     command -v "$program" >/dev/null || { echo "$0: $program is not installed (apt-get install xvfb openbox)" >&2; exit 1; }
 done
 
-pids=()
-work=$(mktemp -d)
-cleanup() {
-    # Only what this script started, by PID; the server last.
-    for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
-    for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
-    rm -rf "$work"
-}
-trap cleanup EXIT
-trap 'exit 130' INT TERM
+source "$(dirname "$0")/background.sh"  # work, pids, spawn; everything stopped on exit, the server last
 
 # Xvfb picks a free display and writes its number once it accepts clients.
 mkfifo "$work/display"
+# (Started here, not by spawn: the FIFO is opened in the background child,
+# since opening it for writing waits for its reader below.)
 Xvfb -displayfd 3 -screen 0 "$size" -nolisten tcp -noreset 3>"$work/display" 2>"$work/xvfb.log" &
-pids=("$!")
+pids=("$!" "${pids[@]}")
 read -r number <"$work/display" || { cat "$work/xvfb.log" >&2; exit 1; }
 export DISPLAY=":$number"
 
-openbox --sm-disable >/dev/null 2>&1 &
-pids=("$!" "${pids[@]}")
+spawn openbox --sm-disable >/dev/null 2>&1
 sleep 0.5
 
 # Programs separated by "--".
@@ -46,12 +38,10 @@ while (($# > 0)); do
     command=()
     while (($# > 0)) && [[ $1 != -- ]]; do command+=("$1"); shift; done
     (($# > 0)) && shift
-    "${command[@]}" >/dev/null 2>&1 &
-    pids=("$!" "${pids[@]}")
+    spawn "${command[@]}" >/dev/null 2>&1
 done
 
 echo "DISPLAY=$DISPLAY"
 # In the background, so a signal's trap runs at once rather than after it.
-if ((seconds > 0)); then sleep "$seconds" & else sleep infinity & fi
-pids=("$!" "${pids[@]}")
+if ((seconds > 0)); then spawn sleep "$seconds"; else spawn sleep infinity; fi
 wait "${pids[0]}"
