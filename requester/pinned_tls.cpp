@@ -31,8 +31,6 @@ struct PinCheck {
     bool mismatch = false;
 };
 
-std::string fingerprint_of(X509* cert) { return native::certificate_fingerprint(cert); }
-
 GrabFailure connection_failure(const std::string& message) { return {"connection", message, kConnection}; }
 
 GrabFailure certificate_failure(const protocol::PairingUrl& url, const std::string& seen) {
@@ -115,7 +113,7 @@ void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::Pair
         // Only the leaf is pinned; whatever chain comes with it proves nothing
         // more, and OpenSSL's own verdict (self-signed: "untrusted") is ignored.
         if (X509_STORE_CTX_get_error_depth(store) != 0) return true;
-        const std::string fp = fingerprint_of(X509_STORE_CTX_get_current_cert(store));
+        const std::string fp = native::certificate_fingerprint(X509_STORE_CTX_get_current_cert(store));
         if (!fp.empty() && fp == pin->expected) return true;
         pin->mismatch = true;
         pin->seen = fp;
@@ -139,7 +137,7 @@ void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::Pair
     // The callback must have passed the leaf; checked again on the session's
     // own certificate so no path through OpenSSL skips the pin.
     X509* peer = SSL_get1_peer_certificate(stream.native_handle());
-    const std::string fp = fingerprint_of(peer);
+    const std::string fp = native::certificate_fingerprint(peer);
     X509_free(peer);
     if (fp != url.fingerprint) {
         tcp.close();

@@ -86,7 +86,7 @@ int run_install(const cli::Args& a, std::ostream& out, std::ostream& err) {
 }
 
 int run_status(const cli::Args& a, std::ostream& out, std::ostream& err) {
-    const ControlAnswer answer = ask_running_provider(running_provider_port(a), {{"cmd", "browsers"}}, err);
+    const ControlAnswer answer = ask_running_provider(running_provider_port(a).value_or(kDefaultPort), {{"cmd", "browsers"}}, err);
     if (answer.exit != kOk) return answer.exit;
     if (has_flag(a, "json"))
         out << answer.text << "\n";

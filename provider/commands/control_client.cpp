@@ -6,11 +6,11 @@
 
 namespace umf::provider {
 
-unsigned short running_provider_port(const cli::Args& a) {
+std::optional<unsigned short> running_provider_port(const cli::Args& a) {
     if (cli::get(a, "port")) return port_option(a);
     const std::vector<unsigned short> ports = running_provider_ports();
     if (ports.size() == 1) return ports[0];
-    if (ports.empty()) return kDefaultPort;
+    if (ports.empty()) return std::nullopt;
     std::string list;
     for (std::size_t i = 0; i < ports.size(); ++i)
         list += (i == 0 ? "" : i + 1 == ports.size() ? " and " : ", ") + std::to_string(ports[i]);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <string>
 
@@ -17,10 +18,10 @@ struct ControlAnswer {
 };
 
 // The port of the running provider a command talks to: --port when given;
-// else the one provider of this user that runs, when exactly one does; with
-// none running the default port (the request then says that none runs).
-// Several running: a UsageError naming their ports.
-unsigned short running_provider_port(const cli::Args& a);
+// else the one provider of this user that runs, when exactly one does;
+// nullopt when none runs (the commands then try the default port, and the
+// request says that none runs). Several running: a UsageError naming them.
+std::optional<unsigned short> running_provider_port(const cli::Args& a);
 
 // A command line for the console's hints: `command` with " --port P" when
 // P is not the default port.

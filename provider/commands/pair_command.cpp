@@ -23,8 +23,9 @@ using cli::UsageError;
 
 int run_pair(const cli::Args& a) {
     // The running provider's port when one runs; the URL is for a port.
-    const unsigned short port = running_provider_port(a);
-    if (!get(a, "port") && running_provider_ports().empty())
+    const std::optional<unsigned short> running = running_provider_port(a);
+    const unsigned short port = running.value_or(kDefaultPort);
+    if (!running)
         std::cerr << "umf-provider: no provider is running; this URL is for port " << port
                   << ", the default (give --port P for a provider on another)\n";
     const std::string host = url_host(a, "127.0.0.1");
@@ -79,7 +80,7 @@ int run_share(const cli::Args& a) {
     }
     std::string answer;
     try {
-        answer = control_request(control_socket_path(running_provider_port(a)), request.dump());
+        answer = control_request(control_socket_path(running_provider_port(a).value_or(kDefaultPort)), request.dump());
     } catch (const std::exception& e) {
         std::cerr << "umf-provider: " << e.what() << "\n";
         return kServeError;
@@ -147,7 +148,7 @@ int run_puts(const cli::Args& a, std::ostream& out, std::ostream& err) {
     } else {
         request = {{"cmd", "puts"}};
     }
-    const ControlAnswer answer = ask_running_provider(running_provider_port(a), request, err);
+    const ControlAnswer answer = ask_running_provider(running_provider_port(a).value_or(kDefaultPort), request, err);
     if (answer.exit != kOk) return answer.exit;
     const json& parsed = answer.json;
     if (has_flag(a, "json")) {

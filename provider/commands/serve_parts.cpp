@@ -84,26 +84,21 @@ void add_window_resolvers(const OpenedDesktop& desktop, OverlayManager* overlay,
         // cards. Called from a server thread; the server stops before the Qt
         // loop does, so the blocking call always returns.
         QObject* qt = QGuiApplication::instance();
+        auto set_shown = [overlay, cards, qt](bool shown, Qt::ConnectionType how) {
+            QMetaObject::invokeMethod(
+                qt,
+                [overlay, cards, shown] {
+                    if (overlay) shown ? overlay->show_after_snapshot() : overlay->hide_for_snapshot();
+                    if (cards) shown ? cards->show_after_snapshot() : cards->hide_for_snapshot();
+                },
+                how);
+        };
         snapshots->set_around_capture(
-            [overlay, cards, qt] {
-                QMetaObject::invokeMethod(
-                    qt,
-                    [overlay, cards] {
-                        if (overlay) overlay->hide_for_snapshot();
-                        if (cards) cards->hide_for_snapshot();
-                    },
-                    Qt::BlockingQueuedConnection);
+            [set_shown] {
+                set_shown(false, Qt::BlockingQueuedConnection);
                 std::this_thread::sleep_for(std::chrono::milliseconds(OverlayManager::kSnapshotSettleMs));
             },
-            [overlay, cards, qt] {
-                QMetaObject::invokeMethod(
-                    qt,
-                    [overlay, cards] {
-                        if (overlay) overlay->show_after_snapshot();
-                        if (cards) cards->show_after_snapshot();
-                    },
-                    Qt::QueuedConnection);
-            });
+            [set_shown] { set_shown(true, Qt::QueuedConnection); });
     }
     resolvers.push_back(std::move(snapshots));
 }

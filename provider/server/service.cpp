@@ -198,6 +198,7 @@ Outcome Service::handle_binary(SessionState& state) const {
 Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime now) const {
     Outcome out;
     out.close = true;
+    bool flood_begins = false;
     {
         std::lock_guard lock(wrong_mutex_);
         auto it = wrong_tokens_.find(state.peer);
@@ -209,10 +210,12 @@ Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime no
             out.replies.push_back(p::Error{hello.id, p::ErrorCode::rate_limited,
                                            "too many wrong pairing tokens from this address; wait a minute"});
             // The console hears of the first refusal only, not of a flood.
-            if (activity_ && it->second.count++ == kMaxWrongTokens)
-                activity_->refused({hello.client, hello.device.value_or(""), state.peer, true});
-            return out;
+            flood_begins = it->second.count++ == kMaxWrongTokens;
         }
+    }
+    if (!out.replies.empty()) {
+        if (activity_ && flood_begins) activity_->refused({hello.client, hello.device.value_or(""), state.peer, true});
+        return out;
     }
     if (!config_.public_mode && !token_matches(hello.token)) {
         {

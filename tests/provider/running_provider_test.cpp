@@ -67,7 +67,7 @@ TEST(RunningProvider, CommandsWithoutPortFindTheOneProviderThatRuns) {
 
     // None runs: the default port, and the request says so.
     EXPECT_TRUE(running_provider_ports().empty());
-    EXPECT_EQ(running_provider_port(no_port), kDefaultPort);
+    EXPECT_FALSE(running_provider_port(no_port).has_value());
     EXPECT_EQ(run_puts(no_port, out, err), kServeError);
     EXPECT_NE(err.str().find("no provider is running"), std::string::npos) << err.str();
 
@@ -83,7 +83,7 @@ TEST(RunningProvider, CommandsWithoutPortFindTheOneProviderThatRuns) {
         ::close(fd);  // the file stays; nobody listens
     }
     EXPECT_EQ(running_provider_ports(), std::vector<unsigned short>{47123});
-    EXPECT_EQ(running_provider_port(no_port), 47123);
+    EXPECT_EQ(running_provider_port(no_port), std::optional<unsigned short>(47123));
     out.str("");
     err.str("");
     EXPECT_EQ(run_puts(no_port, out, err), kOk) << err.str();
@@ -99,7 +99,7 @@ TEST(RunningProvider, CommandsWithoutPortFindTheOneProviderThatRuns) {
     }
     umf::cli::Args given;
     given.named["port"] = "47124";
-    EXPECT_EQ(running_provider_port(given), 47124);
+    EXPECT_EQ(running_provider_port(given), std::optional<unsigned short>(47124));
 }
 
 TEST(RunningProvider, HintsNameThePortWhenItIsNotTheDefault) {

@@ -573,8 +573,8 @@ async function clientName() {
   const platform = navigator.userAgentData?.platform ||
     (/Android/.test(ua) ? 'Android' : /iPhone|iPad/.test(ua) ? 'iOS' : navigator.platform || '');
   const name = model ? `${model} (umf web${platform ? `, ${platform}` : ''})` : `${platform || 'Browser'} (umf web)`;
-  debug.client = name;
-  return name.replace(/[^\x20-\x7e]/g, '?').slice(0, 100);
+  debug.client = name.replace(/[^\x20-\x7e]/g, '?').slice(0, 100);
+  return debug.client;
 }
 
 // The name this phone gives itself in every hello, so that the person at the
