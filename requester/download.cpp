@@ -16,6 +16,7 @@
 
 #include "cli.hpp"
 #include "grab_failure.hpp"
+#include "protocol/http_error_body.hpp"
 #include "protocol/messages.hpp"
 #include "io/store_file.hpp"
 #include "native/sha256.hpp"
@@ -151,8 +152,11 @@ SavedFile download_file(const protocol::PairingUrl& provider, const DownloadRequ
         if (ec == http::error::body_limit)
             throw download_failure("the download is longer than the announced " + std::to_string(request.size) +
                                    " bytes");
-        if (ec) throw download_failure("the download broke off after " + std::to_string(received) +
-                                       " of " + std::to_string(request.size) + " bytes: " + ec.message());
+        if (ec)
+            throw download_failure("the download broke off after " + std::to_string(received) + " of " +
+                                   std::to_string(request.size) + " bytes (" + ec.message() +
+                                   "), so its SHA-256 could not be checked and nothing was kept; the screen cuts "
+                                   "a download whose file changed since the grab: grab again");
         if (status == 200) {
             file.write(chunk.data(), n);
             sha.update(chunk.data(), n);
@@ -165,9 +169,8 @@ SavedFile download_file(const protocol::PairingUrl& provider, const DownloadRequ
     beast::get_lowest_layer(stream).socket().close(ignored);
 
     if (status != 200) {
-        const auto parsed = protocol::parse_message(error_body, protocol::kRequesterLimits);
-        const auto* m = std::get_if<protocol::Message>(&parsed);
-        const auto* e = m ? std::get_if<protocol::Error>(m) : nullptr;
+        const auto error = protocol::parse_error_body(error_body);
+        const protocol::Error* e = error ? &*error : nullptr;
         const std::string why = e ? e->message : "HTTP status " + std::to_string(status);
         if (status == 404)
             throw GrabFailure("not_found",

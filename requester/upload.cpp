@@ -16,6 +16,7 @@
 
 #include "cli.hpp"
 #include "grab_failure.hpp"
+#include "protocol/http_error_body.hpp"
 
 namespace umf::requester {
 
@@ -89,7 +90,8 @@ p::PutStatus interpret(const http::response<http::string_body>& answer) {
             throw GrabFailure("protocol", "the provider's answer to the upload is not a put_status done", kConnection);
         return *done;
     }
-    const auto* e = m ? std::get_if<p::Error>(m) : nullptr;
+    const auto error = p::parse_error_body(answer.body());
+    const p::Error* e = error ? &*error : nullptr;
     const std::string why = e ? e->message : "HTTP status " + std::to_string(status);
     if (status == 404)
         throw GrabFailure("not_found", "the upload link is unknown, used or expired (" + why + "); put again",

@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 
+#include "content/file_facts.hpp"
 #include "server/one_time_links.hpp"
 
 namespace umf::provider {
@@ -25,9 +26,12 @@ struct DownloadEntry {
     std::string name;  // offered file name, already safe (protocol::safe_file_name)
     std::string mime;
     std::int64_t size = 0;
-    std::string sha256;  // may be empty
-    // Exactly one of these: a file the provider resolved, or bytes it made.
+    std::string sha256;
+    // Exactly one of these: a file the provider resolved (as it was when
+    // hashed: the download sends it only while it is still that file), or
+    // bytes it made.
     std::optional<std::filesystem::path> file;
+    FileIdentity identity;
     std::shared_ptr<const std::string> bytes;
 };
 

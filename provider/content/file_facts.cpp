@@ -5,12 +5,9 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
-#include <cctype>
+#include <atomic>
 #include <cerrno>
 #include <cstring>
-#include <memory>
-#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -21,10 +18,13 @@ namespace umf::provider {
 
 namespace {
 
-std::string hash_fd(int fd, const std::string& what) {
+// `stop` is looked at between reads: a provider stopping does not wait for
+// the rest of a large file.
+std::string hash_fd(int fd, const std::string& what, const std::atomic<bool>* stop = nullptr) {
     native::Sha256 hash;
     std::vector<char> buffer(1 << 20);
     for (;;) {
+        if (stop && stop->load()) throw std::runtime_error("stopped while hashing " + what);
         const ssize_t n = ::read(fd, buffer.data(), buffer.size());
         if (n < 0 && errno == EINTR) continue;
         if (n < 0) throw std::runtime_error("cannot read " + what + ": " + std::strerror(errno));
@@ -33,18 +33,6 @@ std::string hash_fd(int fd, const std::string& what) {
     }
     return hash.hex();
 }
-
-}  // namespace
-
-std::string mime_for(const std::filesystem::path& file) { return protocol::media_type_for(file.filename().string()); }
-
-std::string sha256_hex(const std::string& bytes) {
-    native::Sha256 hash;
-    hash.update(bytes.data(), bytes.size());
-    return hash.hex();
-}
-
-namespace {
 
 struct OpenFile {
     int fd = -1;
@@ -61,7 +49,24 @@ void open_regular(const std::string& what, OpenFile& f) {
     if (!S_ISREG(f.st.st_mode)) throw std::runtime_error(what + " is not a regular file");
 }
 
+FileIdentity identity_of(const struct stat& st) {
+    return {static_cast<std::uint64_t>(st.st_dev), static_cast<std::uint64_t>(st.st_ino),
+            static_cast<std::int64_t>(st.st_size),
+            static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec};
+}
+
+// Enough for every file of a large board; beyond it the cache starts over.
+constexpr std::size_t kMaxCachedHashes = 1024;
+
 }  // namespace
+
+std::string mime_for(const std::filesystem::path& file) { return protocol::media_type_for(file.filename().string()); }
+
+std::string sha256_hex(const std::string& bytes) {
+    native::Sha256 hash;
+    hash.update(bytes.data(), bytes.size());
+    return hash.hex();
+}
 
 FileFactsCache::FileFactsCache() : worker_([this] { hash_in_background(); }) {}
 
@@ -70,55 +75,83 @@ FileFactsCache::~FileFactsCache() {
         std::lock_guard lock(mutex_);
         stopping_ = true;
         queue_.clear();
+        waiting_.clear();
     }
+    stop_hashing_ = true;
     changed_.notify_all();
     worker_.join();
 }
 
-FileFacts FileFactsCache::facts(const std::filesystem::path& file) {
-    const std::string what = file.string();
-    OpenFile f;
-    open_regular(what, f);
-    const Key key{what, static_cast<std::int64_t>(f.st.st_size),
-                  static_cast<std::int64_t>(f.st.st_mtim.tv_sec) * 1000000000 + f.st.st_mtim.tv_nsec};
-    {
-        std::unique_lock lock(mutex_);
-        for (;;) {
-            if (auto it = hashes_.find(key); it != hashes_.end()) return {key.size, it->second};
-            if (key.size > kHashAtOnceBytes) {
-                if (!hashing_.count(what) && std::find(queue_.begin(), queue_.end(), file) == queue_.end()) {
-                    queue_.push_back(file);
-                    changed_.notify_all();
-                }
-                return {key.size, ""};
-            }
-            if (!hashing_.count(what)) break;
-            // Someone hashes it now: wait for that rather than read it twice.
-            changed_.wait(lock);
-        }
-        hashing_.insert(what);
+std::optional<FileFacts> FileFactsCache::cached_or_claim(std::unique_lock<std::mutex>& lock, const Key& key) {
+    for (;;) {
+        if (auto it = hashes_.find(key); it != hashes_.end()) return FileFacts{key.identity.size, it->second, key.identity};
+        if (!hashing_.count(key.path)) break;
+        // Someone hashes it now: wait for that rather than read it twice.
+        changed_.wait(lock);
     }
+    hashing_.insert(key.path);
+    return std::nullopt;
+}
+
+FileFacts FileFactsCache::hash_claimed(int fd, const Key& key) {
     std::string hash;
     try {
-        hash = hash_fd(f.fd, what);
+        hash = hash_fd(fd, key.path);
     } catch (...) {
         std::lock_guard lock(mutex_);
-        hashing_.erase(what);
+        hashing_.erase(key.path);
         changed_.notify_all();
         throw;
     }
     std::lock_guard lock(mutex_);
-    hashing_.erase(what);
-    if (hashes_.size() > 1024) hashes_.clear();
+    hashing_.erase(key.path);
+    if (hashes_.size() > kMaxCachedHashes) hashes_.clear();
     hashes_[key] = hash;
     changed_.notify_all();
-    return {key.size, hash};
+    return {key.identity.size, hash, key.identity};
+}
+
+FileFacts FileFactsCache::facts(const std::filesystem::path& file) {
+    OpenFile f;
+    open_regular(file.string(), f);
+    const Key key{file.string(), identity_of(f.st)};
+    std::unique_lock lock(mutex_);
+    if (auto known = cached_or_claim(lock, key)) return *known;
+    lock.unlock();
+    return hash_claimed(f.fd, key);
+}
+
+std::optional<FileFacts> FileFactsCache::facts_or_later(const std::filesystem::path& file, Later later) {
+    OpenFile f;
+    open_regular(file.string(), f);
+    const Key key{file.string(), identity_of(f.st)};
+    std::unique_lock lock(mutex_);
+    if (auto it = hashes_.find(key); it != hashes_.end()) return FileFacts{key.identity.size, it->second, key.identity};
+    if (key.identity.size > kHashAtOnceBytes) {
+        waiting_[key.path].push_back(std::move(later));
+        queue(file);
+        return std::nullopt;
+    }
+    if (auto known = cached_or_claim(lock, key)) return known;
+    lock.unlock();
+    return hash_claimed(f.fd, key);
+}
+
+void FileFactsCache::queue(const std::filesystem::path& file) {
+    if (std::find(queue_.begin(), queue_.end(), file) != queue_.end()) return;
+    queue_.push_back(file);
+    changed_.notify_all();
 }
 
 void FileFactsCache::prepare(const std::vector<std::filesystem::path>& files) {
     std::lock_guard lock(mutex_);
-    for (const auto& f : files) queue_.push_back(f);
-    changed_.notify_all();
+    for (const auto& f : files) queue(f);
+}
+
+void FileFactsCache::forget(const std::filesystem::path& file) {
+    std::lock_guard lock(mutex_);
+    const std::string what = file.string();
+    std::erase_if(hashes_, [&](const auto& entry) { return entry.first.path == what; });
 }
 
 void FileFactsCache::hash_in_background() {
@@ -128,28 +161,57 @@ void FileFactsCache::hash_in_background() {
         if (stopping_) return;
         const std::filesystem::path file = queue_.front();
         queue_.pop_front();
-        const std::string what = file.string();
-        if (hashing_.count(what)) continue;
-        hashing_.insert(what);
-        lock.unlock();
-        std::optional<std::pair<Key, std::string>> done;
-        try {
-            OpenFile f;
-            open_regular(what, f);
-            const Key key{what, static_cast<std::int64_t>(f.st.st_size),
-                          static_cast<std::int64_t>(f.st.st_mtim.tv_sec) * 1000000000 + f.st.st_mtim.tv_nsec};
-            done.emplace(key, hash_fd(f.fd, what));
-        } catch (const std::exception&) {
-            // Gone or unreadable: the grab that needs it will say so.
-        }
-        lock.lock();
-        hashing_.erase(what);
-        if (done) {
-            if (hashes_.size() > 1024) hashes_.clear();
-            hashes_[done->first] = done->second;
-        }
-        changed_.notify_all();
+        hash_one_in_background(lock, file);
     }
+}
+
+void FileFactsCache::hash_one_in_background(std::unique_lock<std::mutex>& lock, const std::filesystem::path& file) {
+    const std::string what = file.string();
+    // A grab hashing it now: its hash is what the waiting grabs get.
+    changed_.wait(lock, [&] { return stopping_ || !hashing_.count(what); });
+    if (stopping_) return;
+    hashing_.insert(what);
+    lock.unlock();
+    std::variant<FileFacts, std::string> result;
+    bool fresh = false;
+    Key key;
+    try {
+        OpenFile f;
+        open_regular(what, f);
+        key = Key{what, identity_of(f.st)};
+        std::optional<std::string> known;
+        {
+            std::lock_guard guard(mutex_);
+            if (auto it = hashes_.find(key); it != hashes_.end()) known = it->second;
+        }
+        fresh = !known;
+        result = FileFacts{key.identity.size, known ? *known : hash_fd(f.fd, what, &stop_hashing_), key.identity};
+    } catch (const std::exception& e) {
+        result = std::string(e.what());
+        fresh = false;
+    }
+    lock.lock();
+    hashing_.erase(what);
+    if (fresh) {
+        if (hashes_.size() > kMaxCachedHashes) hashes_.clear();
+        hashes_[key] = std::get<FileFacts>(result).sha256;
+    }
+    std::vector<Later> waiters;
+    if (auto it = waiting_.find(what); it != waiting_.end()) {
+        waiters = std::move(it->second);
+        waiting_.erase(it);
+    }
+    changed_.notify_all();
+    if (stopping_ || waiters.empty()) return;
+    lock.unlock();
+    for (auto& waiter : waiters) {
+        try {
+            waiter(result);
+        } catch (...) {
+            // A waiter's failure is its own (the session it would answer is gone).
+        }
+    }
+    lock.lock();
 }
 
 }  // namespace umf::provider

@@ -20,7 +20,12 @@ void SessionRegistry::add(Session* session, std::weak_ptr<Session> weak) {
 
 void SessionRegistry::remove(Session* session) {
     std::lock_guard lock(mutex_);
-    sessions_.erase(session);
+    ended_ += sessions_.erase(session);
+}
+
+std::uint64_t SessionRegistry::ended() const {
+    std::lock_guard lock(mutex_);
+    return ended_;
 }
 
 std::vector<std::shared_ptr<Session>> SessionRegistry::sessions() const {

@@ -8,6 +8,7 @@
 #include <boost/asio/strand.hpp>
 #include <boost/beast/core/error.hpp>
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <mutex>
 #include <unordered_map>
@@ -28,10 +29,13 @@ public:
     // The sessions still alive.
     std::vector<std::shared_ptr<Session>> sessions() const;
     std::size_t size() const;
+    // Connections ended since the registry was made (the heap trimmer's cue).
+    std::uint64_t ended() const;
 
 private:
     mutable std::mutex mutex_;
     std::unordered_map<Session*, std::weak_ptr<Session>> sessions_;
+    std::uint64_t ended_ = 0;
 };
 
 class Listener : public std::enable_shared_from_this<Listener> {

@@ -4,6 +4,7 @@
 #include <boost/asio/strand.hpp>
 #include <stdexcept>
 
+#include "server/heap_trim.hpp"
 #include "server/listener.hpp"
 #include "server/session.hpp"
 
@@ -38,6 +39,8 @@ void Server::start() {
     }
     port_ = listener_->local_endpoint().port();
     listener_->run();
+    trimmer_ = std::make_shared<HeapTrimmer>(io_, registry_);
+    trimmer_->start();
     running_ = true;
     const int n = options_.threads > 0 ? options_.threads : 1;
     for (int i = 0; i < n; ++i) threads_.emplace_back([this] { io_.run(); });
@@ -49,6 +52,7 @@ void Server::stop(std::chrono::milliseconds grace) {
     if (!running_) return;
     running_ = false;
     listener_->stop();
+    trimmer_->stop();
     // Open polls are answered with "closed": 1001 and the HTTP sessions end.
     http_sessions_->stop();
     for (const auto& session : registry_->sessions()) session->shutdown();

@@ -17,6 +17,7 @@
 
 namespace umf::provider {
 
+class HeapTrimmer;
 class Listener;
 class SessionRegistry;
 
@@ -60,6 +61,7 @@ private:
     std::shared_ptr<SessionRegistry> registry_;
     std::shared_ptr<HttpSessions> http_sessions_;
     std::shared_ptr<Listener> listener_;
+    std::shared_ptr<HeapTrimmer> trimmer_;
     std::vector<std::thread> threads_;
     unsigned short port_ = 0;
     bool running_ = false;

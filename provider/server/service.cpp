@@ -33,6 +33,65 @@ TokenBucket grab_bucket(const p::Limits& limits) {
     return {limits.grabs_per_min / 60.0, std::max(1.0, limits.grabs_per_min / 5.0)};
 }
 
+p::Error unreadable(const p::Grab& grab, const Resolved& resolved) {
+    return p::Error{grab.id, p::ErrorCode::internal, "cannot read " + p::safe_file_name(resolved.name)};
+}
+
+// The content message for what a grab resolved, a file's download link
+// registered; `facts` is the resolved file's (null for a URL or bytes).
+p::Message content_for(const p::Grab& grab, const Resolved& resolved, const FileFacts* facts, DownloadTable& downloads,
+                       std::int64_t max_download_bytes) {
+    p::Content c;
+    c.id = grab.id;
+    c.kind = resolved.kind;
+    c.title = resolved.title;
+    switch (resolved.kind) {
+        case p::ContentKind::none:
+            break;
+        case p::ContentKind::url:
+            c.url = resolved.url;
+            break;
+        case p::ContentKind::file:
+        case p::ContentKind::snapshot: {
+            DownloadEntry entry;
+            entry.name = p::safe_file_name(resolved.name);
+            entry.mime = resolved.mime.empty() ? "application/octet-stream" : resolved.mime;
+            if (resolved.file && facts) {
+                entry.size = facts->size;
+                entry.sha256 = facts->sha256;
+                entry.identity = facts->identity;
+                entry.file = resolved.file;
+            } else if (resolved.bytes) {
+                entry.size = static_cast<std::int64_t>(resolved.bytes->size());
+                entry.sha256 = sha256_hex(*resolved.bytes);
+                entry.bytes = resolved.bytes;
+            } else {
+                return p::Error{grab.id, p::ErrorCode::internal, "the content under the point has no data"};
+            }
+            if (entry.size > max_download_bytes)
+                return p::Error{grab.id, p::ErrorCode::too_large,
+                                entry.name + " is " + std::to_string(entry.size) + " bytes, more than the limit of " +
+                                    std::to_string(max_download_bytes)};
+            c.name = entry.name;
+            c.mime = entry.mime;
+            c.size = entry.size;
+            c.sha256 = entry.sha256;
+            c.download = downloads.add(std::move(entry));
+            break;
+        }
+    }
+    return c;
+}
+
+// content_for, and the activity listener told of what was grabbed.
+p::Message answer_grab(std::uint64_t session, const p::Grab& grab, const Resolved& resolved, const FileFacts* facts,
+                       DownloadTable& downloads, std::int64_t max_download_bytes, ActivityListener* activity) {
+    p::Message reply = content_for(grab, resolved, facts, downloads, max_download_bytes);
+    if (const auto* c = std::get_if<p::Content>(&reply); c && activity)
+        activity->grabbed({session, c->kind, c->title, c->name.value_or(""), c->size.value_or(0)});
+    return reply;
+}
+
 }  // namespace
 
 ScreenMap screen_map_for(const DesktopLayout& layout) {
@@ -140,6 +199,8 @@ std::shared_ptr<const ScreenMap> Service::screens() const {
 }
 
 void Service::prepare_files(const std::vector<std::filesystem::path>& files) const { facts_->prepare(files); }
+
+void Service::forget_file(const std::filesystem::path& file) const { facts_->forget(file); }
 
 void Service::session_ended(const SessionState& state) const {
     if (!state.welcomed) return;
@@ -273,7 +334,7 @@ std::optional<p::Message> Service::aim(SessionState& state, const p::Aim& aim, S
     return target;
 }
 
-p::Message Service::grab(SessionState& state, const p::Grab& grab, SteadyTime now) const {
+std::optional<p::Message> Service::grab(SessionState& state, const p::Grab& grab, SteadyTime now) const {
     if (!state.grabs.take(now)) {
         char text[96];
         std::snprintf(text, sizeof text, "more than %g grabs a minute", config_.limits.grabs_per_min);
@@ -281,15 +342,38 @@ p::Message Service::grab(SessionState& state, const p::Grab& grab, SteadyTime no
     }
     const auto point = screen_point(grab.point);
     if (!point) return p::Error{grab.id, p::ErrorCode::not_found, "no screen shows field point " + point_text(grab.point)};
-    p::Message reply;
+    Resolved resolved;
     try {
-        reply = content_for(grab, resolve(*point, Purpose::grab));
+        resolved = resolve(*point, Purpose::grab);
     } catch (const std::exception& e) {
         return p::Error{grab.id, p::ErrorCode::internal, e.what()};
     }
-    if (const auto* c = std::get_if<p::Content>(&reply); c && activity_)
-        activity_->grabbed({state.id, c->kind, c->title, c->name.value_or(""), c->size.value_or(0)});
-    return reply;
+    const bool file = resolved.file && resolved.kind != p::ContentKind::none && resolved.kind != p::ContentKind::url;
+    if (!file) return answer_grab(state.id, grab, resolved, nullptr, *downloads_, config_.max_download_bytes, activity_.get());
+    std::optional<FileFacts> facts;
+    try {
+        if (!state.outbox) {
+            facts = facts_->facts(*resolved.file);
+        } else {
+            // A large file is answered once hashed, from the hashing thread:
+            // nothing of this Service but what the answer needs is held.
+            facts = facts_->facts_or_later(
+                *resolved.file, [outbox = state.outbox, session = state.id, grab, resolved, downloads = downloads_,
+                                 limit = config_.max_download_bytes,
+                                 activity = activity_](const std::variant<FileFacts, std::string>& result) {
+                    const auto* known = std::get_if<FileFacts>(&result);
+                    const p::Message reply = known ? answer_grab(session, grab, resolved, known, *downloads, limit,
+                                                                 activity.get())
+                                                   : unreadable(grab, resolved);
+                    outbox(session, p::try_encode(reply).value_or(p::encode(p::Error{
+                                        grab.id, p::ErrorCode::internal, "cannot encode the reply"})));
+                });
+        }
+    } catch (const std::exception&) {
+        return unreadable(grab, resolved);
+    }
+    if (!facts) return std::nullopt;
+    return answer_grab(state.id, grab, resolved, &*facts, *downloads_, config_.max_download_bytes, activity_.get());
 }
 
 p::Message Service::put(SessionState& state, const p::Put& put, SteadyTime now) const {
@@ -302,54 +386,6 @@ p::Message Service::put(SessionState& state, const p::Put& put, SteadyTime now) 
     const auto point = screen_point(put.point);
     if (!point) return p::Error{put.id, p::ErrorCode::not_found, "no screen shows field point " + point_text(put.point)};
     return puts_->offer({state.id, state.client, state.device}, put, point);
-}
-
-p::Message Service::content_for(const p::Grab& grab, const Resolved& resolved) const {
-    p::Content c;
-    c.id = grab.id;
-    c.kind = resolved.kind;
-    c.title = resolved.title;
-    switch (resolved.kind) {
-        case p::ContentKind::none:
-            break;
-        case p::ContentKind::url:
-            c.url = resolved.url;
-            break;
-        case p::ContentKind::file:
-        case p::ContentKind::snapshot: {
-            DownloadEntry entry;
-            entry.name = p::safe_file_name(resolved.name);
-            entry.mime = resolved.mime.empty() ? "application/octet-stream" : resolved.mime;
-            if (resolved.file) {
-                FileFacts facts;
-                try {
-                    facts = facts_->facts(*resolved.file);
-                } catch (const std::exception&) {
-                    return p::Error{grab.id, p::ErrorCode::internal, "cannot read " + entry.name};
-                }
-                entry.size = facts.size;
-                entry.sha256 = facts.sha256;
-                entry.file = resolved.file;
-            } else if (resolved.bytes) {
-                entry.size = static_cast<std::int64_t>(resolved.bytes->size());
-                entry.sha256 = sha256_hex(*resolved.bytes);
-                entry.bytes = resolved.bytes;
-            } else {
-                return p::Error{grab.id, p::ErrorCode::internal, "the content under the point has no data"};
-            }
-            if (entry.size > config_.max_download_bytes)
-                return p::Error{grab.id, p::ErrorCode::too_large,
-                                entry.name + " is " + std::to_string(entry.size) + " bytes, more than the limit of " +
-                                    std::to_string(config_.max_download_bytes)};
-            c.name = entry.name;
-            c.mime = entry.mime;
-            c.size = entry.size;
-            if (!entry.sha256.empty()) c.sha256 = entry.sha256;  // not yet for a large file's first grab
-            c.download = downloads_->add(std::move(entry));
-            break;
-        }
-    }
-    return c;
 }
 
 Outcome Service::handle(SessionState& state, const p::ParseResult& parsed, SteadyTime now) const {
@@ -384,7 +420,7 @@ Outcome Service::handle(SessionState& state, const p::ParseResult& parsed, Stead
             } else if constexpr (std::is_same_v<T, p::Aim>) {
                 if (auto reply = aim(state, m, now)) out.replies.push_back(std::move(*reply));
             } else if constexpr (std::is_same_v<T, p::Grab>) {
-                out.replies.push_back(grab(state, m, now));
+                if (auto reply = grab(state, m, now)) out.replies.push_back(std::move(*reply));
             } else if constexpr (std::is_same_v<T, p::Put>) {
                 out.replies.push_back(put(state, m, now));
             } else if constexpr (std::is_same_v<T, p::Hello>) {

@@ -131,6 +131,9 @@ public:
     // Hashes these files in the background (a board's), so their first grabs
     // carry a SHA-256 and wait for nothing.
     void prepare_files(const std::vector<std::filesystem::path>& files) const;
+    // A download found a file's bytes not matching its hash: the next grab
+    // hashes it again.
+    void forget_file(const std::filesystem::path& file) const;
 
     // A connection ends (the session calls this once, welcomed or not).
     void session_ended(const SessionState& state) const;
@@ -158,8 +161,9 @@ private:
     bool token_matches(std::string_view token) const;
     Outcome hello(SessionState& state, const protocol::Hello& hello, SteadyTime now) const;
     std::optional<protocol::Message> aim(SessionState& state, const protocol::Aim& aim, SteadyTime now) const;
-    protocol::Message grab(SessionState& state, const protocol::Grab& grab, SteadyTime now) const;
-    protocol::Message content_for(const protocol::Grab& grab, const Resolved& resolved) const;
+    // Nullopt when the answer comes later through the session's outbox (a
+    // large file being hashed).
+    std::optional<protocol::Message> grab(SessionState& state, const protocol::Grab& grab, SteadyTime now) const;
     protocol::Message put(SessionState& state, const protocol::Put& put, SteadyTime now) const;
 
     ServiceConfig config_;  // its screens are the first; screens_ holds the current

@@ -13,6 +13,9 @@
 #include <stdexcept>
 
 #include "content/download_table.hpp"
+#include "content/verified_file_body.hpp"
+#include "protocol/http_error_body.hpp"
+#include "server/http_framing.hpp"
 #include "server/listener.hpp"
 
 namespace umf::provider {
@@ -26,6 +29,11 @@ namespace ssl = boost::asio::ssl;
 namespace {
 
 constexpr auto kHandshakeTimeout = std::chrono::seconds(30);
+// A refused request's sender may still be sending what was refused: its
+// bytes are read and dropped for this long, or up to this much, before the
+// socket closes (lingering_close).
+constexpr auto kLingerTime = std::chrono::seconds(5);
+constexpr std::size_t kMaxLingerBytes = 64 << 20;
 constexpr std::size_t kMaxRequestHeaderBytes = 8 * 1024;
 // Bodies carry one message of the HTTPS transport (docs/PROTOCOL.md, "Limits").
 constexpr std::size_t kMaxRequestBodyBytes = 16 * 1024;
@@ -130,23 +138,28 @@ void Session::read_request() {
 void Session::request_failed(beast::error_code ec, beast::string_view target) {
     // A request that is not HTTP or too large gets its status; a
     // connection gone or timed out, nothing.
+    (void)target;
     if (ec == http::error::header_limit || ec == http::error::buffer_overflow)
-        reject(http::status::request_header_fields_too_large, "request header too large\n");
-    else if (ec == http::error::body_limit && target.starts_with(kApiPrefix)) {
-        beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
-        api_error(http::status::payload_too_large, false, protocol::ErrorCode::too_large,
-                  "the body is larger than " + std::to_string(kMaxRequestBodyBytes) + " bytes");
-    } else if (ec == http::error::body_limit)
-        reject(http::status::payload_too_large, "request body too large\n");
+        answer_error(http::status::request_header_fields_too_large, false, protocol::ErrorCode::too_large,
+                     "the request's header is larger than " + std::to_string(kMaxRequestHeaderBytes) + " bytes");
+    else if (ec == http::error::body_limit)
+        answer_error(http::status::payload_too_large, false, protocol::ErrorCode::too_large,
+                     "the body is larger than " + std::to_string(kMaxRequestBodyBytes) + " bytes");
     else if (ec.category() == http::make_error_code(http::error::bad_method).category() &&
              ec != http::error::end_of_stream && ec != http::error::partial_message)
-        reject(http::status::bad_request, "bad request\n");
+        answer_error(http::status::bad_request, false, protocol::ErrorCode::bad_request,
+                     "a request that cannot be read: " + ec.message());
 }
 
 void Session::on_header(beast::error_code ec, std::size_t) {
     if (closing_) return;
     if (ec) {
         request_failed(ec, header_->get().target());
+        return;
+    }
+    if (const auto why = ambiguous_framing(header_->get().version(), header_->get())) {
+        // Never served, never read on: the connection ends with the answer.
+        answer_error(http::status::bad_request, false, protocol::ErrorCode::bad_request, *why);
         return;
     }
     const beast::string_view target = header_->get().target();
@@ -199,7 +212,8 @@ void Session::on_request(beast::error_code ec, std::size_t) {
     }
     const beast::string_view target = req.target();
     if (target.substr(0, target.find('?')) != kWebSocketPath) {
-        reject(http::status::not_found, "not found\n");
+        answer_error(http::status::not_found, false, protocol::ErrorCode::not_found,
+                     std::string("the WebSocket is at ") + kWebSocketPath);
         return;
     }
     beast::get_lowest_layer(ws_).expires_never();
@@ -297,18 +311,18 @@ void Session::serve_api(const http::request<http::string_body>& req) {
         }
     }
     if (call == Call::none) {
-        api_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found, "no such API path");
+        answer_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found, "no such API path");
         return;
     }
     const http::verb method = call == Call::events ? http::verb::get : http::verb::post;
     if (req.method() != method) {
-        api_error(http::status::method_not_allowed, keep_alive, protocol::ErrorCode::bad_request,
+        answer_error(http::status::method_not_allowed, keep_alive, protocol::ErrorCode::bad_request,
                   std::string("this path takes ") + (method == http::verb::get ? "GET" : "POST") + " only",
                   method == http::verb::get ? "GET" : "POST");
         return;
     }
     if (method == http::verb::post && !is_json(req[http::field::content_type])) {
-        api_error(http::status::unsupported_media_type, keep_alive, protocol::ErrorCode::bad_request,
+        answer_error(http::status::unsupported_media_type, keep_alive, protocol::ErrorCode::bad_request,
                   "the body must be sent as Content-Type: application/json");
         return;
     }
@@ -345,10 +359,17 @@ void Session::api_response(int status, bool keep_alive, std::string body, const 
     write_response(std::move(res));
 }
 
-void Session::api_error(http::status status, bool keep_alive, protocol::ErrorCode code, const std::string& message,
-                        const char* allow) {
-    api_response(static_cast<int>(status), keep_alive,
-                 api_body({protocol::encode(protocol::Error{std::nullopt, code, message})}), allow);
+void Session::answer_error(http::status status, bool keep_alive, const protocol::Error& error, const char* allow) {
+    if (!keep_alive) {
+        beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+        linger_after_response_ = true;
+    }
+    api_response(static_cast<int>(status), keep_alive, protocol::encode_error_body(error), allow);
+}
+
+void Session::answer_error(http::status status, bool keep_alive, protocol::ErrorCode code, const std::string& message,
+                           const char* allow) {
+    answer_error(status, keep_alive, protocol::Error{std::nullopt, code, message}, allow);
 }
 
 void Session::start_poll(std::string_view id, bool keep_alive) {
@@ -448,14 +469,14 @@ void Session::start_upload() {
     const auto& req = header.get();
     const beast::string_view target = req.target();
     if (req.method() != http::verb::put) {
-        api_error(http::status::method_not_allowed, false, protocol::ErrorCode::bad_request,
+        answer_error(http::status::method_not_allowed, false, protocol::ErrorCode::bad_request,
                   "an upload is a PUT", "PUT");
         return;
     }
     // The link is used up by this request, whatever follows.
     auto entry = service_->puts().take_upload(std::string_view(target.data(), target.size()));
     if (!entry) {
-        api_error(http::status::not_found, false, protocol::ErrorCode::not_found, "unknown, used or expired upload link");
+        answer_error(http::status::not_found, false, protocol::ErrorCode::not_found, "unknown, used or expired upload link");
         return;
     }
     upload_entry_ = std::move(*entry);
@@ -465,7 +486,7 @@ void Session::start_upload() {
         const std::string why = "an upload needs a Content-Length of " + std::to_string(size);
         service_->puts().upload_failed(*upload_entry_, protocol::ErrorCode::interrupted, why);
         upload_entry_.reset();
-        api_error(http::status::length_required, false, protocol::ErrorCode::bad_request, why);
+        answer_error(http::status::length_required, false, protocol::ErrorCode::bad_request, why);
         return;
     }
     if (*length != static_cast<std::uint64_t>(size)) {
@@ -473,7 +494,7 @@ void Session::start_upload() {
                                 std::to_string(size);
         service_->puts().upload_failed(*upload_entry_, protocol::ErrorCode::interrupted, why);
         upload_entry_.reset();
-        api_error(http::status::bad_request, false, protocol::ErrorCode::bad_request, why);
+        answer_error(http::status::bad_request, false, protocol::ErrorCode::bad_request, why);
         return;
     }
     try {
@@ -581,8 +602,7 @@ void Session::fail_upload(protocol::ErrorCode code, const std::string& message, 
     const auto status = code == protocol::ErrorCode::too_large  ? http::status::payload_too_large
                         : code == protocol::ErrorCode::internal ? http::status::internal_server_error
                                                                 : http::status::bad_request;
-    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
-    api_response(static_cast<int>(status), false, encode_reply(error));
+    answer_error(status, false, error);
 }
 
 void Session::push_message(std::string text) {
@@ -598,7 +618,7 @@ void Session::serve_http(const http::request<http::string_body>& req) {
         return;
     }
     if (req.method() != http::verb::get && req.method() != http::verb::head) {
-        http_error(http::status::method_not_allowed, keep_alive, protocol::ErrorCode::bad_request,
+        answer_error(http::status::method_not_allowed, keep_alive, protocol::ErrorCode::bad_request,
                    "only GET and HEAD are served here; POST only under /api/");
         return;
     }
@@ -609,7 +629,7 @@ void Session::serve_http(const http::request<http::string_body>& req) {
     }
     const auto file = service_->site().find(std::string_view(target.data(), target.size()));
     if (!file) {
-        http_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found, "no such page");
+        answer_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found, "no such page");
         return;
     }
     auto res = std::make_shared<http::response<http::string_body>>(http::status::ok, req.version());
@@ -630,7 +650,7 @@ void Session::serve_download(const http::request<http::string_body>& req) {
     // The link is used up by this request, whatever follows.
     auto entry = service_->downloads().take(std::string_view(target.data(), target.size()));
     if (!entry) {
-        http_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found,
+        answer_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found,
                    "unknown, used or expired download link");
         return;
     }
@@ -652,14 +672,11 @@ void Session::serve_download(const http::request<http::string_body>& req) {
         write_response(std::move(res));
         return;
     }
-    http::file_body::value_type body;
-    beast::error_code ec;
-    body.open(entry->file->c_str(), beast::file_mode::scan, ec);
-    if (ec || static_cast<std::int64_t>(body.size()) != entry->size) {
-        // Gone or changed since the grab hashed it: what would arrive is not
-        // what the content message promised.
-        http_error(http::status::internal_server_error, keep_alive, protocol::ErrorCode::internal,
-                   ec ? "the file can no longer be read" : "the file changed since it was grabbed");
+    VerifiedFileBody::value_type body;
+    if (const auto why = body.open(*entry->file, entry->identity, entry->sha256)) {
+        // Gone or changed since the grab: what would arrive is not what the
+        // content message promised.
+        answer_error(http::status::conflict, keep_alive, protocol::ErrorCode::internal, *why);
         return;
     }
     if (head) {
@@ -668,22 +685,26 @@ void Session::serve_download(const http::request<http::string_body>& req) {
         write_response(std::move(res));
         return;
     }
-    auto res = std::make_shared<http::response<http::file_body>>(
+    auto res = std::make_shared<http::response<VerifiedFileBody>>(
         std::piecewise_construct, std::make_tuple(std::move(body)), std::make_tuple(http::status::ok, req.version()));
     prepare(*res);
-    write_response(std::move(res));
+    auto& r = *res;
+    response_ = std::move(res);
+    http::async_write(ws_.next_layer(), r,
+                      [self = shared_from_this(), keep_alive, file = *entry->file](beast::error_code ec, std::size_t) {
+                          self->response_.reset();
+                          if (ec == DownloadCheck::changed) {
+                              // Cut short: the phone sees fewer bytes than promised
+                              // and keeps none; the next grab hashes the file again.
+                              self->service_->forget_file(file);
+                              beast::get_lowest_layer(self->ws_).close();
+                              return;
+                          }
+                          if (ec) return;
+                          self->after_response(keep_alive);
+                      });
 }
 
-void Session::http_error(http::status status, bool keep_alive, protocol::ErrorCode code, const std::string& message) {
-    auto res = std::make_shared<http::response<http::string_body>>(status, 11);
-    set_common_headers(*res);
-    res->set(http::field::content_type, "application/json");
-    res->set(http::field::cache_control, "no-store");
-    res->keep_alive(keep_alive);
-    res->body() = protocol::encode(protocol::Error{std::nullopt, code, message});
-    res->prepare_payload();
-    write_response(std::move(res));
-}
 
 template <class Body>
 void Session::write_response(std::shared_ptr<http::response<Body>> response) {
@@ -714,7 +735,38 @@ void Session::after_response(bool keep_alive) {
         read_request();
         return;
     }
+    if (linger_after_response_) {
+        lingering_close();
+        return;
+    }
     end_tls();
+}
+
+void Session::lingering_close() {
+    // Closing a socket with unread bytes makes the kernel send a reset,
+    // which can destroy the answer before the peer reads it: a sender still
+    // writing the body that was refused would never see why. So the answer
+    // is followed by our FIN (no TLS close_notify: the peer may be mid-record),
+    // and what still comes is read and dropped until the peer closes.
+    auto& tcp = beast::get_lowest_layer(ws_);
+    beast::error_code ignored;
+    tcp.socket().shutdown(net::ip::tcp::socket::shutdown_send, ignored);
+    tcp.expires_after(kLingerTime);
+    linger_buffer_ = std::make_unique<std::array<char, 16 * 1024>>();
+    linger_bytes_ = 0;
+    drain();
+}
+
+void Session::drain() {
+    beast::get_lowest_layer(ws_).async_read_some(
+        net::buffer(*linger_buffer_), [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+            self->linger_bytes_ += n;
+            if (ec || self->linger_bytes_ > kMaxLingerBytes) {
+                beast::get_lowest_layer(self->ws_).close();
+                return;
+            }
+            self->drain();
+        });
 }
 
 void Session::end_tls() {
@@ -725,16 +777,6 @@ void Session::end_tls() {
     });
 }
 
-void Session::reject(http::status status, const char* text) {
-    auto res = std::make_shared<http::response<http::string_body>>(status, 11);
-    set_common_headers(*res);
-    res->set(http::field::content_type, "text/plain; charset=utf-8");
-    res->keep_alive(false);
-    res->body() = text;
-    res->prepare_payload();
-    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
-    write_response(std::move(res));
-}
 
 void Session::on_accept(beast::error_code ec) {
     if (ec) return;
@@ -756,9 +798,15 @@ void Session::read() {
 
 void Session::on_read(beast::error_code ec, std::size_t) {
     reading_ = false;
-    // Closed by the peer, too big (Beast has already failed the connection
-    // with 1009), timed out or aborted: the session ends here.
-    if (ec) return;
+    // The session ends here: closed by the peer, timed out, aborted, or
+    // failed by Beast, which has sent its close (1009 for a message too
+    // big, 1007 for text that is not UTF-8). The peer may still be sending
+    // the rest of what failed it: closing under that would reset the
+    // connection and could destroy the close before the peer reads it.
+    if (ec) {
+        if (!closing_ && ec != net::error::operation_aborted) lingering_close();
+        return;
+    }
     if (closing_) return;
 
     const std::string text = beast::buffers_to_string(buffer_.data());

@@ -15,6 +15,7 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/ssl.hpp>
 #include <boost/beast/websocket.hpp>
+#include <array>
 #include <deque>
 #include <memory>
 #include <optional>
@@ -72,8 +73,13 @@ private:
     void serve_download(const boost::beast::http::request<boost::beast::http::string_body>& req);
     void serve_api(const boost::beast::http::request<boost::beast::http::string_body>& req);
     void api_response(int status, bool keep_alive, std::string body, const char* allow = nullptr);
-    void api_error(boost::beast::http::status status, bool keep_alive, protocol::ErrorCode code,
-                   const std::string& message, const char* allow = nullptr);
+    // Every error answer over HTTP: its status and the one error body
+    // (protocol/http_error_body.hpp); without keep_alive the connection
+    // closes once it is written.
+    void answer_error(boost::beast::http::status status, bool keep_alive, const protocol::Error& error,
+                      const char* allow = nullptr);
+    void answer_error(boost::beast::http::status status, bool keep_alive, protocol::ErrorCode code,
+                      const std::string& message, const char* allow = nullptr);
     void start_poll(std::string_view id, bool keep_alive);
     void on_poll_timer(boost::beast::error_code ec, std::uint64_t serial);
     void finish_poll(std::uint64_t poll, HttpSessions::Reply reply);
@@ -81,13 +87,14 @@ private:
     void on_watch(boost::beast::error_code ec, std::size_t bytes);
     void arm_timer(std::chrono::milliseconds after, void (Session::*handler)(boost::beast::error_code, std::uint64_t));
     void on_idle_timer(boost::beast::error_code ec, std::uint64_t serial);
-    void reject(boost::beast::http::status status, const char* text);
-    void http_error(boost::beast::http::status status, bool keep_alive, protocol::ErrorCode code,
-                    const std::string& message);
     template <class Body>
     void write_response(std::shared_ptr<boost::beast::http::response<Body>> response);
     void after_response(bool keep_alive);
     void end_tls();
+    // After an error answer (or a 1009 close): FIN, then the peer's bytes
+    // read and dropped until it closes, kLingerTime or kMaxLingerBytes.
+    void lingering_close();
+    void drain();
     void on_accept(boost::beast::error_code ec);
     void read();
     void on_read(boost::beast::error_code ec, std::size_t);
@@ -132,6 +139,10 @@ private:
     bool poll_keep_alive_ = false;
     bool watching_ = false;
     bool resume_after_watch_ = false;  // answered: the watch read leads into the next request
+
+    bool linger_after_response_ = false;  // an error answer that ends the connection
+    std::unique_ptr<std::array<char, 16 * 1024>> linger_buffer_;
+    std::size_t linger_bytes_ = 0;
 };
 
 }  // namespace umf::provider

@@ -7,6 +7,7 @@
 #include <openssl/pem.h>
 #include <openssl/rand.h>
 #include <openssl/x509.h>
+#include <openssl/ssl.h>
 #include <openssl/x509v3.h>
 
 #include <boost/asio/buffer.hpp>
@@ -155,6 +156,9 @@ void configure_server_context(boost::asio::ssl::context& context, const TlsIdent
                         ssl::context::no_tlsv1 | ssl::context::no_tlsv1_1 | ssl::context::single_dh_use);
     context.use_certificate_chain(boost::asio::buffer(identity.certificate_pem));
     context.use_private_key(boost::asio::buffer(identity.private_key_pem), ssl::context::pem);
+    // An idle connection keeps no OpenSSL read or write buffer (about 34 KiB
+    // of the per-connection memory in docs/BENCHMARKS.md).
+    SSL_CTX_set_mode(context.native_handle(), SSL_MODE_RELEASE_BUFFERS);
 }
 
 }  // namespace umf::provider

@@ -10,6 +10,8 @@
 #include <thread>
 
 #include "content/board_resolver.hpp"
+#include "native/sha256.hpp"
+#include "protocol/http_error_body.hpp"
 #include "protocol/messages.hpp"
 #include "server/pairing.hpp"
 #include "server/server.hpp"
@@ -64,12 +66,17 @@ protected:
         server = std::make_unique<Server>(service, identity);
         server->start();
     }
-    // A link as a grab over the WebSocket would get it.
-    std::string grab_link() {
+    // The content a grab over the WebSocket would get, and its link.
+    p::Content grab_content() {
         SessionState state;
         service->handle_text(state, p::encode(p::Hello{std::nullopt, kToken, "t"}));
         const auto out = service->handle_text(state, p::encode(p::Grab{p::RequestId{std::string("g")}, {5, 5}}));
-        return *std::get<p::Content>(out.replies.at(0)).download;
+        return std::get<p::Content>(out.replies.at(0));
+    }
+    std::string grab_link() { return *grab_content().download; }
+    std::string read_big() {
+        std::ifstream in(big, std::ios::binary);
+        return {std::istreambuf_iterator<char>(in), {}};
     }
     Response curl(const std::string& target, const std::string& options = "") {
         const fs::path body = dir.path / "body", headers = dir.path / "headers";
@@ -107,9 +114,9 @@ TEST_F(ProviderHttp, ADownloadLinkWorksOnceWithTheRightHeaders) {
 
     const Response second = curl(link);
     EXPECT_EQ(second.status, 404);
-    const auto parsed = p::parse_message(second.body, p::kRequesterLimits);
-    ASSERT_TRUE(std::holds_alternative<p::Message>(parsed)) << second.body;
-    EXPECT_EQ(std::get<p::Error>(std::get<p::Message>(parsed)).code, p::ErrorCode::not_found);
+    const auto error = p::parse_error_body(second.body);
+    ASSERT_TRUE(error) << second.body;
+    EXPECT_EQ(error->code, p::ErrorCode::not_found);
 }
 
 TEST_F(ProviderHttp, NoClientPathReachesTheFileSystem) {
@@ -200,6 +207,50 @@ TEST_F(ProviderHttp, AClientThatLeavesMidDownloadLeavesNothingBehind) {
     EXPECT_EQ(curl(link).status, 404) << "the link was used by the first request";
     EXPECT_EQ(curl("/").status, 200) << "the server serves on";
     EXPECT_EQ(fs::file_size(big), 24u << 20) << "the file is untouched";
+}
+
+// One byte changed after the grab, the size and modification time kept (as
+// a tool that restores times leaves it): the download is cut before its
+// last piece, so the phone never holds bytes other than the announced ones,
+// and the next grab announces the new SHA-256.
+TEST_F(ProviderHttp, AFileChangedInPlaceAfterTheGrabIsCutNotSent) {
+    const p::Content offered = grab_content();
+    const auto mtime = fs::last_write_time(big);
+    {
+        std::fstream f(big, std::ios::binary | std::ios::in | std::ios::out);
+        f.seekp(12345);
+        f.put('\x7f');
+    }
+    fs::last_write_time(big, mtime);
+    const std::string changed = read_big();
+    const Response cut = curl(*offered.download);
+    EXPECT_LT(cut.body.size(), changed.size()) << "the changed file went out whole";
+    EXPECT_TRUE(sessions_drain());
+
+    const p::Content again = grab_content();
+    umf::native::Sha256 sha;
+    sha.update(changed.data(), changed.size());
+    const std::string now = sha.hex();
+    EXPECT_NE(*offered.sha256, now);
+    EXPECT_EQ(*again.sha256, now) << "the next grab hashed the file again";
+    const Response whole = curl(*again.download);
+    EXPECT_EQ(whole.status, 200);
+    EXPECT_TRUE(whole.body == changed) << "the file as it is now, whole";
+}
+
+// Changed with a new modification time (or replaced): refused before a byte.
+TEST_F(ProviderHttp, AFileRewrittenAfterTheGrabIsRefusedWithItsReason) {
+    const p::Content offered = grab_content();
+    std::string bytes = read_big();
+    bytes[0] ^= 1;
+    const fs::path next = dir.path / "next.bin";
+    std::ofstream(next, std::ios::binary) << bytes;
+    fs::rename(next, big);
+    const Response r = curl(*offered.download);
+    EXPECT_EQ(r.status, 409);
+    const auto error = p::parse_error_body(r.body);
+    ASSERT_TRUE(error) << r.body;
+    EXPECT_NE(error->message.find("changed since it was offered"), std::string::npos) << error->message;
 }
 
 }  // namespace

@@ -28,6 +28,7 @@
 #include <random>
 
 #include "content/file_facts.hpp"
+#include "protocol/http_error_body.hpp"
 #include "protocol/messages.hpp"
 #include "server/server.hpp"
 #include "server/service.hpp"
@@ -343,7 +344,10 @@ TEST_F(PutServer, BytesThatDoNotMatchAreInterruptedAndNothingIsLeft) {
     sent[50'000] ^= 1;
     const Response answer = curl_upload(accepted_upload(*r, promised, "p8"), sent);
     EXPECT_EQ(answer.status, 400);
-    EXPECT_NE(answer.body.find("interrupted"), std::string::npos) << answer.body;
+    // The same error body as every other HTTP error (a 404 below).
+    const auto error = p::parse_error_body(answer.body);
+    ASSERT_TRUE(error) << answer.body;
+    EXPECT_EQ(error->code, p::ErrorCode::interrupted);
     const p::Message m = r->read();
     EXPECT_EQ(code_of(m), p::ErrorCode::interrupted);
     EXPECT_EQ(std::get<p::Error>(m).id, p::RequestId{std::string("p8")});
@@ -396,7 +400,11 @@ TEST_F(PutServer, AWrongOrMissingLengthIsRefusedAndUsesTheLink) {
 }
 
 TEST_F(PutServer, UnknownLinksAreNotFoundAndOtherMethodsRefused) {
-    EXPECT_EQ(curl_upload("/up/AAAAAAAAAAAAAAAAAAAAAA", "x").status, 404);
+    const Response unknown = curl_upload("/up/AAAAAAAAAAAAAAAAAAAAAA", "x");
+    EXPECT_EQ(unknown.status, 404);
+    const auto error = p::parse_error_body(unknown.body);
+    ASSERT_TRUE(error) << unknown.body;
+    EXPECT_EQ(error->code, p::ErrorCode::not_found);
     EXPECT_EQ(curl_upload("/up/", "x").status, 404);
     const auto r = run_command("curl -s -k --max-time 10 -o /dev/null -w '%{http_code}' 'https://127.0.0.1:" +
                                std::to_string(server->port()) + "/up/AAAAAAAAAAAAAAAAAAAAAA'");

@@ -23,6 +23,7 @@
 #include <thread>
 #include <vector>
 
+#include "protocol/http_error_body.hpp"
 #include "protocol/messages.hpp"
 #include "server/service.hpp"
 #include "server/tls_identity.hpp"
@@ -192,7 +193,7 @@ private:
             const unsigned status = c.status == 200 ? 404 : c.status;
             http::response<http::string_body> res(static_cast<http::status>(status), 11);
             res.set(http::field::content_type, "application/json");
-            res.body() = protocol::encode(protocol::Error{
+            res.body() = protocol::encode_error_body(protocol::Error{
                 std::nullopt, status == 404 ? protocol::ErrorCode::not_found : protocol::ErrorCode::internal,
                 "unknown, used or expired download link"});
             res.prepare_payload();

@@ -367,6 +367,7 @@ TEST_F(RequesterGrab, BadTransfersLeaveNothingBehind) {
         umf::test::FakeContent content;
         const char* code;
         int exit;
+        const char* says = "";  // in the line's message
     };
     umf::test::FakeContent wrong_sha, cut_off, wrong_size, expired, failed;
     wrong_sha.sha256 = sha256_hex("something else");
@@ -376,9 +377,10 @@ TEST_F(RequesterGrab, BadTransfersLeaveNothingBehind) {
     expired.status = 404;
     failed.status = 500;
     const Case cases[] = {{"wrong sha256", wrong_sha, "download", 4},
-                          {"cut off", cut_off, "download", 4},
+                          {"cut off", cut_off, "download", 4, "SHA-256 could not be checked and nothing was kept"},
                           {"size differs from Content-Length", wrong_size, "download", 4},
-                          {"expired link", expired, "not_found", 5},
+                          // The provider's reason, from its error body.
+                          {"expired link", expired, "not_found", 5, "unknown, used or expired download link"},
                           {"server error", failed, "internal", 4}};
     for (const auto& c : cases) {
         fake.set_content(c.content);
@@ -388,6 +390,7 @@ TEST_F(RequesterGrab, BadTransfersLeaveNothingBehind) {
                            "--image " + shared("photo.png") + " --out " + out.string());
         EXPECT_EQ(r.code, c.exit) << c.what << "\n" << r.err;
         EXPECT_EQ(code_of(r), c.code) << c.what << "\n" << r.line.dump();
+        EXPECT_NE(r.line.dump().find(c.says), std::string::npos) << c.what << "\n" << r.line.dump();
         EXPECT_TRUE(files_in(out).empty()) << c.what;
     }
 }

@@ -396,22 +396,35 @@ async function showGrabbed(content) {
 
 async function download(content) {
   const response = await fetch(content.download, { cache: 'no-store' });
-  if (!response.ok) throw new Error(`the download answered ${response.status}`);
+  if (!response.ok) {
+    // The provider says why in its error envelope (docs/PROTOCOL.md, "Errors over HTTP").
+    const answer = await response.json().catch(() => null);
+    const error = answer?.messages?.length === 1 && answer.messages[0]?.type === 'error' ? answer.messages[0] : null;
+    throw new Error(error?.message || `the download answered ${response.status}`);
+  }
   const total = content.size;
   const reader = response.body.getReader();
   const chunks = [];
   let received = 0;
   // Without crypto.subtle (a plain http page) the bytes are hashed as they come.
   const ownHash = content.sha256 && !crypto.subtle ? new Sha256() : null;
+  const cut = () => new Error(`the transfer was cut after ${received} of ${total} bytes, so its SHA-256 could not ` +
+                              'be checked and nothing was kept (a file changed on the screen since the grab is cut so)');
   for (;;) {
-    const { value, done } = await reader.read();
+    let part;
+    try {
+      part = await reader.read();
+    } catch {
+      throw cut();
+    }
+    const { value, done } = part;
     if (done) break;
     chunks.push(value);
     ownHash?.update(value);
     received += value.length;
     if (total > 0) $('status').textContent = `Receiving ${content.name}… ${Math.floor((100 * received) / total)} %`;
   }
-  if (received !== total) throw new Error(`${received} of ${total} bytes arrived`);
+  if (received !== total) throw cut();
   const blob = new Blob(chunks, { type: content.mime });
   let verified = null;
   if (content.sha256) {
@@ -845,8 +858,10 @@ function upload(path) {
     try {
       answer = JSON.parse(xhr.responseText);
     } catch { /* not JSON: judged by the status below */ }
+    // An error comes as the HTTPS transport's envelope (docs/PROTOCOL.md, "Errors over HTTP").
+    const error = answer?.messages?.length === 1 && answer.messages[0]?.type === 'error' ? answer.messages[0] : null;
     if (xhr.status === 200 && answer?.type === 'put_status' && answer.status === 'done') finishPut(answer);
-    else if (answer?.type === 'error') failPut(answer.code === 'bad_request' ? 'interrupted' : answer.code, answer.message);
+    else if (error) failPut(error.code === 'bad_request' ? 'interrupted' : error.code, error.message);
     else if (xhr.status === 200) armPutTimer(PUT_REPLY_MS, 'the screen did not confirm the upload');
     else failPut('interrupted', `the upload was answered ${xhr.status}`);
   };

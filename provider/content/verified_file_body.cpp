@@ -1,0 +1,94 @@
+#include "content/verified_file_body.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+
+namespace umf::provider {
+
+namespace {
+
+// Large enough that a 1 GiB file is 16,384 reads, not the 262,144 of 4 KiB.
+constexpr std::size_t kReadBytes = 64 * 1024;
+
+class DownloadCheckCategory : public boost::system::error_category {
+public:
+    const char* name() const noexcept override { return "umf.download"; }
+    std::string message(int) const override { return "the file's bytes are not the ones its grab announced"; }
+};
+
+}  // namespace
+
+const boost::system::error_category& download_check_category() {
+    static const DownloadCheckCategory category;
+    return category;
+}
+
+VerifiedFileBody::value_type::value_type(value_type&& other) noexcept
+    : fd_(std::exchange(other.fd_, -1)), size_(other.size_), sha256_(std::move(other.sha256_)) {}
+
+VerifiedFileBody::value_type& VerifiedFileBody::value_type::operator=(value_type&& other) noexcept {
+    if (this != &other) {
+        if (fd_ >= 0) ::close(fd_);
+        fd_ = std::exchange(other.fd_, -1);
+        size_ = other.size_;
+        sha256_ = std::move(other.sha256_);
+    }
+    return *this;
+}
+
+VerifiedFileBody::value_type::~value_type() {
+    if (fd_ >= 0) ::close(fd_);
+}
+
+std::optional<std::string> VerifiedFileBody::value_type::open(const std::filesystem::path& file,
+                                                              const FileIdentity& identity, std::string sha256) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd_ < 0) return std::string("the file can no longer be read: ") + std::strerror(errno);
+    struct stat st {};
+    if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) return std::string("the file can no longer be read");
+    const FileIdentity now{static_cast<std::uint64_t>(st.st_dev), static_cast<std::uint64_t>(st.st_ino),
+                           static_cast<std::int64_t>(st.st_size),
+                           static_cast<std::int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec};
+    if (now != identity) return std::string("the file changed since it was offered; grab it again");
+    if (sha256.size() != 64) return std::string("the file was offered without its SHA-256");
+    size_ = static_cast<std::uint64_t>(identity.size);
+    sha256_ = std::move(sha256);
+    return std::nullopt;
+}
+
+boost::optional<std::pair<VerifiedFileBody::writer::const_buffers_type, bool>> VerifiedFileBody::writer::get(
+    boost::beast::error_code& ec) {
+    ec = {};
+    // An empty file of the same identity is the empty file that was hashed.
+    if (remain_ == 0) return boost::none;
+    if (!buffer_) buffer_ = std::make_unique<char[]>(kReadBytes);
+    const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(remain_, kReadBytes));
+    ssize_t n;
+    do {
+        n = ::read(body_.fd_, buffer_.get(), want);
+    } while (n < 0 && errno == EINTR);
+    if (n < 0) {
+        ec = boost::system::error_code(errno, boost::system::system_category());
+        return boost::none;
+    }
+    if (n == 0) {
+        // Shorter than when it was offered.
+        ec = DownloadCheck::changed;
+        return boost::none;
+    }
+    hash_.update(buffer_.get(), static_cast<std::size_t>(n));
+    remain_ -= static_cast<std::uint64_t>(n);
+    // The last piece goes out only when the whole is what was announced.
+    if (remain_ == 0 && hash_.hex() != body_.sha256_) {
+        ec = DownloadCheck::changed;
+        return boost::none;
+    }
+    return {{boost::asio::const_buffer(buffer_.get(), static_cast<std::size_t>(n)), remain_ > 0}};
+}
+
+}  // namespace umf::provider
