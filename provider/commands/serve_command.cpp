@@ -11,7 +11,9 @@
 #include <chrono>
 #include <memory>
 #include <atomic>
+#include <stdexcept>
 #include <thread>
+#include <tuple>
 
 #include "board/board.hpp"
 #include "commands/common_options.hpp"
@@ -115,301 +117,363 @@ void keep_shared_items(SharedItems& items, const std::filesystem::path& file) {
     });
 }
 
-}  // namespace
+// A step that cannot go on: the message for the console and the exit code.
+struct ServeFailure : std::runtime_error {
+    ServeFailure(int code_, const std::string& message) : std::runtime_error(message), code(code_) {}
+    int code;
+};
 
-int run_serve(const cli::Args& a, const ServeHooks& hooks) {
-    const unsigned short port = port_option(a);
-    const std::string bind = get(a, "bind").value_or("127.0.0.1");
-    const std::string host = url_host(a, bind);
-    const auto dir = config_dir_option(a);
+// Everything a running provider holds, filled in step by step by run_serve.
+struct Serving {
+    // The command line.
+    unsigned short port = 0;
+    std::string bind, host;
+    std::filesystem::path dir;
     DesktopChoice desktop_choice;
-    try {
-        desktop_choice = choose_desktop(session_from_environment(), get(a, "desktop"));
-    } catch (const std::invalid_argument& e) {
-        throw UsageError(e.what());
-    }
-    const bool headless = has_flag(a, "headless") || !have_display() || desktop_choice.kind == DesktopKind::headless;
-    const bool public_mode = has_flag(a, "public");
-    const PutChoice puts = put_choice(a, dir, public_mode);
-    const std::string& puts_mode = puts.mode;
-    const PutSettings& put_settings = puts.settings;
-    if (puts_mode != "never") {
-        std::error_code ec;
-        std::filesystem::create_directories(put_settings.folder, ec);
-        if (!std::filesystem::is_directory(put_settings.folder, ec)) {
-            std::cerr << "umf-provider: the put folder " << put_settings.folder.string() << " cannot be made\n";
-            return kConfigError;
-        }
-    }
-
+    bool headless = false;
+    bool public_mode = false;
+    PutChoice puts;
+    // Identity, screen, board and preset.
     TlsIdentity identity;
     std::string token;
-    try {
-        identity = load_or_create_tls_identity(dir);
-        token = load_or_create_token(dir);
-    } catch (const std::exception& e) {
-        std::cerr << "umf-provider: " << e.what() << "\n";
-        return kConfigError;
-    }
-
-    // The screen: virtual when headless, the primary one otherwise (more
-    // screens come with the overlay).
-    std::pair<int, int> size{1920, 1080};
-    if (!headless) {
-        if (QScreen* s = QGuiApplication::primaryScreen()) {
-            const QSize px = s->size() * s->devicePixelRatio();
-            size = {px.width(), px.height()};
-        }
-    }
-    size = screen_size_option(a, "screen", size);
-    const auto [width, height] = size;
-
+    int width = 1920, height = 1080;
     std::optional<Board> board;
     std::filesystem::path board_source;
-    try {
-        if (auto file = get(a, "board")) {
-            board = load_board(*file);
-            board_source = *file;
-        } else if (headless) {
-            board_source = dir / "demo-board";
-            board = write_demo_board(board_source);
-        }
-    } catch (const std::exception& e) {
-        std::cerr << "umf-provider: " << e.what() << "\n";
-        return kConfigError;
-    }
-    if (public_mode && !board) throw UsageError("--public needs a board: it serves board items and nothing else");
-    const overlay::Preset preset = apply_preset_options(preset_option(a, dir, board.has_value()), a);
-    // The board's field: the preset's module size, on a real screen scaled by
-    // its density; a virtual screen counts as 96 dpi, as compose does.
-    double board_module_px = preset.module_px;
-    if (!headless)
-        if (QScreen* s = QGuiApplication::primaryScreen())
-            board_module_px = module_px_for_density(preset.module_px, s->physicalDotsPerInch() * s->devicePixelRatio());
-
-    // The desktop (desktop/desktop.hpp): its field, its windows, its pixels.
-    // A Wayland session without a backend gets none, and no overlay at all.
+    overlay::Preset preset;
+    double board_module_px = 0;
+    // The desktop and the overlay over it.
     OpenedDesktop desktop;
-    if (!headless) desktop = open_desktop(desktop_choice);
-    // On a desktop without a board: the overlay over every screen, when the
-    // desktop can show it (on X11: a compositor mixes it in).
     std::unique_ptr<OverlayManager> overlay_manager;
     std::shared_ptr<OverlayActivity> activity;
     std::optional<DesktopLayout> layout;
-    if (!headless && !board && !has_flag(a, "no-overlay")) {
-        if (!desktop.desktop || !desktop.abilities.field) {
-            std::cerr << "umf-provider: the field cannot be shown on this desktop; the desktop lines on the console say why\n";
-        } else {
-            overlay_manager = std::make_unique<OverlayManager>(preset, desktop.desktop);
-            layout = overlay_manager->layout();
-            activity = std::make_shared<OverlayActivity>(overlay_manager.get(), overlay_manager->layout_indices());
-        }
-    }
-
-    const PutAnswerers answerers = put_answerers(puts, headless, overlay_manager.get());
-    const std::shared_ptr<ControlPutDecider>& put_answers = answerers.control;
-    const std::shared_ptr<PutPromptDecider>& put_prompt = answerers.prompt;
-    const std::shared_ptr<PutDecider>& put_decider = answerers.decider;
-
+    // What lies under a point and who answers puts.
+    PutAnswerers answerers;
     std::vector<std::shared_ptr<const Resolver>> resolvers;
-    // Browsers tell what their windows show once the server knows its port;
-    // only a desktop's windows are looked into.
     std::shared_ptr<BrowserLink> browser_link;
     std::shared_ptr<BrowserResolver> browsers;
-    auto shared_items = std::make_shared<SharedItems>();
-    if (hooks.keeper) keep_shared_items(*shared_items, hooks.keeper->shares_file);
-    QImage screen_image(width, height, QImage::Format_RGB32);
-    screen_image.fill(Qt::black);
-    if (board) {
-        auto tiles = layout_board(*board, width, height);
-        screen_image = paint_board(*board, tiles, QSize(width, height));
-        resolvers.push_back(std::make_shared<BoardResolver>(*board, std::move(tiles)));
-    }
-    if (!public_mode) {
-        resolvers.push_back(shared_items);
-        if (headless) {
-            resolvers.push_back(std::make_shared<ImageSnapshotResolver>(screen_image));
-        } else if (desktop.desktop && desktop.abilities.windows) {
-            // The windows under the point, never the provider's own.
-            try {
-                add_window_resolvers(desktop, overlay_manager.get(), put_prompt.get(), resolvers, browser_link,
-                                     browsers);
-            } catch (const std::exception& e) {
-                std::cerr << "umf-provider: windows cannot be looked up (" << e.what()
-                          << "); serving board and shared items only\n";
-            }
-        }
-    }
-
-    // The web client: --web DIR, else the installed one beside this program,
-    // else the one this build made, else the built-in page (std::nullopt).
+    std::shared_ptr<SharedItems> shared_items = std::make_shared<SharedItems>();
+    QImage screen_image;
     std::optional<std::filesystem::path> web_dir;
-    if (auto web = get(a, "web")) {
-        web_dir = *web;
-    } else {
-        web_dir = default_web_dir();
-    }
     std::shared_ptr<const StaticSite> site;
-    try {
-        if (web_dir) site = std::make_shared<const StaticSite>(StaticSite::from_folder(*web_dir));
-    } catch (const std::exception& e) {
-        std::cerr << "umf-provider: " << e.what() << "\n";
-        return kConfigError;
-    }
-
-    // SIGINT and SIGTERM are taken with sigwait below; blocked before any
-    // thread starts, so none of the server's threads receives them.
-    sigset_t signals;
-    sigemptyset(&signals);
-    sigaddset(&signals, SIGINT);
-    sigaddset(&signals, SIGTERM);
-    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
-
+    // Running.
+    sigset_t signals{};
     std::unique_ptr<Server> server;
     std::unique_ptr<ControlSocket> control;
+    std::string url;
+};
+
+void read_command_line(const cli::Args& a, Serving& s) {
+    s.port = port_option(a);
+    s.bind = get(a, "bind").value_or("127.0.0.1");
+    s.host = url_host(a, s.bind);
+    s.dir = config_dir_option(a);
     try {
-        ServiceConfig config = layout ? service_config_for(*layout)
-                                      : default_service_config(width, height, headless ? "headless" : "screen",
-                                                               board_module_px);
-        config.overlay = overlay_info(preset);
-        config.public_mode = public_mode;
-        config.put_decider = put_decider;
-        config.puts = put_settings;
-        if (browsers)
-            config.puts.open_url_at = [browsers](const ScreenPoint& at, const std::string& url) {
-                return browsers->open_tab_at(at, url);
-            };
-        if (desktop.desktop && desktop.abilities.placement)
-            config.puts.watch_new_window = [d = desktop.desktop](const WindowPlacement& where) {
-                return d->watch_new_window(where);
-            };
-        // Who connects and what they take, on the console; the overlay hears it all.
-        auto console = std::make_shared<ConsoleActivity>(std::cout, activity);
-        auto service = std::make_shared<Service>(std::move(config), token, resolvers, site, console);
-        if (overlay_manager) {
-            // Screens that come, go or change move the field: new sessions
-            // get the new one, older ones are told to connect again.
-            OverlayManager* m = overlay_manager.get();
-            overlay_manager->on_screens_changed([m, activity, weak = std::weak_ptr<Service>(service)] {
-                const auto service = weak.lock();
-                if (!service || !m->layout()) return;
-                activity->set_screen_indices(m->layout_indices());
-                service->set_screens(*m->layout());
-                std::cout << "overlay: screens changed: " << m->layout()->screens.size() << " screen(s), field "
-                          << m->layout()->field.id << "\n" << std::flush;
-            });
+        s.desktop_choice = choose_desktop(session_from_environment(), get(a, "desktop"));
+    } catch (const std::invalid_argument& e) {
+        throw UsageError(e.what());
+    }
+    s.headless = has_flag(a, "headless") || !have_display() || s.desktop_choice.kind == DesktopKind::headless;
+    s.public_mode = has_flag(a, "public");
+    s.puts = put_choice(a, s.dir, s.public_mode);
+    if (s.puts.mode != "never") {
+        std::error_code ec;
+        std::filesystem::create_directories(s.puts.settings.folder, ec);
+        if (!std::filesystem::is_directory(s.puts.settings.folder, ec))
+            throw ServeFailure(kConfigError, "the put folder " + s.puts.settings.folder.string() + " cannot be made");
+    }
+}
+
+void load_identity(Serving& s) {
+    try {
+        s.identity = load_or_create_tls_identity(s.dir);
+        s.token = load_or_create_token(s.dir);
+    } catch (const std::exception& e) {
+        throw ServeFailure(kConfigError, e.what());
+    }
+}
+
+// The screen (virtual when headless, the primary one otherwise: more screens
+// come with the overlay), the board, the preset and the board's module size.
+void choose_screen_board_and_preset(const cli::Args& a, Serving& s) {
+    std::pair<int, int> size{1920, 1080};
+    if (!s.headless) {
+        if (QScreen* screen = QGuiApplication::primaryScreen()) {
+            const QSize px = screen->size() * screen->devicePixelRatio();
+            size = {px.width(), px.height()};
         }
-        if (board) {
-            std::vector<std::filesystem::path> files;
-            for (const auto& item : board->items)
-                if (item.file) files.push_back(*item.file);
-            service->prepare_files(files);
+    }
+    std::tie(s.width, s.height) = screen_size_option(a, "screen", size);
+    try {
+        if (auto file = get(a, "board")) {
+            s.board = load_board(*file);
+            s.board_source = *file;
+        } else if (s.headless) {
+            s.board_source = s.dir / "demo-board";
+            s.board = write_demo_board(s.board_source);
         }
+    } catch (const std::exception& e) {
+        throw ServeFailure(kConfigError, e.what());
+    }
+    if (s.public_mode && !s.board) throw UsageError("--public needs a board: it serves board items and nothing else");
+    s.preset = apply_preset_options(preset_option(a, s.dir, s.board.has_value()), a);
+    // The preset's module size, on a real screen scaled by its density; a
+    // virtual screen counts as 96 dpi, as compose does.
+    s.board_module_px = s.preset.module_px;
+    if (!s.headless)
+        if (QScreen* screen = QGuiApplication::primaryScreen())
+            s.board_module_px =
+                module_px_for_density(s.preset.module_px, screen->physicalDotsPerInch() * screen->devicePixelRatio());
+}
+
+// The desktop (desktop/desktop.hpp: its field, windows, pixels); a Wayland
+// session without a backend gets none, and no overlay at all. On a desktop
+// without a board: the overlay over every screen, when the desktop can show
+// it (on X11: a compositor mixes it in).
+void open_desktop_and_overlay(const cli::Args& a, Serving& s) {
+    if (!s.headless) s.desktop = open_desktop(s.desktop_choice);
+    if (s.headless || s.board || has_flag(a, "no-overlay")) return;
+    if (!s.desktop.desktop || !s.desktop.abilities.field) {
+        std::cerr << "umf-provider: the field cannot be shown on this desktop; the desktop lines on the console say why\n";
+        return;
+    }
+    s.overlay_manager = std::make_unique<OverlayManager>(s.preset, s.desktop.desktop);
+    s.layout = s.overlay_manager->layout();
+    s.activity = std::make_shared<OverlayActivity>(s.overlay_manager.get(), s.overlay_manager->layout_indices());
+}
+
+// Resolvers in order: the board, shared items, then a headless screen's
+// snapshot or a desktop's windows (never the provider's own); browsers tell
+// what their windows show once the server knows its port.
+void gather_resolvers(const ServeHooks& hooks, Serving& s) {
+    s.answerers = put_answerers(s.puts, s.headless, s.overlay_manager.get());
+    if (hooks.keeper) keep_shared_items(*s.shared_items, hooks.keeper->shares_file);
+    s.screen_image = QImage(s.width, s.height, QImage::Format_RGB32);
+    s.screen_image.fill(Qt::black);
+    if (s.board) {
+        auto tiles = layout_board(*s.board, s.width, s.height);
+        s.screen_image = paint_board(*s.board, tiles, QSize(s.width, s.height));
+        s.resolvers.push_back(std::make_shared<BoardResolver>(*s.board, std::move(tiles)));
+    }
+    if (s.public_mode) return;
+    s.resolvers.push_back(s.shared_items);
+    if (s.headless) {
+        s.resolvers.push_back(std::make_shared<ImageSnapshotResolver>(s.screen_image));
+    } else if (s.desktop.desktop && s.desktop.abilities.windows) {
+        try {
+            add_window_resolvers(s.desktop, s.overlay_manager.get(), s.answerers.prompt.get(), s.resolvers,
+                                 s.browser_link, s.browsers);
+        } catch (const std::exception& e) {
+            std::cerr << "umf-provider: windows cannot be looked up (" << e.what()
+                      << "); serving board and shared items only\n";
+        }
+    }
+}
+
+// The web client: --web DIR, else the installed one beside this program,
+// else the one this build made, else the built-in page (no site).
+void load_web_client(const cli::Args& a, Serving& s) {
+    if (auto web = get(a, "web"))
+        s.web_dir = *web;
+    else
+        s.web_dir = default_web_dir();
+    try {
+        if (s.web_dir) s.site = std::make_shared<const StaticSite>(StaticSite::from_folder(*s.web_dir));
+    } catch (const std::exception& e) {
+        throw ServeFailure(kConfigError, e.what());
+    }
+}
+
+// SIGINT and SIGTERM are taken with sigwait; blocked before any thread
+// starts, so none of the server's threads receives them.
+void block_stop_signals(Serving& s) {
+    sigemptyset(&s.signals);
+    sigaddset(&s.signals, SIGINT);
+    sigaddset(&s.signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &s.signals, nullptr);
+}
+
+std::shared_ptr<Service> make_service(Serving& s) {
+    ServiceConfig config = s.layout ? service_config_for(*s.layout)
+                                    : default_service_config(s.width, s.height, s.headless ? "headless" : "screen",
+                                                             s.board_module_px);
+    config.overlay = overlay_info(s.preset);
+    config.public_mode = s.public_mode;
+    config.put_decider = s.answerers.decider;
+    config.puts = s.puts.settings;
+    if (s.browsers)
+        config.puts.open_url_at = [browsers = s.browsers](const ScreenPoint& at, const std::string& url) {
+            return browsers->open_tab_at(at, url);
+        };
+    if (s.desktop.desktop && s.desktop.abilities.placement)
+        config.puts.watch_new_window = [d = s.desktop.desktop](const WindowPlacement& where) {
+            return d->watch_new_window(where);
+        };
+    // Who connects and what they take, on the console; the overlay hears it all.
+    auto console = std::make_shared<ConsoleActivity>(std::cout, s.activity);
+    auto service = std::make_shared<Service>(std::move(config), s.token, s.resolvers, s.site, console);
+    if (s.overlay_manager) {
+        // Screens that come, go or change move the field: new sessions get
+        // the new one, older ones are told to connect again.
+        OverlayManager* m = s.overlay_manager.get();
+        s.overlay_manager->on_screens_changed([m, activity = s.activity, weak = std::weak_ptr<Service>(service)] {
+            const auto service = weak.lock();
+            if (!service || !m->layout()) return;
+            activity->set_screen_indices(m->layout_indices());
+            service->set_screens(*m->layout());
+            std::cout << "overlay: screens changed: " << m->layout()->screens.size() << " screen(s), field "
+                      << m->layout()->field.id << "\n" << std::flush;
+        });
+    }
+    if (s.board) {
+        std::vector<std::filesystem::path> files;
+        for (const auto& item : s.board->items)
+            if (item.file) files.push_back(*item.file);
+        service->prepare_files(files);
+    }
+    return service;
+}
+
+// The service, the server on its port, the browser link and the control socket.
+void start_server(const ServeHooks& hooks, Serving& s) {
+    try {
+        auto service = make_service(s);
         ServerOptions options;
-        options.bind_address = bind;
-        options.port = port;
+        options.bind_address = s.bind;
+        options.port = s.port;
         options.threads = 2;
-        server = std::make_unique<Server>(service, identity, options);
-        server->start();
-        if (hooks.keeper) tell_keeper_port(*hooks.keeper, server->port());
-        if (browser_link) {
+        s.server = std::make_unique<Server>(service, s.identity, options);
+        s.server->start();
+        if (hooks.keeper) tell_keeper_port(*hooks.keeper, s.server->port());
+        if (s.browser_link) {
             try {
-                browser_link->listen(browser_socket_path(server->port()));
+                s.browser_link->listen(browser_socket_path(s.server->port()));
             } catch (const std::exception& e) {
                 std::cerr << "umf-provider: no browser companion this time: " << e.what() << "\n";
-                browser_link.reset();
+                s.browser_link.reset();
             }
         }
-        if (!public_mode || put_answers)
-            control = std::make_unique<ControlSocket>(control_socket_path(server->port()),
-                                                      public_mode ? nullptr : shared_items, put_answers, browser_link);
+        if (!s.public_mode || s.answerers.control)
+            s.control = std::make_unique<ControlSocket>(control_socket_path(s.server->port()),
+                                                        s.public_mode ? nullptr : s.shared_items, s.answerers.control,
+                                                        s.browser_link);
     } catch (const std::exception& e) {
-        std::cerr << "umf-provider: " << e.what() << "\n";
-        return kServeError;
+        throw ServeFailure(kServeError, e.what());
     }
+    s.url = pairing_url(s.host, s.server->port(), s.token, s.identity.fingerprint);
+}
 
-    const std::string url = pairing_url(host, server->port(), token, identity.fingerprint);
-    std::cout << "umf-provider: listening on https://" << (bind.find(':') != std::string::npos ? "[" + bind + "]" : bind)
-              << ":" << server->port() << " (WebSocket at /ws, HTTPS transport under /api/)\n";
-    std::cout << "web client: " << (web_dir ? web_dir->string() + " (" + std::to_string(site->size()) + " files)"
-                                            : std::string("the built-in page"))
+void print_banner(const cli::Args& a, const Serving& s) {
+    const unsigned short listening = s.server->port();
+    std::cout << "umf-provider: listening on https://"
+              << (s.bind.find(':') != std::string::npos ? "[" + s.bind + "]" : s.bind) << ":" << listening
+              << " (WebSocket at /ws, HTTPS transport under /api/)\n";
+    std::cout << "web client: "
+              << (s.web_dir ? s.web_dir->string() + " (" + std::to_string(s.site->size()) + " files)"
+                            : std::string("the built-in page"))
               << "\n";
-    if (board)
-        std::cout << "board: " << board->items.size() << " items" << (board->title.empty() ? "" : " (" + board->title + ")")
-                  << " from " << board_source.string() << "\n";
-    std::cout << (headless ? "headless: a virtual " : "screen: ") << width << "x" << height << ", preset "
-              << preset.name << (public_mode ? ", public mode (board items only, no pairing needed)" : "") << "\n";
+    if (s.board)
+        std::cout << "board: " << s.board->items.size() << " items"
+                  << (s.board->title.empty() ? "" : " (" + s.board->title + ")") << " from " << s.board_source.string()
+                  << "\n";
+    std::cout << (s.headless ? "headless: a virtual " : "screen: ") << s.width << "x" << s.height << ", preset "
+              << s.preset.name << (s.public_mode ? ", public mode (board items only, no pairing needed)" : "") << "\n";
     // The hints name this provider's port when it is not the default one.
-    const unsigned short listening = server->port();
-    if (control && !public_mode)
+    if (s.control && !s.public_mode)
         std::cout << "share with: " << with_port("umf-provider share FILE|URL --rect x,y,w,h", listening) << "\n";
-    if (browser_link)
+    if (s.browser_link)
         std::cout << "browsers: pointing at a browser window takes its page once the companion is set up "
                      "(umf-provider browser install; "
                   << with_port("umf-provider browser status", listening) << " lists them)\n";
+    const PutSettings& settings = s.puts.settings;
     std::cout << "puts: "
-              << (put_decider ? puts_mode + ", files to " + put_settings.folder.string() +
-                                    (put_answers ? " (answer with: " + with_port("umf-provider puts", listening) + ")" : "")
-                              : std::string("off"))
+              << (s.answerers.decider
+                      ? s.puts.mode + ", files to " + settings.folder.string() +
+                            (s.answerers.control ? " (answer with: " + with_port("umf-provider puts", listening) + ")"
+                                                 : "")
+                      : std::string("off"))
               << "\n";
-    std::cout << "certificate fingerprint (SHA-256): " << identity.fingerprint << "\n";
-    if (!has_flag(a, "no-qr")) std::cout << qr_text(url);
-    std::cout << "pairing URL: " << url << "\n" << std::flush;
-
-    for (const auto& line : describe_desktop(desktop)) std::cout << line << "\n";
+    std::cout << "certificate fingerprint (SHA-256): " << s.identity.fingerprint << "\n";
+    if (!has_flag(a, "no-qr")) std::cout << qr_text(s.url);
+    std::cout << "pairing URL: " << s.url << "\n" << std::flush;
+    for (const auto& line : describe_desktop(s.desktop)) std::cout << line << "\n";
     std::cout << std::flush;
-    if (layout) {
-        std::cout << "overlay: " << layout->screens.size() << " screen(s), field " << layout->field.id << ", preset "
-                  << preset.name << " (" << overlay::to_string(preset.activation) << ")\n" << std::flush;
-    }
-    int received = 0;
+    if (s.layout)
+        std::cout << "overlay: " << s.layout->screens.size() << " screen(s), field " << s.layout->field.id
+                  << ", preset " << s.preset.name << " (" << overlay::to_string(s.preset.activation) << ")\n"
+                  << std::flush;
+}
+
+// Until SIGINT or SIGTERM. With windows up, the Qt event loop runs here and
+// a thread waits for the signals, stops the server (whose snapshots may wait
+// on this loop) and then ends the loop.
+int run_until_stopped(const cli::Args& a, const ServeHooks& hooks, Serving& s) {
     std::unique_ptr<BoardWindow> board_window;
-    if (!headless && board) {
-        board_window = std::make_unique<BoardWindow>(screen_image, screen_field_for(width, height, board_module_px),
-                                                     preset, QGuiApplication::primaryScreen());
+    if (!s.headless && s.board) {
+        board_window = std::make_unique<BoardWindow>(
+            s.screen_image, screen_field_for(s.width, s.height, s.board_module_px), s.preset,
+            QGuiApplication::primaryScreen());
         board_window->showFullScreen();
     }
     std::shared_ptr<ProviderControls> controls;
-    if (!headless && !board && hooks.desktop_controls) {
+    if (!s.headless && !s.board && hooks.desktop_controls) {
         try {
-            controls = hooks.desktop_controls(overlay_manager.get(), desktop_summary(desktop),
-                                              (dir / "presets.json").string(), url, has_flag(a, "tune"));
+            controls = hooks.desktop_controls(s.overlay_manager.get(), desktop_summary(s.desktop),
+                                              (s.dir / "presets.json").string(), s.url, has_flag(a, "tune"));
         } catch (const std::exception& e) {
             std::cerr << "umf-provider: no tray or tuning window: " << e.what() << "\n";
         }
     }
-    if (controls && desktop.desktop)
-        desktop.desktop->on_abilities_changed([&desktop, weak = std::weak_ptr<ProviderControls>(controls)] {
+    if (controls && s.desktop.desktop)
+        s.desktop.desktop->on_abilities_changed([&desktop = s.desktop, weak = std::weak_ptr<ProviderControls>(controls)] {
             desktop.abilities = desktop.desktop->abilities();
             if (const auto c = weak.lock()) c->set_status(desktop_summary(desktop));
         });
-    if (board_window || overlay_manager || put_prompt || controls) {
-        // Windows are up: the Qt event loop runs here, and a thread waits for
-        // the signals, stops the server (whose snapshots may wait on this
-        // loop) and then ends the loop.
+    if (board_window || s.overlay_manager || s.answerers.prompt || controls) {
         std::atomic<int> got{0};
         std::thread waiter([&] {
             int signal = 0;
-            sigwait(&signals, &signal);
+            sigwait(&s.signals, &signal);
             got = signal;
             std::cerr << "umf-provider: " << (signal == SIGINT ? "SIGINT" : "SIGTERM") << ", closing sessions\n";
-            control.reset();
-            server->stop();
+            s.control.reset();
+            s.server->stop();
             QMetaObject::invokeMethod(qApp, [] { QCoreApplication::quit(); }, Qt::QueuedConnection);
         });
         QGuiApplication::exec();
-        if (desktop.desktop) desktop.desktop->on_abilities_changed({});
+        if (s.desktop.desktop) s.desktop.desktop->on_abilities_changed({});
         if (got == 0) ::kill(::getpid(), SIGTERM);  // the loop ended otherwise: release the waiter
         waiter.join();
         std::cerr << "umf-provider: stopped\n";
         return kOk;
     }
-    sigwait(&signals, &received);
+    int received = 0;
+    sigwait(&s.signals, &received);
     std::cerr << "umf-provider: " << (received == SIGINT ? "SIGINT" : "SIGTERM") << ", closing sessions\n";
-    control.reset();
-    server->stop();
+    s.control.reset();
+    s.server->stop();
     std::cerr << "umf-provider: stopped\n";
     return kOk;
+}
+
+}  // namespace
+
+int run_serve(const cli::Args& a, const ServeHooks& hooks) {
+    Serving s;
+    try {
+        read_command_line(a, s);
+        load_identity(s);
+        choose_screen_board_and_preset(a, s);
+        open_desktop_and_overlay(a, s);
+        gather_resolvers(hooks, s);
+        load_web_client(a, s);
+        block_stop_signals(s);
+        start_server(hooks, s);
+    } catch (const ServeFailure& e) {
+        std::cerr << "umf-provider: " << e.what() << "\n";
+        return e.code;
+    }
+    print_banner(a, s);
+    return run_until_stopped(a, hooks, s);
 }
 
 }  // namespace umf::provider
