@@ -43,6 +43,13 @@ void select_data(QComboBox* box, Enum value) {
     box->setCurrentIndex(box->findData(static_cast<int>(value)));
 }
 
+// Tests find the controls by these names.
+template <class Widget>
+Widget* named(Widget* w, const char* name) {
+    w->setObjectName(name);
+    return w;
+}
+
 }  // namespace
 
 TuningWindow::TuningWindow(PresetStore& store, const std::string& initial_preset, PresetChanged preset_changed,
@@ -60,10 +67,24 @@ TuningWindow::TuningWindow(PresetStore& store, const std::string& initial_preset
 }
 
 void TuningWindow::build() {
-    auto named = [](auto* w, const char* name) {
-        w->setObjectName(name);
-        return w;
-    };
+    preview_ = named(new FieldPreview(screen_, QSize(384, 216)), "preview");
+    auto* right = new QVBoxLayout;
+    right->addWidget(preview_);
+    right->addWidget(build_palette());
+    right->addStretch(1);
+    auto* columns = new QHBoxLayout;
+    columns->addLayout(build_form(), 1);
+    columns->addLayout(right);
+
+    message_ = named(new QLabel, "message");
+    message_->setWordWrap(true);
+    auto* outer = new QVBoxLayout(this);
+    outer->addLayout(columns);
+    outer->addWidget(message_);
+    outer->addLayout(build_preset_buttons());
+}
+
+QFormLayout* TuningWindow::build_form() {
     chooser_ = named(new QComboBox, "chooser");
     opacity_min_ = named(new SliderSpin(0.0, 1.0, 100, 2, ""), "opacity_min");
     opacity_max_ = named(new SliderSpin(0.0, 1.0, 100, 2, ""), "opacity_max");
@@ -98,51 +119,11 @@ void TuningWindow::build() {
     form->addRow("Focus radius", focus_radius_);
     form->addRow("Activation", activation_);
     form->addRow("Fade-out", fade_);
+    connect_form();
+    return form;
+}
 
-    palette_ = named(new QListWidget, "palette");
-    palette_->setViewMode(QListView::IconMode);
-    palette_->setFlow(QListView::LeftToRight);
-    palette_->setWrapping(true);
-    palette_->setMaximumHeight(72);
-    auto* pick = named(new QPushButton("Pick…"), "pick");
-    auto* add = named(new QPushButton("Add…"), "add_colour");
-    auto* drop = named(new QPushButton("Remove"), "remove_colour");
-    auto* own = named(new QPushButton("Field's own"), "field_colours");
-    auto* from_screen = named(new QPushButton("From screen"), "from_screen");
-    auto* from_image = named(new QPushButton("From image…"), "from_image");
-    auto* palette_buttons = new QHBoxLayout;
-    for (auto* b : {pick, add, drop, own, from_screen, from_image}) palette_buttons->addWidget(b);
-    auto* palette_box = new QGroupBox("Palette");
-    auto* palette_layout = new QVBoxLayout(palette_box);
-    palette_layout->addWidget(palette_);
-    palette_layout->addLayout(palette_buttons);
-
-    preview_ = named(new FieldPreview(screen_, QSize(384, 216)), "preview");
-
-    auto* right = new QVBoxLayout;
-    right->addWidget(preview_);
-    right->addWidget(palette_box);
-    right->addStretch(1);
-    auto* columns = new QHBoxLayout;
-    columns->addLayout(form, 1);
-    columns->addLayout(right);
-
-    message_ = named(new QLabel, "message");
-    message_->setWordWrap(true);
-    save_ = named(new QPushButton("Save"), "save");
-    save_as_ = named(new QPushButton("Save as…"), "save_as");
-    rename_ = named(new QPushButton("Rename…"), "rename");
-    delete_ = named(new QPushButton("Delete"), "delete");
-    reset_ = named(new QPushButton("Reset to built-in"), "reset");
-    auto* buttons = new QHBoxLayout;
-    for (auto* b : {save_, save_as_, rename_, delete_, reset_}) buttons->addWidget(b);
-    buttons->addStretch(1);
-
-    auto* outer = new QVBoxLayout(this);
-    outer->addLayout(columns);
-    outer->addWidget(message_);
-    outer->addLayout(buttons);
-
+void TuningWindow::connect_form() {
     QObject::connect(chooser_, &QComboBox::currentIndexChanged, this, [this](int index) {
         if (!loading_ && index >= 0) choose(chooser_->itemData(index).toString().toStdString());
     });
@@ -186,6 +167,26 @@ void TuningWindow::build() {
         preset_.activation = static_cast<overlay::Activation>(activation_->currentData().toInt());
         edited();
     });
+}
+
+QGroupBox* TuningWindow::build_palette() {
+    palette_ = named(new QListWidget, "palette");
+    palette_->setViewMode(QListView::IconMode);
+    palette_->setFlow(QListView::LeftToRight);
+    palette_->setWrapping(true);
+    palette_->setMaximumHeight(72);
+    auto* pick = named(new QPushButton("Pick…"), "pick");
+    auto* add = named(new QPushButton("Add…"), "add_colour");
+    auto* drop = named(new QPushButton("Remove"), "remove_colour");
+    auto* own = named(new QPushButton("Field's own"), "field_colours");
+    auto* from_screen = named(new QPushButton("From screen"), "from_screen");
+    auto* from_image = named(new QPushButton("From image…"), "from_image");
+    auto* palette_buttons = new QHBoxLayout;
+    for (auto* b : {pick, add, drop, own, from_screen, from_image}) palette_buttons->addWidget(b);
+    auto* palette_box = new QGroupBox("Palette");
+    auto* palette_layout = new QVBoxLayout(palette_box);
+    palette_layout->addWidget(palette_);
+    palette_layout->addLayout(palette_buttons);
 
     auto pick_colour = [this](int row) {
         const QColor initial = row >= 0 && row < static_cast<int>(preset_.palette.size())
@@ -226,6 +227,18 @@ void TuningWindow::build() {
         if (image.isNull()) return say("Cannot read " + path + " as an image", true);
         palette_from(image);
     });
+    return palette_box;
+}
+
+QHBoxLayout* TuningWindow::build_preset_buttons() {
+    save_ = named(new QPushButton("Save"), "save");
+    save_as_ = named(new QPushButton("Save as…"), "save_as");
+    rename_ = named(new QPushButton("Rename…"), "rename");
+    delete_ = named(new QPushButton("Delete"), "delete");
+    reset_ = named(new QPushButton("Reset to built-in"), "reset");
+    auto* buttons = new QHBoxLayout;
+    for (auto* b : {save_, save_as_, rename_, delete_, reset_}) buttons->addWidget(b);
+    buttons->addStretch(1);
 
     QObject::connect(save_, &QPushButton::clicked, this, [this] { save(); });
     QObject::connect(save_as_, &QPushButton::clicked, this, [this] {
@@ -246,6 +259,7 @@ void TuningWindow::build() {
             remove();
     });
     QObject::connect(reset_, &QPushButton::clicked, this, [this] { reset(); });
+    return buttons;
 }
 
 void TuningWindow::fill_chooser(const std::string& selected) {

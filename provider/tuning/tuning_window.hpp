@@ -17,6 +17,9 @@
 #include "tuning/preset_store.hpp"
 
 class QComboBox;
+class QFormLayout;
+class QGroupBox;
+class QHBoxLayout;
 class QLabel;
 class QListWidget;
 class QPushButton;
@@ -56,6 +59,13 @@ public:
 
 private:
     void build();
+    // The controls of a preset, and what editing each one does.
+    QFormLayout* build_form();
+    void connect_form();
+    // The palette's swatches and their buttons, wired.
+    QGroupBox* build_palette();
+    // Save, Save as, Rename, Delete, Reset, wired.
+    QHBoxLayout* build_preset_buttons();
     void fill_chooser(const std::string& selected);
     void show_preset();
     void edited();
