@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "protocol/json_checks.hpp"
-#include "server/owner_socket.hpp"
+#include "common/owner_socket.hpp"
 
 namespace umf::provider {
 

@@ -16,7 +16,7 @@
 #include <string_view>
 
 #include "content/file_facts.hpp"
-#include "server/one_time_links.hpp"
+#include "common/one_time_links.hpp"
 
 namespace umf::provider {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "field_overlay/overlay_manager.hpp"
-#include "server/activity.hpp"
+#include "common/activity.hpp"
 
 namespace umf::provider {
 

@@ -31,7 +31,7 @@
 #include "put/trusted_devices.hpp"
 #include "put/upload_table.hpp"
 #include "desktop/window_placement.hpp"
-#include "server/activity.hpp"
+#include "common/activity.hpp"
 
 namespace umf::provider {
 

@@ -16,7 +16,7 @@
 #include "content/resolver.hpp"
 #include "protocol/messages.hpp"
 
-#include "server/one_time_links.hpp"
+#include "common/one_time_links.hpp"
 
 namespace umf::provider {
 

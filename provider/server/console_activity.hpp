@@ -9,7 +9,7 @@
 #include <ostream>
 #include <string>
 
-#include "server/activity.hpp"
+#include "common/activity.hpp"
 
 namespace umf::provider {
 

@@ -18,7 +18,7 @@
 
 #include "browser/browser_status.hpp"
 #include "put/put_text.hpp"
-#include "server/owner_socket.hpp"
+#include "common/owner_socket.hpp"
 
 namespace umf::provider {
 

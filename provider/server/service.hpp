@@ -21,7 +21,7 @@
 #include "content/resolver.hpp"
 #include "screen/desktop_layout.hpp"
 #include "overlay/preset.hpp"
-#include "server/activity.hpp"
+#include "common/activity.hpp"
 #include "overlay/placement.hpp"
 #include "protocol/messages.hpp"
 #include "put/put_decision.hpp"

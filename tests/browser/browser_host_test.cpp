@@ -14,7 +14,7 @@
 #include "browser/browser_link.hpp"
 #include "browser/browser_resolver.hpp"
 #include "desktop/x11/x11_desktop.hpp"
-#include "server/owner_socket.hpp"
+#include "common/owner_socket.hpp"
 #include "host/native_messaging.hpp"
 #include "support/temp_dir.hpp"
 #include "support/x11_session.hpp"

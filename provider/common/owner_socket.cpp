@@ -1,4 +1,4 @@
-#include "server/owner_socket.hpp"
+#include "common/owner_socket.hpp"
 
 #include <fcntl.h>
 #include <sys/socket.h>

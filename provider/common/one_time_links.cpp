@@ -1,4 +1,4 @@
-#include "server/one_time_links.hpp"
+#include "common/one_time_links.hpp"
 
 #include <openssl/rand.h>
 
