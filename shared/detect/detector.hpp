@@ -86,6 +86,15 @@ struct DetectorOptions {
     // screen, 3-5 pixels, turn the edgels' gradients too far for steps 2-4,
     // and the lattice costs far less than a search at double size.
     bool lattice_enabled = true;
+    // When every search above fails, the search at the frame's size and
+    // smaller ones once more on the frame smoothed (`smoothed` in image.hpp,
+    // a Gaussian of sigma 1.4 px). A screen's colour stripes under a scaler
+    // that skips photosites fold into a hatch of 2-5 px, and a dim room's
+    // noise does likewise at the pixel's scale: their edges outnumber a faint
+    // field's and pull the grid directions to their own. The smoothing keeps
+    // little of them and a module's edges whole, but blunts small modules,
+    // so it comes last.
+    bool smoothed_search = true;
     // When a scan's edgels and its field-like ones (field_edgels.hpp) find
     // nothing, they are searched once more without the thin lines among
     // them, up to this many pixels wide (0: not): a spreadsheet's rules run
@@ -117,6 +126,7 @@ struct Detection {
     bool from_prior = false;  // confirmed near the predicted place rather than found anew
     double size_scale = 1;    // found on the frame at this many times its size (0.5: half size, 2: double)
     bool from_lattice = false;  // its grid came from the spectrum around the aim (lattice.hpp)
+    bool from_smoothed = false;  // found on the frame smoothed (DetectorOptions::smoothed_search)
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
     double confidence = 0;    // fraction of the read modules or edges the place explains
     int places_checked = 0;   // candidate places that reached the final check (each costs evidence)
@@ -186,7 +196,8 @@ private:
     };
     // Steps 1 to 8 on the image at its own size, then (when nothing is
     // found) at half size and below, then on a lattice around the aim, then
-    // at double size; the failure, or null when found.
+    // at double size, then on the image smoothed at its own size and below;
+    // the failure, or null when found.
     const char* search_sizes(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              Pass& pass, Detection& out) const;
     // Steps 1 to 8 on the image at its own size, then at half size, and so

@@ -94,6 +94,17 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
             if (!search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, pass, out)) return nullptr;
         }
     }
+    if (options_.smoothed_search && !pass.nothing_left()) {
+        auto t = StageClock::now();
+        std::vector<std::uint8_t> pixels;
+        const GreyView soft = smoothed(im, pixels);
+        out.times.edgels_ms += ms_since(t);
+        out.pixels_visited += static_cast<long>(im.width) * im.height;
+        if (!search_smaller(soft, aim, prior, pass, out)) {
+            out.from_smoothed = true;
+            return nullptr;
+        }
+    }
     return failure;
 }
 

@@ -105,4 +105,43 @@ GreyView double_size(const GreyView& im, std::vector<std::uint8_t>& out) {
     return {out.data(), w, h, w};
 }
 
+namespace {
+
+// Binomial weights of order 8, summing to 256.
+constexpr std::array<int, 9> kBinomial8 = {1, 8, 28, 56, 70, 56, 28, 8, 1};
+
+}  // namespace
+
+GreyView smoothed(const GreyView& im, std::vector<std::uint8_t>& out) {
+    const int w = im.width, h = im.height;
+    constexpr int kReach = 4;
+    auto clamp_x = [&](int x) { return std::clamp(x, 0, w - 1); };
+    auto clamp_y = [&](int y) { return std::clamp(y, 0, h - 1); };
+    // Rows first, kept at 256 times the grey level; then columns.
+    std::vector<std::uint16_t> across(static_cast<std::size_t>(w) * h);
+    std::vector<int> padded(static_cast<std::size_t>(w) + 2 * kReach);
+    for (int y = 0; y < h; ++y) {
+        const std::uint8_t* r = im.row(y);
+        for (int x = -kReach; x < w + kReach; ++x) padded[x + kReach] = r[clamp_x(x)];
+        std::uint16_t* q = across.data() + static_cast<std::size_t>(y) * w;
+        for (int x = 0; x < w; ++x) {
+            int sum = 0;
+            for (int k = 0; k < 2 * kReach + 1; ++k) sum += kBinomial8[k] * padded[x + k];
+            q[x] = static_cast<std::uint16_t>(sum);
+        }
+    }
+    out.resize(static_cast<std::size_t>(w) * h);
+    std::vector<std::uint32_t> sum(w);
+    for (int y = 0; y < h; ++y) {
+        std::fill(sum.begin(), sum.end(), 0u);
+        for (int k = 0; k < 2 * kReach + 1; ++k) {
+            const std::uint16_t* r = across.data() + static_cast<std::size_t>(clamp_y(y - kReach + k)) * w;
+            for (int x = 0; x < w; ++x) sum[x] += static_cast<std::uint32_t>(kBinomial8[k]) * r[x];
+        }
+        std::uint8_t* q = out.data() + static_cast<std::size_t>(y) * w;
+        for (int x = 0; x < w; ++x) q[x] = static_cast<std::uint8_t>((sum[x] + 32768u) >> 16);
+    }
+    return {out.data(), w, h, w};
+}
+
 }  // namespace umf

@@ -71,9 +71,10 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
     out.aim_field = smoothed_;
     last_raw_aim_ = d.aim_field;
     // The motion per frame is known from two locks in a row only.
-    // A map found at another size is right at the aim but coarser elsewhere:
-    // the motion taken from it would throw the next predictions off.
-    const bool full_size = d.size_scale == 1;
+    // A map found at another size, or on the frame smoothed, is right at the
+    // aim but coarser elsewhere: the motion taken from it would throw the
+    // next predictions off.
+    const bool full_size = d.size_scale == 1 && !d.from_smoothed;
     has_motion_ = continuous && full_size && last_full_size_;
     last_full_size_ = full_size;
     if (has_motion_) motion_ = last_image_to_field_.inverse() * d.image_to_field;

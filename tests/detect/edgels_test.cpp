@@ -168,6 +168,35 @@ TEST(HalfSize, AveragesTwoByTwoBlocksAndDropsAnOddLastRowAndColumn) {
     EXPECT_EQ(half.at(1, 0), 102);  // (100 + 101 + 102 + 104 + 2) / 4
 }
 
+TEST(Smoothed, FlattensAFineHatchAndKeepsAStepWhole) {
+    // 24 x 12 with a stride of 26: a hatch of 2 px (columns 0 and 255 by
+    // turns), and a step at x = 12 from 40 to 200.
+    std::vector<std::uint8_t> hatch(26 * 12, 255), step(26 * 12, 255);
+    for (int y = 0; y < 12; ++y)
+        for (int x = 0; x < 24; ++x) {
+            hatch[26 * y + x] = x % 2 ? 255 : 0;
+            step[26 * y + x] = x < 12 ? 40 : 200;
+        }
+    std::vector<std::uint8_t> out;
+    const GreyView flat = smoothed({hatch.data(), 24, 12, 26}, out);
+    ASSERT_EQ(flat.width, 24);
+    ASSERT_EQ(flat.height, 12);
+    EXPECT_EQ(flat.stride, 24);
+    // (1 8 28 56 70 56 28 8 1) / 256 sums to 128 over either parity.
+    for (int y = 0; y < 12; ++y)
+        for (int x = 4; x < 20; ++x) EXPECT_NEAR(flat.at(x, y), 127.5, 0.5) << x << ", " << y;
+    const GreyView edge = smoothed({step.data(), 24, 12, 26}, out);
+    for (int y = 0; y < 12; ++y) {
+        // Symmetric about the middle grey between pixels 11 and 12, whole
+        // four pixels away (the border repeats the edge pixels).
+        for (int d = 0; d < 6; ++d) EXPECT_NEAR(edge.at(11 - d, y) + edge.at(12 + d, y), 240, 1) << d;
+        EXPECT_LT(edge.at(11, y), 120);
+        EXPECT_GT(edge.at(12, y), 120);
+        EXPECT_EQ(edge.at(0, y), 40);
+        EXPECT_EQ(edge.at(23, y), 200);
+    }
+}
+
 TEST(DoubleSize, KeepsARampAndPutsAStepAtTwiceItsPlace) {
     // 10 x 3 with a stride of 12; every row a ramp 10, 30, ..., 190 (pixel i
     // centred at i + 0.5 has 20 i + 10), or every row a step at x = 5.
