@@ -4,7 +4,7 @@
 PRESET ?= release
 BUILD := build/$(PRESET)
 
-.PHONY: run test deps configure build bench asan clean
+.PHONY: run test deps configure build bench asan sanitize fuzz clean
 
 deps:
 	@scripts/install-deps.sh
@@ -27,6 +27,16 @@ bench: build
 
 asan:
 	$(MAKE) test PRESET=asan
+
+# clang with ASan, UBSan and libFuzzer (the fuzz preset, tests/fuzz): what CI
+# runs after `make test`, the sanitizer test subset and each fuzz target for
+# 30 s; `make fuzz` runs each target longer (FUZZ_SECONDS a target).
+FUZZ_SECONDS ?= 300
+sanitize: deps
+	scripts/ci-sanitizers.sh
+
+fuzz: deps
+	scripts/fuzz.sh $(FUZZ_SECONDS)
 
 clean:
 	rm -rf build

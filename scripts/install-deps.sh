@@ -9,8 +9,8 @@ packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates
   # shared/ (the core library)
   libeigen3-dev nlohmann-json3-dev
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev poppler-utils python3-websockets
+  # tests and benchmarks; clang and its runtime for the fuzz targets (libFuzzer, sanitizers)
+  libgtest-dev libgmock-dev libbenchmark-dev poppler-utils python3-websockets clang libclang-rt-dev
   # provider/: Qt 6, Beast server, TLS, pairing QR codes, X11 window lookup
   qt6-base-dev qt6-base-dev-tools libgl-dev libx11-dev libxres-dev libxcb1-dev curl
   libboost-dev libboost-system-dev libssl-dev openssl libqrencode-dev

@@ -176,7 +176,7 @@ Board board_from(std::string_view text, const fs::path& base_dir, const std::str
     json doc;
     try {
         doc = json::parse(text);
-    } catch (const json::parse_error& e) {
+    } catch (const json::exception& e) {  // parse_error, or out_of_range for a number beyond a double
         fail(source, std::string("not valid JSON: ") + e.what());
     }
     if (!doc.is_object()) fail(source, "a board must be a JSON object");

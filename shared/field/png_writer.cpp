@@ -164,9 +164,11 @@ std::string filter_scanlines(const std::vector<std::uint8_t>& raw, std::size_t r
     std::vector<std::uint8_t> up(stride);
     for (std::size_t y = 0; y < rows; ++y) {
         const std::uint8_t* row = raw.data() + y * stride;
+        // The row above by its own pointer: row[i - stride] wraps the unsigned index.
+        const std::uint8_t* above = y > 0 ? row - stride : nullptr;
         long cost_none = 0, cost_up = 0;
         for (std::size_t i = 0; i < stride; ++i) {
-            up[i] = static_cast<std::uint8_t>(row[i] - (y > 0 ? row[i - stride] : 0));
+            up[i] = static_cast<std::uint8_t>(row[i] - (above ? above[i] : 0));
             cost_none += std::abs(static_cast<int>(static_cast<std::int8_t>(row[i])));
             cost_up += std::abs(static_cast<int>(static_cast<std::int8_t>(up[i])));
         }

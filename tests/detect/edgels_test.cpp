@@ -25,7 +25,8 @@ Drawn draw_field(const Field& f, int width, int height, double module_px, double
     Drawn d{std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height), width, height, module_px,
             angle_deg * M_PI / 180};
     std::mt19937 rng(noise_seed);
-    std::normal_distribution<double> noise(0, noise_sigma);
+    // A deviation must be positive even where no noise is drawn.
+    std::normal_distribution<double> noise(0, noise_sigma > 0 ? noise_sigma : 1);
     const double c = std::cos(d.angle), s = std::sin(d.angle);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {

@@ -74,6 +74,7 @@ TEST(Board, EachDefectIsRefusedNamingTheMember) {
     const BadBoard cases[] = {
         {"[1, 2]", "JSON object"},
         {"{not json", "JSON"},
+        {R"({"format": "umf-board/1", "columns": 1e999, "items": [{"title": "t", "url": "https://a/"}]})", "JSON"},
         {R"({"items": [{"title": "t", "url": "https://a/"}]})", "\"format\""},
         {R"({"format": "umf-board/2", "items": [{"title": "t", "url": "https://a/"}]})", "\"format\""},
         {R"({"format": "umf-board/1", "colour": "red", "items": [{"title": "t", "url": "https://a/"}]})", "\"colour\""},
