@@ -33,7 +33,7 @@ public:
     std::vector<DesktopOutput> outputs() const override;
     // The windows shown, top-most first. Throws DesktopError when the
     // compositor's IPC does not answer; empty without one.
-    std::vector<WindowInfo> windows() const;
+    std::vector<WindowInfo> windows() const override;
     std::optional<WindowInfo> window_at(double x, double y, const WindowFilter& filter) const override;
     Capture capture(const WindowRect& rect) const override;
     std::unique_ptr<NewWindowWatch> watch_new_window(const WindowPlacement& where) const override;
