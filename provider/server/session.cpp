@@ -135,10 +135,9 @@ void Session::read_request() {
                             beast::bind_front_handler(&Session::on_header, shared_from_this()));
 }
 
-void Session::request_failed(beast::error_code ec, beast::string_view target) {
+void Session::request_failed(beast::error_code ec) {
     // A request that is not HTTP or too large gets its status; a
     // connection gone or timed out, nothing.
-    (void)target;
     if (ec == http::error::header_limit || ec == http::error::buffer_overflow)
         answer_error(http::status::request_header_fields_too_large, false, protocol::ErrorCode::too_large,
                      "the request's header is larger than " + std::to_string(kMaxRequestHeaderBytes) + " bytes");
@@ -154,7 +153,7 @@ void Session::request_failed(beast::error_code ec, beast::string_view target) {
 void Session::on_header(beast::error_code ec, std::size_t) {
     if (closing_) return;
     if (ec) {
-        request_failed(ec, header_->get().target());
+        request_failed(ec);
         return;
     }
     if (const auto why = ambiguous_framing(header_->get().version(), header_->get())) {
@@ -183,7 +182,7 @@ void Session::on_header(beast::error_code ec, std::size_t) {
     }
     // A declared length is checked here; a chunked body chunk by chunk.
     if (const auto length = header_->content_length(); length && *length > kMaxRequestBodyBytes) {
-        request_failed(http::error::body_limit, target);
+        request_failed(http::error::body_limit);
         return;
     }
     request_.emplace(std::move(*header_));
@@ -201,7 +200,7 @@ void Session::on_header(beast::error_code ec, std::size_t) {
 void Session::on_request(beast::error_code ec, std::size_t) {
     if (closing_) return;
     if (ec) {
-        request_failed(ec, request_->get().target());
+        request_failed(ec);
         return;
     }
     buffer_.max_size(std::numeric_limits<std::size_t>::max());

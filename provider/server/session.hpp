@@ -57,7 +57,7 @@ private:
     void on_tls_handshake(boost::beast::error_code ec);
     void read_request();
     void on_header(boost::beast::error_code ec, std::size_t);
-    void request_failed(boost::beast::error_code ec, boost::beast::string_view target);
+    void request_failed(boost::beast::error_code ec);
     void on_request(boost::beast::error_code ec, std::size_t);
     // PUT /up/<token> (docs/PROTOCOL.md, "Upload").
     void start_upload();
