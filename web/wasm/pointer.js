@@ -1,0 +1,58 @@
+// The requester core for the page: shared/requester_core's Pointer in the
+// same WebAssembly module as the detector (web/wasm/pointer_module.cpp).
+//
+//   import { createPointer } from './pointer.js';
+//   const pointer = await createPointer({ welcome, auto: false });
+//   const answer = pointer.event({ event: 'frame', t: performance.now() / 1000, locked, point, confidence });
+//   for (const m of answer.send) link.send(m);   // then answer.download, answer.upload, answer.reconnect
+//   show(answer.view);
+//   pointer.destroy();
+//
+// An event the core cannot read throws, naming what is wrong.
+import createUmfDetectorModule from './umf-detector.js';
+
+let sharedModule = null;
+
+function loadModule(moduleOptions) {
+  if (!sharedModule) sharedModule = createUmfDetectorModule({ locateFile: (p, dir) => dir + p, ...moduleOptions });
+  return sharedModule;
+}
+
+function cString(M, ptr) {
+  if (!ptr) return '';
+  let end = ptr;
+  while (M.HEAPU8[end] !== 0) ++end;
+  return new TextDecoder().decode(M.HEAPU8.subarray(ptr, end));
+}
+
+// Calls f with the text copied into the module's memory.
+function withText(M, text, f) {
+  const bytes = new TextEncoder().encode(text);
+  const ptr = M._malloc(Math.max(1, bytes.length));
+  if (!ptr) throw new Error('umf pointer: out of memory');
+  try {
+    M.HEAPU8.set(bytes, ptr);
+    return f(ptr, bytes.length);
+  } finally {
+    M._free(ptr);
+  }
+}
+
+// setup: {welcome, auto?, timing?} (requester_core/pointer_json.hpp).
+export async function createPointer(setup, { moduleOptions } = {}) {
+  const M = await loadModule(moduleOptions);
+  let handle = withText(M, JSON.stringify(setup), (ptr, n) => M._umf_pointer_create(ptr, n));
+  if (!handle) throw new Error(`umf pointer: ${cString(M, M._umf_pointer_error()) || 'cannot start'}`);
+  return {
+    event(e) {
+      if (!handle) throw new Error('umf pointer: used after destroy()');
+      const answer = JSON.parse(cString(M, withText(M, JSON.stringify(e), (ptr, n) => M._umf_pointer_event(handle, ptr, n))));
+      if (answer.error) throw new Error(`umf pointer: ${answer.error}`);
+      return answer;
+    },
+    destroy() {
+      if (handle) M._umf_pointer_destroy(handle);
+      handle = 0;
+    },
+  };
+}
