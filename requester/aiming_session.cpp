@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+#include <utility>
 
 #include <opencv2/core.hpp>
 
@@ -18,15 +19,11 @@ namespace umf::requester {
 namespace {
 
 namespace p = protocol;
+namespace core = requester_core;
 using Clock = std::chrono::steady_clock;
 
-// A steady aim: held this long and within this distance.
-constexpr double kSteadySeconds = 0.5;
-constexpr double kSteadyModules = 0.5;
-// Without a frame rate, this many frames count as half a second.
-constexpr int kSteadyFramesUnknownRate = 8;
-// The protocol's aim rate: 2 to 5 a second while locked.
-constexpr double kMaxAimsPerSecond = 5.0;
+// A recording without a frame rate: eight frames count as the steady half second.
+constexpr double kFrameSecondsUnknownRate = 0.5 / 8;
 constexpr double kDefaultCameraTimeoutS = 30.0;
 // Unreadable frames in a row after which a camera counts as gone.
 constexpr int kMaxBadFrames = 30;
@@ -52,6 +49,33 @@ int parse_camera(const std::string& text) {
 }
 
 using aiming::usable_point;
+
+bool aiming(core::Phase phase) { return phase == core::Phase::searching || phase == core::Phase::locked; }
+
+// A frame's result as the core takes it: the aim the protocol would carry.
+core::Sighting sighting(bool locked, const Eigen::Vector2d& point, const Detection& d, int width, int height) {
+    core::Sighting s;
+    if (!locked || !usable_point(point)) return s;
+    const std::optional<p::Aim> aim = aiming::aim_message(point, d, width, height);
+    if (!aim) return s;
+    s.locked = true;
+    s.point = aim->point;
+    s.confidence = aim->confidence;
+    s.quad = aim->quad;
+    return s;
+}
+
+// What the preview says while the act goes on.
+std::string progress_text(const core::View& v, double now) {
+    switch (v.put) {
+        case core::PutProgress::asking:
+            return "waiting for the screen to accept (" +
+                   std::to_string(static_cast<int>(std::max(0.0, std::ceil(v.put_deadline - now)))) + " s)";
+        case core::PutProgress::confirming: return "waiting for the screen to confirm";
+        case core::PutProgress::none: return v.phase == core::Phase::receiving ? "receiving" : "waiting for the screen";
+        default: return "giving it to the screen";
+    }
+}
 
 GrabFailure input_failure(const std::string& message) { return {"input", message, kInputError}; }
 
@@ -158,40 +182,51 @@ Json AimingSession::run(const std::function<void(const p::Welcome&)>& welcomed, 
         throw GrabFailure("protocol", std::string("the provider's field cannot be detected: ") + e.what(),
                           kConnection);
     }
+    pointer_ = std::make_unique<core::Pointer>(welcome_, core::Timing{}, o_.auto_act);
+    if (action.put) {
+        try {
+            pointer_->choose_put(0, *action.put);
+        } catch (const std::invalid_argument& e) {
+            throw input_failure(e.what());
+        }
+    }
 
     Json result = o_.input == FrameInput::image ? act_on_still(still, action) : act_from(*source, action);
     connection_.close();
     return result;
 }
 
-p::RequestId AimingSession::next_id() { return p::RequestId{std::int64_t{id_++}}; }
-
-void AimingSession::send_aim(const Eigen::Vector2d& point, const Detection& d, int w, int h) {
-    std::optional<p::Aim> aim = aiming::aim_message(point, d, w, h);
-    if (!aim) return;
-    aim->id = next_id();
-    last_aim_id_ = aim->id;
-    connection_.send(*aim);
+void AimingSession::carry(const core::Step& step) {
+    for (const auto& message : step.send) connection_.send(message);
+    if (step.notice) {
+        // Errors outside a request (a rate limit, a point off every screen): logged, once each.
+        const std::string code = p::to_string(step.notice->code);
+        if (code != last_logged_error_) log("the provider says " + code + ": " + step.notice->message);
+        last_logged_error_ = code;
+    }
 }
 
-// What the provider said about aims: the title for the preview; errors (a
-// rate limit, a point off every screen) only logged, once each.
-void AimingSession::take_replies() {
-    for (auto& m : connection_.poll()) {
-        if (const auto* t = std::get_if<p::Target>(&m)) {
-            status_.target_kind = p::to_string(t->kind);
-            status_.target_title = t->title;
-            if (t->title != last_logged_title_) {
-                log(std::string("aiming at ") + p::to_string(t->kind) + (t->title.empty() ? "" : ": " + t->title));
-                last_logged_title_ = t->title;
-            }
-        } else if (const auto* e = std::get_if<p::Error>(&m)) {
-            if (e->code == p::ErrorCode::unauthorized)
-                throw GrabFailure("unauthorized", "the provider revoked the pairing: " + e->message, kConnection);
-            const std::string code = p::to_string(e->code);
-            if (code != last_logged_error_) log("the provider says " + code + ": " + e->message);
-            last_logged_error_ = code;
-        }
+void AimingSession::throw_if_failed() const {
+    const core::View& v = pointer_->view();
+    if (v.phase != core::Phase::failed || !v.outcome) return;
+    throw GrabFailure(v.outcome->code == "unreachable" ? "connection" : v.outcome->code, v.outcome->message,
+                      kConnection);
+}
+
+// What the provider said about aims: the title for the preview and the log.
+void AimingSession::take_replies(double t) {
+    for (auto& message : connection_.poll()) carry(pointer_->received(t, message));
+    throw_if_failed();
+}
+
+void AimingSession::show_target() {
+    const core::View& v = pointer_->view();
+    status_.target_kind = v.target_kind ? p::to_string(*v.target_kind) : "";
+    status_.target_title = v.target_title;
+    if (v.target_kind && v.target_title != last_logged_title_) {
+        log(std::string("aiming at ") + p::to_string(*v.target_kind) +
+            (v.target_title.empty() ? "" : ": " + v.target_title));
+        last_logged_title_ = v.target_title;
     }
 }
 
@@ -202,7 +237,8 @@ Json AimingSession::act_on_still(const Frame& frame, const PointAction& action) 
     if (!why.empty()) throw input_failure("cannot use " + frame.name + ": " + why);
     const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
     const Detection d = detector_->detect(view, centre);
-    if (!d.found || !usable_point(d.aim_field))
+    const core::Sighting seen = sighting(d.found, d.aim_field, d, view.width, view.height);
+    if (!seen.locked)
         throw GrabFailure("not_found_in_view",
                           "the field was not found in " + frame.name +
                               (d.failure.empty() ? std::string() : " (" + d.failure + ")") +
@@ -210,28 +246,32 @@ Json AimingSession::act_on_still(const Frame& frame, const PointAction& action) 
                           kNothing);
     log("field point (" + std::to_string(d.aim_field.x()) + ", " + std::to_string(d.aim_field.y()) +
         ") under the image centre");
-    send_aim(d.aim_field, d, view.width, view.height);
+    const core::Step aimed = pointer_->frame(0, seen);
+    carry(aimed);
     // The target says what is there; its absence or an error does not stop
     // the action, which has its own answer.
-    try {
-        const p::Message reply = connection_.wait_reply(*last_aim_id_, "aim");
-        if (const auto* t = std::get_if<p::Target>(&reply))
-            log(std::string("aiming at ") + p::to_string(t->kind) + (t->title.empty() ? "" : ": " + t->title));
-        else if (const auto* e = std::get_if<p::Error>(&reply))
-            log(std::string("the provider says ") + p::to_string(e->code) + ": " + e->message);
-    } catch (const GrabFailure& f) {
-        if (f.code != "timeout") throw;
-        log(f.what());
+    for (const auto& message : aimed.send) {
+        const auto* aim = std::get_if<p::Aim>(&message);
+        if (!aim || !aim->id) continue;
+        try {
+            const p::Message reply = connection_.wait_reply(*aim->id, "aim");
+            carry(pointer_->received(0, reply));
+            show_target();
+            if (const auto* e = std::get_if<p::Error>(&reply))
+                log(std::string("the provider says ") + p::to_string(e->code) + ": " + e->message);
+        } catch (const GrabFailure& f) {
+            if (f.code != "timeout") throw;
+            log(f.what());
+        }
     }
-    return act_at(d.aim_field, action);
+    throw_if_failed();
+    carry(pointer_->tap(0));
+    return see_through(0, action);
 }
 
 Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
     const bool live = source.live();
     const double fps = source.fps();
-    const double aims_per_s = std::min(welcome_.limits.aims_per_s, kMaxAimsPerSecond);
-    const auto aim_interval = std::chrono::duration<double>(1.0 / aims_per_s);
-    const auto seeking_interval = std::chrono::duration<double>(std::max(1.0, 1.0 / welcome_.limits.aims_per_s));
     const auto start = Clock::now();
     std::optional<double> timeout = o_.timeout_s;
     if (!timeout && live) timeout = kDefaultCameraTimeoutS;
@@ -243,19 +283,11 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
 
     Tracker tracker(*detector_);
     std::vector<std::uint8_t> luma;
-    // Never sent: due at once. (time_point::min() would overflow in now - min.)
-    std::optional<Clock::time_point> last_aim, last_seeking;
-    Eigen::Vector2d anchor(0, 0);
-    int steady_frames = 0;
-    double steady_since = 0;
     bool ever_locked = false, ever_steady = false;
     int bad_frames = 0, frames = 0;
-    const int steady_frames_needed =
-        fps > 0 ? std::max(2, static_cast<int>(std::ceil(kSteadySeconds * fps))) : kSteadyFramesUnknownRate;
 
     while (true) {
-        const auto now = Clock::now();
-        const double elapsed = std::chrono::duration<double>(now - start).count();
+        const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
         if (timeout && elapsed > *timeout) end_without_act(action, ever_locked, ever_steady, true, *timeout);
         auto frame = source.next();
         if (!frame) {
@@ -273,61 +305,79 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
         bad_frames = 0;
         ++frames;
         // The frame's own time: a file is read faster than it was filmed.
-        const double t = live || fps <= 0 ? elapsed : frame->index / fps;
+        const double t = live ? elapsed : fps > 0 ? frame->index / fps : frames * kFrameSecondsUnknownRate;
 
         const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
         const TrackResult r = tracker.update(view, centre);
-        const bool locked = r.state == TrackState::locked && usable_point(r.aim_field);
-        take_replies();
-        if (locked) {
-            if (!ever_locked) log("locked on the field");
-            ever_locked = true;
-            if (!last_aim || now - *last_aim >= aim_interval) {
-                send_aim(r.aim_field, r.detection, view.width, view.height);
-                last_aim = now;
-            }
-            if (steady_frames == 0 || (r.aim_field - anchor).norm() >= kSteadyModules) {
-                anchor = r.aim_field;
-                steady_frames = 1;
-                steady_since = t;
-            } else {
-                ++steady_frames;
-            }
-        } else {
-            if (steady_frames > 0) {
-                status_.target_kind.clear();
-                status_.target_title.clear();
-            }
-            steady_frames = 0;
-            if (!last_seeking || now - *last_seeking >= seeking_interval) {
-                connection_.send(p::Seeking{});
-                last_seeking = now;
-            }
-        }
-        const bool steady = steady_frames > 0 && (live ? t - steady_since >= kSteadySeconds && steady_frames >= 3
-                                                       : steady_frames >= steady_frames_needed);
-        ever_steady = ever_steady || steady;
+        take_replies(t);
+        const bool locked = r.state == TrackState::locked;
+        const core::Sighting seen = sighting(locked, r.aim_field, r.detection, view.width, view.height);
+        carry(pointer_->frame(t, seen));
+        show_target();
+        if (seen.locked && !ever_locked) log("locked on the field");
+        ever_locked = ever_locked || seen.locked;
+        ever_steady = ever_steady || pointer_->view().steady;
 
         PreviewKey key = PreviewKey::none;
-        status_.state = locked ? PreviewState::locked : PreviewState::searching;
+        status_.state = seen.locked ? PreviewState::locked : PreviewState::searching;
         if (preview_) {
             // A recording plays at its own pace for whoever watches it.
             const int wait_ms = !live && fps > 0 ? std::max(1, static_cast<int>(1000 / fps)) : 1;
             key = show(*preview_, frame->pixels, wait_ms);
         }
         if (key == PreviewKey::quit) throw GrabFailure("cancelled", "cancelled before a " + action.verb, kNothing);
-        if (key == PreviewKey::act && !locked) log("not locked on the field yet: point at the screen");
-        if (locked && ((o_.auto_act && steady) || key == PreviewKey::act)) {
+        if (key == PreviewKey::act && !seen.locked) log("not locked on the field yet: point at the screen");
+        if (key == PreviewKey::act && seen.locked) carry(pointer_->tap(t));
+        if (!aiming(pointer_->view().phase)) {
             if (preview_) {
                 last_frame_ = frame->pixels.clone();
                 status_.state = PreviewState::acting;
                 show(*preview_, last_frame_, 1);
             }
-            return act_at(r.aim_field, action);
+            return see_through(t, action);
         }
     }
     if (frames == 0) throw input_failure("the video " + o_.path + " has no frames OpenCV can read");
     end_without_act(action, ever_locked, ever_steady, false, 0);
+}
+
+Json AimingSession::see_through(double t0, const PointAction& action) {
+    const auto start = Clock::now();
+    const auto now = [&] { return t0 + std::chrono::duration<double>(Clock::now() - start).count(); };
+    const p::FieldPoint at = pointer_->view().aim.value_or(p::FieldPoint{});
+    acted_point_ = at;
+    log(std::string(action.put ? "putting" : "grabbing") + " at (" + std::to_string(at.u) + ", " +
+        std::to_string(at.v) + ")");
+    core::Step step;
+    core::PutProgress told = core::PutProgress::none;
+    while (!pointer_->view().outcome) {
+        if (step.download) {
+            const p::Content content = *std::exchange(step.download, std::nullopt);
+            action.download(content);
+            step = pointer_->downloaded(now(), true);
+        } else if (step.upload) {
+            const std::string path = *std::exchange(step.upload, std::nullopt);
+            step = pointer_->uploaded(now(), 200, p::Message{action.upload(path)});
+        } else {
+            const core::View& v = pointer_->view();
+            if (v.put == core::PutProgress::asking && told != v.put)
+                log("waiting for the person at the screen to accept it (up to 30 s)");
+            told = v.put;
+            show_progress(progress_text(v, now()));
+            const auto arrived = connection_.wait_any(std::chrono::milliseconds(100));
+            step = arrived.empty() ? pointer_->tick(now()) : core::Step{};
+            for (const auto& message : arrived) {
+                core::Step answer = pointer_->received(now(), message);
+                carry(answer);
+                if (answer.download) step.download = std::move(answer.download);
+                if (answer.upload) step.upload = std::move(answer.upload);
+            }
+        }
+        carry(step);
+        step.send.clear();
+    }
+    throw_if_failed();
+    return action.report(*pointer_->view().outcome, at);
 }
 
 void AimingSession::show_progress(const std::string& message) {
@@ -362,12 +412,6 @@ void AimingSession::end_without_act(const PointAction& action, bool ever_locked,
                           kNothing);
     throw GrabFailure("no_" + action.verb,
                       timed_out ? "no " + action.verb + when : "the video ended before a " + action.verb, kNothing);
-}
-
-Json AimingSession::act_at(const Eigen::Vector2d& point, const PointAction& action) {
-    const p::FieldPoint at{point.x(), point.y()};
-    acted_point_ = at;
-    return action.at(at);
 }
 
 }  // namespace umf::requester

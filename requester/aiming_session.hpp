@@ -19,6 +19,7 @@
 #include "preview.hpp"
 #include "protocol/messages.hpp"
 #include "provider_connection.hpp"
+#include "requester_core/pointer.hpp"
 
 namespace umf::requester {
 
@@ -46,11 +47,18 @@ extern const std::vector<std::string> kPointingFlagNames;
 
 using Json = nlohmann::ordered_json;
 
-// What to do once aimed: `verb` ("grab", "put") for the preview and the
-// log; `at` runs at the aimed point and returns the JSON line's object.
+// What to do once aimed. The requester core (requester_core/pointer.hpp)
+// decides when and what to send; the command carries out what it asks for
+// and turns its outcome into the JSON line.
 struct PointAction {
-    std::string verb;
-    std::function<Json(const protocol::FieldPoint&)> at;
+    std::string verb;                            // "grab" or "put", for the preview and the log
+    std::optional<requester_core::PutItem> put;  // Put mode's item; none: grab
+    // The grab's file: fetch it, or throw GrabFailure.
+    std::function<void(const protocol::Content&)> download;
+    // The put's bytes to this upload path: the provider's final status, or throw GrabFailure.
+    std::function<protocol::PutStatus(const std::string&)> upload;
+    // The outcome at the point acted at: the JSON line's object, or throw GrabFailure.
+    std::function<Json(const requester_core::Outcome&, const protocol::FieldPoint&)> report;
 };
 
 class AimingSession {
@@ -63,11 +71,12 @@ public:
 
     // Opens the input and the connection, calls `welcomed` with the welcome
     // (it may throw to stop before any aiming, e.g. when the provider lacks
-    // a feature), aims until the action's moment and returns what the
-    // action returned. Throws GrabFailure for everything that ends it early.
+    // a feature), aims until the core acts (a steady aim with --auto, or a
+    // key), carries the grab or put through and returns action.report's
+    // line. Throws GrabFailure for everything that ends it early.
     Json run(const std::function<void(const protocol::Welcome&)>& welcomed, const PointAction& action);
 
-    // The session, for the action's own messages.
+    // The session, for the action's own requests.
     ProviderConnection& connection() { return connection_; }
     // The point the action ran at, once it has.
     std::optional<protocol::FieldPoint> acted_point() const { return acted_point_; }
@@ -78,15 +87,20 @@ public:
     void show_progress(const std::string& message);
 
 private:
-    protocol::RequestId next_id();
-    void send_aim(const Eigen::Vector2d& point, const Detection& d, int w, int h);
-    void take_replies();
+    // Sends what the core asks to; logs its notices.
+    void carry(const requester_core::Step& step);
+    // Gives the core what the provider said meanwhile.
+    void take_replies(double t);
+    // The target the core knows of, into the preview's status and the log.
+    void show_target();
+    // After the act: the core's requests, downloads and uploads until its outcome.
+    Json see_through(double t, const PointAction& action);
+    void throw_if_failed() const;
     Json act_on_still(const Frame& frame, const PointAction& action);
     Json act_from(FrameSource& source, const PointAction& action);
     PreviewKey show(Preview& preview, const cv::Mat& frame, int wait_ms);
     [[noreturn]] void end_without_act(const PointAction& action, bool ever_locked, bool ever_steady, bool timed_out,
                                       double timeout) const;
-    Json act_at(const Eigen::Vector2d& point, const PointAction& action);
 
     const PointingOptions& o_;
     std::string client_;
@@ -94,8 +108,7 @@ private:
     ProviderConnection connection_;
     protocol::Welcome welcome_;
     std::unique_ptr<Detector> detector_;
-    std::int64_t id_ = 2;  // 1 is the hello's
-    std::optional<protocol::RequestId> last_aim_id_;
+    std::unique_ptr<requester_core::Pointer> pointer_;
     std::optional<protocol::FieldPoint> acted_point_;
     PreviewStatus status_;
     std::unique_ptr<Preview> preview_;

@@ -65,60 +65,72 @@ namespace {
 namespace p = protocol;
 
 
-// Takes what the provider shows at `at`: prints a link (opened with --open),
-// downloads a file or snapshot.
-Json grab_at(ProviderConnection& connection, const GrabOptions& o, const p::FieldPoint& at) {
-    const p::RequestId id{std::string("g1")};
-    connection.send(p::Grab{id, at});
-    log("grabbing at (" + std::to_string(at.u) + ", " + std::to_string(at.v) + ")");
-    const p::Message reply = connection.wait_reply(id, "grab");
-    if (const auto* e = std::get_if<p::Error>(&reply)) {
-        const bool nothing = e->code == p::ErrorCode::not_found || e->code == p::ErrorCode::rate_limited;
-        throw GrabFailure(p::to_string(e->code), "the provider refused the grab: " + e->message,
-                          nothing ? kNothing : kConnection);
-    }
-    const auto* c = std::get_if<p::Content>(&reply);
-    if (!c)
-        throw GrabFailure("protocol", std::string("the provider answered the grab with a ") + p::type_name(reply),
-                          kConnection);
+// A grab carried through by the requester core: the file it asks for is
+// downloaded here, its outcome becomes the JSON line (a link printed and
+// opened with --open, a file saved).
+class GrabAction {
+public:
+    GrabAction(AimingSession& session, const GrabOptions& o) : session_(session), o_(o) {}
 
-    Json j;
-    j["ok"] = true;
-    j["kind"] = p::to_string(c->kind);
-    j["title"] = c->title;
-    j["point"] = point_json(at);
-    switch (c->kind) {
-        case p::ContentKind::none:
-            throw GrabFailure("nothing_to_take",
-                              "nothing to take at that point" +
-                                  (c->title.empty() ? std::string() : " (" + c->title + ")"),
-                              kNothing);
-        case p::ContentKind::url: {
-            if (!c->url) throw GrabFailure("protocol", "the provider's link has no url", kConnection);
-            j["url"] = *c->url;
-            log("link: " + *c->url);
-            j["opened"] = o.open && open_url(*c->url);
-            return j;
-        }
-        case p::ContentKind::file:
-        case p::ContentKind::snapshot: {
-            if (!c->download || !c->name || !c->size)
-                throw GrabFailure("protocol", "the provider's file has no download link, name or size", kConnection);
-            const std::filesystem::path dir = o.out ? std::filesystem::path(*o.out) : default_download_dir();
-            log("downloading " + *c->name + " (" + std::to_string(*c->size) + " bytes) to " + dir.string());
-            const SavedFile saved =
-                download_file(connection.url(), {*c->download, *c->name, *c->size, c->sha256}, dir);
-            log("saved " + saved.path.string());
-            j["saved"] = saved.path.string();
-            j["name"] = saved.name;
-            j["size"] = saved.size;
-            j["sha256"] = saved.sha256;
-            if (c->mime) j["mime"] = *c->mime;
-            return j;
-        }
+    PointAction action() {
+        PointAction a;
+        a.verb = "grab";
+        a.download = [this](const p::Content& c) { download(c); };
+        a.report = [this](const requester_core::Outcome& outcome, const p::FieldPoint& at) {
+            return report(outcome, at);
+        };
+        return a;
     }
-    throw GrabFailure("protocol", "unknown content kind", kConnection);
-}
+
+private:
+    void download(const p::Content& c) {
+        const std::filesystem::path dir = o_.out ? std::filesystem::path(*o_.out) : default_download_dir();
+        log("downloading " + *c.name + " (" + std::to_string(*c.size) + " bytes) to " + dir.string());
+        saved_ = download_file(session_.connection().url(), {*c.download, *c.name, *c.size, c.sha256}, dir);
+        log("saved " + saved_->path.string());
+    }
+
+    Json report(const requester_core::Outcome& outcome, const p::FieldPoint& at) {
+        if (!outcome.ok) {
+            // The core's own codes keep the names the command always used.
+            if (outcome.code == "unreachable") throw GrabFailure("timeout", outcome.message, kConnection);
+            if (outcome.code == "protocol") throw GrabFailure("protocol", outcome.message, kConnection);
+            const bool nothing = outcome.code == "not_found" || outcome.code == "rate_limited";
+            throw GrabFailure(outcome.code, "the provider refused the grab: " + outcome.message,
+                              nothing ? kNothing : kConnection);
+        }
+        const p::Content& c = *outcome.content;
+        Json j;
+        j["ok"] = true;
+        j["kind"] = p::to_string(c.kind);
+        j["title"] = c.title;
+        j["point"] = point_json(at);
+        switch (c.kind) {
+            case p::ContentKind::none:
+                throw GrabFailure("nothing_to_take",
+                                  "nothing to take at that point" + (c.title.empty() ? std::string() : " (" + c.title + ")"),
+                                  kNothing);
+            case p::ContentKind::url:
+                j["url"] = *c.url;
+                log("link: " + *c.url);
+                j["opened"] = o_.open && open_url(*c.url);
+                return j;
+            case p::ContentKind::file:
+            case p::ContentKind::snapshot:
+                j["saved"] = saved_->path.string();
+                j["name"] = saved_->name;
+                j["size"] = saved_->size;
+                j["sha256"] = saved_->sha256;
+                if (c.mime) j["mime"] = *c.mime;
+                return j;
+        }
+        throw GrabFailure("protocol", "unknown content kind", kConnection);
+    }
+
+    AimingSession& session_;
+    const GrabOptions& o_;
+    std::optional<SavedFile> saved_;
+};
 
 }  // namespace
 
@@ -144,9 +156,8 @@ int run_grab(const GrabOptions& o, std::FILE* out) {
         [&] {
             AimingSession session(o.pointing, client_name());
             try {
-                return session.run({}, {"grab", [&](const protocol::FieldPoint& at) {
-                                            return grab_at(session.connection(), o, at);
-                                        }});
+                GrabAction grab(session, o);
+                return session.run({}, grab.action());
             } catch (...) {
                 point = session.acted_point();
                 throw;

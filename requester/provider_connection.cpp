@@ -198,6 +198,17 @@ std::vector<p::Message> ProviderConnection::poll() {
     return out;
 }
 
+std::vector<p::Message> ProviderConnection::wait_any(std::chrono::milliseconds timeout) {
+    const auto deadline = Clock::now() + timeout;
+    while (inbox_.empty()) {
+        check_alive();
+        if (Clock::now() >= deadline) break;
+        if (io_.stopped()) io_.restart();
+        io_.run_one_until(deadline);
+    }
+    return poll();
+}
+
 p::Message ProviderConnection::wait_reply(const p::RequestId& id, const char* what) {
     return wait_reply(id, what, timeouts_.reply);
 }

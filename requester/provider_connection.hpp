@@ -47,6 +47,9 @@ public:
     // that is no message.
     std::vector<protocol::Message> poll();
 
+    // Waits up to `timeout` for anything to arrive and returns it, as poll().
+    std::vector<protocol::Message> wait_any(std::chrono::milliseconds timeout);
+
     // Waits up to timeouts.reply for the reply carrying `id`; other messages
     // received meanwhile are kept for poll(). Throws GrabFailure.
     protocol::Message wait_reply(const protocol::RequestId& id, const char* what);

@@ -70,10 +70,6 @@ namespace {
 namespace p = protocol;
 namespace fs = std::filesystem;
 
-// The screen's answer comes within 30 s (docs/PROTOCOL.md, "put_status");
-// the provider refuses by itself then, so this only catches one that went quiet.
-constexpr std::chrono::seconds kAnswerWait{45};
-
 bool starts_with_scheme(const std::string& text) {
     std::string head = text.substr(0, 8);
     std::transform(head.begin(), head.end(), head.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -118,6 +114,13 @@ public:
 
     Json run() {
         if (o_.file) file_ = prepare_file(*o_.file);
+        PointAction action;
+        action.verb = "put";
+        action.put = item();
+        action.upload = [this](const std::string& link) { return upload(link); };
+        action.report = [this](const requester_core::Outcome& outcome, const p::FieldPoint& at) {
+            return report(outcome, at);
+        };
         return session_.run(
             [&](const p::Welcome& w) {
                 const auto& f = w.features;
@@ -127,12 +130,28 @@ public:
                                           " takes no puts (it runs with --puts never, or in public mode)",
                                       kNothing);
             },
-            {"put", [&](const p::FieldPoint& at) { return put_at(at); }});
+            action);
     }
 
     std::optional<p::FieldPoint> point() const { return session_.acted_point(); }
 
 private:
+    requester_core::PutItem item() const {
+        requester_core::PutItem item;
+        item.title = o_.title;
+        if (file_) {
+            item.kind = p::ContentKind::file;
+            item.name = file_->name;
+            item.mime = file_->mime;
+            item.size = file_->digest.size;
+            item.sha256 = file_->digest.sha256;
+        } else {
+            item.kind = p::ContentKind::url;
+            item.url = *o_.url;
+        }
+        return item;
+    }
+
     static FileToPut prepare_file(const fs::path& path) {
         FileToPut f;
         f.path = path;
@@ -147,72 +166,9 @@ private:
         return f;
     }
 
-    Json put_at(const p::FieldPoint& at) {
-        p::Put put;
-        put.id = p::RequestId{std::string("p1")};
-        put.point = at;
-        put.title = o_.title;
-        if (file_) {
-            put.kind = p::ContentKind::file;
-            put.name = file_->name;
-            put.mime = file_->mime;
-            put.size = file_->digest.size;
-            put.sha256 = file_->digest.sha256;
-        } else {
-            put.kind = p::ContentKind::url;
-            put.url = *o_.url;
-        }
-        ProviderConnection& connection = session_.connection();
-        connection.send(put);
-        log("putting at (" + std::to_string(at.u) + ", " + std::to_string(at.v) + ")");
-
-        p::Message reply = connection.wait_reply(put.id, "put");
-        for (;;) {
-            if (const auto* e = std::get_if<p::Error>(&reply)) fail_with(*e);
-            const auto* status = std::get_if<p::PutStatus>(&reply);
-            if (!status)
-                throw GrabFailure("protocol", std::string("the provider answered the put with a ") + p::type_name(reply),
-                                  kConnection);
-            switch (status->status) {
-                case p::PutState::asking:
-                    log("waiting for the person at the screen to accept it (up to 30 s)");
-                    reply = wait_for_answer(put.id);
-                    continue;
-                case p::PutState::upload: {
-                    if (!file_ || !status->upload)
-                        throw GrabFailure("protocol", "the provider asked for an upload without a file or a link",
-                                          kConnection);
-                    log("accepted; sending " + megabytes(file_->digest.size));
-                    return done(at, upload(*status->upload));
-                }
-                case p::PutState::done:
-                    return done(at, *status);
-            }
-        }
-    }
-
-    // The screen's answer, the preview kept alive meanwhile (q quits: the
-    // session closes and the screen takes its prompt down).
-    p::Message wait_for_answer(const p::RequestId& id) {
-        using Clock = std::chrono::steady_clock;
-        const auto start = Clock::now();
-        for (;;) {
-            const auto waited = std::chrono::duration_cast<std::chrono::seconds>(Clock::now() - start);
-            const long left = std::max<long>(0, 30 - static_cast<long>(waited.count()));
-            session_.show_progress("waiting for the screen to accept (" + std::to_string(left) + " s)");
-            try {
-                return session_.connection().wait_reply(id, "put", std::chrono::milliseconds(100));
-            } catch (const GrabFailure& f) {
-                if (f.code != "timeout") throw;
-                if (Clock::now() - start >= kAnswerWait)
-                    throw GrabFailure("timeout",
-                                      "the screen sent no answer within " + std::to_string(kAnswerWait.count()) + " s",
-                                      kConnection);
-            }
-        }
-    }
-
     p::PutStatus upload(const std::string& link) {
+        if (!file_) throw GrabFailure("protocol", "the provider asked for an upload of a link", kConnection);
+        log("accepted; sending " + megabytes(file_->digest.size));
         auto last = std::chrono::steady_clock::now();
         auto shown = last;
         const auto progress = [&](std::int64_t sent, std::int64_t size) {
@@ -228,7 +184,15 @@ private:
         return upload_file(o_.pointing.url, {link, file_->path, file_->digest.size}, progress);
     }
 
-    Json done(const p::FieldPoint& at, const p::PutStatus& status) {
+    Json report(const requester_core::Outcome& outcome, const p::FieldPoint& at) {
+        if (!outcome.ok) {
+            // The core's own codes keep the names the command always used.
+            if (outcome.code == "unreachable") throw GrabFailure("timeout", outcome.message, kConnection);
+            const auto code = p::error_code_from_string(outcome.code);
+            if (!code) throw GrabFailure(outcome.code, outcome.message, kConnection);
+            fail_with(p::Error{std::nullopt, *code, outcome.message});
+        }
+        const p::PutStatus& status = *outcome.put;
         if (status.status != p::PutState::done || !status.outcome)
             throw GrabFailure("protocol", "the provider ended the put without an outcome", kConnection);
         Json j;
