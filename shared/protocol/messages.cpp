@@ -94,13 +94,6 @@ bool is_file_name(std::string_view name) {
     return name.find_first_of("/\\") == std::string_view::npos;
 }
 
-bool is_mime_type(std::string_view mime) {
-    for (char c : mime)
-        if (c < 0x20 || c > 0x7e) return false;  // printable ASCII only (char may be signed: UTF-8 is < 0 there)
-    auto slash = mime.find('/');
-    return slash != std::string_view::npos && slash > 0 && slash + 1 < mime.size() && mime[slash + 1] != ' ';
-}
-
 // A path on the provider, appended to https://HOST:PORT. Only unreserved
 // characters and '/', and never "//" at the start (a scheme-relative URL
 // would leave the host): it cannot point anywhere but the provider.
@@ -711,6 +704,14 @@ bool is_http_url(std::string_view url) {
     for (char c : url)
         if (c == ' ' || static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return false;
     return true;
+}
+
+bool is_mime_type(std::string_view mime) {
+    if (mime.size() < 3 || mime.size() > kMaxMimeBytes) return false;
+    for (char c : mime)
+        if (c < 0x20 || c > 0x7e) return false;  // printable ASCII only (char may be signed: UTF-8 is < 0 there)
+    auto slash = mime.find('/');
+    return slash != std::string_view::npos && slash > 0 && slash + 1 < mime.size() && mime[slash + 1] != ' ';
 }
 
 }  // namespace umf::protocol

@@ -293,6 +293,10 @@ ParseResult parse_message(std::string_view text, const ParseLimits& limits = {})
 // The error message that answers a text that did not parse.
 Error to_error(const ProtocolError& error);
 
+// A media type that Content and Put accept: "type/subtype", printable
+// ASCII, 3..kMaxMimeBytes bytes.
+bool is_mime_type(std::string_view mime);
+
 // A URL that Content accepts: http: or https: (any case), no spaces or
 // control characters.
 bool is_http_url(std::string_view url);

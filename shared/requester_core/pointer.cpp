@@ -1,5 +1,7 @@
 #include "requester_core/pointer.hpp"
 
+#include "protocol/media_types.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -316,9 +318,12 @@ Step Pointer::closed(double t, int code) {
 void Pointer::choose_put(double t, PutItem item) {
     if (item.kind == p::ContentKind::url) {
         if (!http_url(item.url)) throw std::invalid_argument("a put's link must be an http or https URL");
+        item.name.clear();
     } else if (item.kind == p::ContentKind::file) {
         if (item.name.empty() || item.size < 0) throw std::invalid_argument("a put's file needs a name and a size");
-        if (item.mime.empty()) item.mime = "application/octet-stream";
+        // A name and type as the protocol takes them, whatever the phone's file system allowed.
+        item.name = p::safe_file_name(item.name);
+        if (!p::is_mime_type(item.mime)) item.mime = p::media_type_for(item.name);
     } else {
         throw std::invalid_argument("a put gives a link or a file");
     }
@@ -326,6 +331,8 @@ void Pointer::choose_put(double t, PutItem item) {
     view_.mode = Mode::put;
     to_aiming(t);
 }
+
+void Pointer::set_auto(bool on) { auto_act_ = on; }
 
 void Pointer::leave_put(double t) {
     item_.reset();

@@ -138,8 +138,12 @@ public:
     Step closed(double t, int code);
 
     // Put mode with `item` (a URL must be http(s); a file must have a name
-    // and size): aim as for a grab, then tap. Throws std::invalid_argument.
+    // and size; its name is made one the protocol takes, a type it does not
+    // take is guessed from the name): aim as for a grab, then tap. Throws
+    // std::invalid_argument.
     void choose_put(double t, PutItem item);
+    // Acting by itself on a steady aim, from now on.
+    void set_auto(bool on);
     // Back to grab mode; a put under way is abandoned.
     void leave_put(double t);
     // The user closes the result: aiming again.

@@ -134,6 +134,7 @@ json apply_json_event(Pointer& pointer, const json& event) {
     else if (name == "closed") step = pointer.closed(t, static_cast<int>(number(event, "code", 1006)));
     else if (name == "choose_put") pointer.choose_put(t, put_item(event.at("item")));
     else if (name == "leave_put") pointer.leave_put(t);
+    else if (name == "auto") pointer.set_auto(event.value("on", false));
     else if (name == "dismiss") pointer.dismiss(t);
     else throw std::invalid_argument("unknown event \"" + name + "\"");
     json out = step_json(step);

@@ -14,7 +14,7 @@
 //   {"event": "closed", "code": 1006}
 //   {"event": "choose_put", "item": {"kind": "url", "url": "...", "title": "..."}}
 //        or {"kind": "file", "name": "...", "mime": "...", "size": n, "sha256": "...", "title": "..."}
-//   {"event": "leave_put"}
+//   {"event": "leave_put"}      {"event": "auto", "on": true}
 // Answer: {"send": [messages], "download": {content}, "upload": "/up/...",
 //          "reconnect": false, "notice": {error}, "view": {...}}
 // (download, upload and notice only when there is one).
