@@ -1,0 +1,130 @@
+// A grab's result: the file's bytes fetched and checked, then the result
+// sheet (a link to open, a file to save or open, or why nothing came), the
+// history and the carry list.
+import { carry } from './carry.js';
+import { remember } from './history.js';
+import { $, describeKind, formatSize, hideSheets, setState } from './sheets.js';
+import { Sha256 } from './sha256.js';
+
+let objectUrl = null;
+
+// The file of a grab's content: {blob, verified}. Throws with a reason for people.
+export async function download(content, onProgress) {
+  const response = await fetch(content.download, { cache: 'no-store' });
+  if (!response.ok) {
+    // The provider says why in its error envelope (docs/PROTOCOL.md, "Errors over HTTP").
+    const answer = await response.json().catch(() => null);
+    const error = answer?.messages?.length === 1 && answer.messages[0]?.type === 'error' ? answer.messages[0] : null;
+    throw new Error(error?.message || `the download answered ${response.status}`);
+  }
+  const total = content.size;
+  const reader = response.body.getReader();
+  const chunks = [];
+  let received = 0;
+  // Without crypto.subtle (a plain http page) the bytes are hashed as they come.
+  const ownHash = content.sha256 && !crypto.subtle ? new Sha256() : null;
+  const cut = () => new Error(`the transfer was cut after ${received} of ${total} bytes, so its SHA-256 could not ` +
+                              'be checked and nothing was kept (a file changed on the screen since the grab is cut so)');
+  for (;;) {
+    let part;
+    try {
+      part = await reader.read();
+    } catch {
+      throw cut();
+    }
+    const { value, done } = part;
+    if (done) break;
+    chunks.push(value);
+    ownHash?.update(value);
+    received += value.length;
+    if (total > 0) onProgress?.(received / total);
+  }
+  if (received !== total) throw cut();
+  const blob = new Blob(chunks, { type: content.mime });
+  let verified = null;
+  if (content.sha256) {
+    let hex;
+    if (ownHash) {
+      hex = ownHash.hex();
+    } else {
+      const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', await blob.arrayBuffer()));
+      hex = Array.from(digest, (b) => b.toString(16).padStart(2, '0')).join('');
+    }
+    if (hex !== content.sha256) throw new Error('the file arrived changed (SHA-256 differs)');
+    verified = true;
+  }
+  return { blob, verified };
+}
+
+async function keepCarried(entry, debug) {
+  try {
+    await carry(entry);
+  } catch (e) {
+    // Without IndexedDB (private browsing) the carry list stays empty.
+    debug.carryError = e.message;
+  }
+}
+
+export function showResult({ kind, title, url, file, bytes, detail }, debug) {
+  const sheet = $('result');
+  for (const key of ['url', 'name', 'size', 'sha256', 'verified']) delete sheet.dataset[key];
+  sheet.dataset.kind = kind;
+  sheet.dataset.title = title || '';
+  $('result-title').textContent = title || describeKind(kind);
+  $('result-detail').textContent = detail || '';
+  $('result-preview').replaceChildren();
+  $('result-open').hidden = $('result-save').hidden = true;
+  if (objectUrl) URL.revokeObjectURL(objectUrl);
+  objectUrl = null;
+  if (kind === 'url') {
+    sheet.dataset.url = url;
+    $('result-detail').textContent = url;
+    $('result-open').href = url;
+    $('result-open').hidden = false;
+  } else if (file && bytes) {
+    Object.assign(sheet.dataset, { name: file.name, size: String(file.size) });
+    if (file.sha256) sheet.dataset.sha256 = file.sha256;
+    sheet.dataset.verified = bytes.verified ? 'true' : 'false';
+    $('result-detail').textContent = `${file.name} · ${formatSize(file.size)}${bytes.verified ? ' · checked' : ''}`;
+    objectUrl = URL.createObjectURL(bytes.blob);
+    $('result-save').href = objectUrl;
+    $('result-save').download = file.name;
+    $('result-save').hidden = false;
+    if (file.mime.startsWith('image/')) {
+      const img = document.createElement('img');
+      img.src = objectUrl;
+      img.alt = file.name;
+      $('result-preview').append(img);
+    }
+    if (file.mime.startsWith('image/') || file.mime === 'application/pdf') {
+      $('result-open').href = objectUrl;
+      $('result-open').hidden = false;
+    }
+  }
+  if (kind !== 'none') remember({ kind, title, url, name: file?.name, size: file?.size, at: Date.now() });
+  // On the carry list, to be put on a screen later: links, and files whose bytes arrived whole.
+  if (kind === 'url') keepCarried({ kind: 'url', url, title }, debug);
+  else if (file && bytes) keepCarried({ kind: 'file', title, name: file.name, mime: file.mime, blob: bytes.blob,
+                                        sha256: bytes.verified ? file.sha256 : undefined }, debug);
+  hideSheets();
+  sheet.hidden = false;
+  setState('result', kind === 'none' ? 'Nothing taken' : 'Taken');
+}
+
+// The core's outcome of a grab (pointer.js, view.outcome) on the result
+// sheet; `bytes` are the file's when its download was the one that ended it.
+export function showGrabOutcome(outcome, bytes, debug) {
+  const content = outcome.content;
+  if (outcome.ok && content.kind === 'url') {
+    showResult({ kind: 'url', title: content.title || content.url, url: content.url }, debug);
+  } else if (outcome.ok && (content.kind === 'file' || content.kind === 'snapshot')) {
+    showResult({ kind: content.kind, title: content.title || content.name, file: content, bytes }, debug);
+  } else if (outcome.ok) {
+    showResult({ kind: 'none', title: content.title || 'Nothing to take here' }, debug);
+  } else if (outcome.code === 'download') {
+    showResult({ kind: 'none', title: 'The transfer failed', detail: outcome.message }, debug);
+  } else {
+    showResult({ kind: 'none', title: outcome.code === 'not_found' ? 'No screen there' : 'Not taken',
+                 detail: outcome.message }, debug);
+  }
+}

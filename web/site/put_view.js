@@ -1,0 +1,135 @@
+// Put mode's sheets: the chooser (a file, a photo, a link, a note, the carry
+// list), the status of a put under way, and the upload's bytes. Whether and
+// when a put goes, and what its answers mean, is the requester core's
+// (pointer.js); this shows it and moves the bytes it asks for.
+import { listCarried, removeCarried } from './carry.js';
+import { $, PUT_ERRORS, formatSize, hideSheets, setState } from './sheets.js';
+import { Sha256 } from './sha256.js';
+
+async function sha256Hex(blob) {
+  // crypto.subtle takes the whole file at once; it is there on every https page.
+  if (crypto.subtle && blob.size <= 512 * 1024 * 1024) {
+    const digest = new Uint8Array(await crypto.subtle.digest('SHA-256', await blob.arrayBuffer()));
+    return Array.from(digest, (b) => b.toString(16).padStart(2, '0')).join('');
+  }
+  const hash = new Sha256();
+  const step = 4 * 1024 * 1024;
+  for (let at = 0; at < blob.size; at += step) hash.update(new Uint8Array(await blob.slice(at, at + step).arrayBuffer()));
+  return hash.hex();
+}
+
+// A file to put: hashed while the user aims (item.sha256, a promise).
+export function fileItem(blob, { name, title, mime, sha256, carriedId } = {}) {
+  const item = { kind: 'file', blob, name: name ?? blob.name ?? '', mime: mime ?? blob.type ?? '',
+                 size: blob.size, title: title || name || blob.name || '', carriedId };
+  item.sha256 = sha256 ? Promise.resolve(sha256) : sha256Hex(blob);
+  item.sha256.catch(() => {});
+  return item;
+}
+
+export function carriedItem(e) {
+  return e.kind === 'url' ? { kind: 'url', url: e.url, title: e.title, carriedId: e.id }
+    : fileItem(e.blob, { name: e.name, title: e.title, mime: e.mime, sha256: e.sha256, carriedId: e.id });
+}
+
+// What the put bar and the status sheet call the item.
+export function describeItem(item) {
+  return item?.kind === 'url' ? item.url : `${item?.name} · ${formatSize(item?.size ?? 0)}`;
+}
+
+export async function showPutChooser(onChoose, debug) {
+  hideSheets();
+  $('put-url-error').hidden = true;
+  $('put').hidden = false;
+  setState('put-choose', 'Choose what to put on the screen');
+  await showCarried(onChoose, debug);
+}
+
+async function showCarried(onChoose, debug) {
+  let items = [];
+  try {
+    items = await listCarried();
+  } catch (e) {
+    debug.carryError = e.message;
+  }
+  const ol = $('carry-list');
+  ol.replaceChildren(...items.map((e) => {
+    const li = document.createElement('li');
+    li.dataset.id = String(e.id);
+    li.dataset.kind = e.kind;
+    if (e.kind === 'url') li.dataset.url = e.url;
+    else Object.assign(li.dataset, { name: e.name, size: String(e.size) });
+    const put = document.createElement('button');
+    put.type = 'button';
+    put.className = 'carry-put';
+    put.textContent = e.kind === 'url' ? (e.title || e.url) : `${e.name} · ${formatSize(e.size)}`;
+    put.addEventListener('click', () => onChoose(carriedItem(e)));
+    const remove = document.createElement('button');
+    remove.type = 'button';
+    remove.className = 'carry-remove';
+    remove.textContent = 'Remove';
+    remove.setAttribute('aria-label', `Remove ${e.kind === 'url' ? e.url : e.name}`);
+    remove.addEventListener('click', async () => {
+      await removeCarried(e.id).catch(() => {});
+      showCarried(onChoose, debug);
+    });
+    li.append(put, remove);
+    return li;
+  }));
+  $('carry-empty').hidden = items.length > 0;
+}
+
+// `canAgain`: a put item is there to try once more.
+export function showPutStatus(status, title, text, { code, progress, outcome, name, canAgain, debug } = {}) {
+  const sheet = $('put-status');
+  for (const key of ['code', 'outcome', 'name']) delete sheet.dataset[key];
+  sheet.dataset.status = status;
+  if (code) sheet.dataset.code = code;
+  if (outcome) sheet.dataset.outcome = outcome;
+  if (name) sheet.dataset.name = name;
+  $('put-status-title').textContent = title;
+  $('put-status-text').textContent = text || '';
+  $('put-progress').hidden = progress === undefined;
+  if (progress !== undefined) $('put-progress').value = progress;
+  const over = status === 'done' || status === 'error';
+  $('put-again').hidden = !over || status === 'done' || !canAgain;
+  $('put-finish').hidden = !over;
+  $('put-abort').hidden = over;
+  if (debug?.put) Object.assign(debug.put, { status, code: code ?? null, outcome: outcome ?? null, name: name ?? null });
+  hideSheets();
+  sheet.hidden = false;
+  setState(over ? 'put-result' : 'putting', title);
+}
+
+export function showPutFailure(code, detail, { item, debug } = {}) {
+  const [title, text] = PUT_ERRORS[code] || ['Not put', ''];
+  showPutStatus('error', title, detail && !PUT_ERRORS[code] ? `${text} (${detail})` : text,
+                { code, canAgain: !!item, debug });
+}
+
+export function showPutDone(status, item, debug) {
+  const what = item?.kind === 'url' ? 'The link' : item?.name || 'It';
+  if (status.outcome === 'opened')
+    showPutStatus('done', 'Opened on the screen', status.name ? `${status.name} was saved and opened.` : `${what} is open on the screen.`,
+                  { outcome: 'opened', name: status.name, debug });
+  else
+    showPutStatus('done', 'Saved on the screen', `Saved as ${status.name}.`, { outcome: 'saved', name: status.name, debug });
+}
+
+// The bytes go with XMLHttpRequest, the one browser API that reports an
+// upload's progress; the browser sets Content-Length from the Blob. `answered`
+// gets the HTTP status (0: the connection broke) and the body.
+export function upload(path, item, answered, debug) {
+  const xhr = new XMLHttpRequest();
+  showPutStatus('upload', `Sending ${item.name}…`, `0 of ${formatSize(item.size)}`, { progress: 0, debug });
+  xhr.upload.onprogress = (e) => {
+    const total = e.lengthComputable ? e.total : item.size;
+    $('put-progress').value = total > 0 ? e.loaded / total : 1;
+    $('put-status-text').textContent = `${formatSize(e.loaded)} of ${formatSize(total)}`;
+  };
+  xhr.onload = () => answered(xhr.status, xhr.responseText);
+  xhr.onerror = () => answered(0, '');
+  xhr.open('PUT', path);
+  xhr.send(item.blob);
+  return xhr;
+}
