@@ -16,7 +16,7 @@ if (!scenarioDir || !siteDir) {
   console.error('usage: requester_core_scenarios.mjs SCENARIO_DIR SITE_DIR');
   process.exit(2);
 }
-const { createPointer } = await import(pathToFileURL(path.join(siteDir, 'pointer.js')).href);
+const { createPointer, parsePairingUrl } = await import(pathToFileURL(path.join(siteDir, 'pointer.js')).href);
 
 function difference(expected, actual, at) {
   if (expected === null) return actual === null || actual === undefined ? '' : `${at}: expected null, got ${JSON.stringify(actual)}`;
@@ -81,5 +81,20 @@ for (const name of names) {
   });
   pointer.destroy();
 }
-console.log(`${names.length} scenarios, ${steps} steps, ${failures} failed`);
+// The page reads its pairing URL with the protocol's codec too (pairing.js).
+const fp = 'ab'.repeat(32);
+const paired = await parsePairingUrl(`https://desk.local:8443/#t=3q2-7wEe9KcFzE1p0xH4aA&fp=${fp.toUpperCase()}`);
+if (paired.token !== '3q2-7wEe9KcFzE1p0xH4aA' || paired.fingerprint !== fp || paired.port !== 8443) {
+  ++failures;
+  console.error(`the pairing URL was read as ${JSON.stringify(paired)}`);
+}
+for (const bad of [`https://desk.local:8443/#t=short&fp=${fp}`, `https://desk.local:8443/#t=3q2-7wEe9KcFzE1p0xH4aA`,
+                   `http://desk.local:8443/#t=3q2-7wEe9KcFzE1p0xH4aA&fp=${fp}`]) {
+  const refused = await parsePairingUrl(bad).then(() => false, () => true);
+  if (!refused) {
+    ++failures;
+    console.error(`the pairing URL ${bad} was not refused`);
+  }
+}
+console.log(`${names.length} scenarios, ${steps} steps, pairing URLs, ${failures} failed`);
 process.exit(failures ? 1 : 0);

@@ -450,7 +450,7 @@ function registerServiceWorker() {
 async function start() {
   hideSheets();
   hint(null);
-  pairing = currentPairing();
+  pairing = await currentPairing();
   $('pairing-origin').textContent = location.origin;
   $('pairing-fingerprint').textContent = pairing?.fingerprint || '—';
   if (!pairing) {

@@ -3,6 +3,8 @@
 // which browsers never send to a server. They are kept on the phone per
 // screen (origin), and the fragment is then taken out of the address bar so
 // the token does not linger in a shared screenshot or the history.
+import { parsePairingUrl } from './pointer.js';
+
 const KEY = 'umf.pairings.v1';
 
 function loadAll() {
@@ -22,20 +24,25 @@ function saveAll(all) {
   }
 }
 
-// {token, fingerprint} from a fragment "#t=...&fp=...", or null.
-export function parseFragment(hash) {
-  const params = new URLSearchParams(hash.replace(/^#/, ''));
-  const token = params.get('t');
-  if (!token) return null;
-  const fingerprint = (params.get('fp') || '').toLowerCase();
-  if (token.length > 128 || !/^[A-Za-z0-9_\-.~]+$/.test(token)) return null;
-  return { token, fingerprint: /^[0-9a-f:]{0,128}$/.test(fingerprint) ? fingerprint : '' };
+// {token, fingerprint} of the pairing URL this page was opened with, or
+// null: read by the protocol's one codec (pointer.js, the WebAssembly
+// module) as the pairing URL of this host with the fragment, whatever
+// scheme, path or options the page itself was opened with (a page reached
+// over plain http still pairs, and then offers photos).
+async function freshPairing(location) {
+  if (!/(^#|&)t=/.test(location.hash)) return null;
+  try {
+    const { token, fingerprint } = await parsePairingUrl(`https://${location.host}/${location.hash}`);
+    return { token, fingerprint };
+  } catch {
+    return null;
+  }
 }
 
 // The pairing for this page: a fresh one from the fragment (kept, and the
 // fragment removed), else the one kept for this origin, else null.
-export function currentPairing(location = window.location) {
-  const fresh = parseFragment(location.hash);
+export async function currentPairing(location = window.location) {
+  const fresh = await freshPairing(location);
   const all = loadAll();
   if (fresh) {
     all[location.origin] = { ...all[location.origin], ...fresh, pairedAt: Date.now() };

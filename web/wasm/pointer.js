@@ -8,7 +8,9 @@
 //   show(answer.view);
 //   pointer.destroy();
 //
-// An event the core cannot read throws, naming what is wrong.
+// An event the core cannot read throws, naming what is wrong. The pairing
+// URL is read by the same codec as the provider's and umf-requester's:
+//   const { token, fingerprint } = await parsePairingUrl('https://host:port/#t=...&fp=...');
 import createUmfDetectorModule from './umf-detector.js';
 
 let sharedModule = null;
@@ -55,4 +57,12 @@ export async function createPointer(setup, { moduleOptions } = {}) {
       handle = 0;
     },
   };
+}
+
+// {host, port, token, fingerprint} of a pairing URL; throws with what is wrong.
+export async function parsePairingUrl(url, { moduleOptions } = {}) {
+  const M = await loadModule(moduleOptions);
+  const answer = JSON.parse(cString(M, withText(M, String(url), (ptr, n) => M._umf_parse_pairing_url(ptr, n))));
+  if (answer.error) throw new Error(answer.error);
+  return answer;
 }

@@ -1,7 +1,8 @@
 // The requester core (shared/requester_core) for the phone page, in the same
 // WebAssembly module as the detector: one Pointer per handle, driven by JSON
 // events (requester_core/pointer_json.hpp), so the page follows the very rules
-// umf-requester follows. web/wasm/pointer.js wraps it.
+// umf-requester follows; and the pairing URL's one codec
+// (protocol/pairing_url.hpp). web/wasm/pointer.js wraps both.
 //
 //   h = umf_pointer_create(setup, n);       // null: umf_pointer_error(0) says why
 //   a = umf_pointer_event(h, event, n);     // NUL-terminated JSON: the answer, or {"error": "..."}
@@ -15,6 +16,7 @@
 #include <new>
 #include <string>
 
+#include "protocol/pairing_url.hpp"
 #include "requester_core/pointer_json.hpp"
 
 namespace {
@@ -70,5 +72,26 @@ EMSCRIPTEN_KEEPALIVE const char* umf_pointer_event(void* handle, const char* eve
 
 // Why the last create failed ("" when it did not), NUL-terminated.
 EMSCRIPTEN_KEEPALIVE const char* umf_pointer_error() { return create_error().c_str(); }
+
+// A pairing URL read as the provider and umf-requester read it:
+// {"host", "port", "token", "fingerprint"} or {"error"}, NUL-terminated JSON
+// valid until the next call.
+EMSCRIPTEN_KEEPALIVE const char* umf_parse_pairing_url(const char* url, int length) {
+    static std::string answer;
+    try {
+        if (!url || length < 0) throw umf::protocol::PairingUrlError("no URL");
+        const auto parsed = umf::protocol::parse_pairing_url(std::string_view(url, static_cast<std::size_t>(length)));
+        answer = nlohmann::json{{"host", parsed.host},
+                                {"port", parsed.port},
+                                {"token", parsed.token},
+                                {"fingerprint", parsed.fingerprint}}
+                     .dump();
+    } catch (const std::bad_alloc&) {
+        answer = error_json("out of memory");
+    } catch (const std::exception& e) {
+        answer = error_json(e.what());
+    }
+    return answer.c_str();
+}
 
 }  // extern "C"
