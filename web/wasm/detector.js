@@ -10,7 +10,7 @@
 //
 // Frames are RGBA8 (VideoFrame.copyTo with format RGBA, ImageData.data) or
 // 8-bit grey; each is copied once into the module's own buffer.
-import createUmfDetectorModule from './umf-detector.js';
+import { cString, loadModule, withText } from './umf_module.js';
 
 const STATES = ['searching', 'locked', 'lost'];
 const FORMATS = { grey: 0, rgba: 1 };
@@ -21,37 +21,12 @@ const OFF = {
   state: 136, found: 140, windows: 144, usedPrior: 148, framesSinceLock: 152, edgesFitted: 156,
 };
 
-let sharedModule = null;
-
-// The module instance, made once per worker (every detector shares it).
-// `moduleOptions` go to the emscripten factory on first use (for example
-// `wasmBinary`, or `locateFile` when the .wasm lies elsewhere).
-function loadModule(moduleOptions) {
-  // The .wasm next to umf-detector.js: emscripten's own default is a URL,
-  // which its node path cannot read.
-  if (!sharedModule) sharedModule = createUmfDetectorModule({ locateFile: (p, dir) => dir + p, ...moduleOptions });
-  return sharedModule;
-}
-
-function cString(M, ptr) {
-  if (!ptr) return '';
-  const heap = M.HEAPU8;
-  let end = ptr;
-  while (heap[end] !== 0) ++end;
-  return new TextDecoder().decode(heap.subarray(ptr, end));
-}
-
 // fieldJson: the welcome's field definition, as an object or as JSON text.
 export async function createDetector(fieldJson, { moduleOptions } = {}) {
   const M = await loadModule(moduleOptions);
   if (M._umf_result_size() !== RESULT_SIZE) throw new Error('umf-detector.wasm does not match detector.js');
   const text = typeof fieldJson === 'string' ? fieldJson : JSON.stringify(fieldJson);
-  const bytes = new TextEncoder().encode(text);
-  const ptr = M._malloc(Math.max(1, bytes.length));
-  if (!ptr) throw new Error('umf detector: out of memory');
-  M.HEAPU8.set(bytes, ptr);
-  let handle = M._umf_create(ptr, bytes.length);
-  M._free(ptr);
+  let handle = withText(M, text, (ptr, n) => M._umf_create(ptr, n));
   if (!handle) throw new Error(cString(M, M._umf_last_error()) || 'umf detector: cannot use the field');
 
   const alive = () => {

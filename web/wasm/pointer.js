@@ -11,34 +11,7 @@
 // An event the core cannot read throws, naming what is wrong. The pairing
 // URL is read by the same codec as the provider's and umf-requester's:
 //   const { token, fingerprint } = await parsePairingUrl('https://host:port/#t=...&fp=...');
-import createUmfDetectorModule from './umf-detector.js';
-
-let sharedModule = null;
-
-function loadModule(moduleOptions) {
-  if (!sharedModule) sharedModule = createUmfDetectorModule({ locateFile: (p, dir) => dir + p, ...moduleOptions });
-  return sharedModule;
-}
-
-function cString(M, ptr) {
-  if (!ptr) return '';
-  let end = ptr;
-  while (M.HEAPU8[end] !== 0) ++end;
-  return new TextDecoder().decode(M.HEAPU8.subarray(ptr, end));
-}
-
-// Calls f with the text copied into the module's memory.
-function withText(M, text, f) {
-  const bytes = new TextEncoder().encode(text);
-  const ptr = M._malloc(Math.max(1, bytes.length));
-  if (!ptr) throw new Error('umf pointer: out of memory');
-  try {
-    M.HEAPU8.set(bytes, ptr);
-    return f(ptr, bytes.length);
-  } finally {
-    M._free(ptr);
-  }
-}
+import { cString, loadModule, withText } from './umf_module.js';
 
 // setup: {welcome, auto?, timing?} (requester_core/pointer_json.hpp).
 export async function createPointer(setup, { moduleOptions } = {}) {
