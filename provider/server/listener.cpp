@@ -5,7 +5,7 @@
 #include <boost/beast/core/bind_handler.hpp>
 #include <chrono>
 
-#include "server/session.hpp"
+#include "server/detect_session.hpp"
 
 namespace umf::provider {
 
@@ -13,14 +13,20 @@ namespace net = boost::asio;
 namespace beast = boost::beast;
 using tcp = net::ip::tcp;
 
-void SessionRegistry::add(Session* session, std::weak_ptr<Session> weak) {
+void SessionRegistry::add(Connection* connection, std::weak_ptr<Connection> weak) {
     std::lock_guard lock(mutex_);
-    sessions_[session] = std::move(weak);
+    sessions_[connection] = std::move(weak);
 }
 
-void SessionRegistry::remove(Session* session) {
+void SessionRegistry::hand_over(Connection* from, Connection* to, std::weak_ptr<Connection> weak) {
     std::lock_guard lock(mutex_);
-    ended_ += sessions_.erase(session);
+    sessions_.erase(from);
+    sessions_[to] = std::move(weak);
+}
+
+void SessionRegistry::remove(Connection* connection) {
+    std::lock_guard lock(mutex_);
+    ended_ += sessions_.erase(connection);
 }
 
 std::uint64_t SessionRegistry::ended() const {
@@ -28,9 +34,9 @@ std::uint64_t SessionRegistry::ended() const {
     return ended_;
 }
 
-std::vector<std::shared_ptr<Session>> SessionRegistry::sessions() const {
+std::vector<std::shared_ptr<Connection>> SessionRegistry::sessions() const {
     std::lock_guard lock(mutex_);
-    std::vector<std::shared_ptr<Session>> out;
+    std::vector<std::shared_ptr<Connection>> out;
     for (const auto& [ptr, weak] : sessions_)
         if (auto s = weak.lock()) out.push_back(std::move(s));
     return out;
@@ -90,7 +96,7 @@ void Listener::on_accept(beast::error_code ec, tcp::socket socket) {
         beast::error_code ignored;
         socket.close(ignored);
     } else {
-        std::make_shared<Session>(std::move(socket), tls_, service_, registry_, http_sessions_)->run();
+        std::make_shared<DetectSession>(std::move(socket), tls_, service_, registry_, http_sessions_)->run();
     }
     accept();
 }

@@ -1,5 +1,5 @@
-// Accepts TCP connections and starts a Session for each; keeps track of the
-// live sessions so a shutdown can close them.
+// Accepts TCP connections and starts a DetectSession for each; keeps track of
+// the live connections so a shutdown can close them.
 #pragma once
 
 #include <boost/asio/io_context.hpp>
@@ -13,28 +13,33 @@
 #include <mutex>
 #include <unordered_map>
 
+#include "server/connection.hpp"
 #include "server/service.hpp"
 
 namespace umf::provider {
 
 class HttpSessions;
-class Session;
 
-// The live sessions, by address. Sessions add themselves when they start and
-// remove themselves when destroyed.
+// The live connections, by address. A connection adds itself when it starts,
+// hands its entry on when it changes role (detection to HTTP to WebSocket)
+// and removes it when its last role is destroyed: one entry and one end per
+// connection.
 class SessionRegistry {
 public:
-    void add(Session* session, std::weak_ptr<Session> weak);
-    void remove(Session* session);
-    // The sessions still alive.
-    std::vector<std::shared_ptr<Session>> sessions() const;
+    void add(Connection* connection, std::weak_ptr<Connection> weak);
+    // `from`'s entry is now `to`'s; no connection ended.
+    void hand_over(Connection* from, Connection* to, std::weak_ptr<Connection> weak);
+    // Nothing when `connection` handed its entry on.
+    void remove(Connection* connection);
+    // The connections still alive.
+    std::vector<std::shared_ptr<Connection>> sessions() const;
     std::size_t size() const;
     // Connections ended since the registry was made (the heap trimmer's cue).
     std::uint64_t ended() const;
 
 private:
     mutable std::mutex mutex_;
-    std::unordered_map<Session*, std::weak_ptr<Session>> sessions_;
+    std::unordered_map<Connection*, std::weak_ptr<Connection>> sessions_;
     std::uint64_t ended_ = 0;
 };
 

@@ -6,7 +6,6 @@
 
 #include "server/heap_trim.hpp"
 #include "server/listener.hpp"
-#include "server/session.hpp"
 
 namespace umf::provider {
 

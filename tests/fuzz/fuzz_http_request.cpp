@@ -31,7 +31,7 @@
 #include "server/http_framing.hpp"
 #include "server/http_sessions.hpp"
 #include "server/service.hpp"
-#include "server/session.hpp"
+#include "server/http_session.hpp"
 
 namespace beast = boost::beast;
 namespace http = beast::http;

@@ -24,8 +24,8 @@ TEST(HeapTrimmer, TrimsOnlyAfterEnoughConnectionsEnded) {
 
     // Three connections come and go (the registry only counts them).
     int slots[3];
-    for (int& slot : slots) registry->add(reinterpret_cast<Session*>(&slot), {});
-    for (int& slot : slots) registry->remove(reinterpret_cast<Session*>(&slot));
+    for (int& slot : slots) registry->add(reinterpret_cast<Connection*>(&slot), {});
+    for (int& slot : slots) registry->remove(reinterpret_cast<Connection*>(&slot));
     EXPECT_EQ(registry->ended(), 3u);
     io.restart();
     io.run_for(std::chrono::milliseconds(60));

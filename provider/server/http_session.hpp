@@ -1,29 +1,26 @@
-// One connection: the TLS handshake, then HTTP requests (one-time downloads
-// under /dl/, uploads of accepted puts under /up/, the web client's files,
-// the HTTPS transport under /api/ handed to HttpSessions, kept alive between
-// requests) until one upgrades to the WebSocket session at /ws. A request's
-// header is read first: an upload's body then streams to a file in chunks,
-// any other body is read whole (at most 16 KiB). All of a session's work runs on its strand; at
-// most one write is outstanding and replies wait in a queue. A long poll
-// waits on a timer of the strand while a read watches for the client leaving.
+// A connection's HTTP requests once TLS is up (one-time downloads under /dl/,
+// uploads of accepted puts under /up/, the web client's files, the HTTPS
+// transport under /api/ handed to HttpSessions), kept alive between requests
+// until one upgrades to a WebSocketSession at /ws, which takes the stream on.
+// A request's header is read first: an upload's body then streams to a file
+// in chunks, any other body is read whole (at most 16 KiB). All of a
+// session's work runs on its strand, one write at a time. A long poll waits
+// on a timer of the strand while a read watches for the client leaving.
 #pragma once
 
-#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/any_io_executor.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <boost/asio/ssl/context.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
-#include <boost/beast/ssl.hpp>
-#include <boost/beast/websocket.hpp>
-#include <array>
-#include <deque>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "common/tls_stream.hpp"
 #include "put/upload_sink.hpp"
 #include "put/upload_table.hpp"
+#include "server/connection.hpp"
 #include "server/http_sessions.hpp"
 #include "server/service.hpp"
 
@@ -36,25 +33,21 @@ inline constexpr const char* kWebSocketPath = "/ws";
 // The HTTPS transport's paths start so (docs/PROTOCOL.md, "HTTPS transport").
 inline constexpr const char* kApiPrefix = "/api/";
 
-class Session : public std::enable_shared_from_this<Session> {
+class HttpSession : public Connection, public std::enable_shared_from_this<HttpSession> {
 public:
-    Session(boost::asio::ip::tcp::socket&& socket, boost::asio::ssl::context& tls,
-            std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
-            std::shared_ptr<HttpSessions> http_sessions);
-    ~Session();
+    // The stream, the bytes read past the TLS handshake and what the
+    // connection established, from the DetectSession.
+    HttpSession(TlsStream&& stream, boost::beast::flat_buffer&& buffer, std::unique_ptr<SessionState> state,
+                std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
+                std::shared_ptr<HttpSessions> http_sessions);
+    ~HttpSession() override;
 
+    // Reads the first request (on the strand).
     void run();
-    // From any thread: a WebSocket session closes with going_away (1001);
-    // a connection still in its handshake is dropped.
-    void shutdown();
-    // From any thread: drops the connection at once.
-    void abort();
+    void shutdown() override;
+    void abort() override;
 
 private:
-    using TlsStream = boost::beast::ssl_stream<boost::beast::tcp_stream>;
-
-    void on_detect(boost::beast::error_code ec, bool tls);
-    void on_tls_handshake(boost::beast::error_code ec);
     void read_request();
     void on_header(boost::beast::error_code ec, std::size_t);
     void request_failed(boost::beast::error_code ec);
@@ -67,8 +60,6 @@ private:
     // The upload failed: its file removed, the put's session told; answered
     // with `status` while the connection is there (`answer`), else closed.
     void fail_upload(protocol::ErrorCode code, const std::string& message, bool answer);
-    // A message the service pushes to this WebSocket session (on the strand).
-    void push_message(std::string text);
     void serve_http(const boost::beast::http::request<boost::beast::http::string_body>& req);
     void serve_download(const boost::beast::http::request<boost::beast::http::string_body>& req);
     void serve_api(const boost::beast::http::request<boost::beast::http::string_body>& req);
@@ -85,27 +76,20 @@ private:
     void finish_poll(std::uint64_t poll, HttpSessions::Reply reply);
     void watch();
     void on_watch(boost::beast::error_code ec, std::size_t bytes);
-    void arm_timer(std::chrono::milliseconds after, void (Session::*handler)(boost::beast::error_code, std::uint64_t));
+    void arm_timer(std::chrono::milliseconds after,
+                   void (HttpSession::*handler)(boost::beast::error_code, std::uint64_t));
     void on_idle_timer(boost::beast::error_code ec, std::uint64_t serial);
     template <class Body>
     void write_response(std::shared_ptr<boost::beast::http::response<Body>> response);
     void after_response(bool keep_alive);
     void end_tls();
-    // After an error answer (or a 1009 close): FIN, then the peer's bytes
-    // read and dropped until it closes, kLingerTime or kMaxLingerBytes.
-    void lingering_close();
-    void drain();
-    void on_accept(boost::beast::error_code ec);
-    void read();
-    void on_read(boost::beast::error_code ec, std::size_t);
-    void send(std::string text);
-    void write_next();
-    void on_write(boost::beast::error_code ec, std::size_t);
-    void close(boost::beast::websocket::close_code code);
-    void on_close(boost::beast::error_code ec);
+    // The upgrade: the stream, the buffer and the state go on to a
+    // WebSocketSession, and the registry's entry with them.
+    void upgrade(const boost::beast::http::request<boost::beast::http::string_body>& req);
     void do_shutdown();
 
-    boost::beast::websocket::stream<TlsStream> ws_;
+    boost::asio::any_io_executor executor_;  // the connection's strand, also once the stream is handed on
+    TlsStream stream_;
     std::shared_ptr<const Service> service_;
     std::shared_ptr<SessionRegistry> registry_;
     std::shared_ptr<HttpSessions> http_sessions_;
@@ -119,14 +103,9 @@ private:
     std::unique_ptr<UploadSink> upload_sink_;
     std::vector<char> upload_chunk_;
     std::shared_ptr<void> response_;  // the response being written
-    SessionState state_;
-    std::deque<std::string> queue_;
-    bool websocket_ = false;  // accepted
-    bool reading_ = false;
-    bool closing_ = false;            // no more reading: a close is due or under way
-    bool close_after_queue_ = false;  // close once the queue is sent
-    bool close_started_ = false;
-    boost::beast::websocket::close_code close_code_ = boost::beast::websocket::close_code::normal;
+    std::unique_ptr<SessionState> state_;  // null once handed on
+    std::weak_ptr<Connection> next_;       // the WebSocket session it was handed to
+    bool closing_ = false;                 // the server is stopping
 
     // The long poll (GET /api/session/ID/events) and the read that watches
     // for the client leaving meanwhile; that read becomes the start of the
@@ -141,8 +120,6 @@ private:
     bool resume_after_watch_ = false;  // answered: the watch read leads into the next request
 
     bool linger_after_response_ = false;  // an error answer that ends the connection
-    std::unique_ptr<std::array<char, 16 * 1024>> linger_buffer_;
-    std::size_t linger_bytes_ = 0;
 };
 
 }  // namespace umf::provider

@@ -1,9 +1,7 @@
-#include "server/session.hpp"
+#include "server/http_session.hpp"
 
-#include <boost/asio/dispatch.hpp>
-#include <boost/asio/write.hpp>
-#include <boost/beast/core/detect_ssl.hpp>
 #include <boost/asio/post.hpp>
+#include <boost/beast/websocket/rfc6455.hpp>
 #include <algorithm>
 #include <cstdio>
 #include <cctype>
@@ -16,7 +14,9 @@
 #include "content/verified_file_body.hpp"
 #include "protocol/http_error_body.hpp"
 #include "server/http_framing.hpp"
+#include "server/lingering_close.hpp"
 #include "server/listener.hpp"
+#include "server/websocket_session.hpp"
 
 namespace umf::provider {
 
@@ -24,21 +24,14 @@ namespace beast = boost::beast;
 namespace http = beast::http;
 namespace websocket = beast::websocket;
 namespace net = boost::asio;
-namespace ssl = boost::asio::ssl;
 
 namespace {
 
+// A request's time to arrive, and an answer's to be written.
 constexpr auto kHandshakeTimeout = std::chrono::seconds(30);
-// A refused request's sender may still be sending what was refused: its
-// bytes are read and dropped for this long, or up to this much, before the
-// socket closes (lingering_close).
-constexpr auto kLingerTime = std::chrono::seconds(5);
-constexpr std::size_t kMaxLingerBytes = 64 << 20;
 constexpr std::size_t kMaxRequestHeaderBytes = 8 * 1024;
 // Bodies carry one message of the HTTPS transport (docs/PROTOCOL.md, "Limits").
 constexpr std::size_t kMaxRequestBodyBytes = 16 * 1024;
-// Replies waiting beyond this stop the reading until the peer takes them.
-constexpr std::size_t kMaxQueuedReplies = 64;
 // An upload's body goes to its file in chunks of this size.
 constexpr std::size_t kUploadChunkBytes = 64 * 1024;
 // The web client's share target (its manifest): a share is taken by the
@@ -48,20 +41,19 @@ constexpr const char* kShareUnavailable = "/?share=unavailable";
 
 }  // namespace
 
-Session::Session(net::ip::tcp::socket&& socket, ssl::context& tls, std::shared_ptr<const Service> service,
-                 std::shared_ptr<SessionRegistry> registry, std::shared_ptr<HttpSessions> http_sessions)
-    : ws_(std::move(socket), tls),
+HttpSession::HttpSession(TlsStream&& stream, beast::flat_buffer&& buffer, std::unique_ptr<SessionState> state,
+                         std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
+                         std::shared_ptr<HttpSessions> http_sessions)
+    : executor_(stream.get_executor()),
+      stream_(std::move(stream)),
       service_(std::move(service)),
       registry_(std::move(registry)),
       http_sessions_(std::move(http_sessions)),
-      timer_(ws_.get_executor()) {
-    // Wrong pairing tokens are counted per address.
-    beast::error_code ec;
-    const auto remote = beast::get_lowest_layer(ws_).socket().remote_endpoint(ec);
-    state_.peer = ec ? "unknown" : remote.address().to_string();
-}
+      buffer_(std::move(buffer)),
+      state_(std::move(state)),
+      timer_(executor_) {}
 
-Session::~Session() {
+HttpSession::~HttpSession() {
     if (poll_pending_ && http_sessions_) http_sessions_->cancel_poll(poll_ticket_);
     if (upload_entry_) {
         // Torn down mid-upload without a handler to hear it (the server stopping).
@@ -69,59 +61,15 @@ Session::~Session() {
         service_->puts().upload_failed(*upload_entry_, protocol::ErrorCode::interrupted,
                                        "the upload was cut off: the provider closed the connection");
     }
-    service_->session_ended(state_);
+    if (state_) service_->session_ended(*state_);
     if (registry_) registry_->remove(this);
 }
 
-void Session::run() {
-    registry_->add(this, weak_from_this());
-    // What the service pushes to this session (a put's answer) comes on any
-    // thread and is sent from the strand.
-    state_.outbox = [weak = weak_from_this(), executor = ws_.get_executor()](std::uint64_t, std::string message) {
-        net::post(executor, [weak, message = std::move(message)]() mutable {
-            if (auto self = weak.lock()) self->push_message(std::move(message));
-        });
-    };
-    net::dispatch(ws_.get_executor(), [self = shared_from_this()] {
-        if (self->closing_) return;
-        beast::get_lowest_layer(self->ws_).expires_after(kHandshakeTimeout);
-        // Someone typing http:// gets told to use https:// rather than a
-        // connection that just drops.
-        beast::async_detect_ssl(beast::get_lowest_layer(self->ws_), self->buffer_,
-                                beast::bind_front_handler(&Session::on_detect, self));
-    });
-}
+void HttpSession::run() { read_request(); }
 
-void Session::on_detect(beast::error_code ec, bool tls) {
-    if (ec || closing_) return;
-    if (!tls) {
-        static const std::string kPlainHttp =
-            "HTTP/1.1 400 Bad Request\r\nServer: umf-provider\r\nContent-Type: text/plain; charset=utf-8\r\n"
-            "Connection: close\r\nContent-Length: 60\r\n\r\n"
-            "This is an HTTPS server: open the pairing link, https://...\n";
-        net::async_write(beast::get_lowest_layer(ws_), net::buffer(kPlainHttp),
-                         [self = shared_from_this()](beast::error_code, std::size_t) {
-                             beast::error_code ignored;
-                             beast::get_lowest_layer(self->ws_).socket().shutdown(net::ip::tcp::socket::shutdown_both,
-                                                                                ignored);
-                         });
-        return;
-    }
-    ws_.next_layer().async_handshake(ssl::stream_base::server, buffer_.data(),
-                                     [self = shared_from_this()](beast::error_code ec, std::size_t used) {
-                                         self->buffer_.consume(used);
-                                         self->on_tls_handshake(ec);
-                                     });
-}
-
-void Session::on_tls_handshake(beast::error_code ec) {
-    if (ec || closing_) return;
-    read_request();
-}
-
-void Session::read_request() {
+void HttpSession::read_request() {
     // Also the idle timeout of a kept-alive connection.
-    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+    beast::get_lowest_layer(stream_).expires_after(kHandshakeTimeout);
     request_.reset();
     header_.emplace();
     header_->header_limit(kMaxRequestHeaderBytes);
@@ -131,11 +79,11 @@ void Session::read_request() {
     // than every length.
     header_->body_limit(std::numeric_limits<std::uint64_t>::max());
     buffer_.max_size(kMaxRequestHeaderBytes + kMaxRequestBodyBytes);
-    http::async_read_header(ws_.next_layer(), buffer_, *header_,
-                            beast::bind_front_handler(&Session::on_header, shared_from_this()));
+    http::async_read_header(stream_, buffer_, *header_,
+                            beast::bind_front_handler(&HttpSession::on_header, shared_from_this()));
 }
 
-void Session::request_failed(beast::error_code ec) {
+void HttpSession::request_failed(beast::error_code ec) {
     // A request that is not HTTP or too large gets its status; a
     // connection gone or timed out, nothing.
     if (ec == http::error::header_limit || ec == http::error::buffer_overflow)
@@ -150,7 +98,7 @@ void Session::request_failed(beast::error_code ec) {
                      "a request that cannot be read: " + ec.message());
 }
 
-void Session::on_header(beast::error_code ec, std::size_t) {
+void HttpSession::on_header(beast::error_code ec, std::size_t) {
     if (closing_) return;
     if (ec) {
         request_failed(ec);
@@ -176,7 +124,7 @@ void Session::on_header(beast::error_code ec, std::size_t) {
         res->set("Referrer-Policy", "no-referrer");
         res->keep_alive(false);
         res->prepare_payload();
-        beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+        beast::get_lowest_layer(stream_).expires_after(kHandshakeTimeout);
         write_response(std::move(res));
         return;
     }
@@ -190,14 +138,14 @@ void Session::on_header(beast::error_code ec, std::size_t) {
     request_->body_limit(kMaxRequestBodyBytes);
     if (request_->is_done()) {
         // No body: nothing more to read.
-        net::post(ws_.get_executor(), [self = shared_from_this()] { self->on_request({}, 0); });
+        net::post(executor_, [self = shared_from_this()] { self->on_request({}, 0); });
         return;
     }
-    http::async_read(ws_.next_layer(), buffer_, *request_,
-                     beast::bind_front_handler(&Session::on_request, shared_from_this()));
+    http::async_read(stream_, buffer_, *request_,
+                     beast::bind_front_handler(&HttpSession::on_request, shared_from_this()));
 }
 
-void Session::on_request(beast::error_code ec, std::size_t) {
+void HttpSession::on_request(beast::error_code ec, std::size_t) {
     if (closing_) return;
     if (ec) {
         request_failed(ec);
@@ -215,17 +163,15 @@ void Session::on_request(beast::error_code ec, std::size_t) {
                      std::string("the WebSocket is at ") + kWebSocketPath);
         return;
     }
-    beast::get_lowest_layer(ws_).expires_never();
-    // A requester that vanished (a phone locked, Wi-Fi gone) is pinged after
-    // 30 s of silence and dropped after 60.
-    auto timeouts = websocket::stream_base::timeout::suggested(beast::role_type::server);
-    timeouts.idle_timeout = std::chrono::seconds(60);
-    timeouts.keep_alive_pings = true;
-    ws_.set_option(timeouts);
-    ws_.set_option(websocket::stream_base::decorator(
-        [](websocket::response_type& res) { res.set(http::field::server, "umf-provider"); }));
-    ws_.read_message_max(static_cast<std::size_t>(service_->config().limits.max_message_bytes));
-    ws_.async_accept(req, beast::bind_front_handler(&Session::on_accept, shared_from_this()));
+    upgrade(req);
+}
+
+void HttpSession::upgrade(const http::request<http::string_body>& req) {
+    auto ws = std::make_shared<WebSocketSession>(std::move(stream_), std::move(buffer_), std::move(state_), service_,
+                                                 registry_);
+    registry_->hand_over(this, ws.get(), ws);
+    next_ = ws;
+    ws->run(req);
 }
 
 namespace {
@@ -286,7 +232,7 @@ bool is_json(beast::string_view content_type) {
 
 }  // namespace
 
-void Session::serve_api(const http::request<http::string_body>& req) {
+void HttpSession::serve_api(const http::request<http::string_body>& req) {
     const bool keep_alive = req.keep_alive();
     beast::string_view path = req.target();
     path = path.substr(0, path.find('?'));
@@ -329,7 +275,7 @@ void Session::serve_api(const http::request<http::string_body>& req) {
     HttpSessions::Reply reply;
     switch (call) {
         case Call::hello:
-            reply = http_sessions_->hello(req.body(), state_.peer);
+            reply = http_sessions_->hello(req.body(), state_->peer);
             break;
         case Call::message:
             reply = http_sessions_->message(session, req.body());
@@ -346,7 +292,7 @@ void Session::serve_api(const http::request<http::string_body>& req) {
     api_response(reply.status, keep_alive, std::move(reply.body));
 }
 
-void Session::api_response(int status, bool keep_alive, std::string body, const char* allow) {
+void HttpSession::api_response(int status, bool keep_alive, std::string body, const char* allow) {
     auto res = std::make_shared<http::response<http::string_body>>(static_cast<http::status>(status), 11);
     set_common_headers(*res);
     res->set(http::field::content_type, "application/json");
@@ -358,23 +304,23 @@ void Session::api_response(int status, bool keep_alive, std::string body, const 
     write_response(std::move(res));
 }
 
-void Session::answer_error(http::status status, bool keep_alive, const protocol::Error& error, const char* allow) {
+void HttpSession::answer_error(http::status status, bool keep_alive, const protocol::Error& error, const char* allow) {
     if (!keep_alive) {
-        beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+        beast::get_lowest_layer(stream_).expires_after(kHandshakeTimeout);
         linger_after_response_ = true;
     }
     api_response(static_cast<int>(status), keep_alive, protocol::encode_error_body(error), allow);
 }
 
-void Session::answer_error(http::status status, bool keep_alive, protocol::ErrorCode code, const std::string& message,
+void HttpSession::answer_error(http::status status, bool keep_alive, protocol::ErrorCode code, const std::string& message,
                            const char* allow) {
     answer_error(status, keep_alive, protocol::Error{std::nullopt, code, message}, allow);
 }
 
-void Session::start_poll(std::string_view id, bool keep_alive) {
+void HttpSession::start_poll(std::string_view id, bool keep_alive) {
     const std::uint64_t poll = ++poll_serial_;
     // Called at most once, from any thread: the answer goes to this strand.
-    auto waiter = [weak = weak_from_this(), executor = ws_.get_executor(), poll](HttpSessions::Reply reply) {
+    auto waiter = [weak = weak_from_this(), executor = executor_, poll](HttpSessions::Reply reply) {
         net::post(executor, [weak, poll, reply = std::move(reply)]() mutable {
             if (auto self = weak.lock()) self->finish_poll(poll, std::move(reply));
         });
@@ -388,13 +334,13 @@ void Session::start_poll(std::string_view id, bool keep_alive) {
     poll_ticket_ = start.ticket;
     poll_keep_alive_ = keep_alive;
     // The poll's own timer bounds it; the read below has no timeout.
-    beast::get_lowest_layer(ws_).expires_never();
+    beast::get_lowest_layer(stream_).expires_never();
     arm_timer(std::chrono::duration_cast<std::chrono::milliseconds>(http_sessions_->options().poll_timeout),
-              &Session::on_poll_timer);
+              &HttpSession::on_poll_timer);
     watch();
 }
 
-void Session::arm_timer(std::chrono::milliseconds after, void (Session::*handler)(beast::error_code, std::uint64_t)) {
+void HttpSession::arm_timer(std::chrono::milliseconds after, void (HttpSession::*handler)(beast::error_code, std::uint64_t)) {
     const std::uint64_t serial = ++timer_serial_;
     timer_.expires_after(after);
     timer_.async_wait([self = shared_from_this(), handler, serial](beast::error_code ec) {
@@ -402,38 +348,38 @@ void Session::arm_timer(std::chrono::milliseconds after, void (Session::*handler
     });
 }
 
-void Session::on_poll_timer(beast::error_code ec, std::uint64_t serial) {
+void HttpSession::on_poll_timer(beast::error_code ec, std::uint64_t serial) {
     if (ec || serial != timer_serial_ || !poll_pending_) return;
     // Nothing came: answered with no messages, unless an answer is already
     // on its way to this strand.
     if (auto reply = http_sessions_->end_poll(poll_ticket_)) finish_poll(poll_serial_, std::move(*reply));
 }
 
-void Session::on_idle_timer(beast::error_code ec, std::uint64_t serial) {
+void HttpSession::on_idle_timer(beast::error_code ec, std::uint64_t serial) {
     if (ec || serial != timer_serial_ || !watching_) return;
-    beast::get_lowest_layer(ws_).close();  // kept alive after a poll, but nothing came
+    beast::get_lowest_layer(stream_).close();  // kept alive after a poll, but nothing came
 }
 
-void Session::finish_poll(std::uint64_t poll, HttpSessions::Reply reply) {
+void HttpSession::finish_poll(std::uint64_t poll, HttpSessions::Reply reply) {
     if (!poll_pending_ || poll != poll_serial_) return;
     poll_pending_ = false;
     ++timer_serial_;
     timer_.cancel();
     // The write gets the usual timeout (the watching read has none).
-    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+    beast::get_lowest_layer(stream_).expires_after(kHandshakeTimeout);
     api_response(reply.status, poll_keep_alive_ && !closing_, std::move(reply.body));
 }
 
-void Session::watch() {
+void HttpSession::watch() {
     // Reads whatever comes while the poll is open: nothing until the client
     // goes away (an error), or the start of its next request.
     if (buffer_.size() >= kMaxRequestHeaderBytes) return;  // a pipelining client waits for its answer
     watching_ = true;
-    ws_.next_layer().async_read_some(buffer_.prepare(2048),
-                                     beast::bind_front_handler(&Session::on_watch, shared_from_this()));
+    stream_.async_read_some(buffer_.prepare(2048),
+                                     beast::bind_front_handler(&HttpSession::on_watch, shared_from_this()));
 }
 
-void Session::on_watch(beast::error_code ec, std::size_t bytes) {
+void HttpSession::on_watch(beast::error_code ec, std::size_t bytes) {
     watching_ = false;
     if (ec) {
         // Gone (or closed by a timeout or a shutdown): the poll is dropped,
@@ -444,7 +390,7 @@ void Session::on_watch(beast::error_code ec, std::size_t bytes) {
         }
         ++timer_serial_;
         timer_.cancel();
-        beast::get_lowest_layer(ws_).close();
+        beast::get_lowest_layer(stream_).close();
         return;
     }
     buffer_.commit(bytes);
@@ -463,7 +409,7 @@ void Session::on_watch(beast::error_code ec, std::size_t bytes) {
 }
 
 
-void Session::start_upload() {
+void HttpSession::start_upload() {
     http::request_parser<http::empty_body>& header = *header_;
     const auto& req = header.get();
     const beast::string_view target = req.target();
@@ -512,12 +458,12 @@ void Session::start_upload() {
     buffer_.max_size(std::numeric_limits<std::size_t>::max());
     upload_chunk_.resize(kUploadChunkBytes);
     // A slow sender gets a minute plus a second per megabyte, as downloads.
-    beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(60 + size / (1 << 20)));
+    beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(60 + size / (1 << 20)));
     if (expect_continue) {
         auto res = std::make_shared<http::response<http::empty_body>>(http::status::continue_, 11);
         auto& r = *res;
         response_ = std::move(res);
-        http::async_write(ws_.next_layer(), r, [self = shared_from_this()](beast::error_code ec, std::size_t) {
+        http::async_write(stream_, r, [self = shared_from_this()](beast::error_code ec, std::size_t) {
             self->response_.reset();
             if (ec) {
                 self->fail_upload(protocol::ErrorCode::interrupted, "the upload broke off: " + ec.message(), false);
@@ -530,7 +476,7 @@ void Session::start_upload() {
     read_upload();
 }
 
-void Session::read_upload() {
+void HttpSession::read_upload() {
     if (upload_->is_done()) {
         finish_upload();
         return;
@@ -538,11 +484,11 @@ void Session::read_upload() {
     auto& body = upload_->get().body();
     body.data = upload_chunk_.data();
     body.size = upload_chunk_.size();
-    http::async_read(ws_.next_layer(), buffer_, *upload_,
-                     beast::bind_front_handler(&Session::on_upload, shared_from_this()));
+    http::async_read(stream_, buffer_, *upload_,
+                     beast::bind_front_handler(&HttpSession::on_upload, shared_from_this()));
 }
 
-void Session::on_upload(beast::error_code ec, std::size_t) {
+void HttpSession::on_upload(beast::error_code ec, std::size_t) {
     if (!upload_ || !upload_sink_) return;
     if (ec == http::error::need_buffer) ec = {};
     const std::size_t got = upload_chunk_.size() - upload_->get().body().size;
@@ -568,7 +514,7 @@ void Session::on_upload(beast::error_code ec, std::size_t) {
     read_upload();
 }
 
-void Session::finish_upload() {
+void HttpSession::finish_upload() {
     std::string stored;
     try {
         stored = upload_sink_->store(upload_entry_->name);
@@ -583,11 +529,11 @@ void Session::finish_upload() {
     upload_.reset();
     upload_chunk_ = {};
     const protocol::Message done = service_->puts().upload_done(entry, stored);
-    beast::get_lowest_layer(ws_).expires_after(kHandshakeTimeout);
+    beast::get_lowest_layer(stream_).expires_after(kHandshakeTimeout);
     api_response(200, keep_alive && !closing_, encode_reply(done));
 }
 
-void Session::fail_upload(protocol::ErrorCode code, const std::string& message, bool answer) {
+void HttpSession::fail_upload(protocol::ErrorCode code, const std::string& message, bool answer) {
     upload_sink_.reset();  // the temporary file goes with it
     upload_.reset();
     upload_chunk_ = {};
@@ -595,7 +541,7 @@ void Session::fail_upload(protocol::ErrorCode code, const std::string& message, 
     const protocol::Error error = service_->puts().upload_failed(*upload_entry_, code, message);
     upload_entry_.reset();
     if (!answer) {
-        beast::get_lowest_layer(ws_).close();
+        beast::get_lowest_layer(stream_).close();
         return;
     }
     const auto status = code == protocol::ErrorCode::too_large  ? http::status::payload_too_large
@@ -604,13 +550,7 @@ void Session::fail_upload(protocol::ErrorCode code, const std::string& message, 
     answer_error(status, false, error);
 }
 
-void Session::push_message(std::string text) {
-    // Only a WebSocket session is welcomed here (HTTPS ones live in HttpSessions).
-    if (!websocket_ || closing_) return;
-    send(std::move(text));
-}
-
-void Session::serve_http(const http::request<http::string_body>& req) {
+void HttpSession::serve_http(const http::request<http::string_body>& req) {
     const bool keep_alive = req.keep_alive();
     if (beast::string_view(req.target()).starts_with(kApiPrefix)) {
         serve_api(req);
@@ -643,7 +583,7 @@ void Session::serve_http(const http::request<http::string_body>& req) {
     write_response(std::move(res));
 }
 
-void Session::serve_download(const http::request<http::string_body>& req) {
+void HttpSession::serve_download(const http::request<http::string_body>& req) {
     const bool keep_alive = req.keep_alive();
     const beast::string_view target = req.target();
     // The link is used up by this request, whatever follows.
@@ -663,7 +603,7 @@ void Session::serve_download(const http::request<http::string_body>& req) {
         res.content_length(static_cast<std::uint64_t>(entry->size));
     };
     // A slow reader gets a minute plus a second per megabyte.
-    beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(60 + entry->size / (1 << 20)));
+    beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(60 + entry->size / (1 << 20)));
     if (entry->bytes) {
         auto res = std::make_shared<http::response<http::string_body>>(http::status::ok, req.version());
         if (!head) res->body() = *entry->bytes;
@@ -689,14 +629,14 @@ void Session::serve_download(const http::request<http::string_body>& req) {
     prepare(*res);
     auto& r = *res;
     response_ = std::move(res);
-    http::async_write(ws_.next_layer(), r,
+    http::async_write(stream_, r,
                       [self = shared_from_this(), keep_alive, file = *entry->file](beast::error_code ec, std::size_t) {
                           self->response_.reset();
                           if (ec == DownloadCheck::changed) {
                               // Cut short: the phone sees fewer bytes than promised
                               // and keeps none; the next grab hashes the file again.
                               self->service_->forget_file(file);
-                              beast::get_lowest_layer(self->ws_).close();
+                              beast::get_lowest_layer(self->stream_).close();
                               return;
                           }
                           if (ec) return;
@@ -706,27 +646,27 @@ void Session::serve_download(const http::request<http::string_body>& req) {
 
 
 template <class Body>
-void Session::write_response(std::shared_ptr<http::response<Body>> response) {
+void HttpSession::write_response(std::shared_ptr<http::response<Body>> response) {
     const bool keep_alive = response->keep_alive();
     auto& res = *response;
     response_ = std::move(response);
-    http::async_write(ws_.next_layer(), res, [self = shared_from_this(), keep_alive](beast::error_code ec, std::size_t) {
+    http::async_write(stream_, res, [self = shared_from_this(), keep_alive](beast::error_code ec, std::size_t) {
         self->response_.reset();
         if (ec) return;  // the peer went away mid-response; the session ends and frees what it held
         self->after_response(keep_alive);
     });
 }
 
-void Session::after_response(bool keep_alive) {
+void HttpSession::after_response(bool keep_alive) {
     if (watching_) {
         // After a long poll a read is under way already: it becomes the next
         // request once the client sends one, within the idle timeout. TLS
         // cannot shut down with a read outstanding, so an end is a plain close.
         if (keep_alive && !closing_) {
             resume_after_watch_ = true;
-            arm_timer(kHandshakeTimeout, &Session::on_idle_timer);
+            arm_timer(kHandshakeTimeout, &HttpSession::on_idle_timer);
         } else {
-            beast::get_lowest_layer(ws_).close();
+            beast::get_lowest_layer(stream_).close();
         }
         return;
     }
@@ -735,160 +675,52 @@ void Session::after_response(bool keep_alive) {
         return;
     }
     if (linger_after_response_) {
-        lingering_close();
+        lingering_close(beast::get_lowest_layer(stream_), shared_from_this());
         return;
     }
     end_tls();
 }
 
-void Session::lingering_close() {
-    // Closing a socket with unread bytes makes the kernel send a reset,
-    // which can destroy the answer before the peer reads it: a sender still
-    // writing the body that was refused would never see why. So the answer
-    // is followed by our FIN (no TLS close_notify: the peer may be mid-record),
-    // and what still comes is read and dropped until the peer closes.
-    auto& tcp = beast::get_lowest_layer(ws_);
-    beast::error_code ignored;
-    tcp.socket().shutdown(net::ip::tcp::socket::shutdown_send, ignored);
-    tcp.expires_after(kLingerTime);
-    linger_buffer_ = std::make_unique<std::array<char, 16 * 1024>>();
-    linger_bytes_ = 0;
-    drain();
-}
-
-void Session::drain() {
-    beast::get_lowest_layer(ws_).async_read_some(
-        net::buffer(*linger_buffer_), [self = shared_from_this()](beast::error_code ec, std::size_t n) {
-            self->linger_bytes_ += n;
-            if (ec || self->linger_bytes_ > kMaxLingerBytes) {
-                beast::get_lowest_layer(self->ws_).close();
-                return;
-            }
-            self->drain();
-        });
-}
-
-void Session::end_tls() {
-    beast::get_lowest_layer(ws_).expires_after(std::chrono::seconds(5));
-    ws_.next_layer().async_shutdown([self = shared_from_this()](beast::error_code) {
+void HttpSession::end_tls() {
+    beast::get_lowest_layer(stream_).expires_after(std::chrono::seconds(5));
+    stream_.async_shutdown([self = shared_from_this()](beast::error_code) {
         beast::error_code ignored;
-        beast::get_lowest_layer(self->ws_).socket().shutdown(net::ip::tcp::socket::shutdown_both, ignored);
+        beast::get_lowest_layer(self->stream_).socket().shutdown(net::ip::tcp::socket::shutdown_both, ignored);
     });
 }
 
 
-void Session::on_accept(beast::error_code ec) {
-    if (ec) return;
-    websocket_ = true;
-    // The upgrade request is read: an idle session keeps no more buffer than
-    // its next message needs (memory per idle requester, docs/BENCHMARKS.md).
-    buffer_.shrink_to_fit();
-    if (closing_) {
-        if (!close_started_) close(close_code_);
+void HttpSession::shutdown() {
+    net::post(executor_, [self = shared_from_this()] { self->do_shutdown(); });
+}
+
+void HttpSession::do_shutdown() {
+    // Asked before the upgrade reached the strand: the WebSocket session stops.
+    if (!state_) {
+        if (auto next = next_.lock()) next->shutdown();
         return;
-    }
-    read();
-}
-
-void Session::read() {
-    reading_ = true;
-    ws_.async_read(buffer_, beast::bind_front_handler(&Session::on_read, shared_from_this()));
-}
-
-void Session::on_read(beast::error_code ec, std::size_t) {
-    reading_ = false;
-    // The session ends here: closed by the peer, timed out, aborted, or
-    // failed by Beast, which has sent its close (1009 for a message too
-    // big, 1007 for text that is not UTF-8). The peer may still be sending
-    // the rest of what failed it: closing under that would reset the
-    // connection and could destroy the close before the peer reads it.
-    if (ec) {
-        if (!closing_ && ec != net::error::operation_aborted) lingering_close();
-        return;
-    }
-    if (closing_) return;
-
-    const std::string text = beast::buffers_to_string(buffer_.data());
-    buffer_.consume(buffer_.size());
-    if (buffer_.capacity() > 4096) buffer_.shrink_to_fit();  // after a rare large message
-    const Outcome outcome = ws_.got_binary() ? service_->handle_binary(state_) : service_->handle_text(state_, text);
-    for (const auto& reply : outcome.replies) send(encode_reply(reply));
-    if (outcome.close) {
-        closing_ = true;
-        close_after_queue_ = true;
-        close_code_ = outcome.restart ? websocket::close_code::service_restart : websocket::close_code::policy_error;
-        if (queue_.empty()) close(close_code_);
-        return;
-    }
-    if (queue_.size() < kMaxQueuedReplies) read();
-}
-
-void Session::send(std::string text) {
-    queue_.push_back(std::move(text));
-    if (queue_.size() == 1) write_next();
-}
-
-void Session::write_next() {
-    ws_.text(true);
-    ws_.async_write(net::buffer(queue_.front()), beast::bind_front_handler(&Session::on_write, shared_from_this()));
-}
-
-void Session::on_write(beast::error_code ec, std::size_t) {
-    if (ec) return;
-    queue_.pop_front();
-    if (!queue_.empty()) {
-        write_next();
-        return;
-    }
-    if (close_after_queue_) {
-        if (!close_started_) close(close_code_);
-        return;
-    }
-    if (!reading_ && !closing_) read();
-}
-
-void Session::close(websocket::close_code code) {
-    close_started_ = true;
-    ws_.async_close(code, beast::bind_front_handler(&Session::on_close, shared_from_this()));
-}
-
-void Session::on_close(beast::error_code) {
-    // The closing handshake is over (or failed); the stream is torn down and
-    // the session ends with its last handler.
-}
-
-void Session::shutdown() {
-    net::post(ws_.get_executor(), [self = shared_from_this()] { self->do_shutdown(); });
-}
-
-void Session::do_shutdown() {
-    if (close_started_) return;
-    if (!closing_) {
-        close_after_queue_ = true;
-        close_code_ = websocket::close_code::going_away;
     }
     closing_ = true;
-    if (!websocket_) {
-        // Still in the TLS handshake, the HTTP request or the upgrade: an
-        // accept under way finishes and then closes (on_accept); anything
-        // earlier is simply dropped. An open long poll is answered (the
-        // provider goes away: 1001), then the connection closes; one idle
-        // after a poll is dropped.
-        if (poll_pending_) {
-            http_sessions_->cancel_poll(poll_ticket_);
-            finish_poll(poll_serial_, {200, api_body({}, {}, kClosedGoingAway), false});
-        } else if (!request_ || !request_->is_done() || (watching_ && !response_)) {
-            beast::get_lowest_layer(ws_).close();
-        }
-        return;
+    // An open long poll is answered (the provider goes away: 1001), then the
+    // connection closes; a response being written ends the connection once
+    // written; anything else (a request being read, an upload, a connection
+    // idle after a poll) is simply dropped.
+    if (poll_pending_) {
+        http_sessions_->cancel_poll(poll_ticket_);
+        finish_poll(poll_serial_, {200, api_body({}, {}, kClosedGoingAway), false});
+    } else if (!request_ || !request_->is_done() || (watching_ && !response_)) {
+        beast::get_lowest_layer(stream_).close();
     }
-    if (queue_.empty()) close(close_code_);
 }
 
-void Session::abort() {
-    net::post(ws_.get_executor(), [self = shared_from_this()] {
+void HttpSession::abort() {
+    net::post(executor_, [self = shared_from_this()] {
+        if (!self->state_) {
+            if (auto next = self->next_.lock()) next->abort();
+            return;
+        }
         self->closing_ = true;
-        beast::get_lowest_layer(self->ws_).close();
+        beast::get_lowest_layer(self->stream_).close();
     });
 }
 
