@@ -24,12 +24,14 @@ constexpr auto kHandshakeTimeout = std::chrono::seconds(30);
 }  // namespace
 
 DetectSession::DetectSession(net::ip::tcp::socket&& socket, ssl::context& tls, std::shared_ptr<const Service> service,
-                             std::shared_ptr<SessionRegistry> registry, std::shared_ptr<HttpSessions> http_sessions)
+                             std::shared_ptr<SessionRegistry> registry, std::shared_ptr<HttpSessions> http_sessions,
+                             std::shared_ptr<const HttpRoutes> routes)
     : executor_(socket.get_executor()),
       stream_(std::move(socket), tls),
       service_(std::move(service)),
       registry_(std::move(registry)),
       http_sessions_(std::move(http_sessions)),
+      routes_(std::move(routes)),
       state_(std::make_unique<SessionState>()) {
     // Wrong pairing tokens are counted per address.
     beast::error_code ec;
@@ -79,7 +81,7 @@ void DetectSession::on_handshake(beast::error_code ec, std::size_t used) {
     buffer_.consume(used);
     if (ec || closing_) return;
     auto http = std::make_shared<HttpSession>(std::move(stream_), std::move(buffer_), std::move(state_), service_,
-                                              registry_, http_sessions_);
+                                              registry_, http_sessions_, routes_);
     registry_->hand_over(this, http.get(), http);
     next_ = http;
     http->run();

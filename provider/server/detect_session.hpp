@@ -13,6 +13,7 @@
 
 #include "common/tls_stream.hpp"
 #include "server/connection.hpp"
+#include "server/http_routes.hpp"
 #include "server/http_sessions.hpp"
 #include "server/service.hpp"
 
@@ -24,7 +25,7 @@ class DetectSession : public Connection, public std::enable_shared_from_this<Det
 public:
     DetectSession(boost::asio::ip::tcp::socket&& socket, boost::asio::ssl::context& tls,
                   std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
-                  std::shared_ptr<HttpSessions> http_sessions);
+                  std::shared_ptr<HttpSessions> http_sessions, std::shared_ptr<const HttpRoutes> routes);
     ~DetectSession() override;
 
     void run();
@@ -43,6 +44,7 @@ private:
     std::shared_ptr<const Service> service_;
     std::shared_ptr<SessionRegistry> registry_;
     std::shared_ptr<HttpSessions> http_sessions_;
+    std::shared_ptr<const HttpRoutes> routes_;
     std::unique_ptr<SessionState> state_;  // null once handed on
     std::weak_ptr<Connection> next_;       // the HTTP session it was handed to
     bool closing_ = false;

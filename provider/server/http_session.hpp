@@ -1,11 +1,14 @@
-// A connection's HTTP requests once TLS is up (one-time downloads under /dl/,
-// uploads of accepted puts under /up/, the web client's files, the HTTPS
-// transport under /api/ handed to HttpSessions), kept alive between requests
+// A connection's HTTP requests once TLS is up, kept alive between requests
 // until one upgrades to a WebSocketSession at /ws, which takes the stream on.
-// A request's header is read first: an upload's body then streams to a file
-// in chunks, any other body is read whole (at most 16 KiB). All of a
-// session's work runs on its strand, one write at a time. A long poll waits
-// on a timer of the strand while a read watches for the client leaving.
+// A request's header is read first (at most 8 KiB, its framing checked);
+// a route that takes it then (an upload) reads the body itself, anything
+// else is read whole (a body of at most 16 KiB) and goes to its route
+// (http_routes.hpp), which answers through the HttpExchange this session
+// lends it. The HTTPS transport (/api/, http_session_api.cpp) is the
+// session's own: a long poll waits on a timer of the strand while a read
+// watches for the client leaving. All of a session's work runs on its strand,
+// one write at a time; an error answer that ends the connection lingers for
+// what the peer still sends.
 #pragma once
 
 #include <boost/asio/any_io_executor.hpp>
@@ -15,12 +18,11 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <vector>
 
+#include "common/http_exchange.hpp"
 #include "common/tls_stream.hpp"
-#include "put/upload_sink.hpp"
-#include "put/upload_table.hpp"
 #include "server/connection.hpp"
+#include "server/http_routes.hpp"
 #include "server/http_sessions.hpp"
 #include "server/service.hpp"
 
@@ -28,18 +30,20 @@ namespace umf::provider {
 
 class SessionRegistry;
 
-// The WebSocket path (docs/PROTOCOL.md, "Transport").
-inline constexpr const char* kWebSocketPath = "/ws";
-// The HTTPS transport's paths start so (docs/PROTOCOL.md, "HTTPS transport").
-inline constexpr const char* kApiPrefix = "/api/";
+// A request's time to arrive (also a kept-alive connection's idle timeout),
+// and an answer's to be written.
+inline constexpr auto kHttpTimeout = std::chrono::seconds(30);
+inline constexpr std::size_t kMaxRequestHeaderBytes = 8 * 1024;
+// A body read whole: one message of the HTTPS transport (docs/PROTOCOL.md, "Limits").
+inline constexpr std::size_t kMaxRequestBodyBytes = 16 * 1024;
 
-class HttpSession : public Connection, public std::enable_shared_from_this<HttpSession> {
+class HttpSession : public Connection, public HttpExchange, public std::enable_shared_from_this<HttpSession> {
 public:
     // The stream, the bytes read past the TLS handshake and what the
     // connection established, from the DetectSession.
     HttpSession(TlsStream&& stream, boost::beast::flat_buffer&& buffer, std::unique_ptr<SessionState> state,
                 std::shared_ptr<const Service> service, std::shared_ptr<SessionRegistry> registry,
-                std::shared_ptr<HttpSessions> http_sessions);
+                std::shared_ptr<HttpSessions> http_sessions, std::shared_ptr<const HttpRoutes> routes);
     ~HttpSession() override;
 
     // Reads the first request (on the strand).
@@ -47,30 +51,38 @@ public:
     void shutdown() override;
     void abort() override;
 
+    // The /api/ route: the HTTPS transport's calls (http_session_api.cpp).
+    void serve_api(const HttpRequest& req);
+
+    // HttpExchange, for the routes.
+    TlsStream& stream() override { return stream_; }
+    boost::beast::flat_buffer& buffer() override { return buffer_; }
+    std::shared_ptr<HttpExchange> hold() override { return shared_from_this(); }
+    bool stopping() const override { return closing_; }
+    void restart_timeout() override;
+    void answer_json(int status, bool keep_alive, std::string body) override;
+    void answer_error(boost::beast::http::status status, bool keep_alive, const protocol::Error& error,
+                      const char* allow = nullptr) override;
+    using HttpExchange::answer_error;
+    void written(bool keep_alive) override { after_response(keep_alive); }
+    void drop() override;
+
 private:
     void read_request();
     void on_header(boost::beast::error_code ec, std::size_t);
     void request_failed(boost::beast::error_code ec);
     void on_request(boost::beast::error_code ec, std::size_t);
-    // PUT /up/<token> (docs/PROTOCOL.md, "Upload").
-    void start_upload();
-    void read_upload();
-    void on_upload(boost::beast::error_code ec, std::size_t);
-    void finish_upload();
-    // The upload failed: its file removed, the put's session told; answered
-    // with `status` while the connection is there (`answer`), else closed.
-    void fail_upload(protocol::ErrorCode code, const std::string& message, bool answer);
-    void serve_http(const boost::beast::http::request<boost::beast::http::string_body>& req);
-    void serve_download(const boost::beast::http::request<boost::beast::http::string_body>& req);
-    void serve_api(const boost::beast::http::request<boost::beast::http::string_body>& req);
+    // The upgrade: the stream, the buffer and the state go on to a
+    // WebSocketSession, and the registry's entry with them.
+    void upgrade(const HttpRequest& req);
     void api_response(int status, bool keep_alive, std::string body, const char* allow = nullptr);
-    // Every error answer over HTTP: its status and the one error body
-    // (protocol/http_error_body.hpp); without keep_alive the connection
-    // closes once it is written.
-    void answer_error(boost::beast::http::status status, bool keep_alive, const protocol::Error& error,
-                      const char* allow = nullptr);
-    void answer_error(boost::beast::http::status status, bool keep_alive, protocol::ErrorCode code,
-                      const std::string& message, const char* allow = nullptr);
+    template <class Body>
+    void write_response(std::shared_ptr<boost::beast::http::response<Body>> response);
+    void after_response(bool keep_alive);
+    void end_tls();
+    void do_shutdown();
+
+    // The long poll (http_session_api.cpp).
     void start_poll(std::string_view id, bool keep_alive);
     void on_poll_timer(boost::beast::error_code ec, std::uint64_t serial);
     void finish_poll(std::uint64_t poll, HttpSessions::Reply reply);
@@ -79,30 +91,17 @@ private:
     void arm_timer(std::chrono::milliseconds after,
                    void (HttpSession::*handler)(boost::beast::error_code, std::uint64_t));
     void on_idle_timer(boost::beast::error_code ec, std::uint64_t serial);
-    template <class Body>
-    void write_response(std::shared_ptr<boost::beast::http::response<Body>> response);
-    void after_response(bool keep_alive);
-    void end_tls();
-    // The upgrade: the stream, the buffer and the state go on to a
-    // WebSocketSession, and the registry's entry with them.
-    void upgrade(const boost::beast::http::request<boost::beast::http::string_body>& req);
-    void do_shutdown();
 
     boost::asio::any_io_executor executor_;  // the connection's strand, also once the stream is handed on
     TlsStream stream_;
     std::shared_ptr<const Service> service_;
     std::shared_ptr<SessionRegistry> registry_;
     std::shared_ptr<HttpSessions> http_sessions_;
+    std::shared_ptr<const HttpRoutes> routes_;
     boost::beast::flat_buffer buffer_;
     std::optional<boost::beast::http::request_parser<boost::beast::http::empty_body>> header_;
     std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> request_;
-    // An upload under way: its parser (the body in chunks), the accepted put
-    // and the file the bytes go to.
-    std::optional<boost::beast::http::request_parser<boost::beast::http::buffer_body>> upload_;
-    std::optional<UploadEntry> upload_entry_;
-    std::unique_ptr<UploadSink> upload_sink_;
-    std::vector<char> upload_chunk_;
-    std::shared_ptr<void> response_;  // the response being written
+    std::shared_ptr<void> response_;       // the session's own response being written
     std::unique_ptr<SessionState> state_;  // null once handed on
     std::weak_ptr<Connection> next_;       // the WebSocket session it was handed to
     bool closing_ = false;                 // the server is stopping

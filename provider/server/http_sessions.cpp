@@ -42,20 +42,6 @@ HttpSessions::Reply closed_reply(std::vector<std::string> messages, int code) {
 
 }  // namespace
 
-std::string encode_reply(const p::Message& message) {
-    try {
-        return p::encode(message);
-    } catch (const std::exception&) {
-        std::optional<p::RequestId> id;
-        std::visit(
-            [&](const auto& m) {
-                if constexpr (requires { m.id; }) id = m.id;
-            },
-            message);
-        return p::encode(p::Error{id, p::ErrorCode::internal, "cannot encode the reply"});
-    }
-}
-
 std::string api_body(const std::vector<std::string>& encoded_messages, const std::string& session, int closed) {
     std::string body = "{";
     if (!session.empty()) body += "\"session\":\"" + session + "\",";

@@ -2,7 +2,7 @@
 // transport"), for browsers that refuse wss: to a self-signed certificate:
 // the table of HTTP sessions, each with the SessionState a WebSocket
 // connection would hold, its idle expiry, the messages waiting for it and
-// the long poll waiting for them. Free of sockets: the connection (Session)
+// the long poll waiting for them. Free of sockets: the connection (HttpSession)
 // parses the request, calls in here and writes the Reply; a long poll hands
 // over a Waiter that is called at most once, from any thread.
 #pragma once
@@ -20,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/encode_reply.hpp"
 #include "server/service.hpp"
 
 namespace umf::provider {
@@ -127,10 +128,6 @@ private:
     bool expiry_armed_ = false;
     bool stopped_ = false;
 };
-
-// A message as sent: encoded, or an internal error with the request's id
-// when a resolver produced something out of range.
-std::string encode_reply(const protocol::Message& message);
 
 // The JSON envelope of every /api/ answer: {"session":"...","messages":[...],"closed":N};
 // session empty and closed 0 leave them out.

@@ -57,6 +57,7 @@ Listener::Listener(net::io_context& io, net::ssl::context& tls, const tcp::endpo
       service_(std::move(service)),
       registry_(std::move(registry)),
       http_sessions_(std::move(http_sessions)),
+      routes_(make_http_routes(service_)),
       max_connections_(max_connections) {
     acceptor_.open(endpoint.protocol());
     acceptor_.set_option(net::socket_base::reuse_address(true));
@@ -96,7 +97,7 @@ void Listener::on_accept(beast::error_code ec, tcp::socket socket) {
         beast::error_code ignored;
         socket.close(ignored);
     } else {
-        std::make_shared<DetectSession>(std::move(socket), tls_, service_, registry_, http_sessions_)->run();
+        std::make_shared<DetectSession>(std::move(socket), tls_, service_, registry_, http_sessions_, routes_)->run();
     }
     accept();
 }

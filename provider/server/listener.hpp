@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "server/connection.hpp"
+#include "server/http_routes.hpp"
 #include "server/service.hpp"
 
 namespace umf::provider {
@@ -67,6 +68,7 @@ private:
     std::shared_ptr<const Service> service_;
     std::shared_ptr<SessionRegistry> registry_;
     std::shared_ptr<HttpSessions> http_sessions_;
+    std::shared_ptr<const HttpRoutes> routes_;  // one table for every connection
     std::size_t max_connections_;
     bool stopped_ = false;
 };

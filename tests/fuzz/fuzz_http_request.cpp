@@ -31,7 +31,7 @@
 #include "server/http_framing.hpp"
 #include "server/http_sessions.hpp"
 #include "server/service.hpp"
-#include "server/http_session.hpp"
+#include "server/http_routes.hpp"
 
 namespace beast = boost::beast;
 namespace http = beast::http;

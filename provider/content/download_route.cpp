@@ -1,0 +1,99 @@
+#include "content/download_route.hpp"
+
+#include <boost/beast/http/empty_body.hpp>
+#include <cctype>
+#include <chrono>
+#include <string>
+#include <tuple>
+#include <utility>
+
+#include "common/http_response_headers.hpp"
+#include "content/verified_file_body.hpp"
+
+namespace umf::provider {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+
+namespace {
+
+// RFC 6266 / 8187: a plain ASCII fallback and the UTF-8 name percent-encoded.
+std::string content_disposition(const std::string& name) {
+    std::string ascii, encoded;
+    static constexpr char kHex[] = "0123456789ABCDEF";
+    for (unsigned char c : name) {
+        ascii += (c >= 0x20 && c < 0x7f && c != '"' && c != '\\') ? static_cast<char>(c) : '_';
+        if (std::isalnum(c) || c == '.' || c == '-' || c == '_' || c == '~') {
+            encoded += static_cast<char>(c);
+        } else {
+            encoded += '%';
+            encoded += kHex[c >> 4];
+            encoded += kHex[c & 15];
+        }
+    }
+    return "attachment; filename=\"" + ascii + "\"; filename*=UTF-8''" + encoded;
+}
+
+}  // namespace
+
+void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTable& downloads,
+                    std::function<void(const std::filesystem::path&)> forget_file) {
+    const bool keep_alive = req.keep_alive();
+    const beast::string_view target = req.target();
+    auto entry = downloads.take(std::string_view(target.data(), target.size()));
+    if (!entry) {
+        exchange.answer_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found,
+                              "unknown, used or expired download link");
+        return;
+    }
+    const bool head = req.method() == http::verb::head;
+    auto prepare = [&](auto& res) {
+        set_common_headers(res);
+        res.set(http::field::content_type, entry->mime);
+        res.set(http::field::content_disposition, content_disposition(entry->name));
+        res.set(http::field::cache_control, "no-store");
+        res.keep_alive(keep_alive);
+        res.content_length(static_cast<std::uint64_t>(entry->size));
+    };
+    // A slow reader gets a minute plus a second per megabyte.
+    beast::get_lowest_layer(exchange.stream()).expires_after(std::chrono::seconds(60 + entry->size / (1 << 20)));
+    if (entry->bytes) {
+        auto res = std::make_shared<http::response<http::string_body>>(http::status::ok, req.version());
+        if (!head) res->body() = *entry->bytes;
+        prepare(*res);
+        write_response(exchange, std::move(res));
+        return;
+    }
+    VerifiedFileBody::value_type body;
+    if (const auto why = body.open(*entry->file, entry->identity, entry->sha256)) {
+        // Gone or changed since the grab: what would arrive is not what the
+        // content message promised.
+        exchange.answer_error(http::status::conflict, keep_alive, protocol::ErrorCode::internal, *why);
+        return;
+    }
+    if (head) {
+        auto res = std::make_shared<http::response<http::empty_body>>(http::status::ok, req.version());
+        prepare(*res);
+        write_response(exchange, std::move(res));
+        return;
+    }
+    auto res = std::make_shared<http::response<VerifiedFileBody>>(
+        std::piecewise_construct, std::make_tuple(std::move(body)), std::make_tuple(http::status::ok, req.version()));
+    prepare(*res);
+    auto& r = *res;
+    http::async_write(exchange.stream(), r,
+                      [held = exchange.hold(), res = std::move(res), keep_alive, file = *entry->file,
+                       forget_file = std::move(forget_file)](beast::error_code ec, std::size_t) {
+                          if (ec == DownloadCheck::changed) {
+                              // Cut short: the phone sees fewer bytes than promised
+                              // and keeps none; the next grab hashes the file again.
+                              forget_file(file);
+                              held->drop();
+                              return;
+                          }
+                          if (ec) return;
+                          held->written(keep_alive);
+                      });
+}
+
+}  // namespace umf::provider
