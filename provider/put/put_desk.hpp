@@ -7,7 +7,7 @@
 // through the outbox that session attached: an upload link, "done opened"
 // or "refused". Offers not answered within answer_timeout are withdrawn and
 // refused (a thread of its own watches the deadlines); a session that ends
-// withdraws its offers. The upload itself (Session, PUT /up/...) reports
+// withdraws its offers. The upload itself (upload_route.hpp, PUT /up/...) reports
 // back through upload_done and upload_failed. Each step (asked, accepted,
 // refused, timed out, withdrawn, stored, opened, failed) goes to the
 // activity listener (the console). What is opened is placed at the pointed

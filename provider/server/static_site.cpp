@@ -11,7 +11,7 @@ namespace umf::provider {
 namespace {
 
 // No inline style: the pages are served with a Content-Security-Policy of
-// style-src 'self' (session.cpp).
+// style-src 'self' (site_route.cpp).
 const char* kBuiltInPage = R"(<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><meta name="viewport" content="width=device-width, initial-scale=1">
 <title>umf</title><link rel="stylesheet" href="/umf-provider.css"></head>

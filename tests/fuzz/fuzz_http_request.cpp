@@ -1,5 +1,5 @@
-// The provider's HTTP request path (provider/server/session.cpp) without its
-// socket: a connection's bytes parsed by Beast as Session parses them (the
+// The provider's HTTP request path (provider/server/http_session.cpp) without its
+// socket: a connection's bytes parsed by Beast as HttpSession parses them (the
 // header first, under its 8 KiB limit; the framing check; the body under its
 // 16 KiB limit, in a buffer of at most both), then what a complete request
 // reaches without a socket: the HTTPS transport's sessions (hello, message,
@@ -39,7 +39,7 @@ namespace provider = umf::provider;
 
 namespace {
 
-// As Session has them.
+// As HttpSession has them.
 constexpr std::size_t kMaxRequestHeaderBytes = 8 * 1024;
 constexpr std::size_t kMaxRequestBodyBytes = 16 * 1024;
 constexpr int kMaxRequestsPerInput = 8;
@@ -141,7 +141,7 @@ beast::error_code read(Parser& parser, Wire& wire, std::size_t max_buffer, bool 
     }
 }
 
-// Session::serve_api's routing, calling what it calls.
+// HttpSession::serve_api's routing, calling what it calls.
 void serve_api(Provider& p, const http::request<http::string_body>& req) {
     beast::string_view path = req.target();
     path = path.substr(0, path.find('?'));
@@ -175,7 +175,7 @@ void serve_api(Provider& p, const http::request<http::string_body>& req) {
     if (fixture && reply && reply->ended) p.session.clear();
 }
 
-// Session::serve_http's socket-free part.
+// The routes' socket-free part (server/http_routes.cpp).
 void serve(Provider& p, const http::request<http::string_body>& req) {
     const beast::string_view target = req.target();
     const std::string_view path(target.data(), target.size());
@@ -192,7 +192,7 @@ void serve(Provider& p, const http::request<http::string_body>& req) {
     (void)p.service->site().find(path);
 }
 
-// One request as Session::read_request, on_header and on_request take it;
+// One request as HttpSession::read_request, on_header and on_request take it;
 // whether the connection goes on to another.
 bool one_request(Provider& p, Wire& wire) {
     http::request_parser<http::empty_body> header;
