@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "server/pairing.hpp"
+#include "common/base64url.hpp"
 
 namespace umf::provider {
 

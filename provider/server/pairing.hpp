@@ -7,13 +7,12 @@
 #include <string>
 #include <string_view>
 
+#include "common/base64url.hpp"
+
 namespace umf::provider {
 
 inline constexpr const char* kTokenFile = "pairing-token";
 inline constexpr std::size_t kTokenRandomBytes = 24;  // 192 bits, 32 base64url characters
-
-// base64url without padding (RFC 4648, section 5).
-std::string base64url(const unsigned char* data, std::size_t size);
 
 // kTokenRandomBytes from the operating system's generator, base64url.
 std::string make_token();
