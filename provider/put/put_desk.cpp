@@ -4,6 +4,7 @@
 #include <exception>
 #include <vector>
 
+#include "common/encode_reply.hpp"
 #include "put/desktop_open.hpp"
 #include "put/put_deciders.hpp"
 #include "put/upload_sink.hpp"
@@ -119,19 +120,7 @@ bool PutDesk::push(std::uint64_t session, const p::Message& message) {
         if (it == outboxes_.end()) return false;
         outbox = it->second;
     }
-    std::string text;
-    try {
-        text = p::encode(message);
-    } catch (const std::exception&) {
-        std::optional<p::RequestId> id;
-        std::visit(
-            [&](const auto& m) {
-                if constexpr (requires { m.id; }) id = m.id;
-            },
-            message);
-        text = p::encode(p::Error{id, p::ErrorCode::internal, "cannot encode the put's answer"});
-    }
-    outbox(std::move(text));
+    outbox(encode_reply(message));
     return true;
 }
 
