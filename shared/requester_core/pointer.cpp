@@ -1,10 +1,11 @@
 #include "requester_core/pointer.hpp"
 
-#include "protocol/media_types.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+
+#include "aiming/aim.hpp"
+#include "protocol/media_types.hpp"
 
 namespace umf::requester_core {
 
@@ -12,10 +13,7 @@ namespace p = protocol;
 
 namespace {
 
-bool usable(const p::FieldPoint& point) {
-    return std::isfinite(point.u) && std::isfinite(point.v) && std::abs(point.u) <= p::kMaxCoordinate &&
-           std::abs(point.v) <= p::kMaxCoordinate;
-}
+bool usable(const p::FieldPoint& point) { return aiming::usable_point({point.u, point.v}); }
 
 double distance(const p::FieldPoint& a, const p::FieldPoint& b) { return std::hypot(a.u - b.u, a.v - b.v); }
 
@@ -25,11 +23,6 @@ void append(Step& into, Step from) {
     if (from.upload) into.upload = std::move(from.upload);
     into.reconnect = into.reconnect || from.reconnect;
     if (from.notice) into.notice = std::move(from.notice);
-}
-
-// An upload link the page may follow: a path on the provider, nothing else.
-bool upload_path(const std::optional<std::string>& path) {
-    return path && path->size() > 1 && (*path)[0] == '/' && (*path)[1] != '/';
 }
 
 bool http_url(const std::string& url) { return p::is_http_url(url) && url.size() <= p::kMaxUrlBytes; }
@@ -92,7 +85,6 @@ Step Pointer::frame(double t, const Sighting& s) {
             ++steady_frames_;
         }
         view_.aim = s.point;
-        view_.can_act = true;
         view_.steady = t - steady_since_ >= timing_.steady_s && steady_frames_ >= timing_.steady_min_frames;
         if (!last_aim_ || t - *last_aim_ >= aim_interval_s_) {
             step.send.push_back(p::Aim{next_id(), s.point, s.quad, std::clamp(s.confidence, 0.0, 1.0)});
@@ -109,7 +101,7 @@ Step Pointer::frame(double t, const Sighting& s) {
     }
     steady_frames_ = 0;
     view_.aim.reset();
-    view_.can_act = view_.steady = false;
+    view_.steady = false;
     view_.hint = t - searching_since_ > timing_.hint_after_s;
     if (!last_seeking_ || t - *last_seeking_ >= timing_.seeking_interval_s) {
         step.send.push_back(p::Seeking{});
@@ -121,7 +113,6 @@ Step Pointer::frame(double t, const Sighting& s) {
 Step Pointer::tap(double t) {
     if (view_.phase != Phase::locked || !view_.aim) return {};
     pending_point_ = *view_.aim;
-    view_.can_act = false;
     view_.target_kind.reset();
     if (view_.mode == Mode::grab) {
         pending_ = p::RequestId{"g" + std::to_string(next_++)};
@@ -237,11 +228,8 @@ Step Pointer::on_put_status(double t, const p::PutStatus& status) {
             }
             return {};
         case p::PutState::upload: {
+            // The parser took only a path on the provider as the link (protocol/messages.hpp).
             if (item_->kind != p::ContentKind::file || view_.put == PutProgress::uploading) return {};
-            if (!upload_path(status.upload)) {
-                fail_put("bad_request", "the upload link is not a path");
-                return {};
-            }
             view_.put = PutProgress::uploading;
             deadline_.reset();  // the upload reports how it went
             Step step;
@@ -263,7 +251,7 @@ Step Pointer::uploaded(double t, int http_status, const std::optional<p::Message
         if (const auto* error = std::get_if<p::Error>(&*answer)) {
             // A refused body is the upload broken off, whatever the HTTP layer called it.
             const auto code = error->code == p::ErrorCode::bad_request ? p::ErrorCode::interrupted : error->code;
-            fail_put(p::to_string(code), error->message);
+            finish_failed(p::to_string(code), error->message);
             return {};
         }
     }
@@ -278,25 +266,19 @@ Step Pointer::uploaded(double t, int http_status, const std::optional<p::Message
         deadline_code_ = "interrupted";
         deadline_why_ = failure.empty() ? "the connection broke" : failure;
     } else {
-        fail_put("interrupted", "the upload was answered " + std::to_string(http_status));
+        finish_failed("interrupted", "the upload was answered " + std::to_string(http_status));
     }
     return {};
 }
 
 Step Pointer::on_error(const p::Error& error) {
-    if (view_.phase == Phase::putting) {
-        fail_put(p::to_string(error.code), error.message);
-    } else {
-        pending_.reset();
-        finish({false, p::to_string(error.code), error.message});
-    }
+    finish_failed(p::to_string(error.code), error.message);
     return {};
 }
 
 Step Pointer::tick(double t) {
     if (!deadline_ || t < *deadline_) return {};
-    if (view_.phase == Phase::grabbing) finish({false, deadline_code_, deadline_why_});
-    else if (view_.phase == Phase::putting) fail_put(deadline_code_, deadline_why_);
+    if (view_.phase == Phase::grabbing || view_.phase == Phase::putting) finish_failed(deadline_code_, deadline_why_);
     deadline_.reset();
     return {};
 }
@@ -354,7 +336,7 @@ void Pointer::to_aiming(double t) {
     view_.aim.reset();
     view_.target_kind.reset();
     view_.target_title.clear();
-    view_.can_act = view_.steady = view_.hint = false;
+    view_.steady = view_.hint = false;
     steady_frames_ = 0;
     searching_since_ = t;
     started_ = true;
@@ -365,11 +347,13 @@ void Pointer::finish(Outcome outcome) {
     deadline_.reset();
     view_.phase = Phase::result;
     view_.put = PutProgress::none;
-    view_.can_act = view_.steady = false;
+    view_.steady = false;
     view_.aim.reset();
     view_.outcome = std::move(outcome);
 }
 
-void Pointer::fail_put(const std::string& code, const std::string& message) { finish({false, code, message}); }
+void Pointer::finish_failed(const std::string& code, const std::string& message) {
+    finish({false, code, message});
+}
 
 }  // namespace umf::requester_core

@@ -87,7 +87,6 @@ struct Outcome {
 struct View {
     Mode mode = Mode::grab;
     Phase phase = Phase::searching;
-    bool can_act = false;  // Grab (Put) is enabled
     bool steady = false;   // the aim has held steady
     std::optional<protocol::FieldPoint> aim;
     // What the provider said lies at the aim; only while locked in grab mode
@@ -98,6 +97,9 @@ struct View {
     PutProgress put = PutProgress::none;
     double put_deadline = 0;  // while asking: when the screen's time to answer runs out
     std::optional<Outcome> outcome;  // in result and failed
+
+    // Grab (Put) is enabled: exactly while locked.
+    bool can_act() const { return phase == Phase::locked; }
 };
 
 // What the caller does now, in this order: send the messages, then start the
@@ -156,7 +158,8 @@ private:
     protocol::RequestId next_id();
     void to_aiming(double t);
     void finish(Outcome outcome);
-    void fail_put(const std::string& code, const std::string& message);
+    // finish() with a failure: its code and why.
+    void finish_failed(const std::string& code, const std::string& message);
     Step send_put(double t);
     Step on_content(const protocol::Content& content);
     Step on_put_status(double t, const protocol::PutStatus& status);

@@ -157,7 +157,7 @@ json view_json(const View& view) {
     json out;
     out["mode"] = mode_name(view.mode);
     out["phase"] = to_string(view.phase);
-    out["can_act"] = view.can_act;
+    out["can_act"] = view.can_act();
     out["steady"] = view.steady;
     out["aim"] = view.aim ? point_json(*view.aim) : json(nullptr);
     out["target"] = view.target_kind ? json{{"kind", p::to_string(*view.target_kind)}, {"title", view.target_title}}

@@ -3,8 +3,7 @@
 // to a Pointer between frames, taps and the time passing, in grab mode and
 // in put mode. Texts that do not parse are what the connection drops; the
 // rest go in. The core must never crash, and its view must hold together:
-// Grab only while locked, an outcome exactly in result and failed, put
-// progress only while putting.
+// an outcome exactly in result and failed, put progress only while putting.
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -20,7 +19,6 @@ namespace core = umf::requester_core;
 namespace {
 
 void check(const core::View& v) {
-    if (v.can_act && v.phase != core::Phase::locked) __builtin_trap();
     const bool over = v.phase == core::Phase::result || v.phase == core::Phase::failed;
     if (over != v.outcome.has_value()) __builtin_trap();
     if (v.put != core::PutProgress::none && v.phase != core::Phase::putting) __builtin_trap();

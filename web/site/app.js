@@ -55,15 +55,16 @@ const seconds = () => performance.now() / 1000;
 
 // Gives the core an event and carries out what it asks: the messages to
 // send, a file to fetch, bytes to upload, a new connection; then shows its
-// view. A provider's message the core cannot read is dropped (debug.refused).
+// view. False when the core refused the event (a provider's message it
+// cannot read, a put item it does not take: debug.refused says why).
 function drive(event) {
-  if (!pointer) return;
+  if (!pointer) return false;
   let answer;
   try {
     answer = pointer.event({ t: seconds(), ...event });
   } catch (e) {
     debug.refused = e.message;
-    return;
+    return false;
   }
   for (const message of answer.send) link?.send(message);
   if (answer.notice) debug.notice = answer.notice;
@@ -71,6 +72,7 @@ function drive(event) {
   if (answer.download) receive(answer.download);
   if (answer.upload) sendPutFile(answer.upload);
   if (answer.reconnect) start();
+  return true;
 }
 
 const aiming = (phase) => phase === 'searching' || phase === 'locked';
@@ -321,16 +323,8 @@ function setMode(m) {
 // take it (a link that is not http or https), and then nothing changed.
 function choosePut(item) {
   if (!pointer) return true;  // connectToProvider chooses it once there is a core
-  const event = { event: 'choose_put', item: { kind: item.kind, url: item.url, title: item.title, name: item.name,
-                                                 mime: item.mime, size: item.size } };
-  let answer;
-  try {
-    answer = pointer.event({ t: seconds(), ...event });
-  } catch (e) {
-    debug.refused = e.message;
-    return false;
-  }
-  render(answer.view);
+  const chosen = { kind: item.kind, url: item.url, title: item.title, name: item.name, mime: item.mime, size: item.size };
+  if (!drive({ event: 'choose_put', item: chosen })) return false;
   // A file is hashed while the user aims; the core sends the put once it has the hash.
   item.sha256?.then((sha256) => putItem === item && drive({ event: 'hashed', sha256 }),
                     (e) => putItem === item && showPutFailure('unreadable', e.message, { item, debug }));
