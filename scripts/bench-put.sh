@@ -17,8 +17,9 @@ trap cleanup EXIT
 head -c "$((size_mb * 1000000))" /dev/urandom >"$work/carried.bin"
 "$build/bin/umf-provider" compose --board "$here/tests/web/browser/board/board.json" --screen 1920x1080 \
   --preset kiosk --time 0.75 --out "$work/screen.png" --map "$work/map.json" --config-dir "$work/cfg" >/dev/null 2>&1
+: >"$work/provider.log"  # there before the child opens it, so the first read finds it
 "$build/bin/umf-provider" --headless --port 0 --no-qr --config-dir "$work/cfg" --puts always \
-  --put-dir "$work/received" >"$work/provider.log" 2>&1 &
+  --put-dir "$work/received" >>"$work/provider.log" 2>&1 &
 url=
 for _ in $(seq 100); do url=$(sed -n 's/^pairing URL: //p' "$work/provider.log"); [ -n "$url" ] && break; sleep 0.1; done
 [ -n "$url" ] || { echo "no provider"; cat "$work/provider.log"; exit 1; }

@@ -20,7 +20,8 @@ cmake --build --preset fuzz
 took "the build"
 
 step "the sanitizer test subset and the seed corpora"
-ctest --preset fuzz
+rm -f build/fuzz/Testing/Temporary/LastTestsFailed.log
+ctest --preset fuzz || { scripts/ci-failures.sh build/fuzz 60; exit 1; }
 took "the tests"
 
 step "each fuzz target for ${seconds} s"

@@ -31,8 +31,11 @@ HOME="$prefix/home" "$prefix/bin/umf-provider" browser install --system --prefix
 [ -f "$prefix/root/usr/lib/mozilla/native-messaging-hosts/org.umf.browser.json" ] ||
   { echo "FAIL: browser install --system --prefix wrote no Firefox manifest"; exit 1; }
 
+# The log exists before the provider starts: the background child opens it
+# only after the fork, and a first read that finds no file would end the test.
+: >"$prefix/provider.log"
 "$prefix/bin/umf-provider" --headless --port 0 --config-dir "$prefix/cfg" --no-qr --puts never \
-  >"$prefix/provider.log" 2>&1 &
+  >>"$prefix/provider.log" 2>&1 &
 provider_pid=$!
 url=
 for _ in $(seq 100); do
