@@ -14,8 +14,9 @@
 // When nothing is found, steps 1 to 8 run again on the frame at half size
 // (image.hpp's half_size), while it is large enough; then steps 1 to 4 give
 // way to a lattice read from the spectrum of edge strength around the aim
-// (lattice.hpp), for modules of 3-5 pixels; last, for a small frame, steps
-// 1 to 8 run once at double size (double_size).
+// (lattice.hpp), for modules of 3-5 pixels, then on the frame at half size
+// and below, for a faint field's larger modules; last, for a small frame,
+// steps 1 to 8 run once at double size (double_size).
 // A wrong place is worse than none: every stage may end in "not found".
 #pragma once
 
@@ -86,6 +87,12 @@ struct DetectorOptions {
     // screen, 3-5 pixels, turn the edgels' gradients too far for steps 2-4,
     // and the lattice costs far less than a search at double size.
     bool lattice_enabled = true;
+    // The lattice also on the frame at half size, a quarter and so on, this
+    // many sizes (0: only the frame's own), while the patch fits: a faint
+    // field's modules of 10-40 pixels, whose edges are too weak for the
+    // edgels' directions, span the lattice's 3-12 pixels at one of them,
+    // and the spectrum gathers the evidence of every module in the patch.
+    int lattice_sizes = 3;
     // When every search above fails, the search at the frame's size and
     // smaller ones once more on the frame smoothed (`smoothed` in image.hpp,
     // a Gaussian of sigma 1.4 px). A screen's colour stripes under a scaler
@@ -233,6 +240,9 @@ private:
     // steps 1 to 4; the failure, or null when found.
     const char* search_lattice(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                Detection& out) const;
+    // The same at half size and below (DetectorOptions::lattice_sizes).
+    const char* search_lattice_smaller(const GreyView& image, const Eigen::Vector2d& aim,
+                                       const DetectionPrior* prior, Detection& out) const;
     // Steps 5 to 8 on one grid (`grid_to_image`, rows x cols cells): its
     // modules read, the vote (near the prior first), the refit and checks,
     // the aim point; the failure, or null when found.

@@ -80,7 +80,9 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
                                    Pass& pass, Detection& out) const {
     const char* failure = search_smaller(im, aim, prior, pass, out);
     if (!failure) return nullptr;
-    if (pass.first() && options_.lattice_enabled && !search_lattice(im, aim, prior, out)) return nullptr;
+    if (pass.first() && options_.lattice_enabled &&
+        (!search_lattice(im, aim, prior, out) || !search_lattice_smaller(im, aim, prior, out)))
+        return nullptr;
     const int max_side = options_.double_size_max_side;
     if (max_side > 0 && std::max(im.width, im.height) <= max_side) {
         // The part around the aim, at double size: as many pixels as the frame.
@@ -119,6 +121,35 @@ const char* Detector::search_lattice(const GreyView& im, const Eigen::Vector2d& 
         failure = read_grid(im, aim, prior, l.grid_to_image, l.rows, l.cols, out);
         if (!failure) out.from_lattice = true;
         if (!failure || failure == kAimAtInfinity) return failure;
+    }
+    return failure;
+}
+
+const char* Detector::search_lattice_smaller(const GreyView& im, const Eigen::Vector2d& aim,
+                                             const DetectionPrior* prior, Detection& out) const {
+    // Two buffers in turn: each size is made from the one before.
+    std::vector<std::uint8_t> buffers[2];
+    GreyView current = im;
+    double scale = 1;
+    const char* failure = "no lattice";
+    for (int k = 0; k < options_.lattice_sizes; ++k) {
+        if (std::min(current.width, current.height) / 2 < options_.lattice.patch_px) break;
+        auto t = StageClock::now();
+        current = half_size(current, buffers[k % 2]);
+        scale *= 0.5;
+        out.times.edgels_ms += ms_since(t);
+        Eigen::Matrix3d to_resized = Eigen::Matrix3d::Identity();
+        to_resized(0, 0) = to_resized(1, 1) = scale;
+        DetectionPrior resized_prior;
+        if (prior) resized_prior = {prior->image_to_field * to_resized.inverse(), prior->radius_modules};
+        failure = search_lattice(current, scale * aim, prior ? &resized_prior : nullptr, out);
+        if (failure == kAimAtInfinity) return failure;
+        if (!failure) {
+            out.image_to_field = out.image_to_field * to_resized;
+            out.aim_image = aim;
+            out.size_scale *= scale;
+            return nullptr;
+        }
     }
     return failure;
 }
