@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "detect/detector.hpp"
 #include "detect/field_edgels.hpp"
@@ -48,6 +49,27 @@ void add_halved_labellings(std::vector<GridLineFamily>& family, double other_spa
         }
     }
 }
+
+// The frame at another size: `scale` times it, from `origin` on. The map
+// into it, a prior carried there, and a place found there carried back.
+struct Resizing {
+    Eigen::Matrix3d to_resized;
+    double scale;
+    std::optional<DetectionPrior> prior;
+
+    Resizing(double s, const Eigen::Vector2d& origin, const DetectionPrior* frame_prior) : scale(s) {
+        to_resized << s, 0, -s * origin.x(), 0, s, -s * origin.y(), 0, 0, 1;
+        if (frame_prior)
+            prior = DetectionPrior{frame_prior->image_to_field * to_resized.inverse(), frame_prior->radius_modules};
+    }
+    const DetectionPrior* resized_prior() const { return prior ? &*prior : nullptr; }
+    Eigen::Vector2d resized(const Eigen::Vector2d& point) const { return (to_resized * point.homogeneous()).head<2>(); }
+    void carry_back(Detection& out, const Eigen::Vector2d& aim) const {
+        out.image_to_field = out.image_to_field * to_resized;
+        out.aim_image = aim;
+        out.size_scale *= scale;
+    }
+};
 
 }  // namespace
 
@@ -138,16 +160,11 @@ const char* Detector::search_lattice_smaller(const GreyView& im, const Eigen::Ve
         current = half_size(current, buffers[k % 2]);
         scale *= 0.5;
         out.times.edgels_ms += ms_since(t);
-        Eigen::Matrix3d to_resized = Eigen::Matrix3d::Identity();
-        to_resized(0, 0) = to_resized(1, 1) = scale;
-        DetectionPrior resized_prior;
-        if (prior) resized_prior = {prior->image_to_field * to_resized.inverse(), prior->radius_modules};
-        failure = search_lattice(current, scale * aim, prior ? &resized_prior : nullptr, out);
+        const Resizing resizing(scale, Eigen::Vector2d::Zero(), prior);
+        failure = search_lattice(current, resizing.resized(aim), resizing.resized_prior(), out);
         if (failure == kAimAtInfinity) return failure;
         if (!failure) {
-            out.image_to_field = out.image_to_field * to_resized;
-            out.aim_image = aim;
-            out.size_scale *= scale;
+            resizing.carry_back(out, aim);
             return nullptr;
         }
     }
@@ -171,12 +188,9 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
     const GreyView resized = scale < 1 ? half_size(part, pixels) : double_size(part, pixels);
     out.times.edgels_ms += ms_since(t);
     out.pixels_visited += static_cast<long>(part.width) * part.height;
-    Eigen::Matrix3d to_resized;
-    to_resized << scale, 0, -scale * origin.x(), 0, scale, -scale * origin.y(), 0, 0, 1;
-    DetectionPrior resized_prior;
-    if (prior) resized_prior = {prior->image_to_field * to_resized.inverse(), prior->radius_modules};
-    const DetectionPrior* p = prior ? &resized_prior : nullptr;
-    const Eigen::Vector2d resized_aim = scale * (aim - origin);
+    const Resizing resizing(scale, origin, prior);
+    const DetectionPrior* p = resizing.resized_prior();
+    const Eigen::Vector2d resized_aim = resizing.resized(aim);
     // The places checked at the other sizes count against the ones checked
     // here (confirm_place's extra bits), as for any other candidate. Half
     // size goes on to smaller sizes; double size is the last try.
@@ -189,9 +203,7 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
         failure = search_scans(resized, resized_aim, p, wider, pass, out);
     }
     if (failure) return failure;
-    out.image_to_field = out.image_to_field * to_resized;
-    out.aim_image = aim;
-    out.size_scale *= scale;
+    resizing.carry_back(out, aim);
     return nullptr;
 }
 
