@@ -95,6 +95,9 @@ function render(next) {
         if (debug.firstLockMs === null) debug.firstLockMs = performance.now() - pageStart;
         hint(null);
       }
+      // A sheet has the user (the put chooser, a result): an answer to an aim
+      // sent before it opened must not take the page back to aiming.
+      if (paused()) break;
       if (document.body.dataset.state !== 'locked') setState('locked', lockedStatus());
       // In Put mode what lies there is not where the put goes: the put bar names the item instead.
       $('target-title').textContent = mode === 'grab' && next.target

@@ -73,7 +73,7 @@ try {
 }
 const SCENARIOS = ['camera_file', 'slow_download', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
                    'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
-                   'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'share_target', 'kiosk_lock'];
+                   'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'put_chooser_holds', 'share_target', 'kiosk_lock'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
 if (opts.scenario === 'kiosk_lock' && !/^\d+$/.test(opts.tile ?? '')) usage('kiosk_lock needs --tile N (the demo board\'s tile)');
 const boardFile = path.resolve(opts.board);
@@ -177,11 +177,13 @@ async function launch({ video, fakeUi = true, fakeDevice = true } = {}) {
   return browser;
 }
 
-async function openPage(browser, url, { permissions, route } = {}) {
+// route: every request through it; routeWs: the WebSocket to /ws.
+async function openPage(browser, url, { permissions, route, routeWs } = {}) {
   const context = await browser.newContext({ ignoreHTTPSErrors: true, viewport: { width: 412, height: 915 },
                                              isMobile: false, hasTouch: true });
   if (permissions) await context.grantPermissions(permissions.grant ?? [], permissions.origin ? { origin: permissions.origin } : {});
   if (route) await context.route('**/*', route);
+  if (routeWs) await context.routeWebSocket(/\/ws$/, routeWs);
   // Every change of body[data-state], with the time since navigation started.
   await context.addInitScript(() => {
     window.__umfStates = [];
@@ -666,16 +668,12 @@ const scenarios = {
     const expected = item(0);
     const provider = await startProvider();
     const browser = await launch({ video: fixture('tile0.y4m') });
-    const context = await browser.newContext({ ignoreHTTPSErrors: true, viewport: { width: 412, height: 915 } });
     let refused = 0;
-    await context.routeWebSocket(/\/ws$/, (ws) => {
+    const routeWs = (ws) => {
       refused += 1;
       ws.close({ code: 1006 });
-    });
-    const page = await context.newPage();
-    current.page = page;
-    page.on('console', (m) => current.consoleLines.push(`${m.type()}: ${m.text()}`));
-    await page.goto(pageUrl(provider.pairing, { autograb: '1' }));
+    };
+    const page = await openPage(browser, pageUrl(provider.pairing, { autograb: '1' }), { routeWs });
     await waitForState(page, ['result'], 45000);
     check(refused > 0, `the page tried the WebSocket first (${refused} refused)`);
     await checkFileResult(page, expected);
@@ -834,6 +832,37 @@ Object.assign(scenarios, {
     check(r.name === name, `the note is named after its first words (${r.name})`);
     checkPutFolder(dir, name, Buffer.from(text, 'utf8'));
     logPutLines(provider);
+  },
+
+  // The chooser stays open while the provider's answers to aims sent before
+  // it opened still arrive: every message from the provider reaches the page
+  // 400 ms late (aims go every 200 ms), so one is always under way at the tap.
+  async put_chooser_holds() {
+    const provider = await startProvider({ extra: ['--puts', 'always', '--put-dir', putDir()] });
+    const browser = await launch({ video: fixture('tile0.y4m') });
+    let delivered = 0;
+    const routeWs = (ws) => {
+      const server = ws.connectToServer();
+      ws.onMessage((m) => server.send(m));
+      server.onMessage((m) => setTimeout(() => {
+        ws.send(m);
+        delivered += 1;
+      }, 400));
+    };
+    const page = await openPage(browser, pageUrl(provider.pairing, {}), { routeWs });
+    await waitForState(page, ['locked'], 45000);
+    // Locked for a while: aims, and the provider's answers, are under way.
+    await new Promise((res) => setTimeout(res, 1000));
+    await openPutChooser(page);
+    const before = delivered;
+    await new Promise((res) => setTimeout(res, 1500));
+    log(`states: ${await statesSeen(page)}; ${delivered - before} provider messages since the chooser opened`);
+    check(delivered > before, `provider messages arrived while the chooser was open (${delivered - before})`);
+    check(await stateOf(page) === 'put-choose', `the chooser is still open 1.5 s later (${await stateOf(page)})`);
+    check(await page.isVisible('#put'), '#put is visible');
+    check(await page.evaluate(() => document.body.dataset.mode) === 'grab', 'nothing was chosen: body[data-mode] is grab');
+    await page.click('#put-close');
+    await waitForState(page, ['searching', 'locked'], 10000);
   },
 
   // The person at the screen dismisses the put; over HTTPS requests, so the
