@@ -157,6 +157,7 @@ const char* Detector::search_lattice_smaller(const GreyView& im, const Eigen::Ve
     for (int k = 0; k < options_.lattice_sizes; ++k) {
         if (std::min(current.width, current.height) / 2 < options_.lattice.patch_px) break;
         auto t = StageClock::now();
+        out.pixels_visited += static_cast<long>(current.width) * current.height;
         current = half_size(current, buffers[k % 2]);
         scale *= 0.5;
         out.times.edgels_ms += ms_since(t);

@@ -96,6 +96,8 @@ const fixture = (name) => {
   return p;
 };
 
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
 // ---------------------------------------------------------------- the provider
 // What a failure report shows: the page, its console, the provider's output.
 const current = { page: null, consoleLines: [], provider: null };
@@ -431,6 +433,7 @@ async function watchLock({ durationMs }) {
     requestAnimationFrame(frame);
   };
   requestAnimationFrame(frame);
+  // Runs in the page (page.evaluate): nothing of this file is in scope.
   await new Promise((resolve) => setTimeout(resolve, durationMs));
   running = false;
   clearInterval(timer);
@@ -492,7 +495,7 @@ const scenarios = {
     const route = async (r) => {
       if (new URL(r.request().url()).pathname.startsWith('/dl/')) {
         held += 1;
-        await new Promise((resolve) => setTimeout(resolve, 2000));
+        await sleep(2000);
       }
       await r.continue();
     };
@@ -805,7 +808,7 @@ Object.assign(scenarios, {
     let got = '';
     for (const until = Date.now() + 5000; Date.now() < until && !got.includes(url);) {
       got = fs.existsSync(opened) ? fs.readFileSync(opened, 'utf8') : '';
-      await new Promise((res) => setTimeout(res, 100));
+      await sleep(100);
     }
     check(got.trim() === url, `the screen opened ${url} (xdg-open got "${got.trim()}")`);
     check(fs.readdirSync(dir).length === 0, 'nothing was saved in the put folder');
@@ -852,10 +855,10 @@ Object.assign(scenarios, {
     const page = await openPage(browser, pageUrl(provider.pairing, {}), { routeWs });
     await waitForState(page, ['locked'], 45000);
     // Locked for a while: aims, and the provider's answers, are under way.
-    await new Promise((res) => setTimeout(res, 1000));
+    await sleep(1000);
     await openPutChooser(page);
     const before = delivered;
-    await new Promise((res) => setTimeout(res, 1500));
+    await sleep(1500);
     log(`states: ${await statesSeen(page)}; ${delivered - before} provider messages since the chooser opened`);
     check(delivered > before, `provider messages arrived while the chooser was open (${delivered - before})`);
     check(await stateOf(page) === 'put-choose', `the chooser is still open 1.5 s later (${await stateOf(page)})`);
