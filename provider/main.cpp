@@ -20,12 +20,13 @@
 #include "commands/pair_command.hpp"
 #include "commands/preset_options.hpp"
 #include "commands/serve_command.hpp"
+#include "commands/trust_command.hpp"
 #include "desktop/display_socket.hpp"
 #include "desktop/gnome/gnome_install.hpp"
 #include "desktop/kde/kde_install.hpp"
 #include "desktop/session.hpp"
 #include "screen/gui_application.hpp"
-#include "server/config_dir.hpp"
+#include "common/config_dir.hpp"
 #include "server/control_socket.hpp"
 #include "tuning/desktop_controls.hpp"
 
@@ -41,7 +42,9 @@ usage:
                [--config-dir DIR] [--no-qr] [--no-overlay] [--tune]
                [--desktop x11|wlroots|kde|gnome|none]
                [--puts ask|always|never] [--put-dir DIR] [--put-max-mb N]
-  umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate] [--no-qr]
+  umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate [--root]] [--no-qr]
+  umf-provider trust [--config-dir DIR] [--port P] [--host HOST]
+  umf-provider trust export FILE [--der | --mobileconfig] [--config-dir DIR]
   umf-provider share FILE|URL --rect X,Y,W,H [--title T] [--screen N] [--port P]
   umf-provider share --list | --remove ID [--port P]
   umf-provider puts [--json] [--port P]
@@ -56,7 +59,8 @@ usage:
   umf-provider --help
 
 serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /ws;
-         default 127.0.0.1, port 47470; port 0 picks a free one), prints the
+         default every address, --bind 127.0.0.1 keeps it to this machine;
+         port 47470, port 0 picks a free one), prints the
          pairing URL and its QR code, and serves until SIGINT or SIGTERM.
          Without a display, or with --headless, the screen is virtual (--screen,
          default 1920x1080) and shows BOARD.json, or the built-in demo board.
@@ -72,7 +76,17 @@ serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /w
          --public (kiosks) welcomes any requester and serves board items only.
 pair     prints the pairing URL and its QR code; --rotate makes a new token
          first, which unpairs every requester (a running provider keeps the
-         old token until it restarts).
+         old token until it restarts); --rotate --root also makes a new
+         screen root, so every requester pairs again and phones that trusted
+         the old root should remove it.
+trust    prints the fingerprint of the screen's root, the certificate
+         authority (made on first start, kept in the configuration directory)
+         that issues the certificate the provider serves, and where phones
+         get it; a phone or browser that trusts it opens the page without a
+         warning. It may vouch only for .local names, localhost and private,
+         link-local and loopback addresses. export writes it to FILE (- for
+         standard output): PEM, DER with --der (Android's .crt), or an Apple
+         configuration profile with --mobileconfig (iOS).
 share    pins a file or URL to a region of the running provider's screen, so
          pointing there takes it; --list and --remove ID manage what is shared.
 puts     lists the puts (a phone giving the screen a URL or a file) waiting for
@@ -110,7 +124,7 @@ compose  writes the screen exactly as shown at time T (content, the board over
 --port        serve: the port to listen on. pair, share, puts, browser status:
               the running provider's port; without it the one provider of
               yours that runs (name one when several run), else 47470.
---config-dir  where the TLS identity and the pairing token are kept
+--config-dir  where the screen's root, the certificate it issued and the pairing token are kept
               (default $XDG_CONFIG_HOME/umf, else ~/.config/umf); made on first use.
 --host        the host name or address put in the pairing URL (default: the
               bind address, or this machine's first non-loopback IPv4 address
@@ -228,7 +242,9 @@ int dispatch(int argc, char** argv) {
         return run_serve(args, hooks);
     }
     if (command == "pair")
-        return run_pair(parse_command_args(argc, argv, first, {"port", "host", "config-dir"}, {"rotate", "no-qr"}));
+        return run_pair(parse_command_args(argc, argv, first, {"port", "host", "config-dir"}, {"rotate", "root", "no-qr"}));
+    if (command == "trust")
+        return run_trust(parse_command_args(argc, argv, first, {"port", "host", "config-dir"}, {"der", "mobileconfig"}, 2));
     if (command == "share")
         return run_share(parse_command_args(argc, argv, first, {"rect", "title", "screen", "port", "remove"}, {"list"}, 1));
     if (command == "puts")

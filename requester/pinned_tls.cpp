@@ -1,6 +1,7 @@
 #include "pinned_tls.hpp"
 
 #include "native/certificate_fingerprint.hpp"
+#include "native/certificate_pin.hpp"
 
 #include <openssl/evp.h>
 #include <openssl/ssl.h>
@@ -35,7 +36,7 @@ GrabFailure connection_failure(const std::string& message) { return {"connection
 
 GrabFailure certificate_failure(const protocol::PairingUrl& url, const std::string& seen) {
     return {"certificate",
-            "the provider at " + url.authority() + " has another certificate than the pairing URL names (" +
+            "the provider at " + url.authority() + " shows a certificate that the screen the pairing URL names did not issue (" +
                 (seen.empty() ? std::string("none") : seen.substr(0, 16) + "...") + " instead of " +
                 url.fingerprint.substr(0, 16) +
                 "...); nothing was sent to it. Pair again if the provider was reinstalled; otherwise something "
@@ -110,13 +111,13 @@ void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::Pair
     stream.set_verify_mode(ssl::verify_peer);
     stream.set_verify_callback([pin](bool, ssl::verify_context& vc) {
         X509_STORE_CTX* store = vc.native_handle();
-        // Only the leaf is pinned; whatever chain comes with it proves nothing
-        // more, and OpenSSL's own verdict (self-signed: "untrusted") is ignored.
+        // The pin decides at the leaf, from the chain the provider sent; OpenSSL's
+        // own verdict on the rest (a root no store knows: "untrusted") is ignored.
         if (X509_STORE_CTX_get_error_depth(store) != 0) return true;
-        const std::string fp = native::certificate_fingerprint(X509_STORE_CTX_get_current_cert(store));
-        if (!fp.empty() && fp == pin->expected) return true;
+        X509* leaf = X509_STORE_CTX_get_current_cert(store);
+        if (native::chain_satisfies_pin(leaf, X509_STORE_CTX_get0_untrusted(store), pin->expected)) return true;
         pin->mismatch = true;
-        pin->seen = fp;
+        pin->seen = native::certificate_fingerprint(leaf);
         return false;
     });
 
@@ -135,11 +136,12 @@ void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::Pair
     if (ec) throw connection_failure("the TLS handshake with " + url.authority() + " failed: " + ec.message());
 
     // The callback must have passed the leaf; checked again on the session's
-    // own certificate so no path through OpenSSL skips the pin.
+    // own chain so no path through OpenSSL skips the pin.
     X509* peer = SSL_get1_peer_certificate(stream.native_handle());
+    const bool pinned = native::chain_satisfies_pin(peer, SSL_get_peer_cert_chain(stream.native_handle()), url.fingerprint);
     const std::string fp = native::certificate_fingerprint(peer);
     X509_free(peer);
-    if (fp != url.fingerprint) {
+    if (!pinned) {
         tcp.close();
         throw certificate_failure(url, fp);
     }

@@ -62,7 +62,7 @@ boost::beast::error_code run_step(boost::asio::io_context& io, TlsStream& stream
 
 // Resolves the URL's host, connects (timeouts.connect) and completes the TLS
 // handshake (timeouts.handshake) with SNI for host names, accepting the peer
-// only when its certificate's SHA-256 is url.fingerprint. Throws GrabFailure:
+// only when its chain satisfies the pin url.fingerprint. Throws GrabFailure:
 // "connection" when the provider cannot be reached, "certificate" when it
 // shows another certificate (nothing has been sent to it then).
 void connect_pinned(boost::asio::io_context& io, TlsStream& stream, const protocol::PairingUrl& url,

@@ -1,13 +1,9 @@
 #include "commands/common_options.hpp"
 
-#include <arpa/inet.h>
-#include <ifaddrs.h>
-#include <net/if.h>
-#include <netinet/in.h>
-
 #include <optional>
 
-#include "server/config_dir.hpp"
+#include "common/config_dir.hpp"
+#include "trust/serving_names.hpp"
 
 namespace umf::provider {
 
@@ -40,21 +36,16 @@ std::filesystem::path config_dir_option(const Args& a) {
 
 namespace {
 
-// The first up, non-loopback IPv4 address, or nullopt.
+// The first up, non-loopback IPv4 address, a private one (which the
+// screen's certificate names) before any other; nullopt when there is none.
 std::optional<std::string> first_lan_address() {
-    ifaddrs* list = nullptr;
-    if (getifaddrs(&list) != 0) return std::nullopt;
-    std::optional<std::string> found;
-    for (ifaddrs* i = list; i && !found; i = i->ifa_next) {
-        if (!i->ifa_addr || i->ifa_addr->sa_family != AF_INET || !(i->ifa_flags & IFF_UP) ||
-            (i->ifa_flags & IFF_LOOPBACK))
-            continue;
-        char text[INET_ADDRSTRLEN] = {};
-        if (inet_ntop(AF_INET, &reinterpret_cast<sockaddr_in*>(i->ifa_addr)->sin_addr, text, sizeof text))
-            found = text;
+    std::optional<std::string> other;
+    for (const auto& address : current_addresses()) {
+        if (address.find(':') != std::string::npos || address.rfind("127.", 0) == 0) continue;
+        if (address_may_be_vouched(address)) return address;
+        if (!other) other = address;
     }
-    freeifaddrs(list);
-    return found;
+    return other;
 }
 
 }  // namespace

@@ -13,7 +13,7 @@
 #include "server/control_socket.hpp"
 #include "server/pairing.hpp"
 #include "server/pairing_qr.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity_store.hpp"
 
 namespace umf::provider {
 
@@ -28,9 +28,16 @@ int run_pair(const cli::Args& a) {
     if (!running)
         std::cerr << "umf-provider: no provider is running; this URL is for port " << port
                   << ", the default (give --port P for a provider on another)\n";
-    const std::string host = url_host(a, "127.0.0.1");
+    const std::string host = url_host(a, "0.0.0.0");
     const auto dir = config_dir_option(a);
+    if (has_flag(a, "root") && !has_flag(a, "rotate")) throw UsageError("--root goes with --rotate");
     try {
+        if (has_flag(a, "root")) {
+            remove_root(dir);
+            std::cerr << "umf-provider: a new screen root is made; every phone and webcam must pair again, and "
+                         "phones that trusted the old root should remove it"
+                      << (running ? " (the running provider serves the old one until it restarts)" : "") << "\n";
+        }
         const TlsIdentity identity = load_or_create_tls_identity(dir);
         const std::string token = load_or_create_token(dir, has_flag(a, "rotate"));
         const std::string url = pairing_url(host, port, token, identity.fingerprint);

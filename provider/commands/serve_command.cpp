@@ -36,7 +36,7 @@
 #include "screen/board_window.hpp"
 #include "screen/screen_field.hpp"
 #include "screen/screen_image.hpp"
-#include "server/config_dir.hpp"
+#include "common/config_dir.hpp"
 #include "browser/browser_link.hpp"
 #include "browser/browser_resolver.hpp"
 #include "server/control_socket.hpp"
@@ -45,7 +45,9 @@
 #include "server/server.hpp"
 #include "server/service.hpp"
 #include "server/static_site.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/certificate_keeper.hpp"
+#include "trust/root_export.hpp"
+#include "trust/tls_identity_store.hpp"
 
 namespace umf::provider {
 
@@ -135,6 +137,7 @@ struct Serving {
     PutChoice puts;
     // Identity, screen, board and preset.
     TlsIdentity identity;
+    ServingNames names;  // what the serving certificate names
     std::string token;
     int width = 1920, height = 1080;
     std::optional<Board> board;
@@ -158,13 +161,15 @@ struct Serving {
     // Running.
     sigset_t signals{};
     std::unique_ptr<Server> server;
+    std::unique_ptr<CertificateKeeper> certificate_keeper;  // after server_: calls into it, so ends first
     std::unique_ptr<ControlSocket> control;
     std::string url;
 };
 
 void read_command_line(const cli::Args& a, Serving& s) {
     s.port = port_option(a);
-    s.bind = get(a, "bind").value_or("127.0.0.1");
+    // Phones must reach it: every address unless told otherwise.
+    s.bind = get(a, "bind").value_or("0.0.0.0");
     s.host = url_host(a, s.bind);
     s.dir = config_dir_option(a);
     try {
@@ -185,7 +190,11 @@ void read_command_line(const cli::Args& a, Serving& s) {
 
 void load_identity(Serving& s) {
     try {
-        s.identity = load_or_create_tls_identity(s.dir);
+        s.names = current_serving_names();
+        const LoadedIdentity loaded = load_or_issue_tls_identity(s.dir, s.names, std::chrono::system_clock::now());
+        s.identity = loaded.identity;
+        if (!loaded.issued_because.empty())
+            std::cout << "certificate: issued by the screen's root (" << loaded.issued_because << ")\n";
         s.token = load_or_create_token(s.dir);
     } catch (const std::exception& e) {
         throw ServeFailure(kConfigError, e.what());
@@ -277,10 +286,37 @@ void load_web_client(const cli::Args& a, Serving& s) {
     else
         s.web_dir = default_web_dir();
     try {
-        if (s.web_dir) s.site = std::make_shared<const StaticSite>(StaticSite::from_folder(*s.web_dir));
+        auto site = std::make_shared<StaticSite>(s.web_dir ? StaticSite::from_folder(*s.web_dir) : StaticSite());
+        // "Trust this screen" on the phone page offers the root in both forms phones install.
+        const RootAuthority root = load_or_create_root(s.dir);
+        site->add(kRootDerPath, {"application/x-x509-ca-cert",
+                                 std::make_shared<const std::string>(export_root(root, RootForm::der)), "umf-root.crt"});
+        site->add(kRootProfilePath, {"application/x-apple-aspen-config",
+                                     std::make_shared<const std::string>(export_root(root, RootForm::mobileconfig)),
+                                     "umf-root.mobileconfig"});
+        s.site = std::move(site);
     } catch (const std::exception& e) {
         throw ServeFailure(kConfigError, e.what());
     }
+}
+
+// Issues the serving certificate again when the machine's addresses change
+// or it nears its end; the server serves the new one from the next handshake.
+void keep_certificate(Serving& s) {
+    CertificateKeeper::Settings settings;
+    settings.config_dir = s.dir;
+    settings.issued = [server = s.server.get()](const TlsIdentity& identity, const std::string& why) {
+        try {
+            server->replace_identity(identity);
+            std::cout << "certificate: issued again by the screen's root (" << why << ")\n" << std::flush;
+        } catch (const std::exception& e) {
+            std::cerr << "umf-provider: the certificate issued again cannot be served: " << e.what() << "\n";
+        }
+    };
+    settings.failed = [](const std::string& error) {
+        std::cerr << "umf-provider: cannot issue the certificate again: " << error << "; the old one serves on\n";
+    };
+    s.certificate_keeper = std::make_unique<CertificateKeeper>(std::move(settings), s.names);
 }
 
 // SIGINT and SIGTERM are taken with sigwait; blocked before any thread
@@ -343,6 +379,7 @@ void start_server(const ServeHooks& hooks, Serving& s) {
         options.threads = 2;
         s.server = std::make_unique<Server>(service, s.identity, options);
         s.server->start();
+        keep_certificate(s);
         if (hooks.keeper) tell_keeper_port(*hooks.keeper, s.server->port());
         if (s.browser_link) {
             try {
@@ -360,6 +397,33 @@ void start_server(const ServeHooks& hooks, Serving& s) {
         throw ServeFailure(kServeError, e.what());
     }
     s.url = pairing_url(s.host, s.server->port(), s.token, s.identity.fingerprint);
+}
+
+// Where phones reach this provider, and what its certificate vouches for.
+void print_trust(const Serving& s, std::ostream& out) {
+    const unsigned short port = s.server->port();
+    // 0.0.0.0 listens on IPv4 only; "::" on both.
+    const bool all_v4 = s.bind == "0.0.0.0", all = all_v4 || s.bind == "::";
+    const bool loopback = s.bind == "127.0.0.1" || s.bind == "::1";
+    std::string where;
+    for (const auto& d : s.names.dns)
+        if (all || (loopback && d == "localhost")) where += " https://" + d + ":" + std::to_string(port);
+    for (const auto& address : s.names.addresses) {
+        const bool v6 = address.find(':') != std::string::npos;
+        if (all ? (all_v4 && v6) : address != s.bind) continue;
+        where += " https://" + (v6 ? "[" + address + "]" : address) + ":" + std::to_string(port);
+    }
+    out << "serving at:" << where << "\n";
+    std::string list;
+    for (const auto& a : s.names.not_covered)
+        if (all && !(all_v4 && a.find(':') != std::string::npos)) list += (list.empty() ? "" : ", ") + a;
+    if (!list.empty()) {
+        out << "  also at " << list << ", which the screen's root may not vouch for (not a private address): "
+            << "phones there see a certificate warning\n";
+    }
+    out << "screen root (SHA-256): " << s.identity.fingerprint
+        << "\n  phones that trust it open the page without a warning: \"Trust this screen\" on the phone page, "
+           "or umf-provider trust\n";
 }
 
 void print_banner(const cli::Args& a, const Serving& s) {
@@ -392,7 +456,7 @@ void print_banner(const cli::Args& a, const Serving& s) {
                                                  : "")
                       : std::string("off"))
               << "\n";
-    std::cout << "certificate fingerprint (SHA-256): " << s.identity.fingerprint << "\n";
+    print_trust(s, std::cout);
     if (!has_flag(a, "no-qr")) std::cout << qr_text(s.url);
     std::cout << "pairing URL: " << s.url << "\n" << std::flush;
     for (const auto& line : describe_desktop(s.desktop)) std::cout << line << "\n";

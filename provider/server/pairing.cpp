@@ -8,7 +8,7 @@
 
 #include <stdexcept>
 
-#include "server/config_dir.hpp"
+#include "common/config_dir.hpp"
 
 namespace umf::provider {
 

@@ -15,10 +15,11 @@ Server::Server(std::shared_ptr<const Service> service, const TlsIdentity& identi
     : service_(std::move(service)),
       options_(std::move(options)),
       io_(options_.threads > 0 ? options_.threads : 1),
+      identity_(identity),
       tls_(net::ssl::context::tls_server),
       registry_(std::make_shared<SessionRegistry>()),
       http_sessions_(HttpSessions::create(net::make_strand(io_), service_, options_.http_sessions)) {
-    configure_server_context(tls_, identity);
+    configure_server_context(tls_, identity_);
 }
 
 Server::~Server() { stop(); }

@@ -52,11 +52,15 @@ public:
     std::size_t session_count() const;
     // The HTTPS transport's sessions.
     const HttpSessions& http_sessions() const { return *http_sessions_; }
+    // Connections from now on are served `identity` (a serving certificate
+    // issued again); open ones keep theirs. Throws TlsIdentityError.
+    void replace_identity(const TlsIdentity& identity) { identity_.replace(identity); }
 
 private:
     std::shared_ptr<const Service> service_;
     ServerOptions options_;
     boost::asio::io_context io_;
+    CurrentIdentity identity_;  // before tls_, which calls into it
     boost::asio::ssl::context tls_;
     std::shared_ptr<SessionRegistry> registry_;
     std::shared_ptr<HttpSessions> http_sessions_;

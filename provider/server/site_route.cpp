@@ -48,6 +48,8 @@ void serve_site(HttpExchange& exchange, const HttpRequest& req, const StaticSite
     set_common_headers(*res);
     res->set(http::field::content_type, file->mime);
     res->set(http::field::cache_control, "no-cache");
+    if (!file->download_name.empty())
+        res->set(http::field::content_disposition, "attachment; filename=\"" + file->download_name + "\"");
     res->set("Content-Security-Policy", content_security_policy(req[http::field::host]));
     res->keep_alive(keep_alive);
     if (req.method() == http::verb::get) res->body() = *file->bytes;

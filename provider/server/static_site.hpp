@@ -15,6 +15,7 @@ namespace umf::provider {
 struct StaticFile {
     std::string mime;
     std::shared_ptr<const std::string> bytes;
+    std::string download_name;  // set: sent as an attachment of that name
 };
 
 class StaticSite {
@@ -34,6 +35,10 @@ public:
     // std::runtime_error when the folder cannot be read or exceeds the limits
     // above.
     static StaticSite from_folder(const std::filesystem::path& root);
+
+    // Serves `file` at `path` ("/dir/name") besides the folder's files (the
+    // screen's root for the phone page); replaces one of the same path.
+    void add(const std::string& path, StaticFile file) { files_[path] = std::move(file); }
 
     // The file for a request target (a query or fragment is ignored).
     std::optional<StaticFile> find(std::string_view target) const;

@@ -1,9 +1,11 @@
-// The provider's TLS identity: a self-signed EC P-256 certificate and its key,
-// made on first start and kept in the configuration directory, so the
-// fingerprint in a pairing URL stays valid across restarts.
+// The provider's TLS identity as the server uses it: the chain it serves
+// and that chain's key, and the fingerprint a pairing URL pins. Made and
+// kept by trust/ (tls_identity_store.hpp); replaced while serving when the
+// serving certificate is issued again, for the connections that come after.
 #pragma once
 
-#include <filesystem>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -19,29 +21,36 @@ public:
 };
 
 struct TlsIdentity {
+    // The serving certificate, then its root (then, for a directory from
+    // before roots, the certificate older pairings pin), as PEM.
     std::string certificate_pem;
-    std::string private_key_pem;
-    std::string fingerprint;  // SHA-256 of the certificate's DER, 64 lowercase hex digits
+    std::string private_key_pem;  // the serving certificate's key
+    std::string fingerprint;      // what pairing pins: SHA-256 of the root's DER, 64 lowercase hex digits
 };
 
-inline constexpr const char* kCertificateFile = "provider-cert.pem";
-inline constexpr const char* kPrivateKeyFile = "provider-key.pem";
-
-// A new key pair and a self-signed certificate for it (CN common_name,
-// subjectAltName DNS:localhost and IP:127.0.0.1, valid ten years from a day
-// ago, SHA-256 signature). Throws TlsIdentityError.
-TlsIdentity create_tls_identity(const std::string& common_name = "umf-provider");
-
-// The identity stored in `dir`, or a new one saved there (both files 0600)
-// when there is none. An unreadable or mismatched pair is an error rather
-// than silently replaced, since replacing it breaks every paired requester.
-// Throws TlsIdentityError (or ConfigError for the directory).
-TlsIdentity load_or_create_tls_identity(const std::filesystem::path& dir);
-
 // SHA-256 of the first certificate in `pem`, as 64 lowercase hex digits.
+// Throws TlsIdentityError.
 std::string certificate_fingerprint(const std::string& certificate_pem);
 
-// TLS 1.2 and later, the identity's certificate and key.
-void configure_server_context(boost::asio::ssl::context& context, const TlsIdentity& identity);
+// The identity new connections are served with, parsed once; replace() is
+// safe while handshakes run on other threads.
+class CurrentIdentity {
+public:
+    struct Parsed;
+    // Throws TlsIdentityError when the chain or the key cannot be read or
+    // do not belong together.
+    explicit CurrentIdentity(const TlsIdentity& identity);
+    ~CurrentIdentity();
+    void replace(const TlsIdentity& identity);
+    std::shared_ptr<const Parsed> get() const;
+
+private:
+    mutable std::mutex mutex_;
+    std::shared_ptr<const Parsed> parsed_;
+};
+
+// TLS 1.2 and later; each handshake is served `current`'s identity of that
+// moment. `current` must outlive the context.
+void configure_server_context(boost::asio::ssl::context& context, CurrentIdentity& current);
 
 }  // namespace umf::provider

@@ -64,7 +64,7 @@
 #include "server/pairing.hpp"
 #include "server/server.hpp"
 #include "server/service.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity_store.hpp"
 #include "support/pinned_client.hpp"
 
 namespace {

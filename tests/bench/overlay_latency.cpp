@@ -26,7 +26,7 @@
 #include "desktop/x11/x11_desktop.hpp"
 #include "protocol/messages.hpp"
 #include "server/pairing.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity_store.hpp"
 #include "support/pinned_client.hpp"
 #include "support/temp_dir.hpp"
 #include "support/x11_session.hpp"

@@ -12,7 +12,7 @@
 #include "protocol/http_error_body.hpp"
 #include "server/server.hpp"
 #include "server/service.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity_store.hpp"
 #include "support/raw_tls_client.hpp"
 #include "support/temp_dir.hpp"
 

@@ -17,7 +17,7 @@
 #include "server/server.hpp"
 #include "server/service.hpp"
 #include "server/static_site.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity_store.hpp"
 #include "support/process.hpp"
 #include "support/temp_dir.hpp"
 

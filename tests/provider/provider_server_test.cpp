@@ -29,11 +29,11 @@
 #include <thread>
 
 #include "protocol/messages.hpp"
-#include "server/config_dir.hpp"
+#include "common/config_dir.hpp"
 #include "server/pairing.hpp"
 #include "server/server.hpp"
 #include "server/service.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity_store.hpp"
 #include "support/temp_dir.hpp"
 #include "support/pinned_client.hpp"
 
@@ -202,8 +202,10 @@ TEST(ProviderIdentity, CreatedOnceThenReused) {
     const TlsIdentity first = load_or_create_tls_identity(config);
     EXPECT_EQ(first.fingerprint.size(), 64u);
     EXPECT_EQ(first.fingerprint.find_first_not_of("0123456789abcdef"), std::string::npos);
-    EXPECT_EQ(certificate_fingerprint(first.certificate_pem), first.fingerprint);
-    for (const char* name : {kCertificateFile, kPrivateKeyFile}) {
+    // The pin is the root's, served after the serving certificate.
+    EXPECT_NE(certificate_fingerprint(first.certificate_pem), first.fingerprint);
+    EXPECT_EQ(certificate_fingerprint(*read_small_file(config / kRootCertificateFile)), first.fingerprint);
+    for (const char* name : {kRootCertificateFile, kRootKeyFile, kServingCertificateFile, kServingKeyFile}) {
         struct stat st {};
         ASSERT_EQ(stat((config / name).c_str(), &st), 0);
         EXPECT_EQ(st.st_mode & 0777, 0600u) << name;
@@ -213,8 +215,8 @@ TEST(ProviderIdentity, CreatedOnceThenReused) {
     EXPECT_EQ(again.private_key_pem, first.private_key_pem);
     EXPECT_NE(create_tls_identity().fingerprint, first.fingerprint);
 
-    // Half an identity is refused rather than silently replaced.
-    fs::remove(config / kPrivateKeyFile);
+    // Half a root is refused rather than silently replaced.
+    fs::remove(config / kRootKeyFile);
     EXPECT_THROW(load_or_create_tls_identity(config), TlsIdentityError);
 }
 

@@ -32,7 +32,7 @@
 #include "protocol/messages.hpp"
 #include "server/server.hpp"
 #include "server/service.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity_store.hpp"
 #include "support/pinned_client.hpp"
 #include "support/process.hpp"
 #include "support/temp_dir.hpp"

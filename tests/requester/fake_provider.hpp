@@ -26,7 +26,7 @@
 #include "protocol/http_error_body.hpp"
 #include "protocol/messages.hpp"
 #include "server/service.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity_store.hpp"
 
 namespace umf::test {
 
@@ -46,9 +46,9 @@ struct FakeContent {
 class FakeProvider {
 public:
     FakeProvider(provider::TlsIdentity identity, std::string token)
-        : identity_(std::move(identity)), token_(std::move(token)), tls_(boost::asio::ssl::context::tls_server),
+        : identity_(std::move(identity)), current_(identity_), token_(std::move(token)), tls_(boost::asio::ssl::context::tls_server),
           acceptor_(io_, {boost::asio::ip::make_address("127.0.0.1"), 0}) {
-        provider::configure_server_context(tls_, identity_);
+        provider::configure_server_context(tls_, current_);
         accept();
         thread_ = std::thread([this] { io_.run(); });
     }
@@ -211,6 +211,7 @@ private:
     }
 
     provider::TlsIdentity identity_;
+    provider::CurrentIdentity current_;
     std::string token_;
     boost::asio::io_context io_;
     boost::asio::ssl::context tls_;

@@ -29,7 +29,7 @@
 #include "server/pairing.hpp"
 #include "server/server.hpp"
 #include "server/service.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity_store.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {

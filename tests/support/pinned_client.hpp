@@ -1,6 +1,6 @@
-// A TLS client context that trusts exactly the certificate with the given
-// SHA-256 fingerprint, as requesters pin the provider's (docs/PROTOCOL.md,
-// "Pairing"): for the tests and benchmarks that talk to a real provider.
+// A TLS client context that trusts exactly the provider a pairing pins
+// (docs/PROTOCOL.md, "Pairing"; native/certificate_pin.hpp), as requesters
+// do: for the tests and benchmarks that talk to a real provider.
 #pragma once
 
 #include <openssl/x509.h>
@@ -9,8 +9,7 @@
 #include <boost/asio/ssl/verify_context.hpp>
 #include <string>
 
-#include "native/certificate_fingerprint.hpp"
-#include "server/tls_identity.hpp"
+#include "native/certificate_pin.hpp"
 
 namespace umf::test {
 
@@ -20,14 +19,9 @@ inline boost::asio::ssl::context pinned_client_context(const std::string& finger
     ctx.set_verify_mode(ssl::verify_peer);
     ctx.set_verify_callback([fingerprint](bool, ssl::verify_context& vc) {
         X509_STORE_CTX* store = vc.native_handle();
-        if (X509_STORE_CTX_get_error_depth(store) != 0) return false;
-        X509* cert = X509_STORE_CTX_get_current_cert(store);
-        unsigned char* der = nullptr;
-        const int len = i2d_X509(cert, &der);
-        if (len <= 0) return false;
-        const bool ok = umf::native::der_fingerprint(der, static_cast<std::size_t>(len)) == fingerprint;
-        OPENSSL_free(der);
-        return ok;
+        if (X509_STORE_CTX_get_error_depth(store) != 0) return true;  // the pin decides at the leaf
+        return umf::native::chain_satisfies_pin(X509_STORE_CTX_get_current_cert(store),
+                                                X509_STORE_CTX_get0_untrusted(store), fingerprint);
     });
     return ctx;
 }

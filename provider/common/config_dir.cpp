@@ -1,4 +1,4 @@
-#include "server/config_dir.hpp"
+#include "common/config_dir.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
