@@ -6,7 +6,7 @@
 // WebAssembly (pointer.js). This file wires the parts together: the core,
 // the detector's worker (worker.js), the connection (transport.js), the
 // pairing (pairing.js) and the views (sheets.js, camera.js, grab_result.js,
-// put_view.js, history.js). docs/PROTOCOL.md has the messages.
+// put_view.js, history.js, trust.js). docs/PROTOCOL.md has the messages.
 import { openCamera, pumpFrames } from './camera.js';
 import { getCarried, noteFile } from './carry.js';
 import { download, showGrabOutcome, showResult } from './grab_result.js';
@@ -18,6 +18,7 @@ import { carriedItem, describeItem, fileItem, showPutChooser, showPutDone, showP
          upload } from './put_view.js';
 import { $, DETECTION_HINT, ERRORS, describeKind, hideSheets, hint, paused, setState, showError } from './sheets.js';
 import { connect } from './transport.js';
+import { forPeople, registerServiceWorker, wireTrust } from './trust.js';
 
 const params = new URLSearchParams(location.search);
 const options = {
@@ -429,19 +430,6 @@ async function openShare(id) {
   return true;
 }
 
-function registerServiceWorker() {
-  if (!navigator.serviceWorker) {
-    debug.serviceWorker = 'unsupported';
-    return;
-  }
-  // A module worker, so that it shares carry.js with the page. Without it
-  // (an untrusted certificate, an older browser) the page works the same,
-  // only "Share → umf" does not.
-  navigator.serviceWorker.register('sw.js', { type: 'module' }).then(
-    () => navigator.serviceWorker.ready.then(() => { debug.serviceWorker = 'active'; }),
-    (e) => { debug.serviceWorker = `not registered: ${e.message}`; });
-}
-
 // ---- start -------------------------------------------------------------------------
 
 async function start() {
@@ -449,7 +437,7 @@ async function start() {
   hint(null);
   pairing = await currentPairing();
   $('pairing-origin').textContent = location.origin;
-  $('pairing-fingerprint').textContent = pairing?.fingerprint || '—';
+  $('pairing-fingerprint').textContent = forPeople(pairing?.fingerprint) || '—';
   if (!pairing) {
     showError('unpaired');
     setState('unpaired', 'Not paired');
@@ -516,8 +504,10 @@ function wire() {
     enterPut(fileItem(note.blob, { name: note.name, title: 'Note', mime: 'text/plain' }));
   });
   $('pairing-close').addEventListener('click', () => ($('pairing').hidden = true));
+  wireTrust(() => pairing?.fingerprint ?? null, debug);
   $('pairing-forget').addEventListener('click', () => {
     forget(location.origin);
+    pairing = null;
     pointer?.destroy();
     pointer = null;
     link?.close();
@@ -534,7 +524,7 @@ function wire() {
 
 wire();
 setMode('grab');
-registerServiceWorker();
+registerServiceWorker(debug);
 {
   const share = params.get('share');
   start().then(() => share && link && openShare(share));

@@ -57,7 +57,7 @@ export function showError(code, detail) {
 }
 
 export function hideSheets() {
-  for (const id of ['result', 'error', 'history', 'pairing', 'put', 'put-status']) $(id).hidden = true;
+  for (const id of ['result', 'error', 'history', 'pairing', 'put', 'put-status', 'trust']) $(id).hidden = true;
 }
 
 export function hint(code, text) {

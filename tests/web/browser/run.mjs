@@ -12,7 +12,7 @@
 // Scenarios: camera_file, camera_url_http, photo, wrong_token, unreachable,
 // camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo,
 // unpaired, put_file, put_url_http, put_refused, put_carry, put_note, share_target,
-// kiosk_lock. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
+// trusted_root (trust_scenario.mjs), kiosk_lock. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
 // Chromium, playwright-core or a fixture is missing), 2 usage.
 import { spawn } from 'node:child_process';
 import crypto from 'node:crypto';
@@ -22,6 +22,7 @@ import { createRequire } from 'node:module';
 import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
+import { trustedRoot } from './trust_scenario.mjs';
 
 const SKIP = 77;
 const STATES = ['unpaired', 'connecting', 'camera', 'searching', 'locked', 'grabbing', 'result', 'photo', 'error',
@@ -73,7 +74,8 @@ try {
 }
 const SCENARIOS = ['camera_file', 'slow_download', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
                    'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
-                   'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'put_chooser_holds', 'share_target', 'kiosk_lock'];
+                   'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'put_chooser_holds', 'share_target',
+                   'trusted_root', 'kiosk_lock'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
 if (opts.scenario === 'kiosk_lock' && !/^\d+$/.test(opts.tile ?? '')) usage('kiosk_lock needs --tile N (the demo board\'s tile)');
 const boardFile = path.resolve(opts.board);
@@ -179,10 +181,11 @@ async function launch({ video, fakeUi = true, fakeDevice = true } = {}) {
   return browser;
 }
 
-// route: every request through it; routeWs: the WebSocket to /ws.
-async function openPage(browser, url, { permissions, route, routeWs } = {}) {
-  const context = await browser.newContext({ ignoreHTTPSErrors: true, viewport: { width: 412, height: 915 },
-                                             isMobile: false, hasTouch: true });
+// route: every request through it; routeWs: the WebSocket to /ws; context:
+// a context of the caller's (browser is then unused).
+async function openPage(browser, url, { permissions, route, routeWs, context } = {}) {
+  context ??= await browser.newContext({ ignoreHTTPSErrors: true, viewport: { width: 412, height: 915 },
+                                         isMobile: false, hasTouch: true });
   if (permissions) await context.grantPermissions(permissions.grant ?? [], permissions.origin ? { origin: permissions.origin } : {});
   if (route) await context.route('**/*', route);
   if (routeWs) await context.routeWebSocket(/\/ws$/, routeWs);
@@ -379,6 +382,70 @@ async function answerPut(provider, answer, timeoutMs) {
 function logPutLines(provider) {
   const lines = provider.output().split('\n').filter((l) => /\bput/i.test(l));
   if (lines.length) log(`provider:\n    ${lines.join('\n    ')}`);
+}
+
+// ---------------------------------------------------------------- shared by the shares
+// The manifest's share_target as the page's browser fetches it, checked:
+// {action (a URL), params}.
+async function readShareTarget(page, provider) {
+  const manifest = await page.evaluate(async () => {
+    const href = document.querySelector('link[rel="manifest"]').href;
+    const r = await fetch(href);
+    return { url: r.url, type: r.headers.get('content-type'), text: await r.text() };
+  });
+  let m;
+  try {
+    m = JSON.parse(manifest.text);
+  } catch (e) {
+    throw new Failure(`the manifest is not JSON: ${e.message}`);
+  }
+  check(manifest.type.startsWith('application/manifest+json'), `the manifest is served as ${manifest.type}`);
+  const st = m.share_target ?? {};
+  const action = new URL(st.action ?? '', manifest.url);
+  check(st.method === 'POST' && st.enctype === 'multipart/form-data',
+        `share_target takes multipart POSTs (${st.method}, ${st.enctype})`);
+  check(action.origin === new URL(provider.base).origin && action.pathname === '/share', `its action is /share (${action})`);
+  const fileParam = st.params?.files?.[0]?.name;
+  check(fileParam && st.params.title && st.params.url && st.params.text, `it takes files (${fileParam}), title, text and url`);
+  return { action, params: { ...st.params, file: fileParam } };
+}
+
+// What Android does for "Share → umf": a form POST of `file` (testFile's)
+// to the action. The service worker must take it and the page open in Put
+// mode with it.
+async function shareFile(page, target, file) {
+  log(`sharing ${file.name} (${file.size} bytes) to ${target.action}`);
+  await page.evaluate(({ action, fields, name, b64 }) => {
+    const form = document.createElement('form');
+    form.method = 'POST';
+    form.enctype = 'multipart/form-data';
+    form.action = action;
+    const input = document.createElement('input');
+    input.type = 'file';
+    input.name = fields.file;
+    const dt = new DataTransfer();
+    dt.items.add(new File([Uint8Array.from(atob(b64), (c) => c.charCodeAt(0))], name, { type: 'application/pdf' }));
+    input.files = dt.files;
+    const title = document.createElement('input');
+    title.name = fields.title;
+    title.value = 'Quarterly report';
+    form.append(input, title);
+    document.body.append(form);
+    form.submit();
+  }, { action: target.action.href, fields: { file: target.params.file, title: target.params.title }, name: file.name,
+       b64: file.bytes.toString('base64') });
+  let shared = null;
+  for (const until = Date.now() + 20000; Date.now() < until && !shared;) {
+    shared = await page.evaluate(() => (window.umfDebug?.share && window.umfDebug.put
+      ? { share: window.umfDebug.share, put: window.umfDebug.put, mode: document.body.dataset.mode, url: location.href }
+      : null)).catch(() => null);
+    if (!shared) await page.waitForTimeout(100);
+  }
+  log(`after the share: ${JSON.stringify(shared)}`);
+  check(shared && shared.share.kind === 'file', `the page opened with the share (${JSON.stringify(shared?.share)})`);
+  check(shared.mode === 'put' && shared.put.name === file.name && shared.put.size === file.size,
+        `in Put mode with ${file.name}, ${file.size} bytes`);
+  check(!/share=/.test(shared.url), `the share's id left the address bar (${shared.url.replace(/#.*/, '')})`);
 }
 
 // ---------------------------------------------------------------- kiosk_lock
@@ -936,61 +1003,11 @@ Object.assign(scenarios, {
     const browser = await launch({ video: fixture('tile0.y4m') });
     const page = await openPage(browser, pageUrl(provider.pairing, {}));
     await waitForState(page, ['searching', 'locked'], 30000);
-    const manifest = await page.evaluate(async () => {
-      const href = document.querySelector('link[rel="manifest"]').href;
-      const r = await fetch(href);
-      return { url: r.url, type: r.headers.get('content-type'), text: await r.text() };
-    });
-    let m;
-    try {
-      m = JSON.parse(manifest.text);
-    } catch (e) {
-      throw new Failure(`the manifest is not JSON: ${e.message}`);
-    }
-    check(manifest.type.startsWith('application/manifest+json'), `the manifest is served as ${manifest.type}`);
-    const st = m.share_target ?? {};
-    const action = new URL(st.action ?? '', manifest.url);
-    check(st.method === 'POST' && st.enctype === 'multipart/form-data',
-          `share_target takes multipart POSTs (${st.method}, ${st.enctype})`);
-    check(action.origin === new URL(provider.base).origin && action.pathname === '/share', `its action is /share (${action})`);
-    const fileParam = st.params?.files?.[0]?.name;
-    check(fileParam && st.params.title && st.params.url && st.params.text, `it takes files (${fileParam}), title, text and url`);
+    const target = await readShareTarget(page, provider);
     const sw = await page.waitForFunction(() => window.umfDebug?.serviceWorker, null, { timeout: 15000 })
       .then((h) => h.jsonValue(), () => null);
     check(sw === 'active', `the service worker is active (umfDebug.serviceWorker: ${sw})`);
-    // What Android does for "Share → umf": a form POST to the action.
-    log(`sharing ${file.name} (${file.size} bytes) to ${action}`);
-    await page.evaluate(({ action, fields, name, b64 }) => {
-      const form = document.createElement('form');
-      form.method = 'POST';
-      form.enctype = 'multipart/form-data';
-      form.action = action;
-      const input = document.createElement('input');
-      input.type = 'file';
-      input.name = fields.file;
-      const dt = new DataTransfer();
-      dt.items.add(new File([Uint8Array.from(atob(b64), (c) => c.charCodeAt(0))], name, { type: 'application/pdf' }));
-      input.files = dt.files;
-      const title = document.createElement('input');
-      title.name = fields.title;
-      title.value = 'Quarterly report';
-      form.append(input, title);
-      document.body.append(form);
-      form.submit();
-    }, { action: action.href, fields: { file: fileParam, title: st.params.title }, name: file.name,
-         b64: file.bytes.toString('base64') });
-    let shared = null;
-    for (const until = Date.now() + 20000; Date.now() < until && !shared;) {
-      shared = await page.evaluate(() => (window.umfDebug?.share && window.umfDebug.put
-        ? { share: window.umfDebug.share, put: window.umfDebug.put, mode: document.body.dataset.mode, url: location.href }
-        : null)).catch(() => null);
-      if (!shared) await page.waitForTimeout(100);
-    }
-    log(`after the share: ${JSON.stringify(shared)}`);
-    check(shared && shared.share.kind === 'file', `the page opened with the share (${JSON.stringify(shared?.share)})`);
-    check(shared.mode === 'put' && shared.put.name === file.name && shared.put.size === file.size,
-          `in Put mode with ${file.name}, ${file.size} bytes`);
-    check(!/share=/.test(shared.url), `the share's id left the address bar (${shared.url.replace(/#.*/, '')})`);
+    await shareFile(page, target, file);
     await waitForState(page, ['locked'], 30000);
     await page.click('#grab');
     const r = await waitForPutResult(page, 30000);
@@ -1013,7 +1030,7 @@ Object.assign(scenarios, {
       form.append(text);
       document.body.append(form);
       form.submit();
-    }, { action: action.href, field: st.params.text });
+    }, { action: target.action.href, field: target.params.text });
     let note = null;
     for (const until = Date.now() + 20000; Date.now() < until && !note;) {
       note = await page.evaluate(() => (window.umfDebug?.share && window.umfDebug.put ? window.umfDebug.put : null))
@@ -1068,7 +1085,13 @@ Object.assign(scenarios, {
   },
 });
 
-// A request to the provider, whose certificate is self-signed: {status, location}.
+// The screen's root in Chromium's NSS database instead of --ignore-certificate-errors.
+scenarios.trusted_root = () => trustedRoot({
+  opts, chromium, work, cleanups, log, check, sleep, Failure, Skip, fixture, testFile, putDir, startProvider, pageUrl,
+  openPage, waitForState, waitForPutResult, checkPutFolder, readShareTarget, shareFile,
+});
+
+// A request to the provider, whose certificate is not trusted here: {status, location}.
 function fetchInsecure(url, { method, body, headers }) {
   return new Promise((resolve, reject) => {
     const req = https.request(url, { method, headers, rejectUnauthorized: false }, (res) => {

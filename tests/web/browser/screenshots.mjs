@@ -9,7 +9,9 @@
 // Writes phone-locked.jpg (the lock ring and the title of what a grab would
 // take), phone-result.jpg (the file taken and checked), phone-put-asking.jpg
 // (a file put on the screen, waiting for the person there to accept it),
-// phone-put-done.jpg (accepted and saved) and phone-unpaired.jpg.
+// phone-put-done.jpg (accepted and saved), phone-unpaired.jpg, and the
+// Trust this screen sheet as an Android phone and an iPhone see it before
+// they trust the screen (trust-android.png, trust-ios.png).
 import { spawn, spawnSync } from 'node:child_process';
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
@@ -93,8 +95,34 @@ try {
   await fresh.goto(new URL(pairing).origin + '/');
   await fresh.waitForSelector('body[data-state="unpaired"]', { timeout: 10000 });
   await fresh.screenshot({ path: path.join(args.out, 'phone-unpaired.jpg'), type: 'jpeg', quality: 80 });
-  console.log(`wrote phone-locked.jpg, phone-result.jpg, phone-put-asking.jpg, phone-put-done.jpg, phone-unpaired.jpg ` +
-              `to ${args.out}`);
+
+  // This Chromium ignores certificate errors, so it would register the
+  // service worker as on a trusted screen; the pictures show a phone that only
+  // accepted the warning, whose registration fails as Chromium's then does.
+  const phones = {
+    android: { ...phone, viewport: { width: 412, height: 915 },
+               userAgent: 'Mozilla/5.0 (Linux; Android 14; Pixel 7) AppleWebKit/537.36 (KHTML, like Gecko) ' +
+                          'Chrome/126.0.0.0 Mobile Safari/537.36' },
+    ios: { ...phone, userAgent: 'Mozilla/5.0 (iPhone; CPU iPhone OS 17_5 like Mac OS X) AppleWebKit/605.1.15 ' +
+                                '(KHTML, like Gecko) Version/17.5 Mobile/15E148 Safari/604.1' },
+  };
+  for (const [name, device] of Object.entries(phones)) {
+    const context = await browser.newContext(device);
+    await context.addInitScript(() => {
+      navigator.serviceWorker.register = () => Promise.reject(new DOMException(
+        'Failed to register a ServiceWorker: An SSL certificate error occurred when fetching the script.', 'SecurityError'));
+    });
+    const trust = await context.newPage();
+    await trust.goto(pairing);
+    await trust.waitForSelector('body[data-state="locked"], body[data-state="searching"]', { timeout: 30000 });
+    await trust.click('#show-pairing');
+    await trust.click('#show-trust');
+    await trust.waitForSelector('#trust-fingerprint[data-sha256]', { timeout: 10000 });
+    await trust.waitForSelector('#trust-state[data-trusted="no"]', { timeout: 10000 });
+    await trust.screenshot({ path: path.join(args.out, `trust-${name}.png`) });
+  }
+  console.log('wrote phone-locked.jpg, phone-result.jpg, phone-put-asking.jpg, phone-put-done.jpg, phone-unpaired.jpg, ' +
+              `trust-android.png, trust-ios.png to ${args.out}`);
 } finally {
   await browser.close();
   provider.kill('SIGTERM');
