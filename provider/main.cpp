@@ -39,7 +39,7 @@ const char* kUsageText = R"(umf-provider: show a marker field and serve what it 
 usage:
   umf-provider [serve] [--board BOARD.json] [--preset NAME] [--port P] [--headless]
                [--screen WxH] [--public] [--bind ADDR] [--host HOST] [--web DIR]
-               [--config-dir DIR] [--no-qr] [--no-overlay] [--tune]
+               [--config-dir DIR] [--no-qr] [--no-overlay] [--tune] [--no-announce]
                [--desktop x11|wlroots|kde|gnome|none]
                [--puts ask|always|never] [--put-dir DIR] [--put-max-mb N]
   umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate [--root]] [--no-qr]
@@ -74,6 +74,10 @@ serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /w
          The tray icon switches the overlay and its preset and opens the
          tuning window (--tune opens it at start) and the pairing QR code.
          --public (kiosks) welcomes any requester and serves board items only.
+         Where Avahi runs, the provider announces itself on the local network
+         (DNS-SD, _umf._tcp, with its HOST.local name and the fingerprint of
+         its root, never the token); --no-announce, or --bind 127.0.0.1,
+         leaves that out.
 pair     prints the pairing URL and its QR code; --rotate makes a new token
          first, which unpairs every requester (a running provider keeps the
          old token until it restarts); --rotate --root also makes a new

@@ -72,22 +72,26 @@ bool run_until(net::io_context& io, const bool& done, Clock::time_point deadline
     return false;
 }
 
-void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::PairingUrl& url, const NetTimeouts& timeouts) {
-    // Resolve (a name may take a DNS round trip; an address resolves at once).
+namespace {
+
+// Resolves `host` and connects the stream's socket to it (timeouts.connect
+// each); the reason when it could not, empty when connected.
+std::string connect_to(net::io_context& io, TlsStream& stream, const std::string& host, unsigned short port,
+                       const std::string& authority, const NetTimeouts& timeouts) {
+    // Resolve (a name may take a DNS or mDNS round trip; an address resolves at once).
     net::ip::tcp::resolver resolver(io);
     net::ip::tcp::resolver::results_type endpoints;
     beast::error_code ec;
     bool done = false;
-    resolver.async_resolve(url.host, std::to_string(url.port), net::ip::tcp::resolver::numeric_service,
+    resolver.async_resolve(host, std::to_string(port), net::ip::tcp::resolver::numeric_service,
                            [&](beast::error_code e, net::ip::tcp::resolver::results_type r) {
                                ec = e;
                                endpoints = std::move(r);
                                done = true;
                            });
     if (!run_until(io, done, Clock::now() + timeouts.connect, [&] { resolver.cancel(); }))
-        throw connection_failure("cannot resolve " + url.host + ": no answer within " +
-                                 std::to_string(timeouts.connect.count() / 1000) + " s");
-    if (ec) throw connection_failure("cannot resolve " + url.host + ": " + ec.message());
+        return "cannot resolve " + host + ": no answer within " + std::to_string(timeouts.connect.count() / 1000) + " s";
+    if (ec) return "cannot resolve " + host + ": " + ec.message();
 
     auto& tcp = beast::get_lowest_layer(stream);
     done = false;
@@ -98,13 +102,36 @@ void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::Pair
     });
     if (!run_until(io, done, Clock::now() + timeouts.connect + std::chrono::seconds(1), [&] { tcp.close(); }) ||
         ec == beast::error::timeout)
-        throw connection_failure("cannot connect to " + url.authority() + ": no answer within " +
-                                 std::to_string(timeouts.connect.count() / 1000) + " s (is the provider running?)");
-    if (ec) throw connection_failure("cannot connect to " + url.authority() + ": " + ec.message());
+        return "cannot connect to " + authority + ": no answer within " + std::to_string(timeouts.connect.count() / 1000) +
+               " s (is the provider running?)";
+    if (ec) return "cannot connect to " + authority + ": " + ec.message();
+    return {};
+}
+
+}  // namespace
+
+void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::PairingUrl& url, const NetTimeouts& timeouts) {
+    // The URL's address first (where the screen was when paired), then the
+    // screen's .local name, which follows it to a new address. The pin, not
+    // the name or the address, decides whom the token goes to.
+    std::string host = url.host;
+    bool host_is_ip = url.host_is_ip;
+    const std::string failed = connect_to(io, stream, url.host, url.port, url.authority(), timeouts);
+    if (!failed.empty()) {
+        if (url.name.empty()) throw connection_failure(failed);
+        beast::get_lowest_layer(stream).close();
+        const std::string again = connect_to(io, stream, url.name, url.port, url.name + ":" + std::to_string(url.port), timeouts);
+        if (!again.empty()) throw connection_failure(failed + "; " + again);
+        host = url.name;
+        host_is_ip = false;
+    }
+    auto& tcp = beast::get_lowest_layer(stream);
+    beast::error_code ec;
+    bool done = false;
 
     // SNI only for names: RFC 6066 leaves addresses out.
-    if (!url.host_is_ip && !SSL_set_tlsext_host_name(stream.native_handle(), url.host.c_str()))
-        throw connection_failure("cannot set the TLS server name " + url.host);
+    if (!host_is_ip && !SSL_set_tlsext_host_name(stream.native_handle(), host.c_str()))
+        throw connection_failure("cannot set the TLS server name " + host);
 
     auto pin = std::make_shared<PinCheck>();
     pin->expected = url.fingerprint;

@@ -60,8 +60,9 @@ boost::beast::error_code run_step(boost::asio::io_context& io, TlsStream& stream
     return ec;
 }
 
-// Resolves the URL's host, connects (timeouts.connect) and completes the TLS
-// handshake (timeouts.handshake) with SNI for host names, accepting the peer
+// Resolves the URL's host and connects to it (timeouts.connect), else to the
+// URL's .local name, and completes the TLS handshake (timeouts.handshake)
+// with SNI for host names, accepting the peer
 // only when its chain satisfies the pin url.fingerprint. Throws GrabFailure:
 // "connection" when the provider cannot be reached, "certificate" when it
 // shows another certificate (nothing has been sent to it then).

@@ -16,14 +16,18 @@ packages=(
   libboost-dev libboost-system-dev libssl-dev openssl libqrencode-dev
   # requester/ and the camera simulator
   libopencv-dev libopencv-contrib-dev libapriltag-dev
-  # web/: WebAssembly build and browser tests
-  emscripten chromium firefox-esr
+  # web/: WebAssembly build and browser tests (certutil, in libnss3-tools, for a trusted root in Chromium)
+  emscripten chromium firefox-esr libnss3-tools
   # headless desktop for overlay and window tests
   xvfb xauth x11-utils x11-xserver-utils xdotool openbox mupdf xterm xcompmgr picom libxext-dev
   # Wayland desktops: the client library and scanner for the layer-shell field,
   # and the compositors the desktop tests run headless (Sway with foot and
   # Xwayland, GNOME Shell with the umf extension, KWin, weston), grim, D-Bus
   libwayland-dev wayland-protocols sway grim foot xwayland weston dbus dbus-daemon gnome-shell kwin-wayland
+  # the provider announces itself over DNS-SD through Avahi, and requesters resolve .local
+  # names through nss-mdns; the tests run a daemon and its tools in network namespaces of
+  # their own (iproute2)
+  avahi-daemon avahi-utils libnss-mdns iproute2
 )
 
 # node and npm may come from another repository whose nodejs bundles npm

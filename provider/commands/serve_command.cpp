@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <thread>
 #include <tuple>
+#include <mutex>
 
 #include "board/board.hpp"
 #include "commands/common_options.hpp"
@@ -45,6 +46,7 @@
 #include "server/server.hpp"
 #include "server/service.hpp"
 #include "server/static_site.hpp"
+#include "discovery/avahi_announcement.hpp"
 #include "trust/certificate_keeper.hpp"
 #include "trust/root_export.hpp"
 #include "trust/tls_identity_store.hpp"
@@ -56,7 +58,7 @@ const char* const kServeOptions[] = {"port",         "bind",        "host",   "c
                                      "period",       "waveform",    "module-px", "blur",     "region",
                                      "focus-radius", "activation",  "fade",   "palette",     "puts",
                                      "put-dir",      "put-max-mb",  "desktop",     nullptr};
-const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", nullptr};
+const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", "no-announce", nullptr};
 
 namespace {
 
@@ -125,6 +127,23 @@ struct ServeFailure : std::runtime_error {
     int code;
 };
 
+// This host's .local name: the host name's until Avahi says which it announced.
+class LocalName {
+public:
+    std::string get() const {
+        std::lock_guard lock(mutex_);
+        return announced_.empty() ? local_host_name() : announced_;
+    }
+    void set(const std::string& name) {
+        std::lock_guard lock(mutex_);
+        announced_ = name;
+    }
+
+private:
+    mutable std::mutex mutex_;
+    std::string announced_;
+};
+
 // Everything a running provider holds, filled in step by step by run_serve.
 struct Serving {
     // The command line.
@@ -161,7 +180,11 @@ struct Serving {
     // Running.
     sigset_t signals{};
     std::unique_ptr<Server> server;
-    std::unique_ptr<CertificateKeeper> certificate_keeper;  // after server_: calls into it, so ends first
+    std::unique_ptr<CertificateKeeper> certificate_keeper;  // after server: calls into it, so ends first
+    // The .local name Avahi announced this host by, when it differs from the
+    // host name's: the serving certificate names it too.
+    std::shared_ptr<LocalName> local_name = std::make_shared<LocalName>();
+    std::unique_ptr<AvahiAnnouncement> announcement;
     std::unique_ptr<ControlSocket> control;
     std::string url;
 };
@@ -305,6 +328,7 @@ void load_web_client(const cli::Args& a, Serving& s) {
 void keep_certificate(Serving& s) {
     CertificateKeeper::Settings settings;
     settings.config_dir = s.dir;
+    settings.names = [name = s.local_name] { return serving_names(name->get(), current_addresses()); };
     settings.issued = [server = s.server.get()](const TlsIdentity& identity, const std::string& why) {
         try {
             server->replace_identity(identity);
@@ -396,7 +420,11 @@ void start_server(const ServeHooks& hooks, Serving& s) {
     } catch (const std::exception& e) {
         throw ServeFailure(kServeError, e.what());
     }
-    s.url = pairing_url(s.host, s.server->port(), s.token, s.identity.fingerprint);
+    // The .local name goes along (tried first by requesters) unless this
+    // provider serves its own machine only.
+    const bool local_only = s.bind == "127.0.0.1" || s.bind == "::1";
+    s.url = pairing_url(s.host, s.server->port(), s.token, s.identity.fingerprint,
+                        local_only || s.host == s.local_name->get() ? std::string() : s.local_name->get());
 }
 
 // Where phones reach this provider, and what its certificate vouches for.
@@ -424,6 +452,30 @@ void print_trust(const Serving& s, std::ostream& out) {
     out << "screen root (SHA-256): " << s.identity.fingerprint
         << "\n  phones that trust it open the page without a warning: \"Trust this screen\" on the phone page, "
            "or umf-provider trust\n";
+}
+
+// _umf._tcp on the local network through Avahi, with the root's fingerprint
+// (public, and what tells one screen from another); never the token. A
+// provider that serves this machine only announces nothing.
+void announce_on_network(const cli::Args& a, Serving& s) {
+    if (s.bind == "127.0.0.1" || s.bind == "::1" || has_flag(a, "no-announce")) return;
+    Announcement wanted;
+    const std::string host = local_host_name();
+    wanted.instance = "umf on " + (host.empty() ? std::string("this screen") : host.substr(0, host.find('.')));
+    wanted.port = s.server->port();
+    wanted.txt = {"v=1", "fp=" + s.identity.fingerprint};
+    s.announcement = std::make_unique<AvahiAnnouncement>(
+        wanted, [name = s.local_name, port = wanted.port](const Announcement& made, const std::string& why_not) {
+            if (!why_not.empty()) {
+                std::cout << "announced: nowhere (" << why_not << "); phones find this screen by its address only\n"
+                          << std::flush;
+                return;
+            }
+            name->set(made.host_name);
+            std::cout << "announced: \"" << made.instance << "\" (" << kServiceType << ") at https://"
+                      << made.host_name << ":" << port << " through Avahi\n"
+                      << std::flush;
+        });
 }
 
 void print_banner(const cli::Args& a, const Serving& s) {
@@ -537,6 +589,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         return e.code;
     }
     print_banner(a, s);
+    announce_on_network(a, s);
     return run_until_stopped(a, hooks, s);
 }
 

@@ -55,8 +55,8 @@ std::string load_or_create_token(const std::filesystem::path& dir, bool rotate) 
 }
 
 std::string pairing_url(const std::string& host, unsigned short port, const std::string& token,
-                        const std::string& fingerprint) {
-    return protocol::format_pairing_url(host, port, token, fingerprint);
+                        const std::string& fingerprint, const std::string& local_name) {
+    return protocol::format_pairing_url(host, port, token, fingerprint, local_name);
 }
 
 }  // namespace umf::provider

@@ -25,8 +25,9 @@ bool tokens_equal(std::string_view a, std::string_view b);
 // malformed, or when `rotate` is set. Throws ConfigError.
 std::string load_or_create_token(const std::filesystem::path& dir, bool rotate = false);
 
-// https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT; an IPv6 host goes in brackets.
+// https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT[&n=NAME.local]; an IPv6 host
+// goes in brackets.
 std::string pairing_url(const std::string& host, unsigned short port, const std::string& token,
-                        const std::string& fingerprint);
+                        const std::string& fingerprint, const std::string& local_name = {});
 
 }  // namespace umf::provider

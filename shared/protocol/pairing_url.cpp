@@ -76,10 +76,10 @@ bool looks_like_ipv4(std::string_view h) {
 }  // namespace
 
 std::string format_pairing_url(const std::string& host, unsigned short port, const std::string& token,
-                               const std::string& fingerprint) {
+                               const std::string& fingerprint, const std::string& name) {
     const bool ipv6 = host.find(':') != std::string::npos && host.front() != '[';
     return "https://" + (ipv6 ? "[" + host + "]" : host) + ":" + std::to_string(port) + "/#t=" + token +
-           "&fp=" + fingerprint;
+           "&fp=" + fingerprint + (name.empty() ? "" : "&n=" + name);
 }
 
 std::optional<std::string> normalise_fingerprint(std::string_view text) {
@@ -180,7 +180,7 @@ PairingUrl parse_pairing_url(std::string_view url) {
         out.port = static_cast<unsigned short>(port);
     }
 
-    std::optional<std::string> token, fingerprint;
+    std::optional<std::string> token, fingerprint, name;
     while (!fragment.empty()) {
         const auto amp = fragment.find('&');
         const std::string_view item = fragment.substr(0, amp);
@@ -190,10 +190,10 @@ PairingUrl parse_pairing_url(std::string_view url) {
         const std::string_view key = item.substr(0, eq);
         const std::string_view value = eq == std::string_view::npos ? std::string_view() : item.substr(eq + 1);
         // Later versions may add parameters; only ours are checked.
-        std::optional<std::string>* slot = key == "t" ? &token : key == "fp" ? &fingerprint : nullptr;
+        std::optional<std::string>* slot = key == "t" ? &token : key == "fp" ? &fingerprint : key == "n" ? &name : nullptr;
         if (!slot) continue;
         if (*slot) throw PairingUrlError("the pairing URL gives '" + std::string(key) + "' twice");
-        *slot = percent_decode(value, key == "t" ? "token" : "fingerprint");
+        *slot = percent_decode(value, key == "t" ? "token" : key == "fp" ? "fingerprint" : "name");
     }
     if (!token) throw PairingUrlError("the pairing URL has no token (t=...) after the '#'");
     if (!fingerprint) throw PairingUrlError("the pairing URL has no certificate fingerprint (fp=...) after the '#'");
@@ -207,6 +207,13 @@ PairingUrl parse_pairing_url(std::string_view url) {
     if (!fp)
         throw PairingUrlError("the pairing URL's fingerprint must be 64 hex digits (SHA-256), optionally as "
                               "colon-separated pairs");
+    if (name) {
+        // Only an mDNS name: the one the screen announces on its local network.
+        const bool local = name->size() > 6 && iequals(std::string_view(*name).substr(name->size() - 6), ".local");
+        if (!local || !is_host_name(*name))
+            throw PairingUrlError("the pairing URL's name '" + *name + "' is not a NAME.local host name");
+        out.name = std::move(*name);
+    }
     out.token = std::move(*token);
     out.fingerprint = std::move(*fp);
     return out;

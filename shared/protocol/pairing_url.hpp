@@ -1,5 +1,5 @@
 // The pairing URL a provider shows as a QR code (docs/PROTOCOL.md, "Pairing"):
-//   https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT
+//   https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT[&n=NAME.local]
 // One codec for the provider, which makes it, and the requester, which reads
 // it. People paste these from a phone or a screenshot, so the errors say
 // which part is wrong rather than just "invalid URL".
@@ -23,6 +23,9 @@ struct PairingUrl {
     unsigned short port = 443;
     std::string token;         // base64url, 22..128 characters
     std::string fingerprint;   // 64 lowercase hex digits
+    // The screen's mDNS name (NAME.local), tried before `host`, which stays
+    // the fallback; empty when the URL names none.
+    std::string name;
 
     // "host:port" as an HTTP Host header and for messages: IPv6 in brackets.
     std::string authority() const {
@@ -30,9 +33,10 @@ struct PairingUrl {
     }
 };
 
-// https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT; an IPv6 host goes in brackets.
+// https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT, and &n=NAME when `name` is
+// given; an IPv6 host goes in brackets.
 std::string format_pairing_url(const std::string& host, unsigned short port, const std::string& token,
-                               const std::string& fingerprint);
+                               const std::string& fingerprint, const std::string& name = {});
 
 // Throws PairingUrlError with what is wrong.
 PairingUrl parse_pairing_url(std::string_view url);

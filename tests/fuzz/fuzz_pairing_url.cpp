@@ -20,8 +20,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         return 0;
     }
     (void)url.authority();
-    const p::PairingUrl again = p::parse_pairing_url(p::format_pairing_url(url.host, url.port, url.token, url.fingerprint));
-    if (again.host != url.host || again.port != url.port || again.token != url.token ||
+    const p::PairingUrl again =
+        p::parse_pairing_url(p::format_pairing_url(url.host, url.port, url.token, url.fingerprint, url.name));
+    if (again.host != url.host || again.port != url.port || again.token != url.token || again.name != url.name ||
         again.fingerprint != url.fingerprint || again.host_is_ipv6 != url.host_is_ipv6 || again.host_is_ip != url.host_is_ip)
         __builtin_trap();
     return 0;

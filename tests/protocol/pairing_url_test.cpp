@@ -133,3 +133,23 @@ TEST(PairingUrl, WhatIsMadeIsReadBack) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(PairingUrl, CarriesTheScreensLocalNameAsWell) {
+    const PairingUrl u = parse_pairing_url("https://192.168.1.20:47470/" + fragment() + "&n=desk-7.local");
+    EXPECT_EQ(u.host, "192.168.1.20");
+    EXPECT_EQ(u.name, "desk-7.local");
+    EXPECT_EQ(parse_pairing_url("https://h:1/" + fragment()).name, "");
+    EXPECT_EQ(parse_pairing_url(format_pairing_url("10.0.0.5", 47470, kToken, kFp, "Desk.LOCAL")).name, "Desk.LOCAL");
+    EXPECT_EQ(format_pairing_url("10.0.0.5", 47470, kToken, kFp, "desk.local"),
+              "https://10.0.0.5:47470/#t=" + kToken + "&fp=" + kFp + "&n=desk.local");
+    // Only an mDNS name.
+    for (const char* bad : {"example.com", "local", ".local", "a..local", "-x.local", "desk.local.evil.org", ""})
+        EXPECT_NE(error_of("https://h:1/" + fragment() + "&n=" + bad).find("is not a NAME.local host name"),
+                  std::string::npos)
+            << bad;
+    EXPECT_NE(error_of("https://h:1/" + fragment() + "&n=a.local&n=b.local").find("gives 'n' twice"), std::string::npos);
+}
+
+}  // namespace

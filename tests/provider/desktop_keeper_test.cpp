@@ -231,7 +231,7 @@ TEST(DesktopKeeper, TheProviderOutlivesItsXServer) {
                                     {"XDG_SESSION_TYPE", "x11"},
                                     {"XDG_RUNTIME_DIR", runtime.string()}});
     options.log = dir.path / "provider.log";
-    Process provider({UMF_PROVIDER_TOOL, "--port", "0", "--no-qr", "--puts", "never", "--config-dir",
+    Process provider({UMF_PROVIDER_TOOL, "--bind", "127.0.0.1", "--port", "0", "--no-qr", "--puts", "never", "--config-dir",
                       (dir.path / "cfg").string()},
                      options);
     const fs::path log = dir.path / "provider.log";

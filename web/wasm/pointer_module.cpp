@@ -74,7 +74,7 @@ EMSCRIPTEN_KEEPALIVE const char* umf_pointer_event(void* handle, const char* eve
 EMSCRIPTEN_KEEPALIVE const char* umf_pointer_error() { return create_error().c_str(); }
 
 // A pairing URL read as the provider and umf-requester read it:
-// {"host", "port", "token", "fingerprint"} or {"error"}, NUL-terminated JSON
+// {"host", "port", "token", "fingerprint", "name"} or {"error"}, NUL-terminated JSON
 // valid until the next call.
 EMSCRIPTEN_KEEPALIVE const char* umf_parse_pairing_url(const char* url, int length) {
     static std::string answer;
@@ -84,7 +84,8 @@ EMSCRIPTEN_KEEPALIVE const char* umf_parse_pairing_url(const char* url, int leng
         answer = nlohmann::json{{"host", parsed.host},
                                 {"port", parsed.port},
                                 {"token", parsed.token},
-                                {"fingerprint", parsed.fingerprint}}
+                                {"fingerprint", parsed.fingerprint},
+                                {"name", parsed.name}}
                      .dump();
     } catch (const std::bad_alloc&) {
         answer = error_json("out of memory");
