@@ -1,6 +1,7 @@
 #include "server/tls_identity.hpp"
 
 #include "native/certificate_fingerprint.hpp"
+#include "native/openssl_error.hpp"
 
 #include <openssl/err.h>
 #include <openssl/pem.h>
@@ -11,20 +12,7 @@
 
 namespace umf::provider {
 
-namespace {
-
-std::string take_openssl_error() {
-    std::string detail;
-    if (unsigned long e = ERR_get_error(); e != 0) {
-        char buf[256];
-        ERR_error_string_n(e, buf, sizeof buf);
-        detail = std::string(": ") + buf;
-    }
-    ERR_clear_error();
-    return detail;
-}
-
-}  // namespace
+using native::take_openssl_error;
 
 // The chain and key in OpenSSL's form, freed with the last handshake using them.
 struct CurrentIdentity::Parsed {

@@ -4,6 +4,7 @@
 #include <openssl/pem.h>
 #include <openssl/rand.h>
 
+#include "native/openssl_error.hpp"
 #include "server/tls_identity.hpp"
 
 namespace umf::provider {
@@ -26,16 +27,7 @@ std::string bio_text(BIO* bio) {
 
 }  // namespace
 
-void throw_openssl_error(const std::string& what) {
-    std::string detail;
-    if (unsigned long e = ERR_get_error(); e != 0) {
-        char buf[256];
-        ERR_error_string_n(e, buf, sizeof buf);
-        detail = std::string(": ") + buf;
-    }
-    ERR_clear_error();
-    throw TlsIdentityError(what + detail);
-}
+void throw_openssl_error(const std::string& what) { throw TlsIdentityError(what + native::take_openssl_error()); }
 
 X509Ptr read_certificate(const std::string& pem) {
     auto bio = memory_bio(pem);

@@ -81,13 +81,8 @@ daemons+=($!)
 for _ in $(seq 100); do grep -q 'Server startup complete' "$work/avahi.log" && break; sleep 0.1; done
 grep -q 'Server startup complete' "$work/avahi.log" || { echo "FAIL: avahi-daemon did not start:"; cat "$work/avahi.log"; exit 1; }
 
-# One board item over the whole screen, and the screen as shown, for a grab.
-cat >"$work/board.json" <<'JSON'
-{"format": "umf-board/1", "title": "Found by name", "columns": 1,
- "items": [{"title": "Project site", "url": "https://example.org/found-by-name"}]}
-JSON
-"$bin/umf-provider" compose --board "$work/board.json" --screen 1920x1080 --preset kiosk --time 0.75 \
-  --out "$work/screen.png" --map "$work/map.json" --config-dir "$work/cfg" >/dev/null
+# One link over the whole screen, and the screen as shown, for a grab.
+one_link_board "Found by name" https://example.org/found-by-name
 start_provider "$work/provider.log" --config-dir "$work/cfg" --board "$work/board.json" --screen 1920x1080
 for _ in $(seq 100); do grep -q '^announced: ' "$work/provider.log" && break; sleep 0.1; done
 line=$(grep '^announced: ' "$work/provider.log" || true)

@@ -19,13 +19,8 @@ work=$(mktemp -d /tmp/umf-address-XXXXXX)
 source "$(dirname "$0")/provider_run.sh"
 trap 'stop_provider; rm -rf "$work"' EXIT
 
-# One board item over the whole screen, and the screen as shown, for the grab.
-cat >"$work/board.json" <<'JSON'
-{"format": "umf-board/1", "title": "Address change", "columns": 1,
- "items": [{"title": "Project site", "url": "https://example.org/after-the-move"}]}
-JSON
-"$bin/umf-provider" compose --board "$work/board.json" --screen 1920x1080 --preset kiosk --time 0.75 \
-  --out "$work/screen.png" --map "$work/map.json" --config-dir "$work/cfg" >/dev/null
+# One link over the whole screen, and the screen as shown, for a grab.
+one_link_board "Address change" https://example.org/after-the-move
 start_provider "$work/provider.log" --config-dir "$work/cfg" --board "$work/board.json" --screen 1920x1080
 "$bin/umf-provider" trust export "$work/root.pem" --config-dir "$work/cfg" 2>/dev/null
 before=$(der_sha256 "$work/cfg/serving-cert.pem")

@@ -1,6 +1,6 @@
-# Sourced by the trust tests: start_provider LOG ARGS... starts umf-provider
-# headless in the background (killed when the test ends) and waits for its
-# pairing URL; sets $provider_pid, $url, $port and $origin.
+# Sourced by the trust and discovery tests: start_provider LOG ARGS... starts
+# umf-provider headless in the background (killed when the test ends) and
+# waits for its pairing URL; sets $provider_pid, $url, $port and $origin.
 provider_pid=
 stop_provider() {
   if [ -n "$provider_pid" ]; then
@@ -35,4 +35,13 @@ verified() {
   [[ $address == *:* ]] && connect="[$address]"
   openssl s_client -connect "$connect:$port" -CAfile "$work/root.pem" -verify_return_error "$how" "$name" \
     ${servername:+-servername "$servername"} </dev/null 2>&1 | grep -q 'Verify return code: 0 (ok)'
+}
+# A board of one URL over the whole screen ($work/board.json) and that screen
+# as shown ($work/screen.png), so a grab from the screen's picture takes URL.
+one_link_board() {
+  local title=$1 link=$2
+  printf '{"format": "umf-board/1", "title": "%s", "columns": 1,\n "items": [{"title": "Project site", "url": "%s"}]}\n' \
+    "$title" "$link" >"$work/board.json"
+  "$bin/umf-provider" compose --board "$work/board.json" --screen 1920x1080 --preset kiosk --time 0.75 \
+    --out "$work/screen.png" --map "$work/map.json" --config-dir "$work/cfg" >/dev/null
 }
