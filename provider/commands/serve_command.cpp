@@ -14,7 +14,6 @@
 #include <stdexcept>
 #include <thread>
 #include <tuple>
-#include <mutex>
 
 #include "board/board.hpp"
 #include "commands/common_options.hpp"
@@ -24,7 +23,6 @@
 #include "content/board_resolver.hpp"
 #include "content/image_snapshot.hpp"
 #include "content/shared_items.hpp"
-#include "content/shared_items_file.hpp"
 #include "desktop/open_desktop.hpp"
 #include "desktop/session.hpp"
 #include "field_overlay/overlay_activity.hpp"
@@ -46,9 +44,7 @@
 #include "server/server.hpp"
 #include "server/service.hpp"
 #include "server/static_site.hpp"
-#include "discovery/avahi_announcement.hpp"
-#include "trust/certificate_keeper.hpp"
-#include "trust/root_export.hpp"
+#include "commands/serve_reach.hpp"
 #include "trust/tls_identity_store.hpp"
 
 namespace umf::provider {
@@ -65,21 +61,6 @@ namespace {
 using cli::get;
 using cli::has_flag;
 using cli::UsageError;
-
-// PREFIX/share/umf/web for an installed provider (found from the program's
-// own place, so any prefix works), else the build tree's web/site.
-std::optional<std::filesystem::path> default_web_dir() {
-    std::error_code ec;
-    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        const auto installed = self.parent_path().parent_path() / "share" / "umf" / "web";
-        if (std::filesystem::is_regular_file(installed / "index.html", ec)) return installed;
-    }
-#ifdef UMF_WEB_SITE_DIR
-    if (std::filesystem::is_directory(UMF_WEB_SITE_DIR, ec)) return std::filesystem::path(UMF_WEB_SITE_DIR);
-#endif
-    return std::nullopt;
-}
 
 bool have_display() {
     const char* x = std::getenv("DISPLAY");
@@ -103,45 +84,10 @@ overlay::Preset preset_option(const cli::Args& a, const std::filesystem::path& c
     throw UsageError("no preset called \"" + name + "\"; there are " + names);
 }
 
-// What was shared before this provider was started again by its keeper
-// comes back, and every change is written down for the next one.
-void keep_shared_items(SharedItems& items, const std::filesystem::path& file) {
-    try {
-        const int restored = items.restore(load_shared_items(file));
-        if (restored > 0) std::cout << "shared: " << restored << " item(s) shared before are served again\n";
-    } catch (const std::exception& e) {
-        std::cerr << "umf-provider: " << e.what() << "; the items shared before are gone\n";
-    }
-    items.on_change([file](const std::vector<SharedItem>& now) {
-        try {
-            save_shared_items(file, now);
-        } catch (const std::exception& e) {
-            std::cerr << "umf-provider: " << e.what() << "; shared items will not survive a restart\n";
-        }
-    });
-}
-
 // A step that cannot go on: the message for the console and the exit code.
 struct ServeFailure : std::runtime_error {
     ServeFailure(int code_, const std::string& message) : std::runtime_error(message), code(code_) {}
     int code;
-};
-
-// This host's .local name: the host name's until Avahi says which it announced.
-class LocalName {
-public:
-    std::string get() const {
-        std::lock_guard lock(mutex_);
-        return announced_.empty() ? local_host_name() : announced_;
-    }
-    void set(const std::string& name) {
-        std::lock_guard lock(mutex_);
-        announced_ = name;
-    }
-
-private:
-    mutable std::mutex mutex_;
-    std::string announced_;
 };
 
 // Everything a running provider holds, filled in step by step by run_serve.
@@ -310,37 +256,11 @@ void load_web_client(const cli::Args& a, Serving& s) {
         s.web_dir = default_web_dir();
     try {
         auto site = std::make_shared<StaticSite>(s.web_dir ? StaticSite::from_folder(*s.web_dir) : StaticSite());
-        // "Trust this screen" on the phone page offers the root in both forms phones install.
-        const RootAuthority root = load_or_create_root(s.dir);
-        site->add(kRootDerPath, {"application/x-x509-ca-cert",
-                                 std::make_shared<const std::string>(export_root(root, RootForm::der)), "umf-root.crt"});
-        site->add(kRootProfilePath, {"application/x-apple-aspen-config",
-                                     std::make_shared<const std::string>(export_root(root, RootForm::mobileconfig)),
-                                     "umf-root.mobileconfig"});
+        offer_root(*site, load_or_create_root(s.dir));
         s.site = std::move(site);
     } catch (const std::exception& e) {
         throw ServeFailure(kConfigError, e.what());
     }
-}
-
-// Issues the serving certificate again when the machine's addresses change
-// or it nears its end; the server serves the new one from the next handshake.
-void keep_certificate(Serving& s) {
-    CertificateKeeper::Settings settings;
-    settings.config_dir = s.dir;
-    settings.names = [name = s.local_name] { return serving_names(name->get(), current_addresses()); };
-    settings.issued = [server = s.server.get()](const TlsIdentity& identity, const std::string& why) {
-        try {
-            server->replace_identity(identity);
-            std::cout << "certificate: issued again by the screen's root (" << why << ")\n" << std::flush;
-        } catch (const std::exception& e) {
-            std::cerr << "umf-provider: the certificate issued again cannot be served: " << e.what() << "\n";
-        }
-    };
-    settings.failed = [](const std::string& error) {
-        std::cerr << "umf-provider: cannot issue the certificate again: " << error << "; the old one serves on\n";
-    };
-    s.certificate_keeper = std::make_unique<CertificateKeeper>(std::move(settings), s.names);
 }
 
 // SIGINT and SIGTERM are taken with sigwait; blocked before any thread
@@ -403,7 +323,7 @@ void start_server(const ServeHooks& hooks, Serving& s) {
         options.threads = 2;
         s.server = std::make_unique<Server>(service, s.identity, options);
         s.server->start();
-        keep_certificate(s);
+        s.certificate_keeper = keep_certificate(s.dir, *s.server, s.local_name, s.names);
         if (hooks.keeper) tell_keeper_port(*hooks.keeper, s.server->port());
         if (s.browser_link) {
             try {
@@ -427,55 +347,10 @@ void start_server(const ServeHooks& hooks, Serving& s) {
                         local_only || s.host == s.local_name->get() ? std::string() : s.local_name->get());
 }
 
-// Where phones reach this provider, and what its certificate vouches for.
-void print_trust(const Serving& s, std::ostream& out) {
-    const unsigned short port = s.server->port();
-    // 0.0.0.0 listens on IPv4 only; "::" on both.
-    const bool all_v4 = s.bind == "0.0.0.0", all = all_v4 || s.bind == "::";
-    const bool loopback = s.bind == "127.0.0.1" || s.bind == "::1";
-    std::string where;
-    for (const auto& d : s.names.dns)
-        if (all || (loopback && d == "localhost")) where += " https://" + d + ":" + std::to_string(port);
-    for (const auto& address : s.names.addresses) {
-        const bool v6 = address.find(':') != std::string::npos;
-        if (all ? (all_v4 && v6) : address != s.bind) continue;
-        where += " https://" + (v6 ? "[" + address + "]" : address) + ":" + std::to_string(port);
-    }
-    out << "serving at:" << where << "\n";
-    std::string list;
-    for (const auto& a : s.names.not_covered)
-        if (all && !(all_v4 && a.find(':') != std::string::npos)) list += (list.empty() ? "" : ", ") + a;
-    if (!list.empty()) {
-        out << "  also at " << list << ", which the screen's root may not vouch for (not a private address): "
-            << "phones there see a certificate warning\n";
-    }
-    out << "screen root (SHA-256): " << s.identity.fingerprint
-        << "\n  phones that trust it open the page without a warning: \"Trust this screen\" on the phone page, "
-           "or umf-provider trust\n";
-}
-
-// _umf._tcp on the local network through Avahi, with the root's fingerprint
-// (public, and what tells one screen from another); never the token. A
-// provider that serves this machine only announces nothing.
-void announce_on_network(const cli::Args& a, Serving& s) {
+// A provider that serves this machine only announces nothing.
+void announce(const cli::Args& a, Serving& s) {
     if (s.bind == "127.0.0.1" || s.bind == "::1" || has_flag(a, "no-announce")) return;
-    Announcement wanted;
-    const std::string host = local_host_name();
-    wanted.instance = "umf on " + (host.empty() ? std::string("this screen") : host.substr(0, host.find('.')));
-    wanted.port = s.server->port();
-    wanted.txt = {"v=1", "fp=" + s.identity.fingerprint};
-    s.announcement = std::make_unique<AvahiAnnouncement>(
-        wanted, [name = s.local_name, port = wanted.port](const Announcement& made, const std::string& why_not) {
-            if (!why_not.empty()) {
-                std::cout << "announced: nowhere (" << why_not << "); phones find this screen by its address only\n"
-                          << std::flush;
-                return;
-            }
-            name->set(made.host_name);
-            std::cout << "announced: \"" << made.instance << "\" (" << kServiceType << ") at https://"
-                      << made.host_name << ":" << port << " through Avahi\n"
-                      << std::flush;
-        });
+    s.announcement = announce_on_network(s.server->port(), s.identity.fingerprint, s.local_name);
 }
 
 void print_banner(const cli::Args& a, const Serving& s) {
@@ -508,7 +383,7 @@ void print_banner(const cli::Args& a, const Serving& s) {
                                                  : "")
                       : std::string("off"))
               << "\n";
-    print_trust(s, std::cout);
+    print_where_served(s.bind, s.server->port(), s.names, s.identity.fingerprint, std::cout);
     if (!has_flag(a, "no-qr")) std::cout << qr_text(s.url);
     std::cout << "pairing URL: " << s.url << "\n" << std::flush;
     for (const auto& line : describe_desktop(s.desktop)) std::cout << line << "\n";
@@ -589,7 +464,7 @@ int run_serve(const cli::Args& a, const ServeHooks& hooks) {
         return e.code;
     }
     print_banner(a, s);
-    announce_on_network(a, s);
+    announce(a, s);
     return run_until_stopped(a, hooks, s);
 }
 

@@ -14,6 +14,7 @@
 #include "content/window_resolver.hpp"
 #include "field_overlay/overlay_manager.hpp"
 #include "put/put_folder.hpp"
+#include "content/shared_items_file.hpp"
 #include "put/trusted_devices.hpp"
 
 namespace umf::provider {
@@ -101,6 +102,39 @@ void add_window_resolvers(const OpenedDesktop& desktop, OverlayManager* overlay,
             [set_shown] { set_shown(true, Qt::QueuedConnection); });
     }
     resolvers.push_back(std::move(snapshots));
+}
+
+// PREFIX/share/umf/web for an installed provider (found from the program's
+// own place, so any prefix works), else the build tree's web/site.
+std::optional<std::filesystem::path> default_web_dir() {
+    std::error_code ec;
+    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    if (!ec) {
+        const auto installed = self.parent_path().parent_path() / "share" / "umf" / "web";
+        if (std::filesystem::is_regular_file(installed / "index.html", ec)) return installed;
+    }
+#ifdef UMF_WEB_SITE_DIR
+    if (std::filesystem::is_directory(UMF_WEB_SITE_DIR, ec)) return std::filesystem::path(UMF_WEB_SITE_DIR);
+#endif
+    return std::nullopt;
+}
+
+// What was shared before this provider was started again by its keeper
+// comes back, and every change is written down for the next one.
+void keep_shared_items(SharedItems& items, const std::filesystem::path& file) {
+    try {
+        const int restored = items.restore(load_shared_items(file));
+        if (restored > 0) std::cout << "shared: " << restored << " item(s) shared before are served again\n";
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: " << e.what() << "; the items shared before are gone\n";
+    }
+    items.on_change([file](const std::vector<SharedItem>& now) {
+        try {
+            save_shared_items(file, now);
+        } catch (const std::exception& e) {
+            std::cerr << "umf-provider: " << e.what() << "; shared items will not survive a restart\n";
+        }
+    });
 }
 
 }  // namespace umf::provider

@@ -1,15 +1,18 @@
 // Named steps of `umf-provider serve` (serve_command.cpp composes them):
-// the put settings from the command line, who answers puts, and the
-// resolvers that look into a desktop's windows.
+// the put settings from the command line, who answers puts, the resolvers
+// that look into a desktop's windows, the web client's folder and the
+// shared items kept across restarts.
 #pragma once
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "cli/args.hpp"
 #include "content/resolver.hpp"
+#include "content/shared_items.hpp"
 #include "desktop/open_desktop.hpp"
 #include "put/put_deciders.hpp"
 #include "put/put_prompt_window.hpp"
@@ -47,5 +50,13 @@ PutAnswerers put_answerers(const PutChoice& puts, bool headless, OverlayManager*
 void add_window_resolvers(const OpenedDesktop& desktop, OverlayManager* overlay, PutPromptDecider* cards,
                           std::vector<std::shared_ptr<const Resolver>>& resolvers,
                           std::shared_ptr<BrowserLink>& browser_link, std::shared_ptr<BrowserResolver>& browsers);
+
+// PREFIX/share/umf/web for an installed provider (found from the program's
+// own place, so any prefix works), else the build tree's web/site.
+std::optional<std::filesystem::path> default_web_dir();
+
+// What was shared before this provider was started again by its keeper
+// comes back from `file`, and every change is written there for the next one.
+void keep_shared_items(SharedItems& items, const std::filesystem::path& file);
 
 }  // namespace umf::provider

@@ -41,8 +41,8 @@ std::string mime_with_charset(const std::filesystem::path& file) {
 }  // namespace
 
 StaticSite::StaticSite() {
-    files_["/index.html"] = {"text/html; charset=utf-8", std::make_shared<const std::string>(kBuiltInPage)};
-    files_["/umf-provider.css"] = {"text/css; charset=utf-8", std::make_shared<const std::string>(kBuiltInStyle)};
+    files_["/index.html"] = {"text/html; charset=utf-8", std::make_shared<const std::string>(kBuiltInPage), {}};
+    files_["/umf-provider.css"] = {"text/css; charset=utf-8", std::make_shared<const std::string>(kBuiltInStyle), {}};
 }
 
 StaticSite StaticSite::from_folder(const std::filesystem::path& root) {
@@ -69,7 +69,7 @@ StaticSite StaticSite::from_folder(const std::filesystem::path& root) {
         total += bytes.str().size();
         if (total > kMaxTotalBytes) throw std::runtime_error("the web folder is larger than 64 MiB");
         site.files_["/" + rel.generic_string()] = {mime_with_charset(it->path()),
-                                                   std::make_shared<const std::string>(std::move(bytes).str())};
+                                                   std::make_shared<const std::string>(std::move(bytes).str()), {}};
     }
     if (!site.files_.count("/index.html")) {
         // A web client still being built (the detector alone): "/" keeps the

@@ -1,0 +1,93 @@
+#include "commands/serve_reach.hpp"
+
+#include <iostream>
+
+#include "server/server.hpp"
+#include "trust/root_export.hpp"
+
+namespace umf::provider {
+
+std::string LocalName::get() const {
+    std::lock_guard lock(mutex_);
+    return announced_.empty() ? local_host_name() : announced_;
+}
+
+void LocalName::set(const std::string& name) {
+    std::lock_guard lock(mutex_);
+    announced_ = name;
+}
+
+std::unique_ptr<CertificateKeeper> keep_certificate(const std::filesystem::path& config_dir, Server& server,
+                                                    std::shared_ptr<const LocalName> name, ServingNames served) {
+    CertificateKeeper::Settings settings;
+    settings.config_dir = config_dir;
+    settings.names = [name = std::move(name)] { return serving_names(name->get(), current_addresses()); };
+    settings.issued = [&server](const TlsIdentity& identity, const std::string& why) {
+        try {
+            server.replace_identity(identity);
+            std::cout << "certificate: issued again by the screen's root (" << why << ")\n" << std::flush;
+        } catch (const std::exception& e) {
+            std::cerr << "umf-provider: the certificate issued again cannot be served: " << e.what() << "\n";
+        }
+    };
+    settings.failed = [](const std::string& error) {
+        std::cerr << "umf-provider: cannot issue the certificate again: " << error << "; the old one serves on\n";
+    };
+    return std::make_unique<CertificateKeeper>(std::move(settings), std::move(served));
+}
+
+void offer_root(StaticSite& site, const RootAuthority& root) {
+    site.add(kRootDerPath, {"application/x-x509-ca-cert",
+                            std::make_shared<const std::string>(export_root(root, RootForm::der)), "umf-root.crt"});
+    site.add(kRootProfilePath, {"application/x-apple-aspen-config",
+                                std::make_shared<const std::string>(export_root(root, RootForm::mobileconfig)),
+                                "umf-root.mobileconfig"});
+}
+
+std::unique_ptr<AvahiAnnouncement> announce_on_network(unsigned short port, const std::string& fingerprint,
+                                                       std::shared_ptr<LocalName> name) {
+    Announcement wanted;
+    const std::string host = local_host_name();
+    wanted.instance = "umf on " + (host.empty() ? std::string("this screen") : host.substr(0, host.find('.')));
+    wanted.port = port;
+    wanted.txt = {"v=1", "fp=" + fingerprint};
+    return std::make_unique<AvahiAnnouncement>(
+        wanted, [name = std::move(name), port](const Announcement& made, const std::string& why_not) {
+            if (!why_not.empty()) {
+                std::cout << "announced: nowhere (" << why_not << "); phones find this screen by its address only\n"
+                          << std::flush;
+                return;
+            }
+            name->set(made.host_name);
+            std::cout << "announced: \"" << made.instance << "\" (" << kServiceType << ") at https://"
+                      << made.host_name << ":" << port << " through Avahi\n"
+                      << std::flush;
+        });
+}
+
+void print_where_served(const std::string& bind, unsigned short port, const ServingNames& names,
+                        const std::string& fingerprint, std::ostream& out) {
+    // 0.0.0.0 listens on IPv4 only; "::" on both.
+    const bool all_v4 = bind == "0.0.0.0", all = all_v4 || bind == "::";
+    const bool loopback = bind == "127.0.0.1" || bind == "::1";
+    std::string where;
+    for (const auto& d : names.dns)
+        if (all || (loopback && d == "localhost")) where += " https://" + d + ":" + std::to_string(port);
+    for (const auto& address : names.addresses) {
+        const bool v6 = address.find(':') != std::string::npos;
+        if (all ? (all_v4 && v6) : address != bind) continue;
+        where += " https://" + (v6 ? "[" + address + "]" : address) + ":" + std::to_string(port);
+    }
+    out << "serving at:" << where << "\n";
+    std::string list;
+    for (const auto& a : names.not_covered)
+        if (all && !(all_v4 && a.find(':') != std::string::npos)) list += (list.empty() ? "" : ", ") + a;
+    if (!list.empty())
+        out << "  also at " << list << ", which the screen's root may not vouch for (not a private address): "
+            << "phones there see a certificate warning\n";
+    out << "screen root (SHA-256): " << fingerprint
+        << "\n  phones that trust it open the page without a warning: \"Trust this screen\" on the phone page, "
+           "or umf-provider trust\n";
+}
+
+}  // namespace umf::provider
