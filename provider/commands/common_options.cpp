@@ -59,6 +59,12 @@ std::string url_host(const Args& a, const std::string& bind) {
     return bind;
 }
 
+bool is_loopback(const std::string& host) { return host == "127.0.0.1" || host == "::1" || host == "localhost"; }
+
+std::string https_origin(const std::string& host, unsigned short port) {
+    return "https://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" + std::to_string(port);
+}
+
 std::pair<int, int> screen_size_option(const Args& a, const std::string& name, std::pair<int, int> fallback) {
     auto v = get(a, name);
     if (!v) return fallback;

@@ -31,6 +31,14 @@ std::filesystem::path config_dir_option(const cli::Args& a);
 // all addresses.
 std::string url_host(const cli::Args& a, const std::string& bind);
 
+// True for an address or name of this machine alone (127.0.0.1, ::1,
+// localhost): a provider bound there serves no phone, so it announces
+// nothing and its pairing URL names no .local name.
+bool is_loopback(const std::string& host);
+
+// "https://HOST:PORT", an IPv6 address in brackets.
+std::string https_origin(const std::string& host, unsigned short port);
+
 // "1920x1080" -> {1920, 1080}; UsageError otherwise.
 std::pair<int, int> screen_size_option(const cli::Args& a, const std::string& name, std::pair<int, int> fallback);
 

@@ -40,9 +40,9 @@ int run_pair(const cli::Args& a) {
         }
         const TlsIdentity identity = load_or_create_tls_identity(dir);
         const std::string token = load_or_create_token(dir, has_flag(a, "rotate"));
-        const bool local_only = host == "127.0.0.1" || host == "::1" || host == "localhost";
         const std::string name = local_host_name();
-        const std::string url = pairing_url(host, port, token, identity.fingerprint, local_only || host == name ? "" : name);
+        const std::string url =
+            pairing_url(host, port, token, identity.fingerprint, is_loopback(host) || host == name ? "" : name);
         if (!has_flag(a, "no-qr")) std::cout << qr_text(url);
         std::cout << url << "\n";
     } catch (const std::exception& e) {

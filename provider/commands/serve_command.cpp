@@ -102,6 +102,7 @@ struct Serving {
     PutChoice puts;
     // Identity, screen, board and preset.
     TlsIdentity identity;
+    RootAuthority root;  // the identity's root, offered to the phone page
     ServingNames names;  // what the serving certificate names
     std::string token;
     int width = 1920, height = 1080;
@@ -162,6 +163,7 @@ void load_identity(Serving& s) {
         s.names = current_serving_names();
         const LoadedIdentity loaded = load_or_issue_tls_identity(s.dir, s.names, std::chrono::system_clock::now());
         s.identity = loaded.identity;
+        s.root = loaded.root;
         if (!loaded.issued_because.empty())
             std::cout << "certificate: issued by the screen's root (" << loaded.issued_because << ")\n";
         s.token = load_or_create_token(s.dir);
@@ -256,7 +258,7 @@ void load_web_client(const cli::Args& a, Serving& s) {
         s.web_dir = default_web_dir();
     try {
         auto site = std::make_shared<StaticSite>(s.web_dir ? StaticSite::from_folder(*s.web_dir) : StaticSite());
-        offer_root(*site, load_or_create_root(s.dir));
+        offer_root(*site, s.root);
         s.site = std::move(site);
     } catch (const std::exception& e) {
         throw ServeFailure(kConfigError, e.what());
@@ -340,16 +342,16 @@ void start_server(const ServeHooks& hooks, Serving& s) {
     } catch (const std::exception& e) {
         throw ServeFailure(kServeError, e.what());
     }
-    // The .local name goes along (tried first by requesters) unless this
-    // provider serves its own machine only.
-    const bool local_only = s.bind == "127.0.0.1" || s.bind == "::1";
+    // The .local name goes along (requesters try it when the address fails)
+    // unless this provider serves its own machine only.
+    const std::string name = s.local_name->get();
     s.url = pairing_url(s.host, s.server->port(), s.token, s.identity.fingerprint,
-                        local_only || s.host == s.local_name->get() ? std::string() : s.local_name->get());
+                        is_loopback(s.bind) || s.host == name ? std::string() : name);
 }
 
 // A provider that serves this machine only announces nothing.
 void announce(const cli::Args& a, Serving& s) {
-    if (s.bind == "127.0.0.1" || s.bind == "::1" || has_flag(a, "no-announce")) return;
+    if (is_loopback(s.bind) || has_flag(a, "no-announce")) return;
     s.announcement = announce_on_network(s.server->port(), s.identity.fingerprint, s.local_name);
 }
 

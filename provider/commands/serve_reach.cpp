@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "commands/common_options.hpp"
 #include "server/server.hpp"
 #include "trust/root_export.hpp"
 
@@ -69,15 +70,12 @@ void print_where_served(const std::string& bind, unsigned short port, const Serv
                         const std::string& fingerprint, std::ostream& out) {
     // 0.0.0.0 listens on IPv4 only; "::" on both.
     const bool all_v4 = bind == "0.0.0.0", all = all_v4 || bind == "::";
-    const bool loopback = bind == "127.0.0.1" || bind == "::1";
     std::string where;
     for (const auto& d : names.dns)
-        if (all || (loopback && d == "localhost")) where += " https://" + d + ":" + std::to_string(port);
-    for (const auto& address : names.addresses) {
-        const bool v6 = address.find(':') != std::string::npos;
-        if (all ? (all_v4 && v6) : address != bind) continue;
-        where += " https://" + (v6 ? "[" + address + "]" : address) + ":" + std::to_string(port);
-    }
+        if (all || (is_loopback(bind) && d == "localhost")) where += " " + https_origin(d, port);
+    for (const auto& address : names.addresses)
+        if (all ? !(all_v4 && address.find(':') != std::string::npos) : address == bind)
+            where += " " + https_origin(address, port);
     out << "serving at:" << where << "\n";
     std::string list;
     for (const auto& a : names.not_covered)

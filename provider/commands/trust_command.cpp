@@ -42,8 +42,7 @@ int export_to(const RootAuthority& root, const cli::Args& a, std::ostream& out, 
 void describe(const RootAuthority& root, const cli::Args& a, std::ostream& out) {
     const unsigned short port = running_provider_port(a).value_or(kDefaultPort);
     const std::string host = url_host(a, "0.0.0.0");
-    const std::string origin = "https://" + (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" +
-                               std::to_string(port);
+    const std::string origin = https_origin(host, port);
     out << "screen root (SHA-256): " << root.fingerprint << "\n"
         << "  for people:          " << fingerprint_for_people(root.fingerprint) << "\n"
         << "It may vouch only for .local names, localhost and private, link-local and loopback addresses.\n"

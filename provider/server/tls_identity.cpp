@@ -1,6 +1,5 @@
 #include "server/tls_identity.hpp"
 
-#include "native/certificate_fingerprint.hpp"
 #include "native/openssl_error.hpp"
 
 #include <openssl/err.h>
@@ -25,17 +24,6 @@ struct CurrentIdentity::Parsed {
         EVP_PKEY_free(key);
     }
 };
-
-std::string certificate_fingerprint(const std::string& certificate_pem) {
-    BIO* bio = BIO_new_mem_buf(certificate_pem.data(), static_cast<int>(certificate_pem.size()));
-    X509* cert = bio ? PEM_read_bio_X509(bio, nullptr, nullptr, nullptr) : nullptr;
-    BIO_free(bio);
-    if (!cert) throw TlsIdentityError("not a PEM certificate" + take_openssl_error());
-    std::string fp = native::certificate_fingerprint(cert);
-    X509_free(cert);
-    if (fp.empty()) throw TlsIdentityError("cannot encode the certificate" + take_openssl_error());
-    return fp;
-}
 
 namespace {
 

@@ -28,10 +28,6 @@ struct TlsIdentity {
     std::string fingerprint;      // what pairing pins: SHA-256 of the root's DER, 64 lowercase hex digits
 };
 
-// SHA-256 of the first certificate in `pem`, as 64 lowercase hex digits.
-// Throws TlsIdentityError.
-std::string certificate_fingerprint(const std::string& certificate_pem);
-
 // The identity new connections are served with, parsed once; replace() is
 // safe while handshakes run on other threads.
 class CurrentIdentity {

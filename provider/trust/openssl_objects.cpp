@@ -4,6 +4,7 @@
 #include <openssl/pem.h>
 #include <openssl/rand.h>
 
+#include "native/certificate_fingerprint.hpp"
 #include "native/openssl_error.hpp"
 #include "server/tls_identity.hpp"
 
@@ -72,6 +73,13 @@ std::string certificate_der(X509* certificate) {
     std::string out(reinterpret_cast<const char*>(der), static_cast<std::size_t>(len));
     OPENSSL_free(der);
     return out;
+}
+
+std::string certificate_fingerprint(const std::string& pem) {
+    X509Ptr cert = read_certificate(pem);
+    std::string fp = native::certificate_fingerprint(cert.get());
+    if (fp.empty()) throw_openssl_error("cannot encode the certificate");
+    return fp;
 }
 
 PKeyPtr new_ec_key() {

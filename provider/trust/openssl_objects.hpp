@@ -34,6 +34,10 @@ std::string certificate_pem(X509* certificate);
 std::string private_key_pem(EVP_PKEY* key);
 std::string certificate_der(X509* certificate);
 
+// SHA-256 of the first certificate in `pem`, as 64 lowercase hex digits,
+// as pairing pins it.
+std::string certificate_fingerprint(const std::string& pem);
+
 // A new EC P-256 key pair.
 PKeyPtr new_ec_key();
 

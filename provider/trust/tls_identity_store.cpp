@@ -80,6 +80,7 @@ LoadedIdentity load_or_issue_tls_identity(const std::filesystem::path& dir, cons
                                           std::chrono::system_clock::time_point now) {
     const RootAuthority root = load_or_create_root(dir);
     LoadedIdentity loaded;
+    loaded.root = root;
     ServingCertificate serving;
     try {
         if (auto kept = read_pair(dir, kServingCertificateFile, kServingKeyFile, "serving certificate"))

@@ -38,6 +38,7 @@ void remove_root(const std::filesystem::path& dir);
 
 struct LoadedIdentity {
     TlsIdentity identity;
+    RootAuthority root;  // the identity's root
     std::string issued_because;  // why the serving certificate was issued now; empty when the kept one serves
 };
 

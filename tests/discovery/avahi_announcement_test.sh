@@ -26,7 +26,7 @@ ip link set umf1 up
 ip link set umf0 multicast on up
 ip addr add 10.78.0.1/24 dev umf0
 work=$(mktemp -d /tmp/umf-avahi-XXXXXX)
-source "$(dirname "$0")/../trust/provider_run.sh"
+source "$(dirname "$0")/../support/provider_run.sh"
 daemons=()
 cleanup() {
   stop_provider

@@ -6,12 +6,8 @@
 set -euo pipefail
 build=$1
 prefix=$(mktemp -d /tmp/umf-install-XXXXXX)
-provider_pid=
-cleanup() {
-  [ -n "$provider_pid" ] && kill "$provider_pid" 2>/dev/null && wait "$provider_pid" 2>/dev/null
-  rm -rf "$prefix"
-}
-trap cleanup EXIT
+source "$(dirname "$0")/../support/provider_run.sh"
+trap 'stop_provider; rm -rf "$prefix"' EXIT
 
 cmake --install "$build" --prefix "$prefix" >/dev/null
 for f in bin/umf-provider bin/umf-requester bin/umf-browser-host share/umf/web/index.html share/umf/web/app.js \
@@ -31,24 +27,13 @@ HOME="$prefix/home" "$prefix/bin/umf-provider" browser install --system --prefix
 [ -f "$prefix/root/usr/lib/mozilla/native-messaging-hosts/org.umf.browser.json" ] ||
   { echo "FAIL: browser install --system --prefix wrote no Firefox manifest"; exit 1; }
 
-# The log exists before the provider starts: the background child opens it
-# only after the fork, and a first read that finds no file would end the test.
-: >"$prefix/provider.log"
-"$prefix/bin/umf-provider" --headless --port 0 --config-dir "$prefix/cfg" --no-qr --puts never \
-  >>"$prefix/provider.log" 2>&1 &
-provider_pid=$!
-url=
-for _ in $(seq 100); do
-  url=$(sed -n 's/^pairing URL: //p' "$prefix/provider.log")
-  [ -n "$url" ] && break
-  sleep 0.1
-done
-[ -n "$url" ] || { echo "FAIL: no pairing URL"; cat "$prefix/provider.log"; exit 1; }
+# Run from the prefix: the installed program, not the build tree's.
+bin=$prefix/bin
+start_provider "$prefix/provider.log" --config-dir "$prefix/cfg"
 # The build tree has a web client too: the installed one must win.
 if ! grep -q "^web client: $prefix/share/umf/web " "$prefix/provider.log"; then
   echo "FAIL: the installed provider did not take the installed web client:"; cat "$prefix/provider.log"; exit 1
 fi
-origin=${url%%/#*}
 page=$(curl -sk "$origin/")
 if ! grep -q 'app.js' <<<"$page"; then
   echo "FAIL: the installed provider served another page at /:"; head -c 600 <<<"$page"; exit 1

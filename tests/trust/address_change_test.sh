@@ -16,7 +16,7 @@ if [ "${UMF_IN_NETNS:-}" != 1 ]; then
 fi
 ip link set lo up
 work=$(mktemp -d /tmp/umf-address-XXXXXX)
-source "$(dirname "$0")/provider_run.sh"
+source "$(dirname "$0")/../support/provider_run.sh"
 trap 'stop_provider; rm -rf "$work"' EXIT
 
 # One link over the whole screen, and the screen as shown, for a grab.

@@ -8,7 +8,7 @@
 set -euo pipefail
 bin=$1/bin
 work=$(mktemp -d /tmp/umf-root-XXXXXX)
-source "$(dirname "$0")/provider_run.sh"
+source "$(dirname "$0")/../support/provider_run.sh"
 trap 'stop_provider; rm -rf "$work"' EXIT
 
 start_provider "$work/provider.log" --config-dir "$work/cfg"

@@ -1,6 +1,7 @@
-# Sourced by the trust and discovery tests: start_provider LOG ARGS... starts
-# umf-provider headless in the background (killed when the test ends) and
-# waits for its pairing URL; sets $provider_pid, $url, $port and $origin.
+# Sourced by the shell tests that run a provider (tests/trust, discovery,
+# install): start_provider LOG ARGS... starts $bin/umf-provider headless in
+# the background (stop_provider ends it) and waits for its pairing URL; sets
+# $provider_pid, $url, $port and $origin.
 provider_pid=
 stop_provider() {
   if [ -n "$provider_pid" ]; then
