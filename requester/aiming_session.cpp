@@ -34,14 +34,6 @@ bool has_display() {
     return false;
 }
 
-double parse_seconds(const std::string& text) {
-    char* end = nullptr;
-    const double s = std::strtod(text.c_str(), &end);
-    if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(s) || s <= 0 || s > 86400)
-        throw UsageError("--timeout must be a number of seconds within (0, 86400], not '" + text + "'");
-    return s;
-}
-
 int parse_camera(const std::string& text) {
     if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string::npos)
         throw UsageError("--camera must be a camera number 0..999, not '" + text + "'");

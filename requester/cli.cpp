@@ -67,6 +67,13 @@ Args parse_args(int argc, char** argv, int first, const std::vector<std::string>
     return a;
 }
 
+double parse_seconds(const std::string& text) {
+    const auto s = to_number(text);
+    if (!s || *s <= 0 || *s > 86400)
+        throw UsageError("--timeout must be a number of seconds within (0, 86400], not '" + text + "'");
+    return *s;
+}
+
 std::pair<double, double> parse_point(const std::string& option, const std::string& text) {
     const auto comma = text.find(',');
     if (comma != std::string::npos) {

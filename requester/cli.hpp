@@ -13,9 +13,12 @@ namespace umf::requester {
 enum Exit {
     kOk = 0,         // the command ran; per-frame trouble is reported in its output
     kUsage = 2,      // wrong usage
-    kInputError = 3,  // the field file, the video or the output could not be read or written
-    kConnection = 4,  // grab: the provider could not be reached, its certificate or its replies were wrong
-    kNothing = 5      // grab: nothing was grabbed (no field in view, nothing at the point, refused)
+    kInputError = 3,  // the field file, the video or the output could not be read or written;
+                      // discover: built without Avahi
+    kConnection = 4,  // grab: the provider could not be reached, its certificate or its replies were wrong;
+                      // discover: the Avahi daemon could not be asked
+    kNothing = 5      // grab: nothing was grabbed (no field in view, nothing at the point, refused);
+                      // discover: no screen answered
 };
 
 // Wrong usage: main prints it with a pointer to --help and exits with kUsage.
@@ -46,5 +49,8 @@ Args parse_args(int argc, char** argv, int first, const std::vector<std::string>
 
 // "X,Y" as two finite numbers; throws UsageError naming the option.
 std::pair<double, double> parse_point(const std::string& option, const std::string& text);
+
+// "--timeout S": a number of seconds within (0, 86400]; throws UsageError.
+double parse_seconds(const std::string& text);
 
 }  // namespace umf::requester

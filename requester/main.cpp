@@ -10,6 +10,7 @@
 #include <opencv2/core/utils/logger.hpp>
 
 #include "cli.hpp"
+#include "discover_command.hpp"
 #include "field/field_io.hpp"
 #include "grab_command.hpp"
 #include "locate_command.hpp"
@@ -27,6 +28,7 @@ usage:
                      [--out DIR] [--open] [--auto] [--no-window] [--timeout S]
   umf-requester put FILE|LINK --url URL [--title TEXT]
                     [--camera I | --video FILE | --image FILE] [--auto] [--no-window] [--timeout S]
+  umf-requester discover [--timeout S] [--json] [--url URL]
   umf-requester help [COMMAND]
   umf-requester COMMAND --help
 
@@ -38,13 +40,18 @@ grab      connects to a provider (its pairing URL), finds its field in the camer
           centre: prints a link, downloads a file. One JSON line at the end.
 put       the other way round: gives the screen a file or a link where the camera
           points; the person at the screen accepts it. One JSON line at the end.
+discover  lists the screens that announce themselves on the local network (DNS-SD
+          through Avahi): name, https://HOST.local:PORT, addresses and the root's
+          fingerprint, one line each (--json: one JSON object each).
 
 exit codes: 0 the command ran (locate: frames without the field are reported, not
-            failed; grab and put: something was grabbed or put); 2 wrong usage;
-            3 an input could not be read, or the output could not be written;
-            grab and put only: 4 the provider could not be reached, its
-            certificate or token did not match, or the exchange failed; 5 nothing
-            was grabbed or put (no field in view, nothing there, refused).
+            failed; grab and put: something was grabbed or put; discover: a
+            screen was found); 2 wrong usage; 3 an input could not be read, or
+            the output could not be written (discover: built without Avahi);
+            grab and put: 4 the provider could not be reached, its certificate
+            or token did not match, or the exchange failed; 5 nothing was
+            grabbed or put (no field in view, nothing there, refused);
+            discover: 4 the Avahi daemon could not be asked; 5 no screen answered.
 )";
 
 struct Command {
@@ -78,10 +85,13 @@ int put(int argc, char** argv) {
     return run_put(options, stdout);
 }
 
+int discover(int argc, char** argv) { return run_discover(parse_discover_args(argc, argv, 2), stdout); }
+
 const Command kCommands[] = {
     {"locate", kLocateUsage, locate},
     {"grab", kGrabUsage, grab},
     {"put", kPutUsage, put},
+    {"discover", kDiscoverUsage, discover},
 };
 
 const Command* find_command(const std::string& name) {

@@ -24,10 +24,10 @@ packages=(
   # and the compositors the desktop tests run headless (Sway with foot and
   # Xwayland, GNOME Shell with the umf extension, KWin, weston), grim, D-Bus
   libwayland-dev wayland-protocols sway grim foot xwayland weston dbus dbus-daemon gnome-shell kwin-wayland
-  # the provider announces itself over DNS-SD through Avahi, and requesters resolve .local
-  # names through nss-mdns; the tests run a daemon and its tools in network namespaces of
-  # their own (iproute2)
-  avahi-daemon avahi-utils libnss-mdns iproute2
+  # the provider announces itself over DNS-SD through Avahi, umf-requester discover browses
+  # with libavahi-client, and requesters resolve .local names through nss-mdns; the tests run
+  # a daemon and its tools in network namespaces of their own (iproute2)
+  avahi-daemon libavahi-client-dev avahi-utils libnss-mdns iproute2
 )
 
 # node and npm may come from another repository whose nodejs bundles npm

@@ -27,10 +27,10 @@ ip link set umf0 multicast on up
 ip addr add 10.78.0.1/24 dev umf0
 work=$(mktemp -d /tmp/umf-avahi-XXXXXX)
 source "$(dirname "$0")/../support/provider_run.sh"
-daemons=()
+source "$(dirname "$0")/../support/avahi_namespace.sh"
 cleanup() {
   stop_provider
-  for pid in "${daemons[@]}"; do kill "$pid" 2>/dev/null || true; done
+  stop_avahi "$work"
   wait 2>/dev/null || true
   rm -rf "$work"
 }
@@ -44,42 +44,19 @@ grep -q '^announced: nowhere (.*); phones find this screen by its address only$'
   { echo "FAIL: a provider without Avahi did not say so:"; cat "$work/alone.log"; exit 1; }
 curl -sk -o /dev/null "$origin/" || { echo "FAIL: the provider without Avahi does not serve"; exit 1; }
 echo "ok: without Avahi: $(grep '^announced: ' "$work/alone.log")"
+# umf-requester discover asks the same missing Avahi: it says so, and that the pairing URL still works.
+rc=0
+"$bin/umf-requester" discover >"$work/discover.out" 2>"$work/discover.err" || rc=$?
+[ "$rc" = 4 ] && [ ! -s "$work/discover.out" ] &&
+  grep -qx 'discover: cannot ask Avahi (.*); is avahi-daemon running? A screen can still be reached by its pairing URL\.' "$work/discover.err" ||
+  { echo "FAIL: discover without Avahi exited $rc, not 4 with its message:"; cat "$work/discover.out" "$work/discover.err"; exit 1; }
+echo "ok: discover without Avahi exits 4: $(cat "$work/discover.err")"
 stop_provider
 
-# A private system bus (avahi-daemon reads DBUS_SYSTEM_BUS_ADDRESS) and the daemon on umf0 only.
-cat >"$work/bus.conf" <<XML
-<!DOCTYPE busconfig PUBLIC "-//freedesktop//DTD D-Bus Bus Configuration 1.0//EN"
- "http://www.freedesktop.org/standards/dbus/1.0/busconfig.dtd">
-<busconfig>
-  <type>system</type>
-  <listen>unix:path=$work/bus</listen>
-  <auth>EXTERNAL</auth>
-  <policy context="default">
-    <allow user="*"/> <allow own="*"/> <allow send_destination="*"/> <allow receive_sender="*"/>
-  </policy>
-</busconfig>
-XML
-cat >"$work/avahi.conf" <<CONF
-[server]
-use-ipv4=yes
-use-ipv6=no
-allow-interfaces=umf0
-enable-dbus=yes
-[wide-area]
-enable-wide-area=no
-[publish]
-publish-hinfo=no
-publish-workstation=no
-CONF
-dbus-daemon --config-file="$work/bus.conf" --nofork >"$work/bus.log" 2>&1 &
-daemons+=($!)
-for _ in $(seq 50); do [ -S "$work/bus" ] && break; sleep 0.1; done
-# The daemon's pid file and runtime socket go to /run/avahi-daemon, private to this mount namespace.
+# A private system bus at $work/bus (avahi-daemon reads DBUS_SYSTEM_BUS_ADDRESS) and the
+# daemon on umf0 only, its pid file and runtime socket in a /run private to this mount namespace.
 mount -t tmpfs tmpfs /run
-avahi-daemon --no-drop-root --no-chroot --no-rlimits -f "$work/avahi.conf" >"$work/avahi.log" 2>&1 &
-daemons+=($!)
-for _ in $(seq 100); do grep -q 'Server startup complete' "$work/avahi.log" && break; sleep 0.1; done
-grep -q 'Server startup complete' "$work/avahi.log" || { echo "FAIL: avahi-daemon did not start:"; cat "$work/avahi.log"; exit 1; }
+start_avahi "$work" umf0
 
 # One link over the whole screen, and the screen as shown, for a grab.
 one_link_board "Found by name" https://example.org/found-by-name
@@ -111,8 +88,7 @@ echo "ok: the serving certificate verifies against the root for umf-screen-test.
 # it by the .local name the URL also carries (resolved through Avahi by
 # nss-mdns, as a desktop's resolver is set up).
 [[ $url == *"&n=umf-screen-test.local" ]] || { echo "FAIL: the pairing URL carries no .local name: $url"; exit 1; }
-if [ -e /usr/lib/x86_64-linux-gnu/libnss_mdns4_minimal.so.2 ] || ls /lib/*/libnss_mdns4_minimal.so.2 >/dev/null 2>&1; then
-  echo 'hosts: files mdns4_minimal [NOTFOUND=return] dns' >"$work/nsswitch.conf"
+if mdns_nsswitch "$work/nsswitch.conf"; then
   mount --bind "$work/nsswitch.conf" /etc/nsswitch.conf
   moved="https://10.78.0.99:$port/#${url#*#}"
   out=$("$bin/umf-requester" grab --url "$moved" --image "$work/screen.png" --no-window --out "$work/received" \
@@ -124,8 +100,34 @@ else
   exit 1
 fi
 
+# umf-requester discover lists the screen through the same daemon: its name, the
+# .local name and port, the address and the root's fingerprint; --url marks it paired.
+listed=$("$bin/umf-requester" discover 2>"$work/discover.err") ||
+  { echo "FAIL: discover did not find the screen:"; cat "$work/discover.err"; exit 1; }
+[ "$listed" = "umf on umf-screen-test  https://umf-screen-test.local:$port  10.78.0.1  fp $fp" ] ||
+  { echo "FAIL: discover lists something else: $listed"; exit 1; }
+listed_json=$("$bin/umf-requester" discover --json 2>"$work/discover.err") ||
+  { echo "FAIL: discover --json did not find the screen:"; cat "$work/discover.err"; exit 1; }
+[ "$listed_json" = "{\"name\":\"umf on umf-screen-test\",\"host\":\"umf-screen-test.local\",\"port\":$port,\"addresses\":[\"10.78.0.1\"],\"fingerprint\":\"$fp\",\"version\":\"1\"}" ] ||
+  { echo "FAIL: discover --json lists something else: $listed_json"; exit 1; }
+paired=$("$bin/umf-requester" discover --url "$url" 2>"$work/discover.err") ||
+  { echo "FAIL: discover --url did not find the screen:"; cat "$work/discover.err"; exit 1; }
+[ "$paired" = "$listed  (paired)" ] || { echo "FAIL: discover --url does not mark the screen paired: $paired"; exit 1; }
+paired_json=$("$bin/umf-requester" discover --json --url "$url" 2>"$work/discover.err") ||
+  { echo "FAIL: discover --json --url did not find the screen:"; cat "$work/discover.err"; exit 1; }
+[ "$paired_json" = "${listed_json%\}},\"paired\":true}" ] ||
+  { echo "FAIL: discover --json --url does not say paired: $paired_json"; exit 1; }
+if grep -q "$token" <<<"$listed $listed_json $paired $paired_json"; then echo "FAIL: discover shows the token"; exit 1; fi
+echo "ok: discover: $paired; --json: $listed_json"
+
 # Stopped, the provider withdraws its announcement.
 stop_provider
 sleep 1
 if avahi-browse -rpt _umf._tcp | grep -q '^='; then echo "FAIL: the announcement outlived the provider"; exit 1; fi
 echo "ok: the announcement is withdrawn when the provider stops"
+# Nothing announced any more: discover prints nothing and says so on stderr.
+rc=0
+"$bin/umf-requester" discover --timeout 1 >"$work/discover.out" 2>"$work/discover.err" || rc=$?
+[ "$rc" = 5 ] && [ ! -s "$work/discover.out" ] && grep -qx 'discover: no screen answered within 1 s' "$work/discover.err" ||
+  { echo "FAIL: discover with no screen exited $rc, not 5 with nothing listed:"; cat "$work/discover.out" "$work/discover.err"; exit 1; }
+echo "ok: discover --timeout 1 with no screen exits 5, nothing on stdout: $(cat "$work/discover.err")"

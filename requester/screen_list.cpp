@@ -1,0 +1,109 @@
+#include "screen_list.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <nlohmann/json.hpp>
+
+namespace umf::requester {
+
+namespace {
+
+using Json = nlohmann::ordered_json;
+
+bool same_key(const std::string& a, const std::string& b) {
+    return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](unsigned char x, unsigned char y) {
+               return std::tolower(x) == std::tolower(y);
+           });
+}
+
+bool is_ipv6(const std::string& address) { return address.find(':') != std::string::npos; }
+
+// IPv4 before IPv6: the address most likely to work from a laptop comes first.
+void sort_addresses(std::vector<std::string>& addresses) {
+    std::sort(addresses.begin(), addresses.end(), [](const std::string& a, const std::string& b) {
+        if (is_ipv6(a) != is_ipv6(b)) return !is_ipv6(a);
+        return a < b;
+    });
+    addresses.erase(std::unique(addresses.begin(), addresses.end()), addresses.end());
+}
+
+Screen screen_of(const ResolvedService& r) {
+    Screen s;
+    s.name = r.name;
+    s.host = r.host;
+    s.port = r.port;
+    if (auto fp = txt_value(r.txt, "fp"); fp && is_fingerprint(*fp)) s.fingerprint = *fp;
+    if (auto v = txt_value(r.txt, "v")) s.version = *v;
+    return s;
+}
+
+// A name is anyone's to choose on the network: no control character may
+// break the one-line-per-screen promise or move the terminal's cursor.
+std::string printable(std::string text) {
+    for (char& c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+    return text;
+}
+
+}  // namespace
+
+std::optional<std::string> txt_value(const std::vector<std::string>& txt, const std::string& key) {
+    for (const auto& record : txt) {
+        const auto eq = record.find('=');
+        if (!same_key(record.substr(0, eq), key)) continue;
+        // RFC 6763 6.4: only the first occurrence of a key counts, even a
+        // boolean one without a value.
+        if (eq == std::string::npos) return std::nullopt;
+        return record.substr(eq + 1);
+    }
+    return std::nullopt;
+}
+
+bool is_fingerprint(const std::string& text) {
+    return text.size() == 64 &&
+           std::all_of(text.begin(), text.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+}
+
+std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved, const std::string& paired_fingerprint) {
+    std::vector<Screen> screens;
+    std::map<std::string, std::size_t> by_name;
+    for (const auto& r : resolved) {
+        if (r.port == 0) continue;
+        auto [it, added] = by_name.try_emplace(r.name, screens.size());
+        if (added) screens.push_back(screen_of(r));
+        if (!r.address.empty()) screens[it->second].addresses.push_back(r.address);
+    }
+    for (auto& s : screens) {
+        sort_addresses(s.addresses);
+        s.paired = !paired_fingerprint.empty() && s.fingerprint == paired_fingerprint;
+    }
+    std::sort(screens.begin(), screens.end(), [](const Screen& a, const Screen& b) { return a.name < b.name; });
+    return screens;
+}
+
+std::string screen_line(const Screen& s) {
+    std::string addresses;
+    for (const auto& a : s.addresses) addresses += (addresses.empty() ? "" : ",") + a;
+    std::string line = printable(s.name) + "  https://" + printable(s.host) + ":" + std::to_string(s.port) + "  " +
+                       printable(addresses.empty() ? "-" : addresses) + "  " +
+                       (s.fingerprint.empty() ? "no fingerprint" : "fp " + s.fingerprint);
+    if (s.paired) line += "  (paired)";
+    return line;
+}
+
+std::string screen_json(const Screen& s, bool with_paired) {
+    Json j;
+    j["name"] = s.name;
+    j["host"] = s.host;
+    j["port"] = s.port;
+    j["addresses"] = s.addresses;
+    if (!s.fingerprint.empty()) j["fingerprint"] = s.fingerprint;
+    if (!s.version.empty()) j["version"] = s.version;
+    if (with_paired) j["paired"] = s.paired;
+    // Names come from the network, and nlohmann throws on bytes that are not
+    // UTF-8 unless told to replace them.
+    return j.dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+}  // namespace umf::requester
