@@ -19,7 +19,10 @@ constexpr const char* kShareUnavailable = "/?share=unavailable";
 // and talks to its own origin over https: and wss:. 'self' covers wss: to the
 // same host and port only in browsers that follow CSP Level 3 on this point,
 // so the WebSocket's own origin is named as well, from the Host header the
-// page was loaded with (when it is a plain host[:port]).
+// page was loaded with (when it is a plain host[:port]). A page opened by
+// address also asks the screen's .local name on the same port whether it
+// answers there (web/site/screen_name.js), so https: to .local names on
+// that port is allowed too, and no further.
 std::string content_security_policy(beast::string_view host) {
     std::string connect = "'self'";
     const bool plain_host = !host.empty() && host.size() <= 262 &&
@@ -27,7 +30,12 @@ std::string content_security_policy(beast::string_view host) {
                                 return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ||
                                        c == ':' || c == '[' || c == ']';
                             });
-    if (plain_host) connect += " wss://" + std::string(host);
+    if (plain_host) {
+        connect += " wss://" + std::string(host);
+        const auto colon = host.rfind(':');
+        if (colon != beast::string_view::npos && host.find(']', colon) == beast::string_view::npos)
+            connect += " https://*.local" + std::string(host.substr(colon));
+    }
     return "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; worker-src 'self' blob:; connect-src " +
            connect +
            "; img-src 'self' blob: data:; media-src 'self' blob:; style-src 'self'; object-src 'none'; "

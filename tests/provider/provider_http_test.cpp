@@ -144,7 +144,9 @@ TEST_F(ProviderHttp, PagesCarryAContentSecurityPolicyForAWasmWorker) {
     for (const std::string& part :
          {std::string("default-src 'self'"), std::string("script-src 'self' 'wasm-unsafe-eval'"),
           std::string("worker-src 'self' blob:"),
-          "connect-src 'self' wss://127.0.0.1:" + std::to_string(server->port()), std::string("object-src 'none'"),
+          "connect-src 'self' wss://127.0.0.1:" + std::to_string(server->port()) +
+              " https://*.local:" + std::to_string(server->port()) + ";",
+          std::string("object-src 'none'"),
           std::string("style-src 'self';"), std::string("frame-ancestors 'none'")})
         EXPECT_NE(csp.find(part), std::string::npos) << part << "\n" << csp;
     EXPECT_EQ(page.body.find("style="), std::string::npos) << "no inline style under style-src 'self'";

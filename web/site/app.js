@@ -6,16 +6,18 @@
 // WebAssembly (pointer.js). This file wires the parts together: the core,
 // the detector's worker (worker.js), the connection (transport.js), the
 // pairing (pairing.js) and the views (sheets.js, camera.js, grab_result.js,
-// put_view.js, history.js, trust.js). docs/PROTOCOL.md has the messages.
+// put_view.js, history.js, trust.js) and the move to the screen's name
+// (screen_name.js). docs/PROTOCOL.md has the messages.
 import { openCamera, pumpFrames } from './camera.js';
 import { getCarried, noteFile } from './carry.js';
 import { download, showGrabOutcome, showResult } from './grab_result.js';
 import { clearHistory, showHistory } from './history.js';
 import { clientName, deviceName } from './identity.js';
-import { currentPairing, forget, rememberProviderName } from './pairing.js';
+import { currentPairing, forget, rememberAbout } from './pairing.js';
 import { createPointer } from './pointer.js';
 import { carriedItem, describeItem, fileItem, showPutChooser, showPutDone, showPutFailure, showPutStatus,
          upload } from './put_view.js';
+import { moveToName } from './screen_name.js';
 import { $, DETECTION_HINT, ERRORS, describeKind, hideSheets, hint, paused, setState, showError } from './sheets.js';
 import { connect } from './transport.js';
 import { forPeople, registerServiceWorker, wireTrust } from './trust.js';
@@ -30,7 +32,8 @@ const options = {
 const TICK_MS = 250;  // the core's timeouts are looked at this often
 
 const debug = { transport: null, frames: 0, locks: 0, firstLockMs: null, lastResult: null, detectMs: null,
-                device: null, client: null, features: [], serviceWorker: null, share: null, put: null, view: null };
+                device: null, client: null, features: [], serviceWorker: null, share: null, put: null, view: null,
+                name: null };
 window.umfDebug = debug;
 const pageStart = performance.now();
 
@@ -49,6 +52,7 @@ let putItem = null;       // what Put mode gives the screen: {kind: 'url', url, 
 let grabbed = null;       // the grab's file bytes, once its download ended
 let putXhr = null;        // the put's upload under way
 let askingTimer = null;   // the countdown while the screen's person decides
+let trust = null;         // registerServiceWorker's promise: whether this phone trusts the screen
 
 // ---- the requester core --------------------------------------------------------
 
@@ -175,7 +179,7 @@ async function connectToProvider() {
   }
   const welcome = link.welcome;
   debug.transport = link.kind;
-  rememberProviderName(pairing.origin, welcome.provider?.name);
+  rememberAbout(pairing.origin, { provider: welcome.provider?.name });
   debug.features = Array.isArray(welcome.features) ? welcome.features : [];
   $('show-put').hidden = !debug.features.includes('put');
   $('pairing-provider').textContent = welcome.provider?.name || '—';
@@ -443,6 +447,7 @@ async function start() {
     setState('unpaired', 'Not paired');
     return;
   }
+  if (await moveToName(pairing, location, trust, debug)) return;
   if (!(await connectToProvider())) return;
   if (!(await startWorker())) return;
   if (stream) {
@@ -524,7 +529,7 @@ function wire() {
 
 wire();
 setMode('grab');
-registerServiceWorker(debug);
+trust = registerServiceWorker(debug);
 {
   const share = params.get('share');
   start().then(() => share && link && openShare(share));

@@ -1,6 +1,7 @@
-// Pairing: the token and the certificate's fingerprint arrive in the URL's
-// fragment from the provider's QR code (https://host:port/#t=TOKEN&fp=HEX),
-// which browsers never send to a server. They are kept on the phone per
+// Pairing: the token, the root certificate's fingerprint and the screen's
+// .local name arrive in the URL's fragment from the provider's QR code
+// (https://host:port/#t=TOKEN&fp=HEX&n=NAME.local), which browsers never
+// send to a server. They are kept on the phone per
 // screen (origin), and the fragment is then taken out of the address bar so
 // the token does not linger in a shared screenshot or the history.
 import { parsePairingUrl } from './pointer.js';
@@ -24,16 +25,17 @@ function saveAll(all) {
   }
 }
 
-// {token, fingerprint} of the pairing URL this page was opened with, or
-// null: read by the protocol's one codec (pointer.js, the WebAssembly
+// {token, fingerprint, name, url} of the pairing URL this page was opened
+// with (`url` as it came, for screen_name.js to carry to the name), or null: read by the protocol's one codec (pointer.js, the WebAssembly
 // module) as the pairing URL of this host with the fragment, whatever
 // scheme, path or options the page itself was opened with (a page reached
 // over plain http still pairs, and then offers photos).
 async function freshPairing(location) {
   if (!/(^#|&)t=/.test(location.hash)) return null;
   try {
-    const { token, fingerprint } = await parsePairingUrl(`https://${location.host}/${location.hash}`);
-    return { token, fingerprint };
+    const url = `https://${location.host}/${location.hash}`;
+    const { token, fingerprint, name } = await parsePairingUrl(url);
+    return { token, fingerprint, name: name || undefined, url };
   } catch {
     return null;
   }
@@ -48,16 +50,18 @@ export async function currentPairing(location = window.location) {
     all[location.origin] = { ...all[location.origin], ...fresh, pairedAt: Date.now() };
     saveAll(all);
     history.replaceState(null, '', location.pathname + location.search);
-    return { ...all[location.origin], origin: location.origin };
+    return { ...all[location.origin], origin: location.origin, fresh: true };
   }
   const kept = all[location.origin];
   return kept && kept.token ? { ...kept, origin: location.origin } : null;
 }
 
-export function rememberProviderName(origin, name) {
+// Adds `fields` to the pairing kept for `origin` (the provider's name, when
+// the screen's .local name was last tried).
+export function rememberAbout(origin, fields) {
   const all = loadAll();
   if (!all[origin]) return;
-  all[origin].provider = name;
+  Object.assign(all[origin], fields);
   saveAll(all);
 }
 

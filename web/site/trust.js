@@ -73,20 +73,19 @@ function withCode(el, text) {
 // The service worker is there for "Share → umf" (sw.js), and browsers
 // register one only where the certificate is trusted: so its registration
 // (`debug.serviceWorker`, umfDebug's) also tells the Trust sheet, which may
-// be open while it ends.
+// be open while it ends, and whether the page may move to the screen's
+// name (screen_name.js). Resolves to the status it ends with.
 export function registerServiceWorker(debug) {
   const is = (status) => {
     debug.serviceWorker = status;
     showTrustState(status);
+    return status;
   };
-  if (!navigator.serviceWorker) {
-    is('unsupported');
-    return;
-  }
+  if (!navigator.serviceWorker) return Promise.resolve(is('unsupported'));
   // A module worker, so that it shares carry.js with the page. Without it
   // (an untrusted certificate, an older browser) the page works the same,
   // only "Share → umf" does not.
-  navigator.serviceWorker.register('sw.js', { type: 'module' }).then(
+  return navigator.serviceWorker.register('sw.js', { type: 'module' }).then(
     () => navigator.serviceWorker.ready.then(() => is('active')),
     (e) => is(`not registered: ${e.message}`));
 }

@@ -162,7 +162,7 @@ function logNameConstraints(t, pem) {
 }
 
 // A HOME whose NSS database (the one Chromium on Linux reads) trusts `rootPem` as a CA, or nothing.
-function nssHome(t, name, rootPem) {
+export function nssHome(t, name, rootPem) {
   const home = path.join(t.work, name);
   const db = `sql:${path.join(home, '.pki', 'nssdb')}`;
   fs.mkdirSync(path.join(home, '.pki', 'nssdb'), { recursive: true });
