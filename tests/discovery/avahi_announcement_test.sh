@@ -9,16 +9,8 @@
 # usage: avahi_announcement_test.sh BUILD_DIR
 set -euo pipefail
 bin=$1/bin
-if [ "${UMF_IN_NETNS:-}" != 1 ]; then
-  for tool in avahi-daemon avahi-browse avahi-resolve dbus-daemon unshare; do
-    command -v "$tool" >/dev/null || { echo "SKIP: $tool is not installed (scripts/install-deps.sh installs it)"; exit 77; }
-  done
-  if ! unshare --net --mount --uts true 2>/dev/null; then
-    echo "SKIP: no network namespace can be made here (unshare --net needs CAP_SYS_ADMIN)"
-    exit 77
-  fi
-  exec unshare --net --mount --uts env UMF_IN_NETNS=1 bash "$0" "$@"
-fi
+source "$(dirname "$0")/../support/avahi_namespace.sh"
+[ "${UMF_IN_NETNS:-}" = 1 ] || own_namespaces "avahi-daemon avahi-browse avahi-resolve dbus-daemon" "$0" "$@"
 hostname umf-screen-test
 ip link set lo up
 ip link add umf0 type veth peer name umf1
@@ -27,7 +19,6 @@ ip link set umf0 multicast on up
 ip addr add 10.78.0.1/24 dev umf0
 work=$(mktemp -d /tmp/umf-avahi-XXXXXX)
 source "$(dirname "$0")/../support/provider_run.sh"
-source "$(dirname "$0")/../support/avahi_namespace.sh"
 cleanup() {
   stop_provider
   stop_avahi "$work"

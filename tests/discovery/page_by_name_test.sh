@@ -11,18 +11,9 @@ set -euo pipefail
 build=$1 node=$2 chromium=$3 site=$4 board=$5 fixtures=$6 modules=$7
 bin=$build/bin
 here=$(cd "$(dirname "$0")" && pwd)
-if [ "${UMF_IN_NETNS:-}" != 1 ]; then
-  for tool in avahi-daemon dbus-daemon unshare nsenter certutil getent; do
-    command -v "$tool" >/dev/null || { echo "SKIP: $tool is not installed (scripts/install-deps.sh installs it)"; exit 77; }
-  done
-  if ! unshare --net --mount --uts true 2>/dev/null; then
-    echo "SKIP: no network namespace can be made here (unshare --net needs CAP_SYS_ADMIN)"
-    exit 77
-  fi
-  exec unshare --net --mount --uts env UMF_IN_NETNS=1 bash "$0" "$@"
-fi
-source "$here/../support/provider_run.sh"
 source "$here/../support/avahi_namespace.sh"
+[ "${UMF_IN_NETNS:-}" = 1 ] || own_namespaces "avahi-daemon dbus-daemon nsenter certutil getent" "$0" "$@"
+source "$here/../support/provider_run.sh"
 work=$(mktemp -d /tmp/umf-page-name-XXXXXX)
 phone=
 cleanup() {

@@ -4,6 +4,22 @@
 # nothing of its own), its pid file and socket in /run, which the caller
 # mounted as a tmpfs private to its mount namespace; the pids go to
 # DIR/pids, which stop_avahi DIR reads.
+
+# own_namespaces "TOOL..." SCRIPT ARGS...: SCRIPT again, with ARGS, in
+# network, mount and UTS namespaces of its own (UMF_IN_NETNS=1 there);
+# exits 77 saying why where a tool is missing or no namespace can be made.
+own_namespaces() {
+  local tools=$1 tool
+  shift
+  for tool in $tools unshare; do
+    command -v "$tool" >/dev/null || { echo "SKIP: $tool is not installed (scripts/install-deps.sh installs it)"; exit 77; }
+  done
+  if ! unshare --net --mount --uts true 2>/dev/null; then
+    echo "SKIP: no network namespace can be made here (unshare --net needs CAP_SYS_ADMIN)"
+    exit 77
+  fi
+  exec unshare --net --mount --uts env UMF_IN_NETNS=1 bash "$@"
+}
 start_avahi() {
   local dir=$1 iface=$2
   mkdir -p "$dir"

@@ -9,14 +9,13 @@
 // put_view.js, history.js, trust.js) and the move to the screen's name
 // (screen_name.js). docs/PROTOCOL.md has the messages.
 import { openCamera, pumpFrames } from './camera.js';
-import { getCarried, noteFile } from './carry.js';
 import { download, showGrabOutcome, showResult } from './grab_result.js';
 import { clearHistory, showHistory } from './history.js';
 import { clientName, deviceName } from './identity.js';
 import { currentPairing, forget, rememberAbout } from './pairing.js';
 import { createPointer } from './pointer.js';
-import { carriedItem, describeItem, fileItem, showPutChooser, showPutDone, showPutFailure, showPutStatus,
-         upload } from './put_view.js';
+import { describeItem, sharedItem, showAskingCountdown, showPutChooser, showPutDone, showPutFailure, showPutStatus,
+         upload, wirePutChoices } from './put_view.js';
 import { moveToName } from './screen_name.js';
 import { $, DETECTION_HINT, ERRORS, describeKind, hideSheets, hint, paused, setState, showError } from './sheets.js';
 import { connect } from './transport.js';
@@ -373,18 +372,7 @@ function showPutProgress(v) {
   if (v.put === 'hashing') showPutStatus('hashing', 'Checking the file…', describeItem(item), { debug });
   else if (v.put === 'sending')
     showPutStatus('sending', 'Giving it to the screen…', item?.kind === 'url' ? item.url : item?.name, { debug });
-  else if (v.put === 'asking') startAskingCountdown(v);
-}
-
-function startAskingCountdown(v) {
-  const what = putItem?.kind === 'url' ? putItem.url : `${putItem?.name} (${describeItem(putItem).split(' · ')[1]})`;
-  showPutStatus('asking', 'Waiting for the screen to accept…', '', { debug });
-  const tick = () => {
-    const left = Math.max(0, Math.ceil(v.put_deadline - seconds()));
-    $('put-status-text').textContent = `${what} — someone at the screen has ${left} s to accept it.`;
-  };
-  tick();
-  askingTimer = setInterval(tick, 1000);
+  else if (v.put === 'asking') askingTimer = showAskingCountdown(item, () => v.put_deadline - seconds(), debug);
 }
 
 function stopAskingCountdown() {
@@ -413,25 +401,9 @@ function cancelUpload() {
 async function openShare(id) {
   params.delete('share');
   history.replaceState(null, '', location.pathname + (params.toString() ? `?${params}` : '') + location.hash);
-  debug.share = { id };
-  if (!/^\d+$/.test(id)) {
-    const code = { unavailable: 'share-unavailable', empty: 'share-empty', 'too-large': 'share-too-large' }[id] || 'share-missing';
-    showPutFailure(code, undefined, { debug });
-    return false;
-  }
-  let e = null;
-  try {
-    e = await getCarried(id);
-  } catch (err) {
-    debug.carryError = err.message;
-  }
-  if (!e) {
-    showPutFailure('share-missing', undefined, { debug });
-    return false;
-  }
-  debug.share.kind = e.kind;
-  enterPut(carriedItem(e));
-  return true;
+  const item = await sharedItem(id, debug);
+  if (item) enterPut(item);
+  return item !== null;
 }
 
 // ---- start -------------------------------------------------------------------------
@@ -489,25 +461,7 @@ function wire() {
   for (const id of ['put-close', 'put-cancel', 'put-finish']) $(id).addEventListener('click', leavePut);
   $('put-again').addEventListener('click', () => (putItem ? enterPut(putItem) : leavePut()));
   $('put-abort').addEventListener('click', () => enterPut(putItem));
-  for (const id of ['put-file', 'put-photo']) {
-    $(id).addEventListener('change', (e) => {
-      const file = e.target.files?.[0];
-      e.target.value = '';  // choosing the same file again is a new choice
-      if (file) enterPut(fileItem(file, { name: file.name || (id === 'put-photo' ? `photo-${Date.now()}.jpg` : 'file') }));
-    });
-  }
-  $('put-url-form').addEventListener('submit', (e) => {
-    e.preventDefault();
-    // The core judges the link; one it will not take stays on the chooser.
-    if (!enterPut({ kind: 'url', url: $('put-url').value.trim(), title: '' })) $('put-url-error').hidden = false;
-  });
-  $('put-note-form').addEventListener('submit', (e) => {
-    e.preventDefault();
-    const text = $('put-note').value;
-    if (!text.trim()) return;
-    const note = noteFile(text);
-    enterPut(fileItem(note.blob, { name: note.name, title: 'Note', mime: 'text/plain' }));
-  });
+  wirePutChoices(enterPut);
   $('pairing-close').addEventListener('click', () => ($('pairing').hidden = true));
   wireTrust(() => pairing?.fingerprint ?? null, debug);
   $('pairing-forget').addEventListener('click', () => {

@@ -2,7 +2,7 @@
 // list), the status of a put under way, and the upload's bytes. Whether and
 // when a put goes, and what its answers mean, is the requester core's
 // (pointer.js); this shows it and moves the bytes it asks for.
-import { listCarried, removeCarried } from './carry.js';
+import { getCarried, listCarried, noteFile, removeCarried } from './carry.js';
 import { $, PUT_ERRORS, formatSize, hideSheets, setState } from './sheets.js';
 import { Sha256 } from './sha256.js';
 
@@ -35,6 +35,53 @@ export function carriedItem(e) {
 // What the put bar and the status sheet call the item.
 export function describeItem(item) {
   return item?.kind === 'url' ? item.url : `${item?.name} · ${formatSize(item?.size ?? 0)}`;
+}
+
+// The chooser's own ways to choose: a file, a photo, a link, a note. `choose`
+// (the page's enterPut) is false when the core will not take the item.
+export function wirePutChoices(choose) {
+  for (const id of ['put-file', 'put-photo']) {
+    $(id).addEventListener('change', (e) => {
+      const file = e.target.files?.[0];
+      e.target.value = '';  // choosing the same file again is a new choice
+      if (file) choose(fileItem(file, { name: file.name || (id === 'put-photo' ? `photo-${Date.now()}.jpg` : 'file') }));
+    });
+  }
+  $('put-url-form').addEventListener('submit', (e) => {
+    e.preventDefault();
+    // The core judges the link; one it will not take stays on the chooser.
+    if (!choose({ kind: 'url', url: $('put-url').value.trim(), title: '' })) $('put-url-error').hidden = false;
+  });
+  $('put-note-form').addEventListener('submit', (e) => {
+    e.preventDefault();
+    const text = $('put-note').value;
+    if (!text.trim()) return;
+    const note = noteFile(text);
+    choose(fileItem(note.blob, { name: note.name, title: 'Note', mime: 'text/plain' }));
+  });
+}
+
+// ?share=ID: what the service worker (sw.js) carried for it, or null after
+// saying why there is nothing.
+export async function sharedItem(id, debug) {
+  debug.share = { id };
+  if (!/^\d+$/.test(id)) {
+    const code = { unavailable: 'share-unavailable', empty: 'share-empty', 'too-large': 'share-too-large' }[id] || 'share-missing';
+    showPutFailure(code, undefined, { debug });
+    return null;
+  }
+  let e = null;
+  try {
+    e = await getCarried(id);
+  } catch (err) {
+    debug.carryError = err.message;
+  }
+  if (!e) {
+    showPutFailure('share-missing', undefined, { debug });
+    return null;
+  }
+  debug.share.kind = e.kind;
+  return carriedItem(e);
 }
 
 export async function showPutChooser(onChoose, debug) {
@@ -105,6 +152,19 @@ export function showPutFailure(code, detail, { item, debug } = {}) {
   const [title, text] = PUT_ERRORS[code] || ['Not put', ''];
   showPutStatus('error', title, detail && !PUT_ERRORS[code] ? `${text} (${detail})` : text,
                 { code, canAgain: !!item, debug });
+}
+
+// While the screen's person decides: the seconds they have left, counted
+// down; `secondsLeft` reads the core's deadline. Returns the interval to clear.
+export function showAskingCountdown(item, secondsLeft, debug) {
+  const what = item?.kind === 'url' ? item.url : `${item?.name} (${describeItem(item).split(' · ')[1]})`;
+  showPutStatus('asking', 'Waiting for the screen to accept…', '', { debug });
+  const tick = () => {
+    const left = Math.max(0, Math.ceil(secondsLeft()));
+    $('put-status-text').textContent = `${what} — someone at the screen has ${left} s to accept it.`;
+  };
+  tick();
+  return setInterval(tick, 1000);
 }
 
 export function showPutDone(status, item, debug) {
