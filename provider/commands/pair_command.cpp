@@ -10,6 +10,7 @@
 #include "commands/common_options.hpp"
 #include "commands/control_client.hpp"
 #include "put/put_text.hpp"
+#include "screen/field_source.hpp"
 #include "server/control_socket.hpp"
 #include "server/pairing.hpp"
 #include "server/pairing_qr.hpp"
@@ -31,12 +32,19 @@ int run_pair(const cli::Args& a) {
     const std::string host = url_host(a, "0.0.0.0");
     const auto dir = config_dir_option(a);
     if (has_flag(a, "root") && !has_flag(a, "rotate")) throw UsageError("--root goes with --rotate");
+    if (has_flag(a, "field") && !has_flag(a, "rotate")) throw UsageError("--field goes with --rotate");
     try {
         if (has_flag(a, "root")) {
             remove_root(dir);
             std::cerr << "umf-provider: a new screen root is made; every phone and webcam must pair again, and "
                          "phones that trusted the old root should remove it"
                       << (running ? " (the running provider serves the old one until it restarts)" : "") << "\n";
+        }
+        if (has_flag(a, "field")) {
+            const FieldSource fields = rotate_field_seed(dir);
+            std::cerr << "umf-provider: the screen's own field has a new seed (" << std::hex << fields.seed() << std::dec
+                      << "); a provider serving with --own-field shows it from its next start, and printed or composed "
+                         "pictures of the old field no longer point at this screen\n";
         }
         const TlsIdentity identity = load_or_create_tls_identity(dir);
         const std::string token = load_or_create_token(dir, has_flag(a, "rotate"));

@@ -54,7 +54,8 @@ const char* const kServeOptions[] = {"port",         "bind",        "host",   "c
                                      "period",       "waveform",    "module-px", "blur",     "region",
                                      "focus-radius", "activation",  "fade",   "palette",     "puts",
                                      "put-dir",      "put-max-mb",  "desktop",     nullptr};
-const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", "no-announce", nullptr};
+const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", "no-announce", "own-field",
+                                   nullptr};
 
 namespace {
 
@@ -110,6 +111,7 @@ struct Serving {
     std::filesystem::path board_source;
     overlay::Preset preset;
     double board_module_px = 0;
+    FieldSource fields;  // the shipped fields, or with --own-field the screen's own
     // The desktop and the overlay over it.
     OpenedDesktop desktop;
     std::unique_ptr<OverlayManager> overlay_manager;
@@ -142,6 +144,13 @@ void read_command_line(const cli::Args& a, Serving& s) {
     s.bind = get(a, "bind").value_or("0.0.0.0");
     s.host = url_host(a, s.bind);
     s.dir = config_dir_option(a);
+    if (has_flag(a, "own-field")) {
+        try {
+            s.fields = own_field_source(s.dir);
+        } catch (const std::runtime_error& e) {
+            throw ServeFailure(kConfigError, e.what());
+        }
+    }
     try {
         s.desktop_choice = choose_desktop(session_from_environment(), get(a, "desktop"));
     } catch (const std::invalid_argument& e) {
@@ -216,7 +225,7 @@ void open_desktop_and_overlay(const cli::Args& a, Serving& s) {
         std::cerr << "umf-provider: the field cannot be shown on this desktop; the desktop lines on the console say why\n";
         return;
     }
-    s.overlay_manager = std::make_unique<OverlayManager>(s.preset, s.desktop.desktop);
+    s.overlay_manager = std::make_unique<OverlayManager>(s.preset, s.desktop.desktop, s.fields);
     s.layout = s.overlay_manager->layout();
     s.activity = std::make_shared<OverlayActivity>(s.overlay_manager.get(), s.overlay_manager->layout_indices());
 }
@@ -277,7 +286,7 @@ void block_stop_signals(Serving& s) {
 std::shared_ptr<Service> make_service(Serving& s) {
     ServiceConfig config = s.layout ? service_config_for(*s.layout)
                                     : default_service_config(s.width, s.height, s.headless ? "headless" : "screen",
-                                                             s.board_module_px);
+                                                             s.board_module_px, s.fields);
     config.overlay = overlay_info(s.preset);
     config.public_mode = s.public_mode;
     config.put_decider = s.answerers.decider;
@@ -369,7 +378,11 @@ void print_banner(const cli::Args& a, const Serving& s) {
                   << (s.board->title.empty() ? "" : " (" + s.board->title + ")") << " from " << s.board_source.string()
                   << "\n";
     std::cout << (s.headless ? "headless: a virtual " : "screen: ") << s.width << "x" << s.height << ", preset "
-              << s.preset.name << (s.public_mode ? ", public mode (board items only, no pairing needed)" : "") << "\n";
+              << s.preset.name << (s.public_mode ? ", public mode (board items only, no pairing needed)" : "");
+    if (!s.layout)
+        std::cout << ", field " << screen_field_for(s.width, s.height, s.board_module_px, s.fields).field.id
+                  << (s.fields.own() ? " (this screen's own)" : " (shipped)");
+    std::cout << "\n";
     // The hints name this provider's port when it is not the default one.
     if (s.control && !s.public_mode)
         std::cout << "share with: " << with_port("umf-provider share FILE|URL --rect x,y,w,h", listening) << "\n";
@@ -403,7 +416,7 @@ int run_until_stopped(const cli::Args& a, const ServeHooks& hooks, Serving& s) {
     std::unique_ptr<BoardWindow> board_window;
     if (!s.headless && s.board) {
         board_window = std::make_unique<BoardWindow>(
-            s.screen_image, screen_field_for(s.width, s.height, s.board_module_px), s.preset,
+            s.screen_image, screen_field_for(s.width, s.height, s.board_module_px, s.fields), s.preset,
             QGuiApplication::primaryScreen());
         board_window->showFullScreen();
     }

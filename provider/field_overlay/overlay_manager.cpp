@@ -54,9 +54,11 @@ private:
 
 }  // namespace
 
-OverlayManager::OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> desktop, QObject* parent)
+OverlayManager::OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> desktop, FieldSource fields,
+                               QObject* parent)
     : QObject(parent),
       preset_(std::move(preset)),
+      fields_(std::move(fields)),
       desktop_(std::move(desktop)),
       x11_windows_(!desktop_ || desktop_->name() == "x11"),
       adaptive_(preset_) {
@@ -104,7 +106,7 @@ void OverlayManager::add_screen(QScreen* screen) {
     entry->screen = screen;
     entry->index = next_index_++;
     const QSize size = physical_size(screen);
-    const ScreenField field = screen_field_for(size.width(), size.height(), module_px_for(screen, preset_));
+    const ScreenField field = screen_field_for(size.width(), size.height(), module_px_for(screen, preset_), fields_);
     if (desktop_) entry->window = desktop_->make_field_surface(screen, field, preset_.palette);
     else entry->window = std::make_unique<OverlayWindow>(screen, field, preset_.palette);
     // A desktop that cannot show a field over this screen: it gets no
@@ -155,17 +157,17 @@ void OverlayManager::relayout() {
     std::vector<ScreenField> fields;
     try {
         // One field over all screens, so that a field point tells the screen.
-        layout_ = lay_out_desktop(desktop);
+        layout_ = lay_out_desktop(desktop, fields_);
         for (const auto& laid : layout_->screens) fields.push_back(laid.field);
     } catch (const std::invalid_argument&) {
         // Mirrored (overlapping) screens: the first screen's field, which a
         // mirror of its size shows at the same place; another size shows its
         // own, which points cannot name.
-        layout_ = lay_out_desktop({desktop[0]});
+        layout_ = lay_out_desktop({desktop[0]}, fields_);
         for (const auto& d : desktop)
             fields.push_back(d.width == desktop[0].width && d.height == desktop[0].height
                                  ? layout_->screens[0].field
-                                 : screen_field_for(d.width, d.height, d.module_px));
+                                 : screen_field_for(d.width, d.height, d.module_px, fields_));
     }
     for (std::size_t i = 0; i < entries_.size(); ++i) {
         const ScreenField& field = fields[i];

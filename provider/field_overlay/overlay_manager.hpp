@@ -53,9 +53,10 @@ public:
     // The field's surfaces come from `desktop` (desktop/desktop.hpp); without
     // one they are X11 windows (desktop/x11/overlay_window.hpp), as on Qt's
     // xcb and offscreen platforms. The pointer ring's own window and the
-    // blurred backdrop are X11 only.
+    // blurred backdrop are X11 only. `fields`: the shipped fields or the
+    // screen's own (screen/field_source.hpp).
     explicit OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> desktop = nullptr,
-                            QObject* parent = nullptr);
+                            FieldSource fields = {}, QObject* parent = nullptr);
     ~OverlayManager() override;
 
     void set_preset(const overlay::Preset& preset);
@@ -158,6 +159,7 @@ private:
     void blur_backdrop(Entry& entry);
 
     overlay::Preset preset_;
+    FieldSource fields_;
     std::shared_ptr<Desktop> desktop_;
     bool x11_windows_ = true;  // surfaces and pointer rings are Qt windows on X11
     overlay::AdaptiveOverlay adaptive_;

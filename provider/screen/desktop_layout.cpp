@@ -24,8 +24,9 @@ LaidOutScreen laid_out(const DesktopScreen& s, const ScreenField& whole, overlay
 }
 
 // One field over the bounding box, as if it were one screen.
-DesktopLayout shared_geometry(const std::vector<DesktopScreen>& screens, int left, int top, int right, int bottom) {
-    const ScreenField whole = screen_field_for(right - left, bottom - top, screens[0].module_px);
+DesktopLayout shared_geometry(const std::vector<DesktopScreen>& screens, int left, int top, int right, int bottom,
+                              const FieldSource& source) {
+    const ScreenField whole = screen_field_for(right - left, bottom - top, screens[0].module_px, source);
     DesktopLayout layout{whole.field, whole.file, {}};
     for (const auto& s : screens) {
         // The same placement, seen from this screen's top-left corner.
@@ -37,7 +38,7 @@ DesktopLayout shared_geometry(const std::vector<DesktopScreen>& screens, int lef
     return layout;
 }
 
-DesktopLayout side_by_side(const std::vector<DesktopScreen>& screens) {
+DesktopLayout side_by_side(const std::vector<DesktopScreen>& screens, const FieldSource& source) {
     std::vector<std::size_t> order(screens.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -57,7 +58,7 @@ DesktopLayout side_by_side(const std::vector<DesktopScreen>& screens) {
         }
         // The screens' blocks of modules in a row, as one screen of one pixel
         // a module: it fits when that needs no larger module.
-        const ScreenField whole = screen_field_for(total_columns, most_rows, 1.0);
+        const ScreenField whole = screen_field_for(total_columns, most_rows, 1.0, source);
         if (whole.placement.module_px != 1.0) continue;
         DesktopLayout layout{whole.field, whole.file, std::vector<LaidOutScreen>(screens.size())};
         double u = -whole.placement.origin_x;
@@ -76,7 +77,7 @@ DesktopLayout side_by_side(const std::vector<DesktopScreen>& screens) {
 
 }  // namespace
 
-DesktopLayout lay_out_desktop(const std::vector<DesktopScreen>& screens) {
+DesktopLayout lay_out_desktop(const std::vector<DesktopScreen>& screens, const FieldSource& source) {
     if (screens.empty()) throw std::invalid_argument("a desktop needs at least one screen");
     int left = INT_MAX, top = INT_MAX, right = INT_MIN, bottom = INT_MIN;
     for (std::size_t i = 0; i < screens.size(); ++i) {
@@ -96,7 +97,7 @@ DesktopLayout lay_out_desktop(const std::vector<DesktopScreen>& screens) {
     }
     bool uniform = true;
     for (const auto& s : screens) uniform = uniform && std::lround(s.module_px) == std::lround(screens[0].module_px);
-    return uniform ? shared_geometry(screens, left, top, right, bottom) : side_by_side(screens);
+    return uniform ? shared_geometry(screens, left, top, right, bottom, source) : side_by_side(screens, source);
 }
 
 }  // namespace umf::provider

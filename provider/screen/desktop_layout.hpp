@@ -42,6 +42,6 @@ struct DesktopLayout {
 // Throws std::invalid_argument for no screens, an empty or oversized one,
 // screens that overlap, or a screen the field does not reach; and
 // std::runtime_error when the shipped field cannot be loaded.
-DesktopLayout lay_out_desktop(const std::vector<DesktopScreen>& screens);
+DesktopLayout lay_out_desktop(const std::vector<DesktopScreen>& screens, const FieldSource& source = {});
 
 }  // namespace umf::provider

@@ -17,11 +17,12 @@ Field quarter_turned(const Field& field) {
     return out;
 }
 
-ScreenField screen_field_for(int screen_width, int screen_height, double module_px) {
+ScreenField screen_field_for(int screen_width, int screen_height, double module_px, const FieldSource& source) {
     const DefaultField choice = field_for_screen(screen_width, screen_height, module_px);
     ScreenField s;
-    s.file = std::string(UMF_DATA_DIR) + "/fields/" + choice.file;
-    s.field = load_field(s.file);
+    FieldSource::Chosen chosen = source.field_for(std::string(UMF_DATA_DIR) + "/fields/" + choice.file);
+    s.file = std::move(chosen.file);
+    s.field = std::move(chosen.field);
     if (choice.quarter_turn) s.field = quarter_turned(s.field);
     s.placement = overlay::centred_placement(s.field.width, s.field.height, screen_width, screen_height,
                                              choice.module_px);

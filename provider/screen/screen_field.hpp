@@ -1,6 +1,6 @@
 // The field one screen shows and where: the shipped default field for the
-// screen's size (field/default_field.hpp), turned a quarter on portrait
-// screens, centred. compose, the headless provider, the board window and the
+// screen's size (field/default_field.hpp), or the screen's own field of that
+// size (field_source.hpp), turned a quarter on portrait screens, centred. compose, the headless provider, the board window and the
 // overlay all place the field through this, so the map in a compose MAP.json
 // is the one the provider resolves points with.
 #pragma once
@@ -9,12 +9,13 @@
 
 #include "field/field.hpp"
 #include "overlay/placement.hpp"
+#include "screen/field_source.hpp"
 
 namespace umf::provider {
 
 struct ScreenField {
     Field field;                     // as sent in the welcome
-    std::string file;                // the shipped file it came from
+    std::string file;                // the file it came from: shipped, or the screen's kept one
     overlay::FieldPlacement placement;
     int screen_width = 0;
     int screen_height = 0;
@@ -23,9 +24,11 @@ struct ScreenField {
 // At `module_px` screen pixels a module (field/default_field.hpp,
 // field_for_screen: the smallest shipped field that covers the screen at that
 // size, or a larger module where none does); 0: the module size at which the
-// default field just covers the screen. Throws std::runtime_error when the
-// shipped field cannot be loaded.
-ScreenField screen_field_for(int screen_width, int screen_height, double module_px = 0.0);
+// default field just covers the screen. `source`: the shipped fields, or the
+// screen's own. Throws std::runtime_error when the field cannot be loaded or
+// made.
+ScreenField screen_field_for(int screen_width, int screen_height, double module_px = 0.0,
+                             const FieldSource& source = {});
 
 // The module size a preset asks for on a screen: the preset's module_px is
 // for 96 pixels an inch, so a denser screen gets more pixels a module and the

@@ -134,8 +134,9 @@ protocol::OverlayInfo overlay_info(const overlay::Preset& preset) {
 }
 
 ServiceConfig default_service_config(int screen_width_px, int screen_height_px, const std::string& screen_name,
-                                     double module_px) {
-    return service_config_for(lay_out_desktop({{screen_name, 0, 0, screen_width_px, screen_height_px, module_px}}));
+                                     double module_px, const FieldSource& fields) {
+    return service_config_for(
+        lay_out_desktop({{screen_name, 0, 0, screen_width_px, screen_height_px, module_px}}, fields));
 }
 
 Service::Service(ServiceConfig config, std::string token, std::vector<std::shared_ptr<const Resolver>> resolvers,

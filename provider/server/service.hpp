@@ -70,7 +70,8 @@ protocol::OverlayInfo overlay_info(const overlay::Preset& preset);
 // modules of module_px (0: the size that covers the screen). Throws when the
 // field file cannot be loaded.
 ServiceConfig default_service_config(int screen_width_px = 1920, int screen_height_px = 1080,
-                                     const std::string& screen_name = "screen", double module_px = 0.0);
+                                     const std::string& screen_name = "screen", double module_px = 0.0,
+                                     const FieldSource& fields = {});
 
 // What one connection has established so far, and its rate limits.
 struct SessionState {

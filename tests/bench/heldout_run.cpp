@@ -57,7 +57,8 @@ const char* const kSetup =
 class HeldoutBench {
 public:
     explicit HeldoutBench(const HeldoutOptions& opt)
-        : opt_(opt), field_(load_field(std::string(UMF_DATA_DIR) + "/fields/" + opt.field)) {
+        : opt_(opt), field_(bench_field(opt.field)),
+          shown_(opt.shown_field.empty() ? field_ : bench_field(opt.shown_field)) {
         report_.title = "Detector benchmark, held-out set: umf against ArUco on a second camera model";
         report_.setup_md = kSetup;
         report_.json_name = "heldout.json";
@@ -103,7 +104,7 @@ public:
             parallel_for(static_cast<int>(screens_.size()), opt_.threads, [&](int k) {
                 const auto i = static_cast<std::size_t>(k);
                 const std::size_t s = i / sim::kAllHeldoutContents.size();
-                with_field[i] = sim::mix_field(screens_[i], field_, placements_[s], opacity);
+                with_field[i] = sim::mix_field(screens_[i], shown_, placements_[s], opacity);
                 if (opt_.aruco) with_board[i] = methods_[s]->board().mix(screens_[i], opacity);
             });
             for (cv::Size res : opt_.resolutions)
@@ -134,7 +135,7 @@ public:
             parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
                 const auto at = static_cast<std::size_t>(i);
                 const double op = heldout_pulsing_opacity(content, rs[at].index, opt_.seed);
-                field_frames[at] = shoot_heldout(rs[at], sim::mix_field(screen, field_, placements_[s], op), res,
+                field_frames[at] = shoot_heldout(rs[at], sim::mix_field(screen, shown_, placements_[s], op), res,
                                                  placements_[s], modules);
                 if (opt_.aruco) {
                     board_frames[at] = shoot_heldout(rs[at], m.board().mix(screen, op), res, placements_[s], modules);
@@ -190,6 +191,7 @@ private:
         s["hardware_threads"] = std::thread::hardware_concurrency();
         s["load_average_at_start"] = load_average();
         s["field"] = opt_.field;
+        s["shown_field"] = opt_.shown_field.empty() ? opt_.field : opt_.shown_field;
         for (const auto& sc : heldout_screens())
             s["screens"].push_back({{"name", sc.name}, {"pixels", res_name(sc.geometry.pixels)},
                                     {"width_mm", sc.geometry.width_mm}, {"layout", sim::to_string(sc.layout)}});
@@ -265,6 +267,7 @@ private:
     const HeldoutOptions& opt_;
     const BenchClock::time_point start_ = BenchClock::now();
     const Field field_;
+    const Field shown_;  // on the screen; field_ unless shown_field
     std::vector<sim::FieldPlacement> placements_;
     std::vector<std::unique_ptr<Methods>> methods_;
     std::vector<cv::Mat> screens_;  // screen s, content c at s * contents + c

@@ -27,7 +27,8 @@ struct HeldoutOptions {
     std::uint64_t seed = 1;
     int threads = 1;
     std::string dump;
-    std::string field = "b4-64x36.json";
+    std::string field = "b4-64x36.json";  // bench_field: a shipped name or a file's path
+    std::string shown_field;               // on the screen, when another than `field`
     std::string command;
     // Effects of the second camera model left out of every frame, to see
     // what each costs (diagnosis only; the held-out numbers of record have

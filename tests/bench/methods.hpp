@@ -19,6 +19,7 @@
 #include "bench/scenario.hpp"
 #include "detect/detector.hpp"
 #include "detect/tracker.hpp"
+#include "field/field_io.hpp"
 #include "sim/field_mix.hpp"
 
 namespace umf::bench {
@@ -51,6 +52,13 @@ void parallel_for(int n, int threads, const Job& job) {
     if (error) std::rethrow_exception(error);
 }
 
+
+// A benchmark's field: a name in shared/data/fields, or a field file's path
+// (one with a '/', such as a screen's own field).
+inline Field bench_field(const std::string& name_or_path) {
+    return load_field(name_or_path.find('/') != std::string::npos ? name_or_path
+                                                                   : std::string(UMF_DATA_DIR) + "/fields/" + name_or_path);
+}
 
 // The methods under test, each turning a frame into an Outcome with its
 // call timed and nothing else.

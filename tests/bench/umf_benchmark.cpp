@@ -76,7 +76,11 @@ Usage: umf_benchmark [options]
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --dump DIR             also save every frame as PNG there (for looking at them; use with few frames)
-  --field NAME           a shipped 64 x 36 field of shared/data/fields (default b4-64x36.json)
+  --field NAME|FILE      the 64 x 36 field the detector looks for: a shipped one of shared/data/fields
+                         (default b4-64x36.json) or a field file's path (one with a '/')
+  --shown-field NAME|FILE
+                         the field on the screen when it is another than --field: every frame found is
+                         then a point taken from a screen the requester is not paired with (default: --field)
   --help                 this text
 
 Progress goes to stderr. The detectors are timed on one thread each.
@@ -101,6 +105,7 @@ struct Options {
     int threads = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
     std::string dump;
     std::string field = "b4-64x36.json";
+    std::string shown_field;  // empty: field
 };
 
 std::vector<std::string> split(const std::string& list) {
@@ -186,7 +191,8 @@ Options parse(int argc, char** argv) {
             o.threads = positive_int(value(), a);
         } else if (a == "--field") {
             o.field = value();
-            if (o.field.find('/') != std::string::npos) throw std::invalid_argument("--field takes a name in shared/data/fields");
+        } else if (a == "--shown-field") {
+            o.shown_field = value();
         } else if (a == "--dump") {
             o.dump = value();
         } else {
@@ -325,6 +331,7 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
     s["hardware_threads"] = std::thread::hardware_concurrency();
     s["load_average_at_start"] = load_average();
     s["field"] = opt.field;
+    s["shown_field"] = opt.shown_field.empty() ? opt.field : opt.shown_field;
     s["screen"] = {{"pixels", "1920x1080"}, {"width_mm", scene.screen.width_mm}, {"module_px", scene.module_px}};
     s["camera_hfov_deg"] = scene.hfov_deg;
     s["distance_mm"] = {{"rest", scene.range.distance_mm}, {"near", scene.range.near_mm}, {"far", scene.range.far_mm}};
@@ -338,7 +345,8 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
 class Bench {
 public:
     Bench(const Options& opt, const std::string& command)
-        : opt_(opt), field_(load_field(std::string(UMF_DATA_DIR) + "/fields/" + opt.field)), 
+        : opt_(opt), field_(bench_field(opt.field)),
+          shown_(opt.shown_field.empty() ? field_ : bench_field(opt.shown_field)),
           methods_(field_, scene_.screen.pixels, sim::FieldPlacement{{0, 0}, scene_.module_px}, 30, opt.radius) {
         report_.success_radius_modules = opt.radius;
         report_.command = command;
@@ -361,7 +369,7 @@ public:
             std::vector<cv::Mat> with_field(screens_.size()), with_board(screens_.size());
             parallel_for(static_cast<int>(screens_.size()), opt_.threads, [&](int k) {
                 const auto i = static_cast<std::size_t>(k);
-                with_field[i] = sim::mix_field(screens_[i], field_, placement_, opacity);
+                with_field[i] = sim::mix_field(screens_[i], shown_, placement_, opacity);
                 if (opt_.aruco) with_board[i] = methods_.board().mix(screens_[i], opacity);
             });
             for (cv::Size res : opt_.resolutions)
@@ -383,7 +391,7 @@ public:
             parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
                 const auto at = static_cast<std::size_t>(i);
                 const double op = pulsing_opacity(rs[at].index);
-                field_frames[at] = shoot(scene_, rs[at], sim::mix_field(screens_[k], field_, placement_, op), res);
+                field_frames[at] = shoot(scene_, rs[at], sim::mix_field(screens_[k], shown_, placement_, op), res);
                 if (opt_.aruco) board_frames[at] = shoot(scene_, rs[at], methods_.board().mix(screens_[k], op), res);
             });
             std::vector<Outcome> u, v, a;
@@ -474,6 +482,7 @@ private:
     const Clock::time_point start_ = Clock::now();
     const Scene scene_;
     const Field field_;
+    const Field shown_;  // on the screen; field_ unless --shown-field
     const Methods methods_;
     const sim::FieldPlacement placement_{{0, 0}, scene_.module_px};
     std::vector<cv::Mat> screens_;
@@ -501,6 +510,7 @@ int run_heldout_set(const Options& opt, const std::string& command) {
     h.threads = opt.threads;
     h.dump = opt.dump;
     h.field = opt.field;
+    h.shown_field = opt.shown_field;
     h.command = command;
     h.without = opt.without;
     return run_heldout(h);

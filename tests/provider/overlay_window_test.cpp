@@ -257,11 +257,15 @@ void run_child(const std::string& child, const std::string& screen, const std::v
     const auto openbox = start_openbox(options, dir.path / "openbox-ready");
     const X11Desktop desktop(server.display);
     ASSERT_TRUE(desktop.has_ewmh());
-    if (check_detection) EXPECT_FALSE(compositor_running(server.display, 0));
+    if (check_detection) {
+        EXPECT_FALSE(compositor_running(server.display, 0));
+    }
     options.log = dir.path / "compositor.log";
     Process running(compositor, options);
     ASSERT_TRUE(wait_until([&] { return compositor_running(server.display, 0); }, 5s));
-    if (check_detection) EXPECT_FALSE(compositor_advice().empty());
+    if (check_detection) {
+        EXPECT_FALSE(compositor_advice().empty());
+    }
 
     options.log = dir.path / "child.log";
     options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}, {kChildVariable, "1"}});
