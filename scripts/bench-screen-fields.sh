@@ -4,20 +4,22 @@
 # detector reading worse than on the shipped b4-64x36, and does a requester
 # looking for one screen's field ever take a point from another's?
 #
-#   scripts/bench-screen-fields.sh [BUILD_DIR] [FIELDS] [FRAMES] [OUT]
+#   scripts/bench-screen-fields.sh [BUILD_DIR] [FIELDS] [FRAMES] [OUT] [PAIRS]
 #
 # FIELDS (default 20) fields of seeds 1001.. are generated and verified; each,
 # and the shipped field, goes through the detector benchmark on the tuning and
 # the held-out set (general, perspective and low light; opacity 0.15 and 0.3;
-# 640 x 480; FRAMES frames each, default 40). Then field i is looked for on
-# frames of screen i + 1 (the last screen's frames with the first field), on
-# both sets: every frame found there is a wrong take. The summary goes to
+# 640 x 480; FRAMES frames each, default 40). Then, for PAIRS screens
+# (default FIELDS), field i is looked for on frames of screen i + 1 (the
+# last screen's frames with the first field), on both sets: every frame
+# found there is a wrong take. The summary goes to
 # OUT/screen_fields.md and .json (default docs/benchmarks).
 set -euo pipefail
 build=${1:-build/release}
 fields=${2:-20}
 frames=${3:-40}
 out=${4:-docs/benchmarks}
+pairs=${5:-$fields}
 bench="$build/tests/umf_benchmark"
 tool="$build/bin/umf-field"
 work=$(mktemp -d /tmp/umf-screen-fields-XXXXXX)
@@ -41,12 +43,13 @@ run() {  # NAME FIELD [SHOWN]
 }
 run shipped b4-64x36.json
 for i in $(seq "$fields"); do run "own-$i" "$work/screen-$i.json"; done
-for i in $(seq "$fields"); do run "cross-$i" "$work/screen-$i.json" "$work/screen-$(( i % fields + 1 )).json"; done
+for i in $(seq "$pairs"); do run "cross-$i" "$work/screen-$i.json" "$work/screen-$(( i % fields + 1 )).json"; done
 
 mkdir -p "$out"
-python3 - "$work" "$fields" "$frames" "$out" "$(( $(date +%s) - started ))" <<'PY'
+python3 - "$work" "$fields" "$frames" "$out" "$(( $(date +%s) - started ))" "$pairs" <<'PY'
 import json, os, statistics, sys
 work, n, frames, out, seconds = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4], int(sys.argv[5])
+pairs = int(sys.argv[6])
 
 def load(name, kind):
     path = os.path.join(work, name, kind, 'detector.json' if kind == 'tuning' else 'heldout.json')
@@ -60,9 +63,9 @@ def load(name, kind):
             'reasons': reasons}
 
 pct = lambda a, b: 100.0 * a / b if b else float('nan')
-summary = {'fields': n, 'frames_per_configuration': frames, 'wall_s': seconds, 'sets': {}}
+summary = {'fields': n, 'pairs': pairs, 'frames_per_configuration': frames, 'wall_s': seconds, 'sets': {}}
 lines = [f'# Screens\' own fields', '',
-         f'`scripts/bench-screen-fields.sh build/release {n} {frames}` on {os.cpu_count()} cores, {seconds / 60:.0f} min. '
+         f'`scripts/bench-screen-fields.sh build/release {n} {frames} {out} {pairs}` on {os.cpu_count()} cores, {seconds / 60:.0f} min. '
          f'{n} generated 64 x 36 binary fields (4 x 4 windows, seeds 1001-{1000 + n}) against the shipped b4-64x36; '
          'general, perspective and low light at opacity 0.15 and 0.3, 640 x 480, '
          f'{frames} frames each, per set.', '',
@@ -71,7 +74,7 @@ lines = [f'# Screens\' own fields', '',
 for kind in ('tuning', 'heldout'):
     shipped = load('shipped', kind)
     own = [load(f'own-{i}', kind) for i in range(1, n + 1)]
-    cross = [load(f'cross-{i}', kind) for i in range(1, n + 1)]
+    cross = [load(f'cross-{i}', kind) for i in range(1, pairs + 1)]
     per = [pct(o['success'], o['evaluated']) for o in own]
     pooled = pct(sum(o['success'] for o in own), sum(o['evaluated'] for o in own))
     wrong = sum(o['false'] for o in own)
@@ -88,7 +91,7 @@ for kind in ('tuning', 'heldout'):
     lines.append(f'| {kind} | {pct(shipped["success"], shipped["evaluated"]):.1f} % of {shipped["evaluated"]} | '
                  f'{pooled:.1f} % of {sum(o["evaluated"] for o in own)} | {min(per):.1f} / {statistics.median(per):.1f} / '
                  f'{max(per):.1f} % | {shipped["false"]} / {wrong} |')
-lines += ['', 'Another screen: field i looked for on frames of screen i + 1.', '',
+lines += ['', f'Another screen: field i looked for on frames of screen i + 1, for {pairs} screens.', '',
           '| set | frames | points taken (wrong takes) | why the others were not found |', '|---|---|---|---|']
 for kind, s in summary['sets'].items():
     why = ', '.join(f'{r}: {k}' for r, k in sorted(s['another_screen_reasons'].items(), key=lambda x: -x[1]))
