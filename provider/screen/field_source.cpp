@@ -61,7 +61,8 @@ void write_seed(const fs::path& config_dir, std::uint64_t seed) {
     }
 }
 
-Field generate_like(const Field& shipped, std::uint64_t seed) {
+// The shipped field's size and kind from `seed`, named `id`.
+Field generate_like(const Field& shipped, std::uint64_t seed, const std::string& id) {
     GeneratorOptions o;
     o.width = shipped.width;
     o.height = shipped.height;
@@ -69,7 +70,7 @@ Field generate_like(const Field& shipped, std::uint64_t seed) {
     o.colors = shipped.colors;
     o.key = shipped.key;
     o.seed = seed;
-    o.id = default_field_id(o.width, o.height, o.window, o.colors, o.key) + "-" + hex16(seed);
+    o.id = id;
     // The shipped sizes are made in well under a second; the limit only
     // keeps a screen from hanging on a size the generator cannot finish.
     o.time_limit_s = 60;
@@ -95,7 +96,7 @@ FieldSource::Chosen FieldSource::field_for(const std::string& shipped_file) cons
     if (!kept.empty() && fs::exists(kept, ec)) {
         chosen = {load_field(kept.string()), kept.string()};
     } else {
-        chosen.field = generate_like(shipped, seed_);
+        chosen.field = generate_like(shipped, seed_, id);
         if (!kept.empty()) {
             fs::create_directories(keep_dir_, ec);
             try {
