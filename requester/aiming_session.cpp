@@ -47,6 +47,7 @@ bool aiming(core::Phase phase) { return phase == core::Phase::searching || phase
 // A frame's result as the core takes it: the aim the protocol would carry.
 core::Sighting sighting(bool locked, const Eigen::Vector2d& point, const Detection& d, int width, int height) {
     core::Sighting s;
+    s.another_field = !locked && d.another_field;
     if (!locked || !usable_point(point)) return s;
     const std::optional<p::Aim> aim = aiming::aim_message(point, d, width, height);
     if (!aim) return s;
@@ -230,6 +231,7 @@ Json AimingSession::act_on_still(const Frame& frame, const PointAction& action) 
     const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
     const Detection d = detector_->detect(view, centre);
     const core::Sighting seen = sighting(d.found, d.aim_field, d, view.width, view.height);
+    if (seen.another_field) throw another_screen(frame.name);
     if (!seen.locked)
         throw GrabFailure("not_found_in_view",
                           "the field was not found in " + frame.name +
@@ -308,6 +310,10 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
         show_target();
         if (seen.locked && !ever_locked) log("locked on the field");
         ever_locked = ever_locked || seen.locked;
+        if (pointer_->view().another_screen != status_.another_screen) {
+            status_.another_screen = pointer_->view().another_screen;
+            if (status_.another_screen) log(another_screen(where_frames()).what());
+        }
         ever_steady = ever_steady || pointer_->view().steady;
 
         PreviewKey key = PreviewKey::none;
@@ -389,10 +395,23 @@ PreviewKey AimingSession::show(Preview& preview, const cv::Mat& frame, int wait_
     }
 }
 
+std::string AimingSession::where_frames() const {
+    return o_.input == FrameInput::video ? "in " + o_.path : "in view";
+}
+
+GrabFailure AimingSession::another_screen(const std::string& where) const {
+    return GrabFailure("another_screen",
+                       "the screen " + where + " is another screen than " + welcome_.provider.name +
+                           ": its field is not this screen's. Pair with that screen (scan its QR code, or give "
+                           "--url its pairing link) or point at " + welcome_.provider.name,
+                       kNothing);
+}
+
 void AimingSession::end_without_act(const PointAction& action, bool ever_locked, bool ever_steady, bool timed_out,
                                     double timeout) const {
-    const std::string where = o_.input == FrameInput::video ? "in " + o_.path : "in view";
+    const std::string where = where_frames();
     const std::string when = timed_out ? " within " + Json(timeout).dump() + " s" : "";
+    if (!ever_locked && status_.another_screen) throw another_screen(where);
     if (!ever_locked)
         throw GrabFailure("not_found_in_view",
                           "the field was never found " + where + when +

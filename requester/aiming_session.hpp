@@ -13,6 +13,7 @@
 #include <string>
 
 #include "cli.hpp"
+#include "grab_failure.hpp"
 #include "detect/detector.hpp"
 #include "frame_source.hpp"
 #include "protocol/pairing_url.hpp"
@@ -99,6 +100,10 @@ private:
     Json act_on_still(const Frame& frame, const PointAction& action);
     Json act_from(FrameSource& source, const PointAction& action);
     PreviewKey show(Preview& preview, const cv::Mat& frame, int wait_ms);
+    // "in view" or "in VIDEO": where the frames come from, for messages.
+    std::string where_frames() const;
+    // The failure of frames that show another screen's field (code another_screen).
+    GrabFailure another_screen(const std::string& where) const;
     [[noreturn]] void end_without_act(const PointAction& action, bool ever_locked, bool ever_steady, bool timed_out,
                                       double timeout) const;
 

@@ -39,6 +39,8 @@ flushed as soon as its frame is done:
   windows     how many field windows agreed on the place
   ms          the detection time in milliseconds (decoding not included)
   confidence  the fraction of the modules read that the place explains
+  reason      the stage that gave up; "another field": a marker field is under the
+              aim point, but not F.json's (another screen's)
 
 options:
   --field F.json  the field shown on the screen (umf-field/1)

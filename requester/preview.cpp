@@ -103,7 +103,8 @@ cv::Mat Preview::render(const cv::Mat& frame, const PreviewStatus& status) {
             // while looking at the crosshair.
             cv::rectangle(img, {0, 0, img.cols, img.rows}, kRed, std::max(4, img.cols / 80));
             crosshair(img, kRed);
-            banner(img, "searching - point at the screen", kRed, true);
+            banner(img, status.another_screen ? "another screen - scan its QR code" : "searching - point at the screen",
+                   kRed, true);
             break;
         case PreviewState::locked: {
             crosshair(img, kGreen);

@@ -23,6 +23,7 @@ struct PreviewStatus {
     bool auto_act = false;     // the hint line says a steady aim grabs (puts)
     std::string verb = "grab";  // "grab" or "put"
     std::string message;        // while acting: what is happening ("waiting for the screen...")
+    bool another_screen = false;  // searching: the field in view is another screen's
 };
 
 class Preview {

@@ -12,7 +12,11 @@
 # 640 x 480; FRAMES frames each, default 40). Then, for PAIRS screens
 # (default FIELDS), field i is looked for on frames of screen i + 1 (the
 # last screen's frames with the first field), on both sets: every frame
-# found there is a wrong take. The summary goes to
+# found there is a wrong take, and every frame the detector says shows
+# another field ("another field") is one where the requester can tell the
+# user so. Last, the first field is looked for on the pages alone (opacity
+# 0.001, no field to see): a frame said to show another field there would be
+# a false "another screen". The summary goes to
 # OUT/screen_fields.md and .json (default docs/benchmarks).
 set -euo pipefail
 build=${1:-build/release}
@@ -35,15 +39,17 @@ for i in $(seq "$fields"); do
 done
 echo "generated and verified $fields fields" >&2
 
-run() {  # NAME FIELD [SHOWN]
+run() {  # NAME FIELD [SHOWN [MORE...]]
   local name=$1 field=$2 shown=${3:-}
-  "$bench" "${common[@]}" --field "$field" ${shown:+--shown-field "$shown"} --out "$work/$name/tuning" 2>/dev/null
-  "$bench" --set heldout "${common[@]}" --field "$field" ${shown:+--shown-field "$shown"} --out "$work/$name/heldout" 2>/dev/null
+  shift $(( $# < 3 ? $# : 3 ))
+  "$bench" "${common[@]}" "$@" --field "$field" ${shown:+--shown-field "$shown"} --out "$work/$name/tuning" 2>/dev/null
+  "$bench" --set heldout "${common[@]}" "$@" --field "$field" ${shown:+--shown-field "$shown"} --out "$work/$name/heldout" 2>/dev/null
   echo "$name done after $(( $(date +%s) - started )) s" >&2
 }
 run shipped b4-64x36.json
 for i in $(seq "$fields"); do run "own-$i" "$work/screen-$i.json"; done
 for i in $(seq "$pairs"); do run "cross-$i" "$work/screen-$i.json" "$work/screen-$(( i % fields + 1 )).json"; done
+run page-alone "$work/screen-1.json" "" --opacities 0.001
 
 mkdir -p "$out"
 python3 - "$work" "$fields" "$frames" "$out" "$(( $(date +%s) - started ))" "$pairs" <<'PY'
@@ -58,9 +64,10 @@ def load(name, kind):
     reasons = {}
     for u in umf:
         for r, k in u.get('reasons', {}).items(): reasons[r] = reasons.get(r, 0) + k
+    ms = [u['ms_per_frame']['median'] for u in umf if u.get('ms_per_frame', {}).get('median') is not None]
     return {'evaluated': sum(u['evaluated'] for u in umf), 'found': sum(u['found'] for u in umf),
             'success': sum(u['success'] for u in umf), 'false': sum(u['false_location'] for u in umf),
-            'reasons': reasons}
+            'reasons': reasons, 'another': reasons.get('another field', 0), 'ms': ms}
 
 pct = lambda a, b: 100.0 * a / b if b else float('nan')
 summary = {'fields': n, 'pairs': pairs, 'frames_per_configuration': frames, 'wall_s': seconds, 'sets': {}}
@@ -83,19 +90,34 @@ for kind in ('tuning', 'heldout'):
     cross_reasons = {}
     for c in cross:
         for r, k in c['reasons'].items(): cross_reasons[r] = cross_reasons.get(r, 0) + k
+    page = load('page-alone', kind)
+    median_ms = lambda runs: statistics.median([m for r in runs for m in r['ms']]) if any(r['ms'] for r in runs) else float('nan')
     summary['sets'][kind] = {'shipped_success_pct': pct(shipped['success'], shipped['evaluated']),
                              'shipped_wrong_places': shipped['false'],
                              'own_success_pct_pooled': pooled, 'own_success_pct_per_field': per,
-                             'own_wrong_places': wrong, 'another_screen_frames': cross_frames,
-                             'another_screen_found': cross_found, 'another_screen_reasons': cross_reasons}
+                             'own_wrong_places': wrong, 'own_said_another': sum(o['another'] for o in own),
+                             'own_frames': sum(o['evaluated'] for o in own), 'own_median_ms': median_ms(own),
+                             'another_screen_frames': cross_frames,
+                             'another_screen_found': cross_found, 'another_screen_reasons': cross_reasons,
+                             'another_screen_said': cross_reasons.get('another field', 0),
+                             'another_screen_median_ms': median_ms(cross),
+                             'page_alone_frames': page['evaluated'], 'page_alone_said_another': page['another']}
     lines.append(f'| {kind} | {pct(shipped["success"], shipped["evaluated"]):.1f} % of {shipped["evaluated"]} | '
                  f'{pooled:.1f} % of {sum(o["evaluated"] for o in own)} | {min(per):.1f} / {statistics.median(per):.1f} / '
                  f'{max(per):.1f} % | {shipped["false"]} / {wrong} |')
-lines += ['', f'Another screen: field i looked for on frames of screen i + 1, for {pairs} screens.', '',
-          '| set | frames | points taken (wrong takes) | why the others were not found |', '|---|---|---|---|']
+lines += ['', f'Another screen: field i looked for on frames of screen i + 1, for {pairs} screens. '
+          '"Said another field": the search failed after a grid under the aim read as a field but not as this one '
+          '(what the requester turns into "This is another screen"). Own screen: the same, wrongly, on frames of '
+          'the paired screen; page alone: on the pages with no field to see (opacity 0.001). Times: the median '
+          'of the configurations\' median detection times.', '',
+          '| set | frames | points taken (wrong takes) | said another field | median ms | own screen: said another field / median ms | page alone: said another field | why the others were not found |',
+          '|---|---|---|---|---|---|---|---|']
 for kind, s in summary['sets'].items():
     why = ', '.join(f'{r}: {k}' for r, k in sorted(s['another_screen_reasons'].items(), key=lambda x: -x[1]))
-    lines.append(f'| {kind} | {s["another_screen_frames"]} | {s["another_screen_found"]} | {why} |')
+    lines.append(f'| {kind} | {s["another_screen_frames"]} | {s["another_screen_found"]} | '
+                 f'{s["another_screen_said"]} ({pct(s["another_screen_said"], s["another_screen_frames"]):.1f} %) | '
+                 f'{s["another_screen_median_ms"]:.1f} | {s["own_said_another"]} of {s["own_frames"]} / {s["own_median_ms"]:.1f} | '
+                 f'{s["page_alone_said_another"]} of {s["page_alone_frames"]} | {why} |')
 open(os.path.join(out, 'screen_fields.md'), 'w').write('\n'.join(lines) + '\n')
 json.dump(summary, open(os.path.join(out, 'screen_fields.json'), 'w'), indent=2)
 print('\n'.join(lines))

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "detect/aim_check.hpp"
+#include "detect/field_likeness.hpp"
 #include "detect/homography.hpp"
 #include "detect/stage_time.hpp"
 
@@ -51,9 +52,16 @@ std::optional<GridPlacement> predict_placement(const Eigen::Matrix3d& image_to_f
     return p;
 }
 
+// The aim lies on the grid (grid point (x, y) with x in [0, cols], y in [0, rows]).
+bool covers(const Eigen::Matrix3d& grid_to_image, int rows, int cols, const Eigen::Vector2d& aim) {
+    const auto g = apply_homography(grid_to_image.inverse(), Point2(aim.x(), aim.y()));
+    return g && g->x() >= 0 && g->y() >= 0 && g->x() <= cols && g->y() <= rows;
+}
+
 }  // namespace
 
 const char Detector::kAimAtInfinity[] = "aim point at infinity";
+const char Detector::kAnotherField[] = "another field";
 
 Detector::Detector(const Field& field, DetectorOptions options) : index_(field), options_(std::move(options)) {}
 
@@ -114,6 +122,11 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
         // grows out from them, and the checks judge it. A place refused near
         // the prior is not checked again.
         const bool weak = !vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up);
+        if (weak && options_.another_field_windows > 0 && covers(g2i, rows, cols, aim)) {
+            const int foreign = foreign_field_windows(grid, vote, options_.field_likeness);
+            if (foreign >= options_.another_field_windows)
+                out.another_field_windows = std::max(out.another_field_windows, foreign);
+        }
         if (weak || (near.found && near.placement == vote.placement)) return refused ? refused : "no agreeing windows";
         refused = place_from_vote(im, aim, g2i, vote, out, field_to_image, edges_fitted);
         t = StageClock::now();

@@ -28,6 +28,7 @@
 #include "detect/aim_check.hpp"
 #include "detect/classify.hpp"
 #include "detect/edgels.hpp"
+#include "detect/field_likeness.hpp"
 #include "detect/grid_lines.hpp"
 #include "detect/image.hpp"
 #include "detect/lattice.hpp"
@@ -113,6 +114,16 @@ struct DetectorOptions {
     // 640 x 480, nearly all did so within their first nine pairs; a search
     // that fails tries every pair, most often 15 to 27.
     int first_pass_pairs = 9;
+    // A search that fails, where a grid under the aim read as a marker
+    // field with at least this many windows read whole, yet no grid came
+    // near a place of this field (field_likeness.hpp), saw another screen's
+    // field (Detection::another_field). 0: never. The search is not cut
+    // short there: a grid labelled wrongly on the paired screen's own field
+    // reads the same way, and a later labelling finds the place (stopping
+    // at the first such grid lost a tenth of the tuning set's frames and a
+    // third of the held-out set's).
+    int another_field_windows = 30;
+    FieldLikenessOptions field_likeness;
     LatticeOptions lattice;
     double corner_tolerance_px = 1.5;  // robust grid homography
 };
@@ -141,6 +152,12 @@ struct Detection {
     StageTimes times;
     long pixels_visited = 0;
     std::string failure;      // the stage that ended the search, when not found
+    // Windows read whole from the largest grid under the aim that read as a
+    // field but as none of this field's places (0: none such).
+    int another_field_windows = 0;
+    // Not found, and the view shows another field where the aim is
+    // (DetectorOptions::another_field_windows): another screen's.
+    bool another_field = false;
 };
 
 // The view's image-to-field map shifted in the field to take the aim exactly
@@ -181,6 +198,8 @@ private:
     // The one failure that ends a search at once: a place was accepted, but
     // the aim maps to infinity under it. Compared by address.
     static const char kAimAtInfinity[];
+    // The failure of a search that saw another screen's field.
+    static const char kAnotherField[];
     // Which pairs of grid-line labellings a search tries (step 4). The first
     // pass tries the likeliest few of every search at every size and scan,
     // the second the rest, so that a field found by a later search at its

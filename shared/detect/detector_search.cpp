@@ -93,6 +93,10 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
         const char* again = search_sizes(im, aim, prior, pass, out);
         if (!again || again == kAimAtInfinity) failure = again;
     }
+    // Another screen's field under the aim: a grid there read as a field,
+    // and no grid anywhere had the windows of a candidate place of this one.
+    out.another_field = failure && out.another_field_windows > 0 && out.windows < options_.provisional_votes;
+    if (out.another_field) failure = kAnotherField;
     out.failure = failure ? failure : "";
     out.times.total_ms = std::chrono::duration<double, std::milli>(StageClock::now() - start).count();
     return out;

@@ -71,6 +71,7 @@ Step Pointer::frame(double t, const Sighting& s) {
         searching_since_ = t;
     }
     if (view_.phase != Phase::searching && view_.phase != Phase::locked) return step;  // a sheet has the user
+    see_another_field(t, s);
     if (s.locked && usable(s.point)) {
         if (view_.phase == Phase::searching) {
             view_.phase = Phase::locked;
@@ -108,6 +109,18 @@ Step Pointer::frame(double t, const Sighting& s) {
         last_seeking_ = t;
     }
     return step;
+}
+
+void Pointer::see_another_field(double t, const Sighting& s) {
+    const bool here = s.another_field && !(s.locked && usable(s.point));
+    if (here) {
+        if (!another_since_ || t - *another_last_ > timing_.another_gap_s) another_since_ = t;
+        another_last_ = t;
+    } else if (another_last_ && (s.locked || t - *another_last_ > timing_.another_gap_s)) {
+        another_since_.reset();
+        another_last_.reset();
+    }
+    view_.another_screen = another_since_ && *another_last_ - *another_since_ >= timing_.another_screen_s;
 }
 
 Step Pointer::tap(double t) {

@@ -27,6 +27,11 @@ struct Timing {
     double max_aims_per_s = 5.0;
     double seeking_interval_s = 1.0;
     double hint_after_s = 6.0;     // searching this long: the user is told how to help
+    // Another screen's field under the aim this long (frames without one
+    // between them no more than another_gap_s apart): the user is pointing
+    // at a screen this requester is not paired with.
+    double another_screen_s = 1.0;
+    double another_gap_s = 0.5;
     double grab_timeout_s = 20.0;  // a grab's answer
     double put_reply_s = 15.0;     // a put's first answer, and the screen's after the upload
     double screen_answer_s = 30.0;  // the screen's time to accept a put (its answer_timeout)
@@ -44,6 +49,9 @@ struct Sighting {
     protocol::FieldPoint point;
     double confidence = 0.0;
     std::optional<std::array<protocol::FieldPoint, 4>> quad;  // the view's outline, when known
+    // Not locked because another screen's field is under the aim
+    // (Detection::another_field).
+    bool another_field = false;
 };
 
 // What Put mode gives the screen. A file needs name, mime and size; its
@@ -94,6 +102,9 @@ struct View {
     std::optional<protocol::ContentKind> target_kind;
     std::string target_title;
     bool hint = false;  // searching for long: tell the user how to help the detector
+    // Searching, and pointed at another screen than the paired one: "This is
+    // another screen: scan its QR code".
+    bool another_screen = false;
     PutProgress put = PutProgress::none;
     double put_deadline = 0;  // while asking: when the screen's time to answer runs out
     std::optional<Outcome> outcome;  // in result and failed
@@ -165,6 +176,8 @@ private:
     Step on_put_status(double t, const protocol::PutStatus& status);
     Step on_error(const protocol::Error& error);
     void see_target(const protocol::Target& target);
+    // Whether the user points at another screen, from this frame's sighting.
+    void see_another_field(double t, const Sighting& sighting);
 
     Timing timing_;
     bool auto_act_ = false;
@@ -175,6 +188,8 @@ private:
     // Aiming.
     std::optional<double> last_aim_, last_seeking_;
     double searching_since_ = 0;
+    // Another screen's field: since when without a gap, and last seen.
+    std::optional<double> another_since_, another_last_;
     bool started_ = false;
     protocol::FieldPoint anchor_;
     double steady_since_ = 0;

@@ -47,6 +47,7 @@ Sighting sighting(const json& event) {
     s.locked = event.value("locked", false);
     if (s.locked) s.point = point(event.at("point"));
     s.confidence = number(event, "confidence", 0.0);
+    s.another_field = event.value("another_field", false);
     if (const auto quad = event.find("quad"); quad != event.end() && !quad->is_null()) {
         if (!quad->is_array() || quad->size() != 4) throw std::invalid_argument("a quad is four points");
         std::array<p::FieldPoint, 4> corners;
@@ -97,6 +98,8 @@ Timing timing(const json& setup) {
     t.max_aims_per_s = number(j, "max_aims_per_s", t.max_aims_per_s);
     t.seeking_interval_s = number(j, "seeking_interval_s", t.seeking_interval_s);
     t.hint_after_s = number(j, "hint_after_s", t.hint_after_s);
+    t.another_screen_s = number(j, "another_screen_s", t.another_screen_s);
+    t.another_gap_s = number(j, "another_gap_s", t.another_gap_s);
     t.grab_timeout_s = number(j, "grab_timeout_s", t.grab_timeout_s);
     t.put_reply_s = number(j, "put_reply_s", t.put_reply_s);
     t.screen_answer_s = number(j, "screen_answer_s", t.screen_answer_s);
@@ -163,6 +166,7 @@ json view_json(const View& view) {
     out["target"] = view.target_kind ? json{{"kind", p::to_string(*view.target_kind)}, {"title", view.target_title}}
                                      : json(nullptr);
     out["hint"] = view.hint;
+    out["another_screen"] = view.another_screen;
     out["put"] = to_string(view.put);
     out["put_deadline"] = view.put_deadline;
     if (view.outcome) {

@@ -17,7 +17,7 @@ import { createPointer } from './pointer.js';
 import { describeItem, sharedItem, showAskingCountdown, showPutChooser, showPutDone, showPutFailure, showPutStatus,
          upload, wirePutChoices } from './put_view.js';
 import { moveToName } from './screen_name.js';
-import { $, DETECTION_HINT, ERRORS, describeKind, hideSheets, hint, paused, setState, showError } from './sheets.js';
+import { $, ANOTHER_SCREEN_HINT, DETECTION_HINT, ERRORS, describeKind, hideSheets, hint, paused, setState, showError } from './sheets.js';
 import { connect } from './transport.js';
 import { forPeople, registerServiceWorker, wireTrust } from './trust.js';
 
@@ -91,7 +91,8 @@ function render(next) {
       if (was && !aiming(was.phase) && was.phase !== 'failed') backToAiming();
       else if (document.body.dataset.state === 'locked') setState('searching', aimingStatus());
       if (document.body.dataset.state === 'searching')
-        hint(next.hint ? 'detection-failing' : null, DETECTION_HINT);
+        hint(next.another_screen ? 'another-screen' : next.hint ? 'detection-failing' : null,
+             next.another_screen ? ANOTHER_SCREEN_HINT : DETECTION_HINT);
       break;
     case 'locked':
       if (was?.phase !== 'locked') {
@@ -266,7 +267,8 @@ function onResult(r) {
   debug.detectMs = r.ms;
   if (paused()) return;
   const locked = r.state === 'locked' && !!r.point;
-  drive({ event: 'frame', locked, point: locked ? r.point : undefined, confidence: r.confidence });
+  drive({ event: 'frame', locked, point: locked ? r.point : undefined, confidence: r.confidence,
+          another_field: r.anotherField });
 }
 
 function startPhotoMode(reason) {

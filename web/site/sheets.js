@@ -45,6 +45,11 @@ export const PUT_ERRORS = {
 export const DETECTION_HINT =
   'No screen found yet — move closer, hold the phone still, and make sure the screen is bright enough.';
 
+// The camera sees a screen's field, but not this screen's: the phone is
+// paired with another one (docs/ARCHITECTURE.md, "A field of its own").
+export const ANOTHER_SCREEN_HINT =
+  'This is another screen: scan its QR code to use it, or point at the screen this page belongs to.';
+
 export function showError(code, detail) {
   const [title, text] = ERRORS[code] || ['Something went wrong', ''];
   $('error').dataset.code = code;

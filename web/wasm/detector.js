@@ -15,10 +15,11 @@ import { cString, loadModule, withText } from './umf_module.js';
 const STATES = ['searching', 'locked', 'lost'];
 const FORMATS = { grey: 0, rgba: 1 };
 // UmfTrackResult (detector_module.hpp): byte offsets.
-const RESULT_SIZE = 160;
+const RESULT_SIZE = 168;
 const OFF = {
   point: 0, confidence: 16, H: 24, ms: 96, greyMs: 104, detectMs: 112, rawPoint: 120,
   state: 136, found: 140, windows: 144, usedPrior: 148, framesSinceLock: 152, edgesFitted: 156,
+  anotherField: 160,
 };
 
 // fieldJson: the welcome's field definition, as an object or as JSON text.
@@ -91,6 +92,7 @@ function readResult(M, r, handle) {
     usedPrior: i(OFF.usedPrior) !== 0,
     framesSinceLock: i(OFF.framesSinceLock),
     edgesFitted: i(OFF.edgesFitted),
+    anotherField: i(OFF.anotherField) !== 0,  // another screen's field under the aim
     ms: d(OFF.ms),                            // inside the module, grey conversion included
     greyMs: d(OFF.greyMs),
     detectMs: d(OFF.detectMs),

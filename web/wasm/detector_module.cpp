@@ -33,7 +33,8 @@ static_assert(offsetof(UmfTrackResult, ms) == 96);
 static_assert(offsetof(UmfTrackResult, raw_point) == 120);
 static_assert(offsetof(UmfTrackResult, state) == 136);
 static_assert(offsetof(UmfTrackResult, edges_fitted) == 156);
-static_assert(sizeof(UmfTrackResult) == 160);
+static_assert(offsetof(UmfTrackResult, another_field) == 160);
+static_assert(sizeof(UmfTrackResult) == 168);
 
 namespace {
 
@@ -118,6 +119,7 @@ void fill(UmfTrackResult& out, const umf::TrackResult& r) {
     out.used_prior = r.used_prior ? 1 : 0;
     out.frames_since_lock = r.frames_since_lock;
     out.edges_fitted = d.edges_fitted;
+    out.another_field = !d.found && d.another_field ? 1 : 0;
     out.detect_ms = d.times.total_ms;
 }
 

@@ -52,6 +52,9 @@ struct UmfTrackResult {
     std::int32_t used_prior;         // 148: the lock came from the prediction
     std::int32_t frames_since_lock;  // 152
     std::int32_t edges_fitted;       // 156
+    std::int32_t another_field;      // 160: not found, for another screen's field is under the aim
+                                     //      (Detection::another_field)
+    std::int32_t reserved;           // 164: 0
 };
 
 // A tracker for the field in `field_json` (a umf-field/1 object, the
