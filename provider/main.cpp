@@ -39,7 +39,7 @@ const char* kUsageText = R"(umf-provider: show a marker field and serve what it 
 usage:
   umf-provider [serve] [--board BOARD.json] [--preset NAME] [--port P] [--headless]
                [--screen WxH] [--public] [--bind ADDR] [--host HOST] [--web DIR]
-               [--config-dir DIR] [--no-qr] [--no-overlay] [--tune] [--no-announce] [--own-field]
+               [--config-dir DIR] [--no-qr] [--no-overlay] [--tune] [--no-announce] [--shipped-field]
                [--desktop x11|wlroots|kde|gnome|none]
                [--puts ask|always|never] [--put-dir DIR] [--put-max-mb N]
   umf-provider pair [--port P] [--host HOST] [--config-dir DIR] [--rotate [--root] [--field]] [--no-qr]
@@ -54,7 +54,8 @@ usage:
   umf-provider gnome install
   umf-provider kde install
   umf-provider compose (--content SCREEN.png | --board BOARD.json | both) --preset NAME
-                       --time T --out OUT.png --map MAP.json [--screen WxH] [--own-field]
+                       --time T --out OUT.png --map MAP.json [--screen WxH] [--config-dir DIR]
+                       [--shipped-field]
                        [preset settings, as for serve: --module-px P --blur B ...]
   umf-provider --help
 
@@ -77,16 +78,17 @@ serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /w
          Where Avahi runs, the provider announces itself on the local network
          (DNS-SD, _umf._tcp, with its HOST.local name and the fingerprint of
          its root, never the token); --no-announce, or --bind 127.0.0.1,
-         leaves that out. --own-field shows a field made for this screen
-         alone (from a seed kept in the configuration directory as
-         field-seed), so that a phone paired with another screen in the
-         room never finds it; compose --own-field draws the same field.
+         leaves that out. The field is this screen's own, made from a seed
+         kept in the configuration directory (field-seed), so that a phone
+         paired with another screen in the room never takes a point from
+         it and says it sees another screen; --shipped-field shows the field
+         every screen shows instead (printed fields made from it before).
 pair     prints the pairing URL and its QR code; --rotate makes a new token
          first, which unpairs every requester (a running provider keeps the
          old token until it restarts); --rotate --root also makes a new
          screen root, so every requester pairs again and phones that trusted
          the old root should remove it; --rotate --field also makes a new
-         seed for the screen's own field (serve --own-field).
+         seed for the screen's own field.
 trust    prints the fingerprint of the screen's root, the certificate
          authority (made on first start, kept in the configuration directory)
          that issues the certificate the provider serves, and where phones
@@ -260,7 +262,7 @@ int dispatch(int argc, char** argv) {
     if (command == "compose") {
         std::vector<std::string> options = {"content", "board", "preset", "time", "out", "map", "screen", "config-dir"};
         for (const auto& o : umf::provider::preset_setting_options()) options.push_back(o);
-        const auto args = parse_command_args(argc, argv, first, options, {"own-field"});
+        const auto args = parse_command_args(argc, argv, first, options, {"shipped-field", "own-field"});
         const auto config_dir = config_dir_option(args);
         auto compose_args = args;  // compose's own options only
         compose_args.named.erase("config-dir");

@@ -164,7 +164,7 @@ wait_for "'$build/bin/umf-provider' browser status --port $port | grep -q 'umf n
 
 "$build/tests/web/umf_fake_camera" --provider "$build/bin/umf-provider" --content "$work/desktop.png" \
     --aim "$link_x,$link_y,$link_width,$link_height" --preset balanced --distance 330 --frames 45 \
-    --out "$work/camera.y4m" --work "$work/screens" >"$work/camera.json" ||
+    --field-seed "$work/provider/field-seed" --out "$work/camera.y4m" --work "$work/screens" >"$work/camera.json" ||
     die "the camera's video does not lock on the link: $(cat "$work/camera.json")"
 
 # --- The phone ------------------------------------------------------------------

@@ -139,7 +139,7 @@ int compose(const cli::Args& args, const fs::path& config_dir) {
     cli::reject_unknown(args, known);
     if (!args.positional.empty()) throw UsageError("compose: unexpected argument " + args.positional.front());
     for (const auto& flag : args.flags)
-        if (flag != "own-field") throw UsageError("compose: unexpected flag --" + flag);
+        if (flag != "shipped-field" && flag != "own-field") throw UsageError("compose: unexpected flag --" + flag);
     const auto content_path = cli::get(args, "content");
     const auto board_path = cli::get(args, "board");
     if (!content_path && !board_path) throw UsageError("compose needs --content or --board (or both)");
@@ -176,9 +176,9 @@ int compose(const cli::Args& args, const fs::path& config_dir) {
     try {
         // The preset's module size as on a 96 dpi screen, as the headless
         // provider places it (serve_command.cpp).
-        // With --own-field, the field the provider of this configuration
-        // shows (serve --own-field), made and kept there if it is not yet.
-        const FieldSource fields = cli::has_flag(args, "own-field") ? own_field_source(config_dir) : FieldSource();
+        // The field the provider of this configuration shows, made and
+        // kept there if it is not yet; with --shipped-field the shipped one.
+        const FieldSource fields = cli::has_flag(args, "shipped-field") ? FieldSource() : own_field_source(config_dir);
         field = screen_field_for(screen.width(), screen.height(), preset.module_px, fields);
         shipped_unchanged = same_field(field.field, load_field(field.file));
     } catch (const std::runtime_error& e) {

@@ -43,7 +43,7 @@ int run_pair(const cli::Args& a) {
         if (has_flag(a, "field")) {
             const FieldSource fields = rotate_field_seed(dir);
             std::cerr << "umf-provider: the screen's own field has a new seed (" << std::hex << fields.seed() << std::dec
-                      << "); a provider serving with --own-field shows it from its next start, and printed or composed "
+                      << "); a running provider shows it from its next start, and printed or composed "
                          "pictures of the old field no longer point at this screen\n";
         }
         const TlsIdentity identity = load_or_create_tls_identity(dir);

@@ -54,7 +54,7 @@ const char* const kServeOptions[] = {"port",         "bind",        "host",   "c
                                      "period",       "waveform",    "module-px", "blur",     "region",
                                      "focus-radius", "activation",  "fade",   "palette",     "puts",
                                      "put-dir",      "put-max-mb",  "desktop",     nullptr};
-const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", "no-announce", "own-field",
+const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", "no-announce", "shipped-field", "own-field",
                                    nullptr};
 
 namespace {
@@ -111,7 +111,7 @@ struct Serving {
     std::filesystem::path board_source;
     overlay::Preset preset;
     double board_module_px = 0;
-    FieldSource fields;  // the shipped fields, or with --own-field the screen's own
+    FieldSource fields;  // the screen's own, or with --shipped-field the shipped fields
     // The desktop and the overlay over it.
     OpenedDesktop desktop;
     std::unique_ptr<OverlayManager> overlay_manager;
@@ -144,7 +144,9 @@ void read_command_line(const cli::Args& a, Serving& s) {
     s.bind = get(a, "bind").value_or("0.0.0.0");
     s.host = url_host(a, s.bind);
     s.dir = config_dir_option(a);
-    if (has_flag(a, "own-field")) {
+    // --own-field, the default, is still taken from the command lines of
+    // before it was.
+    if (!has_flag(a, "shipped-field")) {
         try {
             s.fields = own_field_source(s.dir);
         } catch (const std::runtime_error& e) {

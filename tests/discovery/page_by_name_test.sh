@@ -51,6 +51,7 @@ start_avahi "$work/screen" umf0
 in_phone bash -c "source '$here/../support/avahi_namespace.sh' && start_avahi '$work/phone' umf1"
 export DBUS_SYSTEM_BUS_ADDRESS=unix:path=$work/screen/bus
 
+mkdir -p "$work/cfg" && cp "$(dirname "$board")/field-seed" "$work/cfg/"  # the field the video shows
 start_provider "$work/provider.log" --config-dir "$work/cfg" --board "$board" --screen 1920x1080 --web "$site"
 for _ in $(seq 100); do grep -q '^announced: ' "$work/provider.log" && break; sleep 0.1; done
 grep -q '^announced: .* at https://umf-screen-test.local:' "$work/provider.log" ||

@@ -27,6 +27,7 @@
 #include "overlay/preset.hpp"
 #include "provider/gui_test_app.hpp"
 #include "screen/board_window.hpp"
+#include "screen/field_source.hpp"
 #include "screen/screen_field.hpp"
 #include "screen/screen_image.hpp"
 #include "sim/camera.hpp"
@@ -134,7 +135,8 @@ TEST_F(BackgroundBlurCompose, ComposeTakesThePresetsBlur) {
     args.named = {{"content", (dir.path / "content.png").string()}, {"preset", "static"}, {"time", "0"},
                   {"out", out.string()}, {"map", map.string()}, {"blur", "0.7"}};
     ASSERT_EQ(run_compose(args, dir.path / "config"), 0);
-    const ScreenField field = screen_field_for(size.width(), size.height(), 30.0);  // the static preset's
+    // The static preset's module size; the screen's own field, as compose drew it.
+    const ScreenField field = screen_field_for(size.width(), size.height(), 30.0, own_field_source(dir.path / "config"));
     const QImage expected = compose_screen(&content, nullptr, size, field, 0.3, {}, 0.7);
     EXPECT_TRUE(QImage(QString::fromStdString(out.string())).convertToFormat(QImage::Format_RGB888) == expected);
     std::ifstream in(map);

@@ -17,6 +17,7 @@
 #include "overlay/preset.hpp"
 #include "provider/gui_test_app.hpp"
 #include "screen/board_window.hpp"
+#include "screen/field_source.hpp"
 #include "screen/screen_field.hpp"
 #include "screen/screen_image.hpp"
 #include "support/x11_session.hpp"
@@ -96,7 +97,7 @@ TEST(BoardWindow, TheProvidersBoardOnAnXServerCarriesThePulsingField) {
     ASSERT_TRUE(wait_until([&] { return log().find("pairing URL") != std::string::npos; }, 20s)) << log();
 
     const auto desktop = std::make_shared<const X11Desktop>(server.display);
-    const ScreenField field = screen_field_for(1920, 1080);
+    const ScreenField field = screen_field_for(1920, 1080, 0.0, own_field_source(dir.path / "cfg"));  // what it shows
     const umf::Detector detector(field.field);
     auto capture_grey = [&](std::vector<std::uint8_t>& grey) {
         const Capture shot = desktop->capture({0, 0, 1920, 1080});

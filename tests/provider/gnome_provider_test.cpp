@@ -23,6 +23,7 @@
 #include "detect/detector.hpp"
 #include "overlay/placement.hpp"
 #include "provider/gui_test_app.hpp"
+#include "screen/field_source.hpp"
 #include "screen/screen_field.hpp"
 #include "support/files.hpp"
 #include "support/gnome_session.hpp"
@@ -104,7 +105,7 @@ TEST(GnomeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWi
     ASSERT_FALSE(url.empty()) << test::read_file(log);
 
     // The screen as a camera sees it: the field found where the provider puts it.
-    const ScreenField field = screen_field_for(1920, 1080);
+    const ScreenField field = screen_field_for(1920, 1080, 0.0, own_field_source(work / "config" / "umf"));  // its own
     const Detector detector(field.field);
     const test::DesktopPhoto photo = test::capture_until_field(
         [&](const WindowRect& r) {

@@ -17,6 +17,7 @@
 
 #include "desktop/x11/x11_desktop.hpp"
 #include "detect/detector.hpp"
+#include "screen/field_source.hpp"
 #include "screen/screen_field.hpp"
 #include "desktop_photo.hpp"
 #include "support/process.hpp"
@@ -91,7 +92,7 @@ TEST(PutCardOnX, TheCardStaysOutOfSnapshotsAndTheOpenedFileLandsWherePointed) {
     ASSERT_FALSE(url.empty()) << log_of("provider.log");
 
     // A photo of the screen with the field, as both requesters' camera.
-    const ScreenField field = screen_field_for(1920, 1080);
+    const ScreenField field = screen_field_for(1920, 1080, 0.0, own_field_source(dir.path / "cfg"));  // what it shows
     const umf::Detector detector(field.field);
     const DesktopPhoto photo = capture_until_field(*desktop, detector, 1920, 1080, 20s);
     const umf::Detection& found = photo.detection;

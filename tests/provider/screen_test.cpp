@@ -26,6 +26,7 @@
 #include "overlay/field_mix.hpp"
 #include "overlay/preset.hpp"
 #include "overlay/pulse.hpp"
+#include "screen/field_source.hpp"
 #include "screen/screen_field.hpp"
 #include "screen/screen_image.hpp"
 #include "sim/camera.hpp"
@@ -198,9 +199,12 @@ TEST_F(Compose, WritesTheScreenAndItsMap) {
 
     const nlohmann::json m = read_json(map);
     const overlay::Preset balanced = *overlay::find_preset(overlay::built_in_presets(), "balanced");
-    // The preset's module size, the field reaching past the smaller screen.
-    const ScreenField field = screen_field_for(1280, 720, balanced.module_px);
+    // The preset's module size, the field reaching past the smaller screen:
+    // the screen's own, made from the seed compose kept in its configuration.
+    ASSERT_TRUE(fs::is_regular_file(config() / "field-seed"));
+    const ScreenField field = screen_field_for(1280, 720, balanced.module_px, own_field_source(config()));
     EXPECT_DOUBLE_EQ(field.placement.module_px, balanced.module_px);
+    EXPECT_NE(field.field.modules, screen_field_for(1280, 720, balanced.module_px).field.modules);
     EXPECT_EQ(m["field"], fs::absolute(field.file).lexically_normal().string());
     EXPECT_TRUE(fs::is_regular_file(m["field"].get<std::string>()));
     EXPECT_EQ(m["field_id"], field.field.id);
@@ -216,6 +220,15 @@ TEST_F(Compose, WritesTheScreenAndItsMap) {
     // The image is the content with the field mixed in as compose_screen does it.
     const QImage expected = compose_screen(&content, nullptr, QSize(1280, 720), field, m["opacity"].get<double>(), {});
     EXPECT_TRUE(shown.convertToFormat(QImage::Format_RGB888) == expected);
+
+    // --shipped-field: the field every screen shows, as it is shipped.
+    cli::Args shipped = args({{"content", (dir_ / "content.png").string()}, {"preset", "balanced"},
+                              {"time", "0.75"}, {"out", out.string()}, {"map", map.string()}});
+    shipped.flags.push_back("shipped-field");
+    ASSERT_EQ(run_compose(shipped, config()), 0);
+    const ScreenField shipped_field = screen_field_for(1280, 720, balanced.module_px);
+    EXPECT_EQ(read_json(map)["field"], fs::absolute(shipped_field.file).lexically_normal().string());
+    EXPECT_EQ(read_json(map)["field_id"], shipped_field.field.id);
 }
 
 TEST_F(Compose, PortraitBoardGetsItsTurnedFieldWritten) {

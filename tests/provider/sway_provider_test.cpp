@@ -20,6 +20,7 @@
 #include "desktop/wlroots/wlroots_desktop.hpp"
 #include "desktop_photo.hpp"
 #include "detect/detector.hpp"
+#include "screen/field_source.hpp"
 #include "screen/screen_field.hpp"
 #include "support/files.hpp"
 #include "support/process.hpp"
@@ -77,7 +78,7 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     ASSERT_FALSE(url.empty()) << test::read_file(log);
 
     // The desktop as a camera would see it, with the field found in it.
-    const ScreenField field = screen_field_for(1920, 1080);
+    const ScreenField field = screen_field_for(1920, 1080, 0.0, own_field_source(work / "config" / "umf"));  // its own
     const Detector detector(field.field);
     const test::DesktopPhoto photo = test::capture_until_field(*desktop, detector, 1920, 1080, 10s);
     ASSERT_TRUE(photo.detection.found) << "no field on the desktop: " << photo.detection.failure << "\n" << test::read_file(log);

@@ -20,7 +20,8 @@ fp=$(der_sha256 "$work/root.pem")
 [ "$(sha256sum <"$work/root.crt" | cut -d' ' -f1)" = "$fp" ] || { echo "FAIL: --der is not the root's DER"; exit 1; }
 grep -q '<string>com.apple.security.root</string>' "$work/root.mobileconfig" ||
   { echo "FAIL: --mobileconfig holds no root payload"; exit 1; }
-"$bin/umf-provider" trust --config-dir "$work/cfg" | grep -q "^screen root (SHA-256): $fp$" ||
+# --port: other tests' providers may run beside this one.
+"$bin/umf-provider" trust --config-dir "$work/cfg" --port "$port" | grep -q "^screen root (SHA-256): $fp$" ||
   { echo "FAIL: umf-provider trust does not print the root's fingerprint"; exit 1; }
 if grep -q 'PRIVATE' "$work/root.pem" "$work/root.mobileconfig"; then echo "FAIL: a key was exported"; exit 1; fi
 echo "ok: trust export writes the root $fp as PEM, DER and a profile; the pairing URL pins it"

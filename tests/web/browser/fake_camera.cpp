@@ -83,6 +83,8 @@ usage:
 --still FILE.png  also one photograph of the tile (photo mode)
 --still-size WxH  its size (default 1280x720)
 --work DIR        composed screens and maps (default: VIDEO.y4m.screens)
+--field-seed FILE the field-seed of the provider whose screen is filmed: its
+                  own field is drawn (without: a seed made for this video)
 --no-check        skip the native tracker's check
 
 exit codes: 0 written (the check's result is in the summary, and a failed
@@ -92,7 +94,7 @@ the --aim rectangle).
 )";
 
 struct Options {
-    std::string provider, board, content, out, still, work, preset = "kiosk";
+    std::string provider, board, content, out, still, work, field_seed, preset = "kiosk";
     std::optional<umf::provider::PixelRect> aim;
     int tile = 0, frames = 45, phases = 9;
     double fps = 30, distance_mm = 350;
@@ -148,6 +150,7 @@ Options parse(int argc, char** argv) {
         else if (a == "--out") o.out = v;
         else if (a == "--still") o.still = v;
         else if (a == "--work") o.work = v;
+        else if (a == "--field-seed") o.field_seed = v;
         else if (a == "--preset") o.preset = v;
         else if (a == "--tile") o.tile = std::stoi(v);
         else if (a == "--frames") o.frames = std::stoi(v);
@@ -282,6 +285,12 @@ int main(int argc, char** argv) {
         }
         if (o.aim) tile = *o.aim;
         fs::create_directories(o.work);
+        // The screen's own field is the one its provider's seed makes.
+        if (!o.field_seed.empty()) {
+            fs::create_directories(fs::path(o.work) / "config");
+            fs::copy_file(o.field_seed, fs::path(o.work) / "config" / "field-seed",
+                          fs::copy_options::overwrite_existing);
+        }
         // The pulse period: the built-in preset's (a static preset: one phase).
         const auto presets = umf::overlay::built_in_presets();
         if (const auto* preset = umf::overlay::find_preset(presets, o.preset)) period = preset->period_s;

@@ -12,7 +12,7 @@
 // Scenarios: camera_file, camera_url_http, photo, wrong_token, unreachable,
 // camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo,
 // unpaired, put_file, put_url_http, put_refused, put_carry, put_note, share_target,
-// trusted_root (trust_scenario.mjs), kiosk_lock, name_follows (name_scenario.mjs, inside the namespaces
+// another_screen, trusted_root (trust_scenario.mjs), kiosk_lock, name_follows (name_scenario.mjs, inside the namespaces
 // of tests/discovery/page_by_name_test.sh). Exit codes: 0 passed, 1 failed, 77 skipped (the page,
 // Chromium, playwright-core or a fixture is missing), 2 usage.
 import { spawn } from 'node:child_process';
@@ -77,10 +77,12 @@ try {
 const SCENARIOS = ['camera_file', 'slow_download', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
                    'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
                    'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'put_chooser_holds', 'share_target',
-                   'trusted_root', 'kiosk_lock', 'name_follows'];
+                   'trusted_root', 'kiosk_lock', 'name_follows', 'another_screen'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
 if (opts.scenario === 'kiosk_lock' && !/^\d+$/.test(opts.tile ?? '')) usage('kiosk_lock needs --tile N (the demo board\'s tile)');
 const boardFile = path.resolve(opts.board);
+// The seed of the test screen's field, beside the board (tests/web/CMakeLists.txt).
+const screenFieldSeed = path.join(path.dirname(boardFile), 'field-seed');
 const board = JSON.parse(fs.readFileSync(boardFile, 'utf8'));
 const item = (i) => {
   const it = board.items[i];
@@ -111,6 +113,9 @@ const cleanups = [];
 // extra: more serve arguments (--puts ...); env: more environment; board:
 // null serves the built-in demo board (no --board).
 async function startProvider({ extra = [], env = {}, board = boardFile } = {}) {
+  // The test screen's own field, the one the fake camera's videos show.
+  fs.mkdirSync(path.join(work, 'config'), { recursive: true });
+  fs.copyFileSync(screenFieldSeed, path.join(work, 'config', 'field-seed'));
   const args = ['serve', '--headless', ...(board ? ['--board', board] : []), '--screen', '1920x1080', '--port', '0',
                 '--bind', '127.0.0.1', '--config-dir', path.join(work, 'config'), '--no-qr', '--web', opts.site, ...extra];
   const child = spawn(opts.provider, args, { stdio: ['ignore', 'pipe', 'pipe'],
@@ -783,6 +788,31 @@ const scenarios = {
     const breaks = await page.evaluate(() => ['#pairing .small', '#pairing-fingerprint', '#pairing-origin']
       .map((q) => getComputedStyle(document.querySelector(q)).wordBreak));
     check(breaks.every((b) => b !== 'break-all'), `no word-break: break-all in the pairing sheet (${breaks.join(', ')})`);
+  },
+
+  // (i') Pointed at another screen: the camera films the same board on a
+  // screen with a field of its own (another field-seed), while the page is
+  // paired with this one. Nothing locks, nothing is aimed at or taken, and
+  // the page says it is another screen.
+  async another_screen() {
+    const provider = await startProvider();
+    const browser = await launch({ video: fixture('other_screen_tile0.y4m') });
+    const page = await openPage(browser, pageUrl(provider.pairing, { autograb: '1' }));
+    await waitForState(page, ['searching'], 20000);
+    const h = await page.waitForFunction(() => {
+      const e = document.querySelector('#hint');
+      return e && !e.hidden && e.dataset.code === 'another-screen' ? { code: e.dataset.code, text: e.textContent } : null;
+    }, null, { timeout: 30000 }).then((handle) => handle.jsonValue()).catch(() => null);
+    const d = await debugOf(page);
+    log(`states: ${await statesSeen(page)}; #hint: ${JSON.stringify(h)}; frames ${d?.frames}, locks ${d?.locks}`);
+    check(h && h.code === 'another-screen', `#hint[data-code=another-screen] (${h?.code})`);
+    check(/another screen/.test(h.text) && /QR code/.test(h.text), `the hint says so ("${h.text}")`);
+    // A few more seconds of the other screen: still nothing.
+    await sleep(3000);
+    const states = await page.evaluate(() => window.__umfStates.map(([, s]) => s));
+    check(!states.includes('locked') && !states.includes('grabbing') && !states.includes('result'),
+          `the page never locked, grabbed or showed a result (${[...new Set(states)].join(', ')})`);
+    check(!/ took "/.test(provider.output()), 'the provider gave nothing away');
   },
 
   // (j) An insecure context (plain http, where browsers allow no live

@@ -29,6 +29,9 @@ const { chromium } = createRequire(path.join(path.resolve(args.modules), 'noop.j
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'umf-phone-shots-'));
 fs.mkdirSync(args.out, { recursive: true });
 
+// The screen's own field: the one the video of the board shows.
+fs.mkdirSync(path.join(work, 'config'), { recursive: true });
+fs.copyFileSync(path.join(path.dirname(path.resolve(args.board)), 'field-seed'), path.join(work, 'config', 'field-seed'));
 const provider = spawn(args.provider, ['serve', '--headless', '--board', path.resolve(args.board), '--screen', '1920x1080',
                                        '--port', '0', '--bind', '127.0.0.1', '--config-dir', path.join(work, 'config'),
                                        '--no-qr', '--web', args.site, '--puts', 'ask', '--put-dir', path.join(work, 'puts')],
