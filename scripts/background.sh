@@ -8,7 +8,15 @@ work=$(mktemp -d)
 background_cleanup() {
     for pid in "${pids[@]}"; do kill "$pid" 2>/dev/null || true; done
     for pid in "${pids[@]}"; do wait "$pid" 2>/dev/null || true; done
-    rm -rf "$work"
+    # A browser's helpers may still write into its profile for a moment
+    # after the browser itself is gone: try again rather than fail the run.
+    local tries
+    for tries in 1 2 3 4 5 6 7 8 9 10; do
+        rm -rf "$work" 2>/dev/null && return 0
+        sleep 0.5
+    done
+    echo "could not remove $work" >&2
+    return 0
 }
 trap background_cleanup EXIT
 trap 'exit 130' INT TERM

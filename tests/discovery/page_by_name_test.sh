@@ -22,7 +22,8 @@ cleanup() {
   stop_avahi "$work/phone"
   [ -n "$phone" ] && kill "$phone" 2>/dev/null
   wait 2>/dev/null || true
-  rm -rf "$work"
+  # Chromium's helpers may outlive it by a moment: a second try, never a failure.
+  rm -rf "$work" 2>/dev/null || { sleep 1; rm -rf "$work"; } || true
 }
 trap cleanup EXIT
 mdns_nsswitch "$work/nsswitch.conf" ||
