@@ -8,6 +8,7 @@
 
 #include "field/field_io.hpp"
 #include "field/generator.hpp"
+#include "common/screen_name.hpp"
 #include "io/atomic_file.hpp"
 
 namespace umf::provider {
@@ -81,7 +82,8 @@ Field generate_like(const Field& shipped, std::uint64_t seed, const std::string&
 
 }  // namespace
 
-FieldSource::FieldSource(std::uint64_t seed, fs::path keep_dir) : seed_(seed), keep_dir_(std::move(keep_dir)) {}
+FieldSource::FieldSource(std::uint64_t seed, fs::path keep_dir, std::string screen)
+    : seed_(seed), keep_dir_(std::move(keep_dir)), screen_(std::move(screen)) {}
 
 FieldSource::Chosen FieldSource::field_for(const std::string& shipped_file) const {
     if (!own()) return {load_field(shipped_file), shipped_file};
@@ -95,8 +97,19 @@ FieldSource::Chosen FieldSource::field_for(const std::string& shipped_file) cons
     std::error_code ec;
     if (!kept.empty() && fs::exists(kept, ec)) {
         chosen = {load_field(kept.string()), kept.string()};
+        if (!screen_.empty() && chosen.field.screen != screen_) {
+            // Kept before fields named their screen, or the machine was
+            // renamed: the file says so from now on, where it can be written.
+            chosen.field.screen = screen_;
+            try {
+                save_field(chosen.field, kept.string());
+            } catch (const std::exception&) {
+                // A read-only configuration still shows its field.
+            }
+        }
     } else {
         chosen.field = generate_like(shipped, seed_, id);
+        chosen.field.screen = screen_;
         if (!kept.empty()) {
             fs::create_directories(keep_dir_, ec);
             try {
@@ -117,7 +130,7 @@ FieldSource own_field_source(const fs::path& config_dir) {
         seed = random_seed();
         write_seed(config_dir, seed);
     }
-    return FieldSource(seed, config_dir / kKeptDir);
+    return FieldSource(seed, config_dir / kKeptDir, screen_name());
 }
 
 FieldSource rotate_field_seed(const fs::path& config_dir) {
@@ -125,7 +138,7 @@ FieldSource rotate_field_seed(const fs::path& config_dir) {
     fs::remove_all(config_dir / kKeptDir, ec);
     const std::uint64_t seed = random_seed();
     write_seed(config_dir, seed);
-    return FieldSource(seed, config_dir / kKeptDir);
+    return FieldSource(seed, config_dir / kKeptDir, screen_name());
 }
 
 }  // namespace umf::provider

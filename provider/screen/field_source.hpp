@@ -25,8 +25,9 @@ public:
     // The shipped fields, as they are.
     FieldSource() = default;
     // Fields generated from `seed` (not 0), kept in `keep_dir` (empty: made
-    // again by each process, as tests do).
-    FieldSource(std::uint64_t seed, std::filesystem::path keep_dir);
+    // again by each process, as tests do), naming `screen` as the screen
+    // they belong to (what a printed field says).
+    FieldSource(std::uint64_t seed, std::filesystem::path keep_dir, std::string screen = {});
 
     bool own() const { return seed_ != 0; }
     std::uint64_t seed() const { return seed_; }
@@ -44,6 +45,7 @@ public:
 private:
     std::uint64_t seed_ = 0;
     std::filesystem::path keep_dir_;
+    std::string screen_;
     // Made once per process and shipped file: a multi-screen layout asks for
     // the same size many times while it searches a module size.
     struct Made {
@@ -54,8 +56,9 @@ private:
 };
 
 // The screen's own source in `config_dir`: its `field-seed` (16 hex digits),
-// made at random the first time; fields kept in `config_dir/fields`. Throws
-// std::runtime_error when the seed cannot be read or written.
+// made at random the first time; fields kept in `config_dir/fields`, naming
+// this machine (screen_name()) as their screen. Throws std::runtime_error
+// when the seed cannot be read or written.
 FieldSource own_field_source(const std::filesystem::path& config_dir);
 
 // A new seed for the screen in `config_dir` (`pair --rotate --field`): the

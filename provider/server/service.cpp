@@ -1,12 +1,10 @@
 #include "server/service.hpp"
 
-#include <unistd.h>
-
-#include <climits>
 #include <cstdio>
 #include <stdexcept>
 #include <type_traits>
 
+#include "common/screen_name.hpp"
 #include "overlay/preset.hpp"
 #include "server/pairing.hpp"
 
@@ -112,8 +110,7 @@ ScreenMap screen_map_for(const DesktopLayout& layout) {
 
 ServiceConfig service_config_for(const DesktopLayout& layout) {
     ServiceConfig c;
-    char host[HOST_NAME_MAX + 1] = {};
-    c.provider.name = ::gethostname(host, sizeof host - 1) == 0 && host[0] ? host : "umf-provider";
+    c.provider.name = screen_name();
     c.provider.software = std::string("umf-provider/") + UMF_PROVIDER_VERSION;
     c.screens = screen_map_for(layout);
     const auto presets = overlay::built_in_presets();

@@ -1,6 +1,7 @@
 // The marker field model: an h x w array of modules with values 0..k-1.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@ const char* to_string(WindowKey key);
 inline constexpr int kMaxFieldSide = 4096;
 inline constexpr int kMinColors = 2;
 inline constexpr int kMaxColors = 10;  // one decimal digit per module in the file
+inline constexpr std::size_t kMaxScreenNameBytes = 255;  // a host name's limit
 
 struct Field {
     std::string id;
@@ -30,6 +32,9 @@ struct Field {
     WindowKey key = WindowKey::modules;
     std::vector<std::string> palette;  // "#rrggbb", one per colour
     std::vector<std::uint8_t> modules;  // row-major, height * width values
+    // The screen this field was made for, as people name it (a screen's own
+    // field); empty for a field any screen may show. Printed with the field.
+    std::string screen;
 
     std::uint8_t at(int row, int col) const { return modules[static_cast<std::size_t>(row) * width + col]; }
     std::uint8_t& at(int row, int col) { return modules[static_cast<std::size_t>(row) * width + col]; }

@@ -46,6 +46,12 @@ Field parse_field(const std::string& text, const std::string& source) {
         if (!id->is_string()) fail(source, "\"id\" must be a string");
         f.id = id->get<std::string>();
     }
+    if (auto screen = doc.find("screen"); screen != doc.end()) {
+        if (!screen->is_string()) fail(source, "\"screen\" must be a string");
+        f.screen = screen->get<std::string>();
+        if (f.screen.size() > kMaxScreenNameBytes)
+            fail(source, "\"screen\" is longer than " + std::to_string(kMaxScreenNameBytes) + " bytes");
+    }
     f.width = integer_member(doc, "width", source);
     f.height = integer_member(doc, "height", source);
     f.window = integer_member(doc, "window", source);
@@ -126,6 +132,8 @@ std::string field_to_json(const Field& f) {
     std::ostringstream out;
     out << "{\n  \"format\": \"" << kFieldFormat << "\",\n";
     out << "  \"id\": " << json(f.id).dump() << ",\n";
+    if (!f.screen.empty())
+        out << "  \"screen\": " << json(f.screen).dump(-1, ' ', false, json::error_handler_t::replace) << ",\n";
     out << "  \"width\": " << f.width << ",\n  \"height\": " << f.height << ",\n";
     out << "  \"window\": " << f.window << ",\n  \"colors\": " << f.colors << ",\n";
     out << "  \"key\": \"" << to_string(f.key) << "\",\n";

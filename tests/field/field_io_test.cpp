@@ -68,6 +68,21 @@ TEST(FieldIo, RoundTripsThroughTextAndFiles) {
     }
 }
 
+TEST(FieldIo, AScreensNameTravelsWithItsField) {
+    Field f = test::random_field(8, 6, 4, 2, 3, WindowKey::modules);
+    EXPECT_EQ(field_to_json(f).find("\"screen\""), std::string::npos) << "a field of any screen names none";
+    f.screen = "lab-desk-3";
+    EXPECT_EQ(parse_field(field_to_json(f)).screen, "lab-desk-3");
+    std::string text = field_to_json(f);
+    const std::string named = "\"screen\": \"lab-desk-3\"";
+    ASSERT_NE(text.find(named), std::string::npos) << text;
+    EXPECT_THROW(parse_field(std::string(text).replace(text.find(named), named.size(), "\"screen\": 3")),
+                 FieldFileError);
+    EXPECT_THROW(parse_field(std::string(text).replace(text.find(named), named.size(),
+                                                       "\"screen\": \"" + std::string(256, 'a') + "\"")),
+                 FieldFileError);
+}
+
 TEST(FieldIo, MissingKeyAndPaletteTakeDefaults) {
     std::string text = R"({"format": "umf-field/1", "width": 4, "height": 4, "window": 4, "colors": 2,
                            "rows": ["0110", "1001", "0011", "1100"]})";

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <string>
 
+#include "common/screen_name.hpp"
 #include "field/field_io.hpp"
 #include "field/verifier.hpp"
 #include "screen/field_source.hpp"
@@ -46,6 +47,8 @@ TEST(FieldSource, AScreensOwnFieldIsMadeOnceKeptAndVerified) {
     EXPECT_TRUE(verify_field(own.field).orientable());
     EXPECT_EQ(fs::path(own.file), dir.path / "fields" / (own.field.id + ".json"));
     EXPECT_EQ(load_field(own.file).modules, own.field.modules);
+    EXPECT_EQ(own.field.screen, screen_name()) << "a printed field says which screen it belongs to";
+    EXPECT_EQ(load_field(own.file).screen, screen_name());
 
     // Another process of the same screen reads the kept field, whatever a
     // generator would make now: a kept field that differs is what it shows.
@@ -53,6 +56,13 @@ TEST(FieldSource, AScreensOwnFieldIsMadeOnceKeptAndVerified) {
     edited.modules[0] ^= 1;
     save_field(edited, own.file);
     EXPECT_EQ(screen_field_for(1920, 1080, 0.0, own_field_source(dir.path)).field.modules, edited.modules);
+
+    // A field kept before fields named their screen is named from then on.
+    edited.screen.clear();
+    save_field(edited, own.file);
+    EXPECT_EQ(screen_field_for(1920, 1080, 0.0, own_field_source(dir.path)).field.screen, screen_name());
+    EXPECT_EQ(load_field(own.file).screen, screen_name());
+    EXPECT_EQ(load_field(own.file).modules, edited.modules);
 
     // A 4K screen and a portrait one: the shipped sizes, made from the same seed.
     const ScreenField big = screen_field_for(3840, 2160, 0.0, source);

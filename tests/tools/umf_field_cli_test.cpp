@@ -70,6 +70,38 @@ TEST_F(Cli, GenerateVerifyRenderInfo) {
     EXPECT_EQ(info["orientable"], true);
 }
 
+// A PNG's height, from its IHDR chunk.
+unsigned png_height(const std::string& file) {
+    std::ifstream in(file, std::ios::binary);
+    unsigned char b[24] = {};
+    in.read(reinterpret_cast<char*>(b), sizeof b);
+    return (b[20] << 24) | (b[21] << 16) | (b[22] << 8) | b[23];
+}
+
+TEST_F(Cli, AScreensOwnFieldIsPrintedWithItsScreen) {
+    ASSERT_EQ(run("generate --width 32 --height 18 --seed 5 --quiet --id b4-32x18-own --out " + path("f.json")).code,
+              0);
+    nlohmann::json f = nlohmann::json::parse(std::ifstream(path("f.json")));
+    f["screen"] = "lab-desk-3";
+    std::ofstream(path("own.json")) << f.dump();
+
+    ASSERT_EQ(run("render " + path("f.json") + " --module-px 8 --out " + path("plain.png")).code, 0);
+    auto r = run("render " + path("own.json") + " --module-px 8 --out " + path("own.png"));
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_GT(png_height(path("own.png")), png_height(path("plain.png"))) << "a caption band under the field";
+    ASSERT_EQ(run("render " + path("own.json") + " --module-px 8 --out " + path("own.svg")).code, 0);
+    std::ifstream svg(path("own.svg"));
+    const std::string text(std::istreambuf_iterator<char>(svg), {});
+    EXPECT_NE(text.find("screen lab-desk-3, field b4-32x18-own"), std::string::npos) << text.substr(0, 400);
+    ASSERT_EQ(run("render " + path("own.json") + " --module-px 8 --caption \"\" --out " + path("bare.png")).code, 0);
+    EXPECT_EQ(png_height(path("bare.png")), png_height(path("plain.png"))) << "--caption \"\" prints none";
+
+    auto info = run("info " + path("own.json"));
+    EXPECT_NE(info.output.find("screen      lab-desk-3"), std::string::npos) << info.output;
+    EXPECT_EQ(nlohmann::json::parse(run("info --json " + path("own.json")).output)["screen"], "lab-desk-3");
+    EXPECT_FALSE(nlohmann::json::parse(run("info --json " + path("f.json")).output).contains("screen"));
+}
+
 TEST_F(Cli, VerifyListsConflictsAndFails) {
     std::ofstream(path("bad.json")) << R"({"format": "umf-field/1", "width": 4, "height": 4, "window": 4,
         "colors": 2, "rows": ["0000", "0000", "0000", "0000"]})";

@@ -2,11 +2,13 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -50,6 +52,8 @@ generate  synthesizes a 4-orientable field: every n x n window unique, rotations
           the deepest partial field to F.partial.json.
 verify    proves a field 4-orientable, or lists every conflict.
 render    draws a field as PNG, SVG or PDF; --module-mm gives a physical size for print.
+          A screen's own field (its file names the screen) is captioned with the
+          screen and the field's id unless --caption says otherwise ("" for none).
 info      the field's shape, how full it is against the counting bound, its edge
           contrast and whether it verifies.
 
@@ -208,8 +212,9 @@ int cmd_render(const Args& a) {
     if (auto v = get(a, "module-mm")) ro.module_mm = to_number("module-mm", *v, 0.01, 10000);
     if (auto v = get(a, "dpi")) ro.dpi = to_number("dpi", *v, 1, 100000);
     if (auto v = get(a, "quiet-zone")) ro.quiet_zone = static_cast<int>(to_integer("quiet-zone", *v, 0, 1000));
-    ro.caption = get(a, "caption").value_or("");
     umf::Field f = umf::load_field(path);
+    // A screen's own field says which screen it belongs to, unless told otherwise.
+    ro.caption = get(a, "caption").value_or(f.screen.empty() ? "" : "screen " + f.screen + ", field " + f.id);
     std::string bytes;
     try {
         bytes = umf::render_field(f, format, ro);
@@ -233,16 +238,22 @@ int cmd_info(const Args& a) {
     auto contrast = umf::edge_contrast(f);
     double bound = umf::window_count_bound(f.window, f.colors, f.key);
     if (has_flag(a, "json")) {
-        std::printf(
-            "{\"id\": \"%s\", \"width\": %d, \"height\": %d, \"window\": %d, \"colors\": %d, \"key\": \"%s\", "
-            "\"windows\": %ld, \"bound\": %.0f, \"fill\": %.4f, \"orientable\": %s, \"conflicts\": %zu, "
-            "\"flat_edges\": %.4f, \"mean_step\": %.4f}\n",
-            f.id.c_str(), f.width, f.height, f.window, f.colors, umf::to_string(f.key), f.window_count(), bound,
-            f.window_count() / bound, report.orientable() ? "true" : "false", report.conflicts.size(),
-            contrast.flat_fraction(), contrast.mean_step);
+        // nlohmann escapes what a field file may hold in its id and screen.
+        nlohmann::ordered_json j{{"id", f.id}, {"width", f.width}, {"height", f.height}, {"window", f.window},
+                                 {"colors", f.colors}, {"key", umf::to_string(f.key)}};
+        if (!f.screen.empty()) j["screen"] = f.screen;
+        j["windows"] = f.window_count();
+        j["bound"] = static_cast<long long>(std::round(bound));
+        j["fill"] = std::round(f.window_count() / bound * 1e4) / 1e4;
+        j["orientable"] = report.orientable();
+        j["conflicts"] = report.conflicts.size();
+        j["flat_edges"] = std::round(contrast.flat_fraction() * 1e4) / 1e4;
+        j["mean_step"] = std::round(contrast.mean_step * 1e4) / 1e4;
+        std::printf("%s\n", j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace).c_str());
         return kOk;
     }
     std::printf("id          %s\n", f.id.c_str());
+    if (!f.screen.empty()) std::printf("screen      %s\n", f.screen.c_str());
     std::printf("size        %d x %d modules\n", f.width, f.height);
     std::printf("window      %d x %d, key %s\n", f.window, f.window, umf::to_string(f.key));
     std::printf("colours     %d\n", f.colors);
