@@ -28,18 +28,6 @@ constexpr double kDefaultCameraTimeoutS = 30.0;
 // Unreadable frames in a row after which a camera counts as gone.
 constexpr int kMaxBadFrames = 30;
 
-bool has_display() {
-    for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"})
-        if (const char* v = std::getenv(name); v && *v) return true;
-    return false;
-}
-
-int parse_camera(const std::string& text) {
-    if (text.empty() || text.size() > 3 || text.find_first_not_of("0123456789") != std::string::npos)
-        throw UsageError("--camera must be a camera number 0..999, not '" + text + "'");
-    return std::stoi(text);
-}
-
 using aiming::usable_point;
 
 bool aiming(core::Phase phase) { return phase == core::Phase::searching || phase == core::Phase::locked; }
@@ -73,39 +61,6 @@ std::string progress_text(const core::View& v, double now) {
 GrabFailure input_failure(const std::string& message) { return {"input", message, kInputError}; }
 
 }  // namespace
-
-const std::vector<std::string> kPointingOptionNames = {"url", "camera", "video", "image", "timeout"};
-const std::vector<std::string> kPointingFlagNames = {"auto", "no-window"};
-
-PointingOptions parse_pointing_args(const Args& a, const std::string& verb) {
-    PointingOptions o;
-    const auto url = a.get("url");
-    if (!url) throw UsageError(verb + " needs --url URL, the provider's pairing URL (umf-provider pair prints it)");
-    try {
-        o.url = protocol::parse_pairing_url(*url);
-    } catch (const protocol::PairingUrlError& e) {
-        throw UsageError(std::string("--url: ") + e.what());
-    }
-    const int inputs = (a.get("camera") ? 1 : 0) + (a.get("video") ? 1 : 0) + (a.get("image") ? 1 : 0);
-    if (inputs > 1) throw UsageError(verb + " reads one of --camera, --video or --image");
-    if (auto c = a.get("camera")) o.camera_index = parse_camera(*c);
-    if (auto v = a.get("video")) {
-        o.input = FrameInput::video;
-        o.path = *v;
-    }
-    if (auto i = a.get("image")) {
-        o.input = FrameInput::image;
-        o.path = *i;
-    }
-    if ((o.input != FrameInput::camera) && o.path.empty()) throw UsageError("--video and --image need a file name");
-    o.auto_act = a.has_flag("auto") || o.input == FrameInput::image;
-    if (auto t = a.get("timeout")) o.timeout_s = parse_seconds(*t);
-    o.window = o.input != FrameInput::image && !a.has_flag("no-window") && has_display();
-    if (o.input != FrameInput::image && !o.window && !o.auto_act)
-        throw UsageError(std::string(a.has_flag("no-window") ? "with --no-window" : "without a display ($DISPLAY is unset)") +
-                         " no key can say when to " + verb + ": add --auto to " + verb + " on a steady aim");
-    return o;
-}
 
 void log(const std::string& line) { std::fprintf(stderr, "umf-requester: %s\n", line.c_str()); }
 
@@ -148,7 +103,11 @@ int run_and_report(const std::function<Json()>& body, const std::optional<p::Fie
 }
 
 AimingSession::AimingSession(const PointingOptions& o, std::string client, std::optional<std::string> device)
-    : o_(o), client_(std::move(client)), device_(std::move(device)), connection_(o.url) {}
+    : o_(o),
+      client_(std::move(client)),
+      device_(std::move(device)),
+      connection_(std::make_unique<ProviderConnection>(o.url)),
+      paired_(o.paired) {}
 
 AimingSession::~AimingSession() = default;
 
@@ -166,31 +125,90 @@ Json AimingSession::run(const std::function<void(const p::Welcome&)>& welcomed, 
         }
     }
 
-    welcome_ = connection_.open(client_, device_);
-    log("connected to " + welcome_.provider.name + " (" + welcome_.provider.software + ") at " + o_.url.authority());
-    if (welcomed) welcomed(welcome_);
+    p::Welcome welcome = connection_->open(client_, device_);
+    log("connected to " + welcome.provider.name + " (" + welcome.provider.software + ") at " + o_.url.authority());
+    welcomed_ = welcomed;
+    if (welcomed_) welcomed_(welcome);
+    take_welcome(std::move(welcome), action);
+    tried_fingerprints_.push_back(o_.url.fingerprint);
+    keep_as_used_last();
+
+    Json result = o_.input == FrameInput::image ? act_on_still(still, action) : act_from(*source, action);
+    connection_->close();
+    return result;
+}
+
+void AimingSession::take_welcome(p::Welcome welcome, const PointAction& action) {
+    std::unique_ptr<Detector> detector;
     try {
-        detector_ = std::make_unique<Detector>(welcome_.field.definition);
+        detector = std::make_unique<Detector>(welcome.field.definition);
     } catch (const std::invalid_argument& e) {
         throw GrabFailure("protocol", std::string("the provider's field cannot be detected: ") + e.what(),
                           kConnection);
     }
-    pointer_ = std::make_unique<core::Pointer>(welcome_, core::Timing{}, o_.auto_act);
+    auto pointer = std::make_unique<core::Pointer>(welcome, core::Timing{}, o_.auto_act);
     if (action.put) {
         try {
-            pointer_->choose_put(0, *action.put);
+            pointer->choose_put(0, *action.put);
         } catch (const std::invalid_argument& e) {
             throw input_failure(e.what());
         }
     }
+    welcome_ = std::move(welcome);
+    detector_ = std::move(detector);
+    pointer_ = std::move(pointer);
+    status_.provider = welcome_.provider.name;
+    status_.another_screen = false;
+}
 
-    Json result = o_.input == FrameInput::image ? act_on_still(still, action) : act_from(*source, action);
-    connection_.close();
-    return result;
+bool AimingSession::switch_to_screen_in(const GreyView& view, const PointAction& action) {
+    if (!o_.switch_screens) return false;
+    const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
+    for (const PairedScreen& screen : o_.paired) {
+        if (std::find(tried_fingerprints_.begin(), tried_fingerprints_.end(), screen.url.fingerprint) !=
+            tried_fingerprints_.end())
+            continue;
+        tried_fingerprints_.push_back(screen.url.fingerprint);
+        try {
+            auto connection = std::make_unique<ProviderConnection>(screen.url);
+            p::Welcome welcome = connection->open(client_, device_);
+            if (!Detector(welcome.field.definition).detect(view, centre).found) {
+                connection->close();
+                continue;
+            }
+            log("the screen " + where_frames() + " is " + welcome.provider.name +
+                ", which this requester is paired with: switching to it");
+            if (welcomed_) welcomed_(welcome);
+            take_welcome(std::move(welcome), action);
+            connection_->close();
+            connection_ = std::move(connection);
+            keep_as_used_last();
+            return true;
+        } catch (const GrabFailure& f) {
+            log("not switching to the kept screen " + screen.name + " at " + screen.url.authority() + ": " + f.what());
+        } catch (const std::invalid_argument& e) {
+            log("the kept screen " + screen.name + " shows a field that cannot be detected: " + e.what());
+        }
+    }
+    return false;
+}
+
+void AimingSession::keep_as_used_last() {
+    const std::string& fingerprint = connection_->url().fingerprint;
+    if (o_.paired_file.empty() || paired_.empty() || paired_.front().url.fingerprint == fingerprint) return;
+    const auto it = std::find_if(paired_.begin(), paired_.end(),
+                                 [&](const PairedScreen& s) { return s.url.fingerprint == fingerprint; });
+    if (it == paired_.end()) return;  // only kept screens are kept
+    try {
+        paired_ = with_screen_first(paired_, *it);
+        write_paired_screens(o_.paired_file, paired_);
+    } catch (const InputError& e) {
+        log(std::string("the screen used last cannot be noted: ") + e.what());
+    }
 }
 
 void AimingSession::carry(const core::Step& step) {
-    for (const auto& message : step.send) connection_.send(message);
+    for (const auto& message : step.send) connection_->send(message);
     if (step.notice) {
         // Errors outside a request (a rate limit, a point off every screen): logged, once each.
         const std::string code = p::to_string(step.notice->code);
@@ -208,7 +226,7 @@ void AimingSession::throw_if_failed() const {
 
 // What the provider said about aims: the title for the preview and the log.
 void AimingSession::take_replies(double t) {
-    for (auto& message : connection_.poll()) carry(pointer_->received(t, message));
+    for (auto& message : connection_->poll()) carry(pointer_->received(t, message));
     throw_if_failed();
 }
 
@@ -229,7 +247,9 @@ Json AimingSession::act_on_still(const Frame& frame, const PointAction& action) 
     const GreyView view = grey_view(frame.pixels, luma, why);
     if (!why.empty()) throw input_failure("cannot use " + frame.name + ": " + why);
     const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
-    const Detection d = detector_->detect(view, centre);
+    Detection d = detector_->detect(view, centre);
+    // One photo: any other kept screen whose field it shows is worth asking.
+    if (!d.found && switch_to_screen_in(view, action)) d = detector_->detect(view, centre);
     const core::Sighting seen = sighting(d.found, d.aim_field, d, view.width, view.height);
     if (seen.another_field) throw another_screen(frame.name);
     if (!seen.locked)
@@ -248,7 +268,7 @@ Json AimingSession::act_on_still(const Frame& frame, const PointAction& action) 
         const auto* aim = std::get_if<p::Aim>(&message);
         if (!aim || !aim->id) continue;
         try {
-            const p::Message reply = connection_.wait_reply(*aim->id, "aim");
+            const p::Message reply = connection_->wait_reply(*aim->id, "aim");
             carry(pointer_->received(0, reply));
             show_target();
             if (const auto* e = std::get_if<p::Error>(&reply))
@@ -275,7 +295,7 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
     status_.auto_act = o_.auto_act;
     status_.verb = action.verb;
 
-    Tracker tracker(*detector_);
+    auto tracker = std::make_unique<Tracker>(*detector_);
     std::vector<std::uint8_t> luma;
     bool ever_locked = false, ever_steady = false;
     int bad_frames = 0, frames = 0;
@@ -302,7 +322,7 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
         const double t = live ? elapsed : fps > 0 ? frame->index / fps : frames * kFrameSecondsUnknownRate;
 
         const Eigen::Vector2d centre(view.width / 2.0, view.height / 2.0);
-        const TrackResult r = tracker.update(view, centre);
+        const TrackResult r = tracker->update(view, centre);
         take_replies(t);
         const bool locked = r.state == TrackState::locked;
         const core::Sighting seen = sighting(locked, r.aim_field, r.detection, view.width, view.height);
@@ -310,6 +330,10 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
         show_target();
         if (seen.locked && !ever_locked) log("locked on the field");
         ever_locked = ever_locked || seen.locked;
+        if (pointer_->view().another_screen && !status_.another_screen && switch_to_screen_in(view, action)) {
+            tracker = std::make_unique<Tracker>(*detector_);
+            continue;
+        }
         if (pointer_->view().another_screen != status_.another_screen) {
             status_.another_screen = pointer_->view().another_screen;
             if (status_.another_screen) log(another_screen(where_frames()).what());
@@ -362,7 +386,7 @@ Json AimingSession::see_through(double t0, const PointAction& action) {
                 log("waiting for the person at the screen to accept it (up to 30 s)");
             told = v.put;
             show_progress(progress_text(v, now()));
-            const auto arrived = connection_.wait_any(std::chrono::milliseconds(100));
+            const auto arrived = connection_->wait_any(std::chrono::milliseconds(100));
             step = arrived.empty() ? pointer_->tick(now()) : core::Step{};
             for (const auto& message : arrived) {
                 core::Step answer = pointer_->received(now(), message);
@@ -402,8 +426,9 @@ std::string AimingSession::where_frames() const {
 GrabFailure AimingSession::another_screen(const std::string& where) const {
     return GrabFailure("another_screen",
                        "the screen " + where + " is another screen than " + welcome_.provider.name +
-                           ": its field is not this screen's. Pair with that screen (scan its QR code, or give "
-                           "--url its pairing link) or point at " + welcome_.provider.name,
+                           ": its field is not this screen's. Give --url that screen's pairing link, or keep it with "
+                           "umf-requester pair URL and grab and put switch to it; or point at " +
+                           welcome_.provider.name,
                        kNothing);
 }
 

@@ -12,10 +12,10 @@
 #include <optional>
 #include <string>
 
-#include "cli.hpp"
 #include "grab_failure.hpp"
 #include "detect/detector.hpp"
 #include "frame_source.hpp"
+#include "pointing_options.hpp"
 #include "protocol/pairing_url.hpp"
 #include "preview.hpp"
 #include "protocol/messages.hpp"
@@ -23,28 +23,6 @@
 #include "requester_core/pointer.hpp"
 
 namespace umf::requester {
-
-enum class FrameInput { camera, video, image };
-
-struct PointingOptions {
-    protocol::PairingUrl url;
-    FrameInput input = FrameInput::camera;
-    int camera_index = 0;
-    std::string path;                 // the video or image file
-    bool auto_act = false;            // act on a steady lock, no key needed
-    bool window = false;              // show the preview (decided from --no-window and $DISPLAY)
-    std::optional<double> timeout_s;  // give up after this long (camera: 30 s by default)
-};
-
-// The options grab and put share: --url, --camera, --video, --image,
-// --auto, --no-window and --timeout, already parsed into `a` (which must
-// have accepted them). `verb` names the command in messages. Throws
-// UsageError.
-PointingOptions parse_pointing_args(const Args& a, const std::string& verb);
-
-// The option names parse_pointing_args reads, for parse_args.
-extern const std::vector<std::string> kPointingOptionNames;
-extern const std::vector<std::string> kPointingFlagNames;
 
 using Json = nlohmann::ordered_json;
 
@@ -77,8 +55,9 @@ public:
     // line. Throws GrabFailure for everything that ends it early.
     Json run(const std::function<void(const protocol::Welcome&)>& welcomed, const PointAction& action);
 
-    // The session, for the action's own requests.
-    ProviderConnection& connection() { return connection_; }
+    // The session, for the action's own requests: the screen's it switched
+    // to, if it did.
+    ProviderConnection& connection() { return *connection_; }
     // The point the action ran at, once it has.
     std::optional<protocol::FieldPoint> acted_point() const { return acted_point_; }
 
@@ -104,14 +83,25 @@ private:
     std::string where_frames() const;
     // The failure of frames that show another screen's field (code another_screen).
     GrabFailure another_screen(const std::string& where) const;
+    // The welcome's field into a detector and a core for the session.
+    void take_welcome(protocol::Welcome welcome, const PointAction& action);
+    // Pointed at another screen: the first of the kept screens not tried
+    // yet whose field is in `view` becomes the session's screen. Returns
+    // whether one did.
+    bool switch_to_screen_in(const GreyView& view, const PointAction& action);
+    // The screen kept with pair that this session uses goes first in the list.
+    void keep_as_used_last();
     [[noreturn]] void end_without_act(const PointAction& action, bool ever_locked, bool ever_steady, bool timed_out,
                                       double timeout) const;
 
     const PointingOptions& o_;
     std::string client_;
     std::optional<std::string> device_;
-    ProviderConnection connection_;
+    std::unique_ptr<ProviderConnection> connection_;
     protocol::Welcome welcome_;
+    std::function<void(const protocol::Welcome&)> welcomed_;
+    std::vector<std::string> tried_fingerprints_;  // the screens switch_to_screen_in tried
+    std::vector<PairedScreen> paired_;             // the kept screens as this session last wrote them
     std::unique_ptr<Detector> detector_;
     std::unique_ptr<requester_core::Pointer> pointer_;
     std::optional<protocol::FieldPoint> acted_point_;

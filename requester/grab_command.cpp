@@ -18,8 +18,8 @@ namespace umf::requester {
 const char* const kGrabUsage = R"(umf-requester grab: take what a provider's screen shows where the camera points
 
 usage:
-  umf-requester grab --url URL [--camera I | --video FILE | --image FILE]
-                     [--out DIR] [--open] [--auto] [--no-window] [--timeout S]
+  umf-requester grab [--url URL] [--camera I | --video FILE | --image FILE]
+                     [--out DIR] [--open] [--auto] [--no-window] [--timeout S] [--no-switch]
 
 Connects to the provider of the pairing URL (the certificate must have the URL's
 fingerprint), finds the provider's marker field in the camera image and grabs
@@ -30,7 +30,8 @@ space or Enter grabs, q or Esc quits.
 
 options:
   --url URL       the pairing URL, https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT
-                  (umf-provider pair prints it)
+                  (umf-provider pair prints it); default the screen kept or used
+                  last (umf-requester pair URL keeps one)
   --camera I      camera number I (/dev/videoI); camera 0 when no input is given
   --video FILE    the frames of a video file instead of a camera
   --image FILE    one photo: detect once and grab at once (implies --auto)
@@ -42,6 +43,8 @@ options:
                   a module) instead of waiting for a key
   --no-window     no preview (also when there is no display); needs --auto
   --timeout S     give up after S seconds; camera default 30
+  --no-switch     pointed at another screen than the URL's, say so and stop, rather
+                  than switch to it when it is one of the screens kept with pair
 
 Prints one JSON line at the end, progress goes to stderr:
   {"ok":true,"kind":"url","title":"...","point":[u,v],"url":"...","opened":false}
@@ -49,7 +52,7 @@ Prints one JSON line at the end, progress goes to stderr:
    "name":"...","size":n,"sha256":"...","mime":"..."}          (also "snapshot")
   {"ok":false,"error":{"code":"...","message":"..."}}
 error codes: usage, input, output, connection, certificate, unauthorized, timeout,
-  protocol, not_found_in_view, no_steady_lock, no_grab, cancelled,
+  protocol, not_found_in_view, another_screen, no_steady_lock, no_grab, cancelled,
   nothing_to_take, download, and the provider's own (not_found, rate_limited,
   bad_request, too_large, internal, unsupported_version).
 

@@ -14,6 +14,7 @@
 #include "field/field_io.hpp"
 #include "grab_command.hpp"
 #include "locate_command.hpp"
+#include "pair_command.hpp"
 #include "put_command.hpp"
 
 namespace {
@@ -24,10 +25,12 @@ const char* kUsageText = R"(umf-requester: find the marker field in camera frame
 
 usage:
   umf-requester locate --field F.json [--sequence] [--aim X,Y] IMAGE... | --video FILE
-  umf-requester grab --url URL [--camera I | --video FILE | --image FILE]
-                     [--out DIR] [--open] [--auto] [--no-window] [--timeout S]
-  umf-requester put FILE|LINK --url URL [--title TEXT]
+  umf-requester grab [--url URL] [--camera I | --video FILE | --image FILE]
+                     [--out DIR] [--open] [--auto] [--no-window] [--timeout S] [--no-switch]
+  umf-requester put FILE|LINK [--url URL] [--title TEXT]
                     [--camera I | --video FILE | --image FILE] [--auto] [--no-window] [--timeout S]
+                    [--no-switch]
+  umf-requester pair URL | --list | --forget NAME|URL
   umf-requester discover [--timeout S] [--json] [--url URL]
   umf-requester help [COMMAND]
   umf-requester COMMAND --help
@@ -40,6 +43,8 @@ grab      connects to a provider (its pairing URL), finds its field in the camer
           centre: prints a link, downloads a file. One JSON line at the end.
 put       the other way round: gives the screen a file or a link where the camera
           points; the person at the screen accepts it. One JSON line at the end.
+pair      keeps a screen's pairing URL: grab and put then need no --url, and
+          switch to a kept screen when it is the one in view.
 discover  lists the screens that announce themselves on the local network (DNS-SD
           through Avahi): name, https://HOST.local:PORT, addresses and the root's
           fingerprint, one line each (--json: one JSON object each).
@@ -87,11 +92,14 @@ int put(int argc, char** argv) {
 
 int discover(int argc, char** argv) { return run_discover(parse_discover_args(argc, argv, 2), stdout); }
 
+int pair(int argc, char** argv) { return run_pair(parse_pair_args(argc, argv, 2), stdout); }
+
 const Command kCommands[] = {
     {"locate", kLocateUsage, locate},
     {"grab", kGrabUsage, grab},
     {"put", kPutUsage, put},
     {"discover", kDiscoverUsage, discover},
+    {"pair", kPairUsage, pair},
 };
 
 const Command* find_command(const std::string& name) {

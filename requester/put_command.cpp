@@ -19,9 +19,9 @@ namespace umf::requester {
 const char* const kPutUsage = R"(umf-requester put: give a provider's screen a file or a link where the camera points
 
 usage:
-  umf-requester put FILE|LINK --url URL [--title TEXT]
+  umf-requester put FILE|LINK [--url URL] [--title TEXT]
                     [--camera I | --video FILE | --image FILE]
-                    [--auto] [--no-window] [--timeout S]
+                    [--auto] [--no-window] [--timeout S] [--no-switch]
 
 Connects to the provider of the pairing URL (the certificate must have the URL's
 fingerprint), finds the provider's marker field in the camera image and puts FILE
@@ -32,7 +32,8 @@ under a name that replaces nothing; a link opens in the screen's browser. The
 preview window and its keys are those of grab: space or Enter puts, q or Esc quits.
 
 options:
-  --url URL       the pairing URL, https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT
+  --url URL       the pairing URL, https://HOST:PORT/#t=TOKEN&fp=FINGERPRINT; default
+                  the screen kept or used last (umf-requester pair URL keeps one)
   --title TEXT    shown in the screen's prompt (at most 512 bytes)
   --camera I      camera number I (/dev/videoI); camera 0 when no input is given
   --video FILE    the frames of a video file instead of a camera
@@ -41,6 +42,8 @@ options:
                   a module) instead of waiting for a key
   --no-window     no preview (also when there is no display); needs --auto
   --timeout S     give up finding the screen after S seconds; camera default 30
+  --no-switch     pointed at another screen than the URL's, say so and stop, rather
+                  than switch to it when it is one of the screens kept with pair
 
 This requester names itself to screens with a random device name kept in
 $XDG_CONFIG_HOME/umf/requester-device, so a screen told "always accept from this
@@ -52,7 +55,7 @@ Prints one JSON line at the end, progress goes to stderr:
    "size":n,"sha256":"..."}              (outcome "opened": saved and opened)
   {"ok":false,"error":{"code":"...","message":"..."}}
 error codes: usage, input, connection, certificate, unauthorized, timeout, protocol,
-  no_puts, not_found_in_view, no_steady_lock, no_put, cancelled, upload, and the
+  no_puts, not_found_in_view, another_screen, no_steady_lock, no_put, cancelled, upload, and the
   provider's own (refused, too_large, interrupted, not_found, rate_limited,
   bad_request, internal, unsupported_version).
 
@@ -126,7 +129,7 @@ public:
                 const auto& f = w.features;
                 if (std::find(f.begin(), f.end(), p::kFeaturePut) == f.end())
                     throw GrabFailure("no_puts",
-                                      "the provider at " + o_.pointing.url.authority() +
+                                      "the screen " + w.provider.name +
                                           " takes no puts (it runs with --puts never, or in public mode)",
                                       kNothing);
             },
@@ -181,7 +184,7 @@ private:
             last = now;
             log("sent " + megabytes(sent) + " of " + megabytes(size));
         };
-        return upload_file(o_.pointing.url, {link, file_->path, file_->digest.size}, progress);
+        return upload_file(session_.connection().url(), {link, file_->path, file_->digest.size}, progress);
     }
 
     Json report(const requester_core::Outcome& outcome, const p::FieldPoint& at) {

@@ -1,8 +1,6 @@
 #include "common/config_dir.hpp"
 
-#include <fcntl.h>
 #include <sys/stat.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <cstdlib>
@@ -10,6 +8,9 @@
 #include <fstream>
 #include <iterator>
 #include <system_error>
+
+#include "io/atomic_file.hpp"
+#include "native/private_file.hpp"
 
 namespace umf::provider {
 
@@ -32,25 +33,10 @@ void ensure_config_dir(const fs::path& dir) {
 }
 
 void write_private_file(const fs::path& path, const std::string& bytes) {
-    const fs::path tmp = path.string() + ".tmp";
-    ::unlink(tmp.c_str());
-    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-    if (fd < 0) throw ConfigError(path.string() + ": cannot create " + tmp.string() + ": " + std::strerror(errno));
-    std::size_t done = 0;
-    bool ok = true;
-    while (ok && done < bytes.size()) {
-        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-        if (n < 0 && errno == EINTR) continue;
-        ok = n > 0;
-        if (ok) done += static_cast<std::size_t>(n);
-    }
-    ok = ok && ::fchmod(fd, 0600) == 0 && ::fsync(fd) == 0;
-    const int saved = errno;
-    ok = ::close(fd) == 0 && ok;
-    if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) {
-        const int err = ok ? errno : saved;
-        ::unlink(tmp.c_str());
-        throw ConfigError(path.string() + ": cannot write: " + std::strerror(err));
+    try {
+        umf::write_private_file(path, bytes);
+    } catch (const FileWriteError& e) {
+        throw ConfigError(e.what());
     }
 }
 

@@ -49,8 +49,9 @@ struct Result {
 // Runs umf-requester with `args`; stdout must be exactly one JSON line.
 Result run(const std::string& args, const fs::path& dir, const std::string& env = "DISPLAY= WAYLAND_DISPLAY=") {
     const fs::path err_file = dir / "stderr.txt";
-    const std::string cmd = "env " + env + " " + std::string(UMF_REQUESTER_TOOL) + " " + args + " 2>" +
-                            err_file.string() + " </dev/null";
+    // A configuration of its own: no screens kept by whoever runs the tests.
+    const std::string cmd = "env XDG_CONFIG_HOME=" + (dir / "config").string() + " " + env + " " +
+                            std::string(UMF_REQUESTER_TOOL) + " " + args + " 2>" + err_file.string() + " </dev/null";
     Result r;
     const auto start = std::chrono::steady_clock::now();
     FILE* p = popen(cmd.c_str(), "r");

@@ -3,11 +3,13 @@
 # their fields differ (each screen's own, the default), compose draws the
 # field its provider shows, and umf-requester paired with one screen takes
 # that screen's link from its picture and nothing from the other screen's,
-# saying it is another screen, where with the shipped field on both screens
-# (--shipped-field) it took the wrong screen's.
+# saying it is another screen, or switching to it when it keeps that
+# screen's pairing too (umf-requester pair), where with the shipped field on
+# both screens (--shipped-field) it took the wrong screen's.
 # usage: two_screens_test.sh BUILD_DIR
 set -euo pipefail
-bin=$1/bin
+build=$1
+bin=$build/bin
 work=$(mktemp -d /tmp/umf-two-screens-XXXXXX)
 source "$(dirname "$0")/../support/provider_run.sh"
 pids=()
@@ -33,12 +35,20 @@ screen() {
   urls[$s]=$url
 }
 field_id() { sed -n 's/.*"field_id": "\([^"]*\)".*/\1/p' "$work/$1/map.json"; }
-# Grab with screen PAIRED's URL from screen SHOWN's picture: the JSON line, and the exit code in $status.
+# Grab with screen PAIRED's URL (- for none: the screen kept or used last)
+# from screen SHOWN's picture, with more options: the JSON line, and the
+# exit code in $status.
 grab() {
+  local paired=$1 shown=$2
+  shift 2
+  local url=()
+  [ "$paired" = - ] || url=(--url "${urls[$paired]}")
   status=0
-  out=$("$bin/umf-requester" grab --url "${urls[$1]}" --image "$work/$2/screen.png" --no-window \
-        --out "$work/received" 2>"$work/requester.err") || status=$?
+  out=$("$bin/umf-requester" grab "${url[@]}" --image "$work/$shown/screen.png" --no-window \
+        --out "$work/received" "$@" 2>"$work/requester.err") || status=$?
 }
+# The requester's own configuration: the screens it keeps are this test's.
+export XDG_CONFIG_HOME=$work/requester-config
 
 screen a ""
 screen b ""
@@ -70,6 +80,55 @@ done
 
 [[ " ${said_another[*]} " == *" a "* ]] ||
   { echo "FAIL: paired with a, the picture of b did not say it is another screen"; exit 1; }
+
+# Screens kept with `umf-requester pair`: paired with a, b's picture
+# switches to b, kept too, and takes b's link; without --url the screen used
+# last answers, or the kept one in view; --no-switch stops as before.
+for s in b a; do
+  "$bin/umf-requester" pair "${urls[$s]}" >"$work/pair.out" 2>"$work/requester.err" ||
+    { echo "FAIL: umf-requester pair ${urls[$s]} failed:"; cat "$work/requester.err"; exit 1; }
+done
+kept=$XDG_CONFIG_HOME/umf/requester-screens.json
+[ "$(stat -c %a "$kept")" = 600 ] || { echo "FAIL: $kept is not 0600"; exit 1; }
+[ "$("$bin/umf-requester" pair --list | wc -l)" = 2 ] || { echo "FAIL: pair --list does not list two screens"; exit 1; }
+if "$bin/umf-requester" pair --list | grep -q "t="; then echo "FAIL: pair --list shows a token"; exit 1; fi
+echo "ok: two screens kept (0600), listed without their tokens"
+grab a b
+[ "$status" = 0 ] && grep -q '"url":"https://example.org/screen-b"' <<<"$out" &&
+  grep -q "switching to it" "$work/requester.err" ||
+  { echo "FAIL: paired with a and b, b's picture with a's URL gave ($status): $out"; cat "$work/requester.err"; exit 1; }
+echo "ok: paired with a and b, a's URL and b's picture: switched to b and took b's link"
+# A hand-held camera's video of b: a second of "another screen", then the switch.
+camera=$build/tests/web/umf_fake_camera
+if [ -x "$camera" ]; then
+  "$camera" --provider "$bin/umf-provider" --board "$work/b/board.json" --field-seed "$work/b/cfg/field-seed" \
+    --frames 60 --out "$work/b.y4m" --work "$work/camera" >/dev/null
+  status=0
+  out=$("$bin/umf-requester" grab --url "${urls[a]}" --video "$work/b.y4m" --auto --no-window \
+        --out "$work/received" 2>"$work/requester.err") || status=$?
+  [ "$status" = 0 ] && grep -q '"url":"https://example.org/screen-b"' <<<"$out" &&
+    grep -q "switching to it" "$work/requester.err" ||
+    { echo "FAIL: a's URL, a video of b gave ($status): $out"; cat "$work/requester.err"; exit 1; }
+  echo "ok: a's URL, a camera's video of b: switched to b once it said another screen, and took b's link"
+else
+  echo "skipped: the video of b ($camera is not built: the web tests need emscripten and node)"
+fi
+grab - b
+[ "$status" = 0 ] && grep -q '"url":"https://example.org/screen-b"' <<<"$out" &&
+  ! grep -q "switching" "$work/requester.err" ||
+  { echo "FAIL: without --url, b (used last) did not answer its picture ($status): $out"; exit 1; }
+grab - a
+[ "$status" = 0 ] && grep -q '"url":"https://example.org/screen-a"' <<<"$out" ||
+  { echo "FAIL: without --url, a's picture did not switch to a ($status): $out"; cat "$work/requester.err"; exit 1; }
+echo "ok: without --url, the screen used last answers, and the kept screen in view when it is another"
+grab a b --no-switch
+[ "$status" = 5 ] && grep -q '"code":"another_screen"' <<<"$out" ||
+  { echo "FAIL: --no-switch, a's URL and b's picture gave ($status): $out"; exit 1; }
+"$bin/umf-requester" pair --forget "${urls[b]}" 2>/dev/null
+grab a b
+[ "$status" = 5 ] && ! grep -q '"url"' <<<"$out" ||
+  { echo "FAIL: b forgotten, a's URL and b's picture gave ($status): $out"; exit 1; }
+echo "ok: with --no-switch, or b forgotten, b's picture takes nothing: $out"
 
 # The same two screens with the shipped field: the wrong screen answers.
 screen c --shipped-field
