@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "paired_screens.hpp"
 #include "protocol/pairing_url.hpp"
 #include "screen_list.hpp"
 #ifdef UMF_WITH_AVAHI
@@ -37,7 +38,8 @@ options:
                   "addresses":["192.168.1.20"],"fingerprint":"<64 hex>","version":"1"}
                ("fingerprint" and "version" only when announced)
   --url URL    a pairing URL: the screen with its fingerprint is marked (paired),
-               in JSON "paired":true (false on the others)
+               in JSON "paired":true (false on the others); the screens kept with
+               umf-requester pair are marked so without it
 
 exit codes: 0 screens were found; 2 wrong usage; 3 built without Avahi support;
             4 the Avahi daemon could not be asked (not running, no system bus);
@@ -61,10 +63,16 @@ DiscoverOptions parse_discover_args(int argc, char** argv, int first) {
     o.json = a.has_flag("json");
     if (auto url = a.get("url")) {
         try {
-            o.paired_fingerprint = protocol::parse_pairing_url(*url).fingerprint;
+            o.paired_fingerprints.push_back(protocol::parse_pairing_url(*url).fingerprint);
         } catch (const protocol::PairingUrlError& e) {
             throw UsageError(std::string("--url: ") + e.what());
         }
+    }
+    try {
+        for (const auto& kept : read_paired_screens(default_paired_screens_file()))
+            o.paired_fingerprints.push_back(kept.url.fingerprint);
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "discover: %s; the screens kept there are not marked\n", e.what());
     }
     return o;
 }
@@ -81,12 +89,12 @@ int run_discover(const DiscoverOptions& o, std::FILE* out) {
                      e.what());
         return kConnection;
     }
-    const std::vector<Screen> screens = screens_from(resolved, o.paired_fingerprint);
+    const std::vector<Screen> screens = screens_from(resolved, o.paired_fingerprints);
     if (screens.empty()) {
         std::fprintf(stderr, "discover: no screen answered within %g s\n", o.timeout_s);
         return kNothing;
     }
-    for (const auto& s : screens) write_line(out, o.json ? screen_json(s, !o.paired_fingerprint.empty()) : screen_line(s));
+    for (const auto& s : screens) write_line(out, o.json ? screen_json(s, !o.paired_fingerprints.empty()) : screen_line(s));
     return kOk;
 #else
     (void)o;

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace umf::requester {
 
@@ -13,7 +14,8 @@ extern const char* const kDiscoverUsage;
 struct DiscoverOptions {
     double timeout_s = 3;
     bool json = false;
-    std::string paired_fingerprint;  // from --url; empty without it
+    // From --url and the screens kept with `umf-requester pair`.
+    std::vector<std::string> paired_fingerprints;
 };
 
 // argv[first..] of "umf-requester discover ...". Throws UsageError.

@@ -65,7 +65,8 @@ bool is_fingerprint(const std::string& text) {
            std::all_of(text.begin(), text.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
-std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved, const std::string& paired_fingerprint) {
+std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved,
+                                 const std::vector<std::string>& paired_fingerprints) {
     std::vector<Screen> screens;
     std::map<std::string, std::size_t> by_name;
     for (const auto& r : resolved) {
@@ -76,7 +77,9 @@ std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved, c
     }
     for (auto& s : screens) {
         sort_addresses(s.addresses);
-        s.paired = !paired_fingerprint.empty() && s.fingerprint == paired_fingerprint;
+        s.paired = !s.fingerprint.empty() &&
+                   std::find(paired_fingerprints.begin(), paired_fingerprints.end(), s.fingerprint) !=
+                       paired_fingerprints.end();
     }
     std::sort(screens.begin(), screens.end(), [](const Screen& a, const Screen& b) { return a.name < b.name; });
     return screens;

@@ -28,7 +28,7 @@ struct Screen {
     std::vector<std::string> addresses;  // IPv4 first, then IPv6, each once
     std::string fingerprint;             // the root's, 64 lowercase hex; empty when absent or malformed
     std::string version;                 // TXT v; empty when absent
-    bool paired = false;                 // its fingerprint is the pairing URL's
+    bool paired = false;                 // its fingerprint is a pairing URL's
 };
 
 // The value of TXT key `key` (compared without case, RFC 6763 section 6.4),
@@ -41,10 +41,10 @@ bool is_fingerprint(const std::string& text);
 // One screen per instance name, sorted by name. Host, port and TXT come from
 // the first record of a name; every record adds its address. Records without
 // a port are dropped: nothing could connect to them. A screen whose
-// fingerprint equals `paired_fingerprint` (when that is not empty) is marked
-// paired.
+// fingerprint is one of `paired_fingerprints` (the pairing URL's, the kept
+// screens') is marked paired.
 std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved,
-                                 const std::string& paired_fingerprint = {});
+                                 const std::vector<std::string>& paired_fingerprints = {});
 
 // "umf on desk  https://desk.local:8443  10.0.0.5  fp HEX", "  (paired)" at
 // the end when paired. Control characters an announcer put in a name are
@@ -53,7 +53,7 @@ std::string screen_line(const Screen& screen);
 
 // {"name":...,"host":...,"port":...,"addresses":[...],"fingerprint":...,
 // "version":...}; "fingerprint" and "version" only when known, "paired" only
-// when `with_paired` (discover --url). Bytes that are not UTF-8 become U+FFFD.
+// when `with_paired` (discover --url, or screens kept with pair). Bytes that are not UTF-8 become U+FFFD.
 std::string screen_json(const Screen& screen, bool with_paired);
 
 }  // namespace umf::requester

@@ -26,6 +26,8 @@ cleanup() {
   rm -rf "$work"
 }
 trap cleanup EXIT
+# The requester's own configuration: the screens it keeps are this test's.
+export XDG_CONFIG_HOME=$work/requester-config
 
 # No Avahi yet, and no system bus: the provider says so and serves.
 export DBUS_SYSTEM_BUS_ADDRESS=unix:path=$work/bus
@@ -110,6 +112,11 @@ paired_json=$("$bin/umf-requester" discover --json --url "$url" 2>"$work/discove
   { echo "FAIL: discover --json --url does not say paired: $paired_json"; exit 1; }
 if grep -q "$token" <<<"$listed $listed_json $paired $paired_json"; then echo "FAIL: discover shows the token"; exit 1; fi
 echo "ok: discover: $paired; --json: $listed_json"
+"$bin/umf-requester" pair "$url" >/dev/null 2>"$work/pair.err" ||
+  { echo "FAIL: umf-requester pair did not keep the screen:"; cat "$work/pair.err"; exit 1; }
+kept=$("$bin/umf-requester" discover 2>"$work/discover.err")
+[ "$kept" = "$listed  (paired)" ] || { echo "FAIL: discover does not mark the kept screen paired: $kept"; exit 1; }
+echo "ok: a screen kept with umf-requester pair is marked without --url: $kept"
 
 # Stopped, the provider withdraws its announcement.
 stop_provider

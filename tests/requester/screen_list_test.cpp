@@ -85,7 +85,7 @@ TEST(RequesterDiscover, SortedByNameAndDroppedWithoutAPort) {
 TEST(RequesterDiscover, MalformedOrMissingFingerprintIsLeftEmpty) {
     for (const auto& txt : std::vector<std::vector<std::string>>{
              {"v=1"}, {"v=1", "fp=" + kFp.substr(2)}, {"fp=" + std::string(64, 'F')}, {"fp"}}) {
-        const auto screens = screens_from({desk("10.0.0.5", txt)}, kFp);
+        const auto screens = screens_from({desk("10.0.0.5", txt)}, {kFp});
         ASSERT_EQ(screens.size(), 1u);
         EXPECT_EQ(screens[0].fingerprint, "");
         EXPECT_FALSE(screens[0].paired);  // an empty fingerprint matches nothing
@@ -93,14 +93,17 @@ TEST(RequesterDiscover, MalformedOrMissingFingerprintIsLeftEmpty) {
     EXPECT_EQ(screens_from({desk("10.0.0.5", {})})[0].version, "");
 }
 
-TEST(RequesterDiscover, ThePairingUrlsFingerprintMarksItsScreen) {
+TEST(RequesterDiscover, PairedFingerprintsMarkTheirScreens) {
     ResolvedService other = desk("10.0.0.9", {"v=1", "fp=" + kOtherFp});
     other.name = "umf on wall";
-    const auto screens = screens_from({desk("10.0.0.5"), other}, kOtherFp);
+    const auto screens = screens_from({desk("10.0.0.5"), other}, {kOtherFp});
     ASSERT_EQ(screens.size(), 2u);
     EXPECT_FALSE(screens[0].paired);
     EXPECT_TRUE(screens[1].paired);
-    EXPECT_FALSE(screens_from({desk("10.0.0.5")}, "")[0].paired);
+    EXPECT_FALSE(screens_from({desk("10.0.0.5")}, {})[0].paired);
+    // The pairing URL's and the kept screens' together.
+    const auto both = screens_from({desk("10.0.0.5"), other}, {kOtherFp, kFp});
+    EXPECT_TRUE(both[0].paired && both[1].paired);
 }
 
 TEST(RequesterDiscover, TextLine) {
@@ -123,7 +126,7 @@ TEST(RequesterDiscover, TextLineKeepsAHostileNameOnOneLine) {
 }
 
 TEST(RequesterDiscover, JsonLine) {
-    const auto screens = screens_from({desk("10.0.0.5")}, kFp);
+    const auto screens = screens_from({desk("10.0.0.5")}, {kFp});
     EXPECT_EQ(screen_json(screens[0], false),
               R"({"name":"umf on desk","host":"desk.local","port":8443,"addresses":["10.0.0.5"],"fingerprint":")" + kFp +
                   R"(","version":"1"})");
