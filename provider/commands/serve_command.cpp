@@ -54,8 +54,8 @@ const char* const kServeOptions[] = {"port",         "bind",        "host",   "c
                                      "period",       "waveform",    "module-px", "blur",     "region",
                                      "focus-radius", "activation",  "fade",   "palette",     "puts",
                                      "put-dir",      "put-max-mb",  "desktop",     nullptr};
-const char* const kServeFlags[] = {"headless", "public", "no-qr", "no-overlay", "tune", "no-announce", "shipped-field", "own-field",
-                                   nullptr};
+const char* const kServeFlags[] = {"headless", "public",        "no-qr",     "no-overlay", "tune",
+                                   "no-announce", "shipped-field", "own-field", nullptr};
 
 namespace {
 

@@ -6,9 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/screen_name.hpp"
 #include "field/field_io.hpp"
 #include "field/generator.hpp"
-#include "common/screen_name.hpp"
 #include "io/atomic_file.hpp"
 
 namespace umf::provider {

@@ -122,7 +122,9 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
         // grows out from them, and the checks judge it. A place refused near
         // the prior is not checked again.
         const bool weak = !vote.found && (vote.votes < options_.provisional_votes || vote.votes <= vote.runner_up);
-        if (weak && options_.another_field_windows > 0 && covers(g2i, rows, cols, aim)) {
+        // The cheap tests first: most weak grids read too few windows.
+        if (weak && options_.another_field_windows > 0 && vote.windows_read >= options_.another_field_windows &&
+            covers(g2i, rows, cols, aim)) {
             const int foreign = foreign_field_windows(grid, vote, options_.field_likeness);
             if (foreign >= options_.another_field_windows)
                 out.another_field_windows = std::max(out.another_field_windows, foreign);
