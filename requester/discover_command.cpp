@@ -7,9 +7,9 @@
 #include "cli.hpp"
 #include "paired_screens.hpp"
 #include "protocol/pairing_url.hpp"
-#include "screen_list.hpp"
+#include "screen_lines.hpp"
 #ifdef UMF_WITH_AVAHI
-#include "screen_discovery.hpp"
+#include "native/screen_discovery.hpp"
 #endif
 
 namespace umf::requester {
@@ -79,17 +79,17 @@ DiscoverOptions parse_discover_args(int argc, char** argv, int first) {
 
 int run_discover(const DiscoverOptions& o, std::FILE* out) {
 #ifdef UMF_WITH_AVAHI
-    std::vector<ResolvedService> resolved;
+    std::vector<native::ResolvedService> resolved;
     try {
-        resolved = browse_screens(o.timeout_s);
-    } catch (const AvahiUnreachable& e) {
+        resolved = native::browse_screens(o.timeout_s);
+    } catch (const native::AvahiUnreachable& e) {
         std::fprintf(stderr,
                      "discover: cannot ask Avahi (%s); is avahi-daemon running? "
                      "A screen can still be reached by its pairing URL.\n",
                      e.what());
         return kConnection;
     }
-    const std::vector<Screen> screens = screens_from(resolved, o.paired_fingerprints);
+    const std::vector<native::Screen> screens = native::screens_from(resolved, o.paired_fingerprints);
     if (screens.empty()) {
         std::fprintf(stderr, "discover: no screen answered within %g s\n", o.timeout_s);
         return kNothing;

@@ -134,6 +134,8 @@ struct Serving {
     // host name's: the serving certificate names it too.
     std::shared_ptr<LocalName> local_name = std::make_shared<LocalName>();
     std::unique_ptr<AvahiAnnouncement> announcement;
+    std::shared_ptr<NearbyScreens> nearby = std::make_shared<NearbyScreens>();  // for /nearby.json
+    std::unique_ptr<NearbyBrowse> nearby_browse;
     std::unique_ptr<ControlSocket> control;
     std::string url;
 };
@@ -293,6 +295,7 @@ std::shared_ptr<Service> make_service(Serving& s) {
     config.public_mode = s.public_mode;
     config.put_decider = s.answerers.decider;
     config.puts = s.puts.settings;
+    config.nearby = s.nearby;
     if (s.browsers)
         config.puts.open_url_at = [browsers = s.browsers](const ScreenPoint& at, const std::string& url) {
             return browsers->open_tab_at(at, url);
@@ -364,6 +367,7 @@ void start_server(const ServeHooks& hooks, Serving& s) {
 void announce(const cli::Args& a, Serving& s) {
     if (is_loopback(s.bind) || has_flag(a, "no-announce")) return;
     s.announcement = announce_on_network(s.server->port(), s.identity.fingerprint, s.local_name);
+    s.nearby_browse = browse_nearby(s.identity.fingerprint, s.nearby);
 }
 
 void print_banner(const cli::Args& a, const Serving& s) {

@@ -60,10 +60,26 @@ std::unique_ptr<AvahiAnnouncement> announce_on_network(unsigned short port, cons
                 return;
             }
             name->set(made.host_name);
-            std::cout << "announced: \"" << made.instance << "\" (" << kServiceType << ") at https://"
+            std::cout << "announced: \"" << made.instance << "\" (" << native::kScreenServiceType << ") at https://"
                       << made.host_name << ":" << port << " through Avahi\n"
                       << std::flush;
         });
+}
+
+std::unique_ptr<NearbyBrowse> browse_nearby(const std::string& fingerprint, std::shared_ptr<NearbyScreens> nearby) {
+    NearbyBrowse::Settings settings;
+    settings.own_fingerprint = fingerprint;
+    settings.changed = [](const std::vector<NearbyScreen>& screens, const std::string& why_not) {
+        if (!why_not.empty()) {
+            std::cout << "nearby: not listed (" << why_not << ")\n" << std::flush;
+            return;
+        }
+        std::string line = "nearby: " + std::to_string(screens.size()) + " other screen(s)";
+        for (std::size_t i = 0; i < screens.size(); ++i)
+            line += (i ? ", \"" : ": \"") + screens[i].name + "\" at " + screens[i].origin;
+        std::cout << line << "\n" << std::flush;
+    };
+    return std::make_unique<NearbyBrowse>(std::move(settings), std::move(nearby));
 }
 
 void print_where_served(const std::string& bind, unsigned short port, const ServingNames& names,

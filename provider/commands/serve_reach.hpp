@@ -12,6 +12,7 @@
 #include <string>
 
 #include "discovery/avahi_announcement.hpp"
+#include "discovery/nearby_browse.hpp"
 #include "server/static_site.hpp"
 #include "trust/root_authority.hpp"
 #include "trust/certificate_keeper.hpp"
@@ -53,6 +54,10 @@ std::unique_ptr<AvahiAnnouncement> announce_on_network(unsigned short port, cons
 
 // "serving at: https://..." for the origins a phone can open at `bind`, the
 // addresses the root may not vouch for, and the root's fingerprint.
+// Keeps the list of the other screens announced nearby for the phone page
+// (/nearby.json), and says on the console when it changes.
+std::unique_ptr<NearbyBrowse> browse_nearby(const std::string& fingerprint, std::shared_ptr<NearbyScreens> nearby);
+
 void print_where_served(const std::string& bind, unsigned short port, const ServingNames& names,
                         const std::string& fingerprint, std::ostream& out);
 

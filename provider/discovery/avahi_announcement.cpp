@@ -90,7 +90,7 @@ void AvahiAnnouncement::run(Announcement wanted,
         made.instance = attempt == 1 ? wanted.instance : wanted.instance + " (" + std::to_string(attempt) + ")";
         group.call("Reset");
         const QDBusMessage added =
-            group.call("AddService", kAnyInterface, kAnyProtocol, 0u, text(made.instance), text(kServiceType),
+            group.call("AddService", kAnyInterface, kAnyProtocol, 0u, text(made.instance), text(native::kScreenServiceType),
                        QString(), QString(), QVariant::fromValue<quint16>(made.port),
                        QVariant::fromValue(txt_records(made.txt)));
         if (added.type() == QDBusMessage::ErrorMessage) {

@@ -12,9 +12,9 @@
 #include <thread>
 #include <vector>
 
-namespace umf::provider {
+#include "native/screen_list.hpp"
 
-inline constexpr const char* kServiceType = "_umf._tcp";
+namespace umf::provider {
 
 struct Announcement {
     std::string instance;   // the service's name as announced ("umf on desk")

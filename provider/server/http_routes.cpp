@@ -1,6 +1,7 @@
 #include "server/http_routes.hpp"
 
 #include "content/download_route.hpp"
+#include "discovery/nearby_routes.hpp"
 #include "put/upload_route.hpp"
 #include "server/http_session.hpp"
 #include "server/site_route.hpp"
@@ -30,6 +31,16 @@ std::shared_ptr<const HttpRoutes> make_http_routes(std::shared_ptr<const Service
             serve_download(session, req, service->downloads(),
                            [service](const std::filesystem::path& file) { service->forget_file(file); });
         },
+        get_or_head);
+    routes->on_request.add_path(
+        kNearbyPath,
+        [service](HttpSession& session, const HttpRequest& req) {
+            serve_nearby(session, req, service->config().nearby.get());
+        },
+        get_or_head);
+    routes->on_request.add_path(
+        kFieldPath,
+        [service](HttpSession& session, const HttpRequest& req) { serve_field(session, req, service->screens()->field); },
         get_or_head);
     routes->on_request.add_prefix(
         "", [service](HttpSession& session, const HttpRequest& req) { serve_site(session, req, service->site()); },

@@ -36,7 +36,8 @@ struct HttpRoutes {
 };
 
 // Uploads (PUT /up/...), the share target (POST /share), the HTTPS transport
-// (/api/...), downloads (GET or HEAD /dl/...) and the web client's files.
+// (/api/...), downloads (GET or HEAD /dl/...), the nearby screens and this
+// screen's field (/nearby.json, /field.json) and the web client's files.
 std::shared_ptr<const HttpRoutes> make_http_routes(std::shared_ptr<const Service> service);
 
 }  // namespace umf::provider

@@ -19,6 +19,7 @@
 #include "content/download_table.hpp"
 #include "content/file_facts.hpp"
 #include "content/resolver.hpp"
+#include "discovery/nearby_screens.hpp"
 #include "screen/desktop_layout.hpp"
 #include "overlay/preset.hpp"
 #include "common/activity.hpp"
@@ -58,6 +59,8 @@ struct ServiceConfig {
     // puts; the welcome names no "put" feature and a put is refused.
     std::shared_ptr<PutDecider> put_decider;
     PutSettings puts;
+    // The other screens announced nearby (/nearby.json); null: none.
+    std::shared_ptr<const NearbyScreens> nearby;
 };
 
 // The screens and the field of a desktop layout, the `balanced` preset, the

@@ -20,9 +20,10 @@ constexpr const char* kShareUnavailable = "/?share=unavailable";
 // same host and port only in browsers that follow CSP Level 3 on this point,
 // so the WebSocket's own origin is named as well, from the Host header the
 // page was loaded with (when it is a plain host[:port]). A page opened by
-// address also asks the screen's .local name on the same port whether it
-// answers there (web/site/screen_name.js), so https: to .local names on
-// that port is allowed too, and no further.
+// address also asks the screen's .local name whether it answers there
+// (web/site/screen_name.js), and a page pointed at another screen fetches
+// the fields of the screens nearby (web/site/nearby.js), so https: to .local
+// names on any port is allowed too, and no further.
 std::string content_security_policy(beast::string_view host) {
     std::string connect = "'self'";
     const bool plain_host = !host.empty() && host.size() <= 262 &&
@@ -30,12 +31,8 @@ std::string content_security_policy(beast::string_view host) {
                                 return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' ||
                                        c == ':' || c == '[' || c == ']';
                             });
-    if (plain_host) {
-        connect += " wss://" + std::string(host);
-        const auto colon = host.rfind(':');
-        if (colon != beast::string_view::npos && host.find(']', colon) == beast::string_view::npos)
-            connect += " https://*.local" + std::string(host.substr(colon));
-    }
+    if (plain_host) connect += " wss://" + std::string(host);
+    connect += " https://*.local:*";
     return "default-src 'self'; script-src 'self' 'wasm-unsafe-eval'; worker-src 'self' blob:; connect-src " +
            connect +
            "; img-src 'self' blob: data:; media-src 'self' blob:; style-src 'self'; object-src 'none'; "

@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "content/board_resolver.hpp"
+#include "field/field_io.hpp"
 #include "native/sha256.hpp"
 #include "protocol/http_error_body.hpp"
 #include "protocol/messages.hpp"
@@ -144,8 +145,7 @@ TEST_F(ProviderHttp, PagesCarryAContentSecurityPolicyForAWasmWorker) {
     for (const std::string& part :
          {std::string("default-src 'self'"), std::string("script-src 'self' 'wasm-unsafe-eval'"),
           std::string("worker-src 'self' blob:"),
-          "connect-src 'self' wss://127.0.0.1:" + std::to_string(server->port()) +
-              " https://*.local:" + std::to_string(server->port()) + ";",
+          "connect-src 'self' wss://127.0.0.1:" + std::to_string(server->port()) + " https://*.local:*;",
           std::string("object-src 'none'"),
           std::string("style-src 'self';"), std::string("frame-ancestors 'none'")})
         EXPECT_NE(csp.find(part), std::string::npos) << part << "\n" << csp;
@@ -156,6 +156,41 @@ TEST_F(ProviderHttp, PagesCarryAContentSecurityPolicyForAWasmWorker) {
     // A Host that is not a plain host:port adds nothing to the policy.
     const Response odd = curl("/", "-H 'Host: a b;script-src *'");
     EXPECT_EQ(odd.headers.find("script-src *"), std::string::npos) << odd.headers;
+}
+
+// What a page pointed at another screen asks (docs/PROTOCOL.md, "Nearby
+// screens"): its own screen's list of the others, and their fields, which
+// pages of any origin may read; neither needs the token.
+TEST_F(ProviderHttp, NearbyScreensAndTheFieldAreServedWithoutAToken) {
+    const Response none = curl("/nearby.json");
+    EXPECT_EQ(none.status, 200);
+    EXPECT_EQ(none.body, R"({"screens":[]})");
+    EXPECT_NE(none.headers.find("Content-Type: application/json"), std::string::npos) << none.headers;
+    EXPECT_NE(none.headers.find("Cache-Control: no-store"), std::string::npos) << none.headers;
+    EXPECT_EQ(none.headers.find("Access-Control-Allow-Origin"), std::string::npos) << "the list is for its own page";
+
+    const Response field = curl("/field.json", "-H 'Origin: https://other.local:8443'");
+    EXPECT_EQ(field.status, 200);
+    EXPECT_NE(field.headers.find("Access-Control-Allow-Origin: *"), std::string::npos) << field.headers;
+    EXPECT_EQ(umf::field_to_json(umf::parse_field(field.body)), umf::field_to_json(service->screens()->field.definition));
+    EXPECT_EQ(curl("/field.json", "-I").status, 200);
+    EXPECT_EQ(curl("/field.json", "-X POST --data x").status, 405);
+
+    // A provider that browsed two other screens lists them.
+    auto nearby = std::make_shared<NearbyScreens>();
+    nearby->set({{"umf on b", "https://b.local:9443", std::string(64, 'b')},
+                 {"umf on \"a\"", "https://a.local:8443", std::string(64, 'a')}});
+    ServiceConfig config = default_service_config();
+    config.nearby = nearby;
+    server->stop();
+    service = std::make_shared<Service>(std::move(config), kToken);
+    server = std::make_unique<Server>(service, load_or_create_tls_identity(dir.path / "cfg"));
+    server->start();
+    const Response two = curl("/nearby.json");
+    EXPECT_EQ(two.status, 200);
+    EXPECT_EQ(two.body, R"({"screens":[{"name":"umf on b","origin":"https://b.local:9443","fingerprint":")" +
+                            std::string(64, 'b') + R"("},{"name":"umf on \"a\"","origin":"https://a.local:8443",)"
+                            R"("fingerprint":")" + std::string(64, 'a') + R"("}]})");
 }
 
 TEST(StaticSite, TypesOfTheWebClientsFiles) {

@@ -10,17 +10,18 @@
 #include <string>
 #include <vector>
 
-#include "../../requester/screen_list.hpp"
+#include "../../requester/screen_lines.hpp"
+#include "native/screen_list.hpp"
 
 namespace {
 
-using umf::requester::is_fingerprint;
-using umf::requester::ResolvedService;
-using umf::requester::Screen;
+using umf::native::is_fingerprint;
+using umf::native::ResolvedService;
+using umf::native::Screen;
 using umf::requester::screen_json;
 using umf::requester::screen_line;
-using umf::requester::screens_from;
-using umf::requester::txt_value;
+using umf::native::screens_from;
+using umf::native::txt_value;
 
 const std::string kFp = "1a2b3c4d5e6f708192a3b4c5d6e7f8091a2b3c4d5e6f708192a3b4c5d6e7f809";
 const std::string kOtherFp = std::string(64, 'e');

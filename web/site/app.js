@@ -16,8 +16,10 @@ import { currentPairing, forget, rememberAbout } from './pairing.js';
 import { createPointer } from './pointer.js';
 import { describeItem, sharedItem, showAskingCountdown, showPutChooser, showPutDone, showPutFailure, showPutStatus,
          upload, wirePutChoices } from './put_view.js';
+import { createNearby } from './nearby.js';
 import { moveToName } from './screen_name.js';
-import { $, ANOTHER_SCREEN_HINT, DETECTION_HINT, ERRORS, describeKind, hideSheets, hint, paused, setState, showError } from './sheets.js';
+import { $, ANOTHER_SCREEN_HINT, DETECTION_HINT, ERRORS, describeKind, hideSheets, hint, nearbyScreenHint, paused, setState,
+         showError } from './sheets.js';
 import { connect } from './transport.js';
 import { forPeople, registerServiceWorker, wireTrust } from './trust.js';
 
@@ -41,6 +43,7 @@ let link = null;          // the transport
 let pointer = null;       // the requester core, one per welcome
 let view = null;          // the core's last view
 let worker = null;
+let nearby = null;        // the other screens the camera may see (nearby.js), with the worker
 let workerReady = false;
 let busy = false;         // a frame is with the worker
 let frameId = 0;
@@ -90,9 +93,7 @@ function render(next) {
     case 'searching':
       if (was && !aiming(was.phase) && was.phase !== 'failed') backToAiming();
       else if (document.body.dataset.state === 'locked') setState('searching', aimingStatus());
-      if (document.body.dataset.state === 'searching')
-        hint(next.another_screen ? 'another-screen' : next.hint ? 'detection-failing' : null,
-             next.another_screen ? ANOTHER_SCREEN_HINT : DETECTION_HINT);
+      if (document.body.dataset.state === 'searching') searchingHint(next);
       break;
     case 'locked':
       if (was?.phase !== 'locked') {
@@ -126,6 +127,18 @@ function render(next) {
     default:
       break;
   }
+}
+
+// Pointed at another screen: a nearby one found in the frame is offered.
+function searchingHint(v) {
+  nearby?.viewed(v);
+  if (!v.another_screen) {
+    hint(v.hint ? 'detection-failing' : null, DETECTION_HINT);
+    return;
+  }
+  const m = nearby?.match();
+  if (m) hint('another-screen', nearbyScreenHint(m.name), { href: `${m.origin}/`, text: 'open its page' });
+  else hint('another-screen', ANOTHER_SCREEN_HINT);
 }
 
 function aimingStatus() {
@@ -204,6 +217,7 @@ function startWorker() {
     workerReady = false;
     busy = false;  // a frame the old worker held is gone with it
     worker = new Worker(new URL('./worker.js', import.meta.url), { type: 'module' });
+    nearby = createNearby(worker, debug);
     worker.onmessage = (event) => {
       const m = event.data;
       if (m.type === 'ready') {
@@ -213,7 +227,12 @@ function startWorker() {
         onResult(m.result);
       } else if (m.type === 'still-result') {
         onStill(m.result);
+      } else if (m.type === 'identified') {
+        busy = false;
+        nearby.identified(m.found);
+        if (view?.phase === 'searching' && document.body.dataset.state === 'searching') searchingHint(view);
       } else if (m.type === 'failure') {
+        nearby.failed();
         if (!workerReady) {
           showError('protocol', m.message);
           resolve(false);
@@ -237,7 +256,12 @@ const framesWanted = () => !busy && workerReady && !paused() && (!view || aiming
 
 function handFrame(frame) {
   busy = true;
-  worker.postMessage({ type: 'frame', id: ++frameId, frame }, [frame]);
+  if (nearby.wantsFrame(view)) {
+    nearby.sent();
+    worker.postMessage({ type: 'identify', id: ++frameId, frame }, [frame]);
+  } else {
+    worker.postMessage({ type: 'frame', id: ++frameId, frame }, [frame]);
+  }
 }
 
 async function startCamera() {

@@ -49,6 +49,8 @@ export const DETECTION_HINT =
 // paired with another one (docs/ARCHITECTURE.md, "A field of its own").
 export const ANOTHER_SCREEN_HINT =
   'This is another screen: scan its QR code to use it, or point at the screen this page belongs to.';
+// ... and it is a screen nearby whose field this phone could fetch (nearby.js).
+export const nearbyScreenHint = (name) => `This is another screen, ${name}:`;
 
 export function showError(code, detail) {
   const [title, text] = ERRORS[code] || ['Something went wrong', ''];
@@ -65,15 +67,31 @@ export function hideSheets() {
   for (const id of ['result', 'error', 'history', 'pairing', 'put', 'put-status', 'trust']) $(id).hidden = true;
 }
 
-export function hint(code, text) {
+// link: {href, text}, a link after the text (a nearby screen's page). The
+// same hint again leaves the element alone, so a tap on its link is not
+// lost to the next frame's view.
+export function hint(code, text, link = null) {
   const h = $('hint');
   if (!code) {
     h.hidden = true;
     delete h.dataset.code;
     return;
   }
+  const href = link?.href ?? '';
+  if (!h.hidden && h.dataset.code === code && h.dataset.text === text && (h.dataset.href ?? '') === href) return;
   h.dataset.code = code;
+  h.dataset.text = text;
   h.textContent = text;
+  if (link) {
+    h.dataset.href = href;
+    const a = document.createElement('a');
+    a.id = 'hint-link';
+    a.href = href;
+    a.textContent = link.text;
+    h.append(' ', a);
+  } else {
+    delete h.dataset.href;
+  }
   h.hidden = false;
 }
 

@@ -2,10 +2,13 @@
 // where the browser has no MediaStreamTrackProcessor) or one photo, turned
 // into RGBA and given to the same Tracker the native requester runs
 // (detector.js over umf-detector.wasm). One frame at a time: the page sends
-// the next only after this one's result, so nothing queues up.
+// the next only after this one's result, so nothing queues up. While the
+// camera sees another screen, a frame now and then goes to the fields of the
+// screens nearby instead (nearby.js), each searched from scratch.
 import { createDetector } from './detector.js';
 
 let detector = null;
+let nearby = [];  // one detector per nearby screen's field, in the page's order
 let canvas = null;
 let context = null;
 let rgba = null;
@@ -73,6 +76,26 @@ self.onmessage = async (event) => {
         self.postMessage({ type: 'still-result', id: message.id, result });
       } finally {
         bitmap.close?.();
+      }
+    } else if (message.type === 'nearby-fields') {
+      for (const d of nearby) d.destroy();
+      nearby = [];
+      // A field this detector cannot use is a screen not offered: the rest stay in order.
+      for (const field of message.fields)
+        nearby.push(await createDetector(field).catch(() => null));
+    } else if (message.type === 'identify') {
+      const frame = message.frame;
+      try {
+        const pixels = await pixelsOf(frame);
+        const found = [];
+        nearby.forEach((d, i) => {
+          if (!d) return;
+          d.reset();
+          if (d.track(pixels.data, pixels.width, pixels.height, { format: 'rgba' }).found) found.push(i);
+        });
+        self.postMessage({ type: 'identified', id: message.id, found });
+      } finally {
+        frame.close?.();
       }
     } else if (message.type === 'reset') {
       detector?.reset();

@@ -1,4 +1,4 @@
-#include "screen_discovery.hpp"
+#include "native/screen_discovery.hpp"
 
 #include <avahi-client/client.h>
 #include <avahi-client/lookup.h>
@@ -15,11 +15,10 @@
 #include <optional>
 #include <string>
 
-namespace umf::requester {
+namespace umf::native {
 
 namespace {
 
-constexpr const char* kServiceType = "_umf._tcp";  // as provider/discovery/avahi_announcement.hpp announces it
 constexpr const char* kDomain = "local";
 
 struct PollFree {
@@ -62,7 +61,7 @@ public:
         int error = 0;
         client_.reset(avahi_client_new(avahi_simple_poll_get(poll_.get()), AvahiClientFlags(0), on_client, this, &error));
         if (!client_) throw AvahiUnreachable(avahi_strerror(error));
-        if (!avahi_service_browser_new(client_.get(), AVAHI_IF_UNSPEC, AVAHI_PROTO_UNSPEC, kServiceType, kDomain,
+        if (!avahi_service_browser_new(client_.get(), AVAHI_IF_UNSPEC, AVAHI_PROTO_UNSPEC, kScreenServiceType, kDomain,
                                        AvahiLookupFlags(0), on_browse, this))
             throw AvahiUnreachable(avahi_strerror(avahi_client_errno(client_.get())));
         const AvahiPoll* api = avahi_simple_poll_get(poll_.get());
@@ -155,4 +154,4 @@ private:
 
 std::vector<ResolvedService> browse_screens(double timeout_s) { return Browse(timeout_s).run(); }
 
-}  // namespace umf::requester
+}  // namespace umf::native

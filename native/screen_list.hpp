@@ -1,14 +1,18 @@
-// umf-requester discover's pure half: the services Avahi resolved, one record
-// per interface, protocol and address, turned into the list of screens it
-// prints. Kept apart from the Avahi calls (screen_discovery.hpp) so that the
-// parsing, the merging and the lines are unit-tested without a daemon.
+// The screens on the network, from the services Avahi resolved (one record
+// per interface, protocol and address): what umf-requester discover prints
+// and a provider's neighbours are made of. Kept apart from the Avahi calls
+// (screen_discovery.hpp) so that the parsing and the merging are unit-tested
+// without a daemon.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace umf::requester {
+namespace umf::native {
+
+// The DNS-SD service type every provider announces (docs/PROTOCOL.md, "Pairing").
+inline constexpr const char* kScreenServiceType = "_umf._tcp";
 
 // One answer of an Avahi service resolver, as it came.
 struct ResolvedService {
@@ -46,14 +50,4 @@ bool is_fingerprint(const std::string& text);
 std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved,
                                  const std::vector<std::string>& paired_fingerprints = {});
 
-// "umf on desk  https://desk.local:8443  10.0.0.5  fp HEX", "  (paired)" at
-// the end when paired. Control characters an announcer put in a name are
-// shown as '?' so that one screen is always one line.
-std::string screen_line(const Screen& screen);
-
-// {"name":...,"host":...,"port":...,"addresses":[...],"fingerprint":...,
-// "version":...}; "fingerprint" and "version" only when known, "paired" only
-// when `with_paired` (discover --url, or screens kept with pair). Bytes that are not UTF-8 become U+FFFD.
-std::string screen_json(const Screen& screen, bool with_paired);
-
-}  // namespace umf::requester
+}  // namespace umf::native

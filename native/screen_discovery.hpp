@@ -1,15 +1,16 @@
-// umf-requester discover's Avahi half: browses _umf._tcp in the domain
-// "local" through the Avahi daemon (libavahi-client) and resolves every
-// instance it hears of. Only built when libavahi-client was found
+// The screens announced on the network, asked of the Avahi daemon
+// (libavahi-client): browses _umf._tcp in the domain "local" and resolves
+// every instance it hears of, for umf-requester discover and for a
+// provider's neighbours. Only built when libavahi-client was found
 // (UMF_WITH_AVAHI); screen_list.hpp makes the screens of what comes back.
 #pragma once
 
 #include <stdexcept>
 #include <vector>
 
-#include "screen_list.hpp"
+#include "native/screen_list.hpp"
 
-namespace umf::requester {
+namespace umf::native {
 
 // The Avahi daemon could not be asked, or gave up on us while browsing;
 // what() is avahi_strerror's text (e.g. "Daemon not running").
@@ -23,4 +24,4 @@ struct AvahiUnreachable : std::runtime_error {
 // seconds with what has come by then. Throws AvahiUnreachable.
 std::vector<ResolvedService> browse_screens(double timeout_s);
 
-}  // namespace umf::requester
+}  // namespace umf::native

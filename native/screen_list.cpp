@@ -1,15 +1,12 @@
-#include "screen_list.hpp"
+#include "native/screen_list.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <map>
-#include <nlohmann/json.hpp>
 
-namespace umf::requester {
+namespace umf::native {
 
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 bool same_key(const std::string& a, const std::string& b) {
     return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](unsigned char x, unsigned char y) {
@@ -36,14 +33,6 @@ Screen screen_of(const ResolvedService& r) {
     if (auto fp = txt_value(r.txt, "fp"); fp && is_fingerprint(*fp)) s.fingerprint = *fp;
     if (auto v = txt_value(r.txt, "v")) s.version = *v;
     return s;
-}
-
-// A name is anyone's to choose on the network: no control character may
-// break the one-line-per-screen promise or move the terminal's cursor.
-std::string printable(std::string text) {
-    for (char& c : text)
-        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-    return text;
 }
 
 }  // namespace
@@ -85,28 +74,4 @@ std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved,
     return screens;
 }
 
-std::string screen_line(const Screen& s) {
-    std::string addresses;
-    for (const auto& a : s.addresses) addresses += (addresses.empty() ? "" : ",") + a;
-    std::string line = printable(s.name) + "  https://" + printable(s.host) + ":" + std::to_string(s.port) + "  " +
-                       printable(addresses.empty() ? "-" : addresses) + "  " +
-                       (s.fingerprint.empty() ? "no fingerprint" : "fp " + s.fingerprint);
-    if (s.paired) line += "  (paired)";
-    return line;
-}
-
-std::string screen_json(const Screen& s, bool with_paired) {
-    Json j;
-    j["name"] = s.name;
-    j["host"] = s.host;
-    j["port"] = s.port;
-    j["addresses"] = s.addresses;
-    if (!s.fingerprint.empty()) j["fingerprint"] = s.fingerprint;
-    if (!s.version.empty()) j["version"] = s.version;
-    if (with_paired) j["paired"] = s.paired;
-    // Names come from the network, and nlohmann throws on bytes that are not
-    // UTF-8 unless told to replace them.
-    return j.dump(-1, ' ', false, Json::error_handler_t::replace);
-}
-
-}  // namespace umf::requester
+}  // namespace umf::native
