@@ -1,23 +1,26 @@
 #!/bin/bash
-# The phone page follows the screen's .local name to a new address, with a
-# real Avahi daemon on each side of a veth pair: the screen (this script's
-# network, mount and UTS namespaces, host name umf-screen-test) and the
-# phone (namespaces of their own, host name umf-phone, where Chromium runs
-# the scenario name_follows of tests/web/browser/run.mjs). The name crosses
-# the link by multicast DNS as between two machines; nothing leaves the
-# namespaces.
-# usage: page_by_name_test.sh BUILD_DIR NODE CHROMIUM SITE BOARD FIXTURES MODULES
+# The phone page and the screens' .local names, with a real Avahi daemon on
+# each side of a veth pair: the screens (this script's network, mount and
+# UTS namespaces, host name umf-screen-test) and the phone (namespaces of
+# their own, host name umf-phone, where Chromium runs SCENARIO of
+# tests/web/browser/run.mjs). Names cross the link by multicast DNS as
+# between two machines; nothing leaves the namespaces.
+#   name_follows   the page follows the screen's name to a new address
+#   nearby_screen  a second screen (b, a field of its own) runs beside it;
+#                  the page of the first, pointed at b, offers b's page
+# usage: page_by_name_test.sh SCENARIO BUILD_DIR NODE CHROMIUM SITE BOARD FIXTURES MODULES
 set -euo pipefail
-build=$1 node=$2 chromium=$3 site=$4 board=$5 fixtures=$6 modules=$7
+scenario=$1 build=$2 node=$3 chromium=$4 site=$5 board=$6 fixtures=$7 modules=$8
 bin=$build/bin
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/../support/avahi_namespace.sh"
 [ "${UMF_IN_NETNS:-}" = 1 ] || own_namespaces "avahi-daemon dbus-daemon nsenter certutil getent" "$0" "$@"
 source "$here/../support/provider_run.sh"
 work=$(mktemp -d /tmp/umf-page-name-XXXXXX)
-phone=
+phone= b_pid=
 cleanup() {
   stop_provider
+  [ -n "$b_pid" ] && kill "$b_pid" 2>/dev/null
   stop_avahi "$work/screen"
   stop_avahi "$work/phone"
   [ -n "$phone" ] && kill "$phone" 2>/dev/null
@@ -52,6 +55,15 @@ start_avahi "$work/screen" umf0
 in_phone bash -c "source '$here/../support/avahi_namespace.sh' && start_avahi '$work/phone' umf1"
 export DBUS_SYSTEM_BUS_ADDRESS=unix:path=$work/screen/bus
 
+if [ "$scenario" = nearby_screen ]; then
+  # Screen b first, so that the first screen's first browse finds it: the
+  # field of the video other_screen_tile0.y4m, the same board.
+  mkdir -p "$work/cfg-b" && cp "$(dirname "$board")/other-field-seed" "$work/cfg-b/field-seed"
+  start_provider "$work/provider-b.log" --config-dir "$work/cfg-b" --board "$board" --screen 1920x1080 --web "$site"
+  b_pid=$provider_pid b_url=$url b_port=$port provider_pid=
+  for _ in $(seq 100); do grep -q '^announced: ' "$work/provider-b.log" && break; sleep 0.1; done
+  "$bin/umf-provider" trust export "$work/root-b.pem" --config-dir "$work/cfg-b" 2>/dev/null
+fi
 mkdir -p "$work/cfg" && cp "$(dirname "$board")/field-seed" "$work/cfg/"  # the field the video shows
 start_provider "$work/provider.log" --config-dir "$work/cfg" --board "$board" --screen 1920x1080 --web "$site"
 for _ in $(seq 100); do grep -q '^announced: ' "$work/provider.log" && break; sleep 0.1; done
@@ -62,14 +74,29 @@ grep -q '^announced: .* at https://umf-screen-test.local:' "$work/provider.log" 
 "$bin/umf-provider" trust export "$work/root.pem" --config-dir "$work/cfg" 2>/dev/null
 echo "ok: $(grep '^announced: ' "$work/provider.log")"
 
-# The move: the screen leaves 10.78.0.1 for 10.78.0.3 (a new lease).
-move="nsenter -t $$ -n sh -c 'ip addr del 10.78.0.1/24 dev umf0 && ip addr add 10.78.0.3/24 dev umf0'"
+if [ "$scenario" = nearby_screen ]; then
+  for _ in $(seq 100); do grep -q '^nearby: ' "$work/provider.log" && break; sleep 0.1; done
+  grep -q "^nearby: 1 other screen(s): \"umf on umf-screen-test\" at https://umf-screen-test.local:$b_port\$" "$work/provider.log" ||
+    { echo "FAIL: the first screen does not list b nearby:"; cat "$work/provider.log"; exit 1; }
+  echo "ok: $(grep '^nearby: ' "$work/provider.log")"
+  extra=(--other-pairing "$b_url" --other-root "$work/root-b.pem")
+else
+  # The move: the screen leaves 10.78.0.1 for 10.78.0.3 (a new lease).
+  move="nsenter -t $$ -n sh -c 'ip addr del 10.78.0.1/24 dev umf0 && ip addr add 10.78.0.3/24 dev umf0'"
+  extra=(--move "$move" --new-address 10.78.0.3)
+fi
 status=0
-in_phone env HOME="$work" "$node" "$here/../web/browser/run.mjs" --scenario name_follows \
+in_phone env HOME="$work" "$node" "$here/../web/browser/run.mjs" --scenario "$scenario" \
   --provider "$bin/umf-provider" --site "$site" --board "$board" --fixtures "$fixtures" --modules "$modules" \
-  --chromium "$chromium" --pairing "$url" --root "$work/root.pem" --move "$move" --new-address 10.78.0.3 || status=$?
+  --chromium "$chromium" --pairing "$url" --root "$work/root.pem" "${extra[@]}" || status=$?
+if [ "$scenario" = nearby_screen ] && [ "$status" = 0 ]; then
+  # What was taken came from b, and the first screen gave nothing away.
+  grep -q ' took "' "$work/provider-b.log" || { echo "FAIL: b's log shows no grab"; status=1; }
+  ! grep -q ' took "' "$work/provider.log" || { echo "FAIL: the first screen gave something away"; status=1; }
+fi
 if [ "$status" != 0 ]; then
   echo "--- provider:"; cat "$work/provider.log"
+  [ -f "$work/provider-b.log" ] && { echo "--- provider b:"; cat "$work/provider-b.log"; }
   [ "$status" = 77 ] || for side in screen phone; do echo "--- the $side's avahi-daemon:"; tail -20 "$work/$side/avahi.log"; done
 fi
 exit "$status"

@@ -18,8 +18,7 @@ import { describeItem, sharedItem, showAskingCountdown, showPutChooser, showPutD
          upload, wirePutChoices } from './put_view.js';
 import { createNearby } from './nearby.js';
 import { moveToName } from './screen_name.js';
-import { $, ANOTHER_SCREEN_HINT, DETECTION_HINT, ERRORS, describeKind, hideSheets, hint, nearbyScreenHint, paused, setState,
-         showError } from './sheets.js';
+import { $, ERRORS, describeKind, hideSheets, hint, paused, setState, showError } from './sheets.js';
 import { connect } from './transport.js';
 import { forPeople, registerServiceWorker, wireTrust } from './trust.js';
 
@@ -93,7 +92,7 @@ function render(next) {
     case 'searching':
       if (was && !aiming(was.phase) && was.phase !== 'failed') backToAiming();
       else if (document.body.dataset.state === 'locked') setState('searching', aimingStatus());
-      if (document.body.dataset.state === 'searching') searchingHint(next);
+      if (document.body.dataset.state === 'searching') nearby?.showHint(next);
       break;
     case 'locked':
       if (was?.phase !== 'locked') {
@@ -127,18 +126,6 @@ function render(next) {
     default:
       break;
   }
-}
-
-// Pointed at another screen: a nearby one found in the frame is offered.
-function searchingHint(v) {
-  nearby?.viewed(v);
-  if (!v.another_screen) {
-    hint(v.hint ? 'detection-failing' : null, DETECTION_HINT);
-    return;
-  }
-  const m = nearby?.match();
-  if (m) hint('another-screen', nearbyScreenHint(m.name), { href: `${m.origin}/`, text: 'open its page' });
-  else hint('another-screen', ANOTHER_SCREEN_HINT);
 }
 
 function aimingStatus() {
@@ -230,7 +217,7 @@ function startWorker() {
       } else if (m.type === 'identified') {
         busy = false;
         nearby.identified(m.found);
-        if (view?.phase === 'searching' && document.body.dataset.state === 'searching') searchingHint(view);
+        if (view?.phase === 'searching' && document.body.dataset.state === 'searching') nearby.showHint(view);
       } else if (m.type === 'failure') {
         nearby.failed();
         if (!workerReady) {
@@ -256,12 +243,8 @@ const framesWanted = () => !busy && workerReady && !paused() && (!view || aiming
 
 function handFrame(frame) {
   busy = true;
-  if (nearby.wantsFrame(view)) {
-    nearby.sent();
-    worker.postMessage({ type: 'identify', id: ++frameId, frame }, [frame]);
-  } else {
-    worker.postMessage({ type: 'frame', id: ++frameId, frame }, [frame]);
-  }
+  // Now and then, while another screen is seen, a frame for the screens nearby.
+  worker.postMessage({ type: nearby.takesFrame(view) ? 'identify' : 'frame', id: ++frameId, frame }, [frame]);
 }
 
 async function startCamera() {

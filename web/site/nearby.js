@@ -8,6 +8,7 @@
 // link to that screen's page, where the phone's pairing with it lives. None,
 // or two screens claiming one field, offer nothing (docs/SECURITY.md,
 // "Nearby screens").
+import { ANOTHER_SCREEN_HINT, DETECTION_HINT, hint, nearbyScreenHint } from './sheets.js';
 
 const LIST_TTL_MS = 30000;      // the screen browses as often
 const FETCH_TIMEOUT_MS = 3000;  // a screen's field, or its answer that it is not trusted
@@ -82,14 +83,16 @@ export function createNearby(worker, debug) {
       }
       if (!loading && performance.now() - listedAt > LIST_TTL_MS) loading = load();
     },
-    // Whether the next camera frame should go to the other screens' fields.
-    wantsFrame(view) {
-      return !!view?.another_screen && !loading && !identifying && screens.length > 0 &&
-             performance.now() - lastTry > IDENTIFY_EVERY_MS;
-    },
-    sent() {
-      identifying = true;
-      lastTry = performance.now();
+    // Whether the next camera frame goes to the other screens' fields; if
+    // so, it is counted as sent.
+    takesFrame(view) {
+      const wanted = !!view?.another_screen && !loading && !identifying && screens.length > 0 &&
+                     performance.now() - lastTry > IDENTIFY_EVERY_MS;
+      if (wanted) {
+        identifying = true;
+        lastTry = performance.now();
+      }
+      return wanted;
     },
     // The worker's answer: the indices of the fields found in the frame. One
     // frame that finds none (blurred, half off the screen) keeps the last
@@ -109,5 +112,12 @@ export function createNearby(worker, debug) {
       identifying = false;
     },
     match: () => match,
+    // The searching view's hint: another screen, and which one when found.
+    showHint(view) {
+      this.viewed(view);
+      if (!view.another_screen) hint(view.hint ? 'detection-failing' : null, DETECTION_HINT);
+      else if (match) hint('another-screen', nearbyScreenHint(match.name), { href: `${match.origin}/`, text: 'open its page' });
+      else hint('another-screen', ANOTHER_SCREEN_HINT);
+    },
   };
 }

@@ -60,7 +60,7 @@ export async function nameFollows(t) {
 
 // Chromium as the phone: the root in its NSS database, no certificate error
 // ignored, a profile kept between launches (localStorage, the service worker).
-async function launchPhone(t, profile, home, video) {
+export async function launchPhone(t, profile, home, video) {
   const args = ['--autoplay-policy=no-user-gesture-required', '--use-fake-device-for-media-stream',
                 '--use-fake-ui-for-media-stream', `--use-file-for-fake-video-capture=${video}`];
   if (process.getuid?.() === 0) args.push('--no-sandbox');  // Chromium's sandbox refuses root
@@ -72,7 +72,7 @@ async function launchPhone(t, profile, home, video) {
   return context;
 }
 
-async function grabTile0(t, page, expected) {
+export async function grabTile0(t, page, expected) {
   await t.waitForState(page, ['locked'], 45000);
   await page.click('#grab');
   await t.waitForState(page, ['result'], 30000);

@@ -12,8 +12,8 @@
 // Scenarios: camera_file, camera_url_http, photo, wrong_token, unreachable,
 // camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo,
 // unpaired, put_file, put_url_http, put_refused, put_carry, put_note, share_target,
-// another_screen, trusted_root (trust_scenario.mjs), kiosk_lock, name_follows (name_scenario.mjs, inside the namespaces
-// of tests/discovery/page_by_name_test.sh). Exit codes: 0 passed, 1 failed, 77 skipped (the page,
+// another_screen, trusted_root (trust_scenario.mjs), kiosk_lock, name_follows (name_scenario.mjs) and
+// nearby_screen (nearby_scenario.mjs), both inside the namespaces of tests/discovery/page_by_name_test.sh. Exit codes: 0 passed, 1 failed, 77 skipped (the page,
 // Chromium, playwright-core or a fixture is missing), 2 usage.
 import { spawn } from 'node:child_process';
 import crypto from 'node:crypto';
@@ -24,6 +24,7 @@ import net from 'node:net';
 import os from 'node:os';
 import path from 'node:path';
 import { nameFollows } from './name_scenario.mjs';
+import { nearbyScreen } from './nearby_scenario.mjs';
 import { trustedRoot } from './trust_scenario.mjs';
 
 const SKIP = 77;
@@ -77,7 +78,7 @@ try {
 const SCENARIOS = ['camera_file', 'slow_download', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
                    'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
                    'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'put_chooser_holds', 'share_target',
-                   'trusted_root', 'kiosk_lock', 'name_follows', 'another_screen'];
+                   'trusted_root', 'kiosk_lock', 'name_follows', 'nearby_screen', 'another_screen'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
 if (opts.scenario === 'kiosk_lock' && !/^\d+$/.test(opts.tile ?? '')) usage('kiosk_lock needs --tile N (the demo board\'s tile)');
 const boardFile = path.resolve(opts.board);
@@ -1125,6 +1126,12 @@ scenarios.trusted_root = () => trustedRoot({
 
 // The page follows the screen's .local name to a new address.
 scenarios.name_follows = () => nameFollows({
+  opts, chromium, work, cleanups, log, check, sleep, Failure, fixture, item, openPage, pageUrl, waitForState,
+  checkFileResult, debugOf,
+});
+
+// Pointed at another screen nearby, the page offers that screen's page.
+scenarios.nearby_screen = () => nearbyScreen({
   opts, chromium, work, cleanups, log, check, sleep, Failure, fixture, item, openPage, pageUrl, waitForState,
   checkFileResult, debugOf,
 });

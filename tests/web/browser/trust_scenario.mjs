@@ -161,7 +161,7 @@ function logNameConstraints(t, pem) {
   if (r.status === 0) t.log(`root ${r.stdout.trim().replace(/\s*\n\s*/g, ' ')}`);
 }
 
-// A HOME whose NSS database (the one Chromium on Linux reads) trusts `rootPem` as a CA, or nothing.
+// A HOME whose NSS database (the one Chromium on Linux reads) trusts `rootPem` (one path or several) as a CA, or nothing.
 export function nssHome(t, name, rootPem) {
   const home = path.join(t.work, name);
   const db = `sql:${path.join(home, '.pki', 'nssdb')}`;
@@ -172,10 +172,12 @@ export function nssHome(t, name, rootPem) {
     return r.stdout;
   };
   run(['-N', '--empty-password', '-d', db]);
-  if (rootPem) {
-    run(['-A', '-d', db, '-n', 'umf-screen', '-t', 'C,,', '-i', rootPem]);
+  // One root, or several (screens the phone pairs with).
+  const roots = rootPem ? [rootPem].flat() : [];
+  roots.forEach((pem, i) => {
+    run(['-A', '-d', db, '-n', i ? `umf-screen-${i + 1}` : 'umf-screen', '-t', 'C,,', '-i', pem]);
     t.log(`NSS database ${db}: ${run(['-L', '-d', db]).trim().split('\n').pop().replace(/\s+/g, ' ')}`);
-  }
+  });
   return home;
 }
 
