@@ -84,11 +84,13 @@ serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /w
          it and says it sees another screen; --shipped-field shows the field
          every screen shows instead (printed fields made from it before).
 pair     prints the pairing URL and its QR code; --rotate makes a new token
-         first, which unpairs every requester (a running provider keeps the
-         old token until it restarts); --rotate --root also makes a new
+         first, which unpairs every requester (a running provider of the
+         same configuration takes it at once; connections it welcomed
+         before stay until they end); --rotate --root also makes a new
          screen root, so every requester pairs again and phones that trusted
-         the old root should remove it; --rotate --field also makes a new
-         seed for the screen's own field.
+         the old root should remove it (a running provider serves the old
+         root until it restarts); --rotate --field also makes a new seed for
+         the screen's own field, which a running provider shows at once.
 trust    prints the fingerprint of the screen's root, the certificate
          authority (made on first start, kept in the configuration directory)
          that issues the certificate the provider serves, and where phones

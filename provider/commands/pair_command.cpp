@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 #include <nlohmann/json.hpp>
@@ -21,6 +22,38 @@ namespace umf::provider {
 using cli::get;
 using cli::has_flag;
 using cli::UsageError;
+
+namespace {
+
+// The provider on `port` takes the new token at once (and with `field` the
+// new field: its requesters get it as after a change of screens), when it
+// runs on `dir`; one of another configuration keeps its own.
+void tell_running_provider(unsigned short port, const std::filesystem::path& dir, bool field) {
+    std::ostringstream why;
+    const ControlAnswer answer = ask_running_provider(port, nlohmann::json{{"cmd", "rotated"}}, why);
+    if (answer.exit != kOk) {
+        std::cerr << why.str() << "umf-provider: the provider on port " << port
+                  << " takes the new pairing from its next start; until then it takes the old one\n";
+        return;
+    }
+    const std::filesystem::path its_dir = answer.json.value("config_dir", "");
+    std::error_code ec;
+    if (!std::filesystem::equivalent(its_dir, dir, ec)) {
+        std::cerr << "umf-provider: the provider on port " << port << " has another configuration (" << its_dir.string()
+                  << "), which stays as it was\n";
+        return;
+    }
+    std::cerr << "umf-provider: the provider on port " << port << " takes only the new pairing now\n";
+    if (!field) return;
+    const std::string id = answer.json.value("field", "");
+    if (answer.json.value("field_changed", false))
+        std::cerr << "umf-provider: it shows the new field now (" << id
+                  << "); its phones and webcams connect again and get it\n";
+    else
+        std::cerr << "umf-provider: it shows the shipped field (--shipped-field), which stays\n";
+}
+
+}  // namespace
 
 int run_pair(const cli::Args& a) {
     // The running provider's port when one runs; the URL is for a port.
@@ -43,11 +76,11 @@ int run_pair(const cli::Args& a) {
         if (has_flag(a, "field")) {
             const FieldSource fields = rotate_field_seed(dir);
             std::cerr << "umf-provider: the screen's own field has a new seed (" << std::hex << fields.seed() << std::dec
-                      << "); a running provider shows it from its next start, and printed or composed "
-                         "pictures of the old field no longer point at this screen\n";
+                      << "); printed or composed pictures of the old field no longer point at this screen\n";
         }
         const TlsIdentity identity = load_or_create_tls_identity(dir);
         const std::string token = load_or_create_token(dir, has_flag(a, "rotate"));
+        if (running && has_flag(a, "rotate")) tell_running_provider(*running, dir, has_flag(a, "field"));
         const std::string name = local_host_name();
         const std::string url =
             pairing_url(host, port, token, identity.fingerprint, is_loopback(host) || host == name ? "" : name);

@@ -7,6 +7,22 @@ namespace umf::provider {
 using cli::get;
 using cli::UsageError;
 
+overlay::Preset preset_option(const cli::Args& a, const std::filesystem::path& config_dir, bool board) {
+    std::vector<overlay::Preset> presets = overlay::built_in_presets();
+    const auto user_file = config_dir / "presets.json";
+    std::error_code ec;
+    if (std::filesystem::exists(user_file, ec))
+        for (auto& p : overlay::load_presets(user_file.string())) presets.push_back(std::move(p));
+    // Boards and kiosks are there to be pointed at: their field is always up.
+    const std::string name = get(a, "preset").value_or(board ? "kiosk" : "balanced");
+    // User presets come last and win over a built-in of the same name.
+    for (auto it = presets.rbegin(); it != presets.rend(); ++it)
+        if (it->name == name) return *it;
+    std::string names;
+    for (const auto& p : presets) names += (names.empty() ? "" : ", ") + p.name;
+    throw UsageError("no preset called \"" + name + "\"; there are " + names);
+}
+
 const std::vector<std::string>& preset_setting_options() {
     static const std::vector<std::string> kOptions = {"opacity-min", "opacity-max", "period",     "waveform",
                                                       "module-px",   "blur",        "region",     "focus-radius",

@@ -2,6 +2,7 @@
 // `umf-provider --preset subtle --opacity-max 0.25 --period 3`.
 #pragma once
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,11 @@
 #include "overlay/preset.hpp"
 
 namespace umf::provider {
+
+// The preset --preset names (`kiosk` for a board, else `balanced`): a
+// built-in one, or one of `config_dir`/presets.json, which wins over a
+// built-in of the same name. UsageError listing the names when none is called so.
+overlay::Preset preset_option(const cli::Args& args, const std::filesystem::path& config_dir, bool board);
 
 // --opacity-min, --opacity-max, --period, --waveform, --module-px, --blur,
 // --region, --focus-radius, --activation, --fade, --palette.

@@ -44,6 +44,7 @@
 #include "server/server.hpp"
 #include "server/service.hpp"
 #include "server/static_site.hpp"
+#include "commands/serve_field.hpp"
 #include "commands/serve_reach.hpp"
 #include "trust/tls_identity_store.hpp"
 
@@ -67,22 +68,6 @@ bool have_display() {
     const char* x = std::getenv("DISPLAY");
     const char* w = std::getenv("WAYLAND_DISPLAY");
     return (x && *x) || (w && *w);
-}
-
-overlay::Preset preset_option(const cli::Args& a, const std::filesystem::path& config_dir, bool board) {
-    std::vector<overlay::Preset> presets = overlay::built_in_presets();
-    const auto user_file = config_dir / "presets.json";
-    std::error_code ec;
-    if (std::filesystem::exists(user_file, ec))
-        for (auto& p : overlay::load_presets(user_file.string())) presets.push_back(std::move(p));
-    // Boards and kiosks are there to be pointed at: their field is always up.
-    const std::string name = get(a, "preset").value_or(board ? "kiosk" : "balanced");
-    // User presets come last and win over a built-in of the same name.
-    for (auto it = presets.rbegin(); it != presets.rend(); ++it)
-        if (it->name == name) return *it;
-    std::string names;
-    for (const auto& p : presets) names += (names.empty() ? "" : ", ") + p.name;
-    throw UsageError("no preset called \"" + name + "\"; there are " + names);
 }
 
 // A step that cannot go on: the message for the console and the exit code.
@@ -138,6 +123,8 @@ struct Serving {
     std::unique_ptr<NearbyBrowse> nearby_browse;
     std::unique_ptr<ControlSocket> control;
     std::string url;
+    std::shared_ptr<Service> service;
+    std::unique_ptr<BoardWindow> board_window;  // a board on a screen
 };
 
 void read_command_line(const cli::Args& a, Serving& s) {
@@ -332,7 +319,7 @@ std::shared_ptr<Service> make_service(Serving& s) {
 // The service, the server on its port, the browser link and the control socket.
 void start_server(const ServeHooks& hooks, Serving& s) {
     try {
-        auto service = make_service(s);
+        auto service = s.service = make_service(s);
         ServerOptions options;
         options.bind_address = s.bind;
         options.port = s.port;
@@ -349,10 +336,15 @@ void start_server(const ServeHooks& hooks, Serving& s) {
                 s.browser_link.reset();
             }
         }
-        if (!s.public_mode || s.answerers.control)
-            s.control = std::make_unique<ControlSocket>(control_socket_path(s.server->port()),
-                                                        s.public_mode ? nullptr : s.shared_items, s.answerers.control,
-                                                        s.browser_link);
+        s.control = std::make_unique<ControlSocket>(control_socket_path(s.server->port()),
+                                                    s.public_mode ? nullptr : s.shared_items, s.answerers.control,
+                                                    s.browser_link, [&s] {
+                                                        s.service->set_token(load_or_create_token(s.dir));
+                                                        return RotatedRead{s.dir, show_own_field_from_any_thread(
+                                                            {s.dir, s.fields, *s.service, s.overlay_manager.get(),
+                                                             s.board_window.get(), s.screen_image, s.width, s.height,
+                                                             s.board_module_px, s.headless ? "headless" : "screen"})};
+                                                    });
     } catch (const std::exception& e) {
         throw ServeFailure(kServeError, e.what());
     }
@@ -419,7 +411,7 @@ void print_banner(const cli::Args& a, const Serving& s) {
 // a thread waits for the signals, stops the server (whose snapshots may wait
 // on this loop) and then ends the loop.
 int run_until_stopped(const cli::Args& a, const ServeHooks& hooks, Serving& s) {
-    std::unique_ptr<BoardWindow> board_window;
+    auto& board_window = s.board_window;
     if (!s.headless && s.board) {
         board_window = std::make_unique<BoardWindow>(
             s.screen_image, screen_field_for(s.width, s.height, s.board_module_px, s.fields), s.preset,

@@ -187,6 +187,12 @@ void OverlayManager::retime() {
     pulse_timer_.setTimerType(Qt::PreciseTimer);
 }
 
+void OverlayManager::set_fields(FieldSource fields) {
+    fields_ = std::move(fields);
+    relayout();
+    notify();
+}
+
 void OverlayManager::set_preset(const overlay::Preset& preset) {
     const bool new_palette = preset.palette != preset_.palette;
     const bool new_module = preset.module_px != preset_.module_px;

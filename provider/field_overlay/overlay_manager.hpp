@@ -61,6 +61,10 @@ public:
 
     void set_preset(const overlay::Preset& preset);
     const overlay::Preset& preset() const { return preset_; }
+    // Another field source (the screen's new seed, `pair --rotate --field`):
+    // every screen shows its new field, and on_screens_changed's callback
+    // tells the service, as when screens change.
+    void set_fields(FieldSource fields);
 
     // A requester seeks or aims: an on-demand field comes up (and fades out
     // after the last one, overlay::presence).

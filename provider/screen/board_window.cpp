@@ -66,6 +66,13 @@ BoardWindow::BoardWindow(QImage board, QImage layer, overlay::Preset preset, QSc
     timer_.start();
 }
 
+void BoardWindow::show_field(QImage board, const ScreenField& field) {
+    board_ = board_under_field(std::move(board), field, preset_);
+    layer_ = field_layer(field, preset_.palette);
+    painted_opacity_ = -1.0;
+    update();
+}
+
 double BoardWindow::opacity_now() const {
     // A board is there to be pointed at: its field does not wait for a requester.
     return overlay::opacity_at(preset_, static_cast<double>(clock_.elapsed()) / 1000.0);

@@ -40,6 +40,9 @@ public:
     // board_under_field and field_layer, so the preset's blur and palette
     // both apply. Throws what board_under_field throws.
     BoardWindow(QImage board, const ScreenField& field, const overlay::Preset& preset, QScreen* screen);
+    // Another field under the same preset (a new seed): `board` painted
+    // without a field, as for the constructor above.
+    void show_field(QImage board, const ScreenField& field);
 
 protected:
     void paintEvent(QPaintEvent* event) override;

@@ -93,7 +93,7 @@ std::string handle_control_request(const std::string& line, SharedItems& items) 
 }
 
 std::string handle_control_request(const std::string& line, SharedItems* shared, ControlPutDecider* puts,
-                                   const BrowserLink* browsers) {
+                                   const BrowserLink* browsers, const ReadRotated* read_rotated) {
     try {
         const json request = json::parse(line);
         if (!request.is_object() || !request.contains("cmd") || !request["cmd"].is_string())
@@ -111,6 +111,13 @@ std::string handle_control_request(const std::string& line, SharedItems* shared,
             if (!browsers) return error_answer("this provider does not look into browsers (public or headless mode)");
             return json{{"ok", true}, {"browsers", browser_status(browsers->browsers())}}.dump(
                 -1, ' ', false, json::error_handler_t::replace);
+        }
+        if (cmd == "rotated") {
+            if (!read_rotated || !*read_rotated) return error_answer("this provider reads its pairing at its start only");
+            const RotatedRead read = (*read_rotated)();
+            return json{{"ok", true}, {"config_dir", read.config_dir.string()}, {"field", read.field.id},
+                        {"field_changed", read.field.changed}}
+                .dump(-1, ' ', false, json::error_handler_t::replace);
         }
         if (!shared) return error_answer("this provider shares nothing (public mode)");
         SharedItems& items = *shared;
@@ -146,8 +153,13 @@ std::string handle_control_request(const std::string& line, SharedItems* shared,
 }
 
 ControlSocket::ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items,
-                             std::shared_ptr<ControlPutDecider> puts, std::shared_ptr<const BrowserLink> browsers)
-    : path_(std::move(path)), items_(std::move(items)), puts_(std::move(puts)), browsers_(std::move(browsers)) {
+                             std::shared_ptr<ControlPutDecider> puts, std::shared_ptr<const BrowserLink> browsers,
+                             ReadRotated read_rotated)
+    : path_(std::move(path)),
+      items_(std::move(items)),
+      puts_(std::move(puts)),
+      browsers_(std::move(browsers)),
+      read_rotated_(std::move(read_rotated)) {
     listen_fd_ = listen_owner_only(path_, [](const std::filesystem::path& p) {
         try {
             control_request(p, R"({"cmd":"ping"})");
@@ -205,7 +217,8 @@ void ControlSocket::answer(int fd) {
     std::string reply = line.size() > kMaxLine ? error_answer("request too long")
                         : line.find('\n') == std::string::npos
                             ? error_answer("a request ends with a newline")
-                            : handle_control_request(line.substr(0, line.find('\n')), items_.get(), puts_.get(), browsers_.get());
+                            : handle_control_request(line.substr(0, line.find('\n')), items_.get(), puts_.get(),
+                                                     browsers_.get(), &read_rotated_);
     reply += '\n';
     // A client gone before the answer must not end the provider with SIGPIPE.
     [[maybe_unused]] auto n = ::send(fd, reply.data(), reply.size(), MSG_NOSIGNAL);

@@ -12,6 +12,9 @@
 //   {"cmd":"browsers"} -> {"ok":true,"browsers":[{"name":"chromium","version":"156.0","pid":4242,
 //                          "windows":[{"id":1,"bounds":[0,0,1280,800],"focused":true,"url":"https://...","title":"..."}]}]}
 //   {"cmd":"ping"} -> {"ok":true}   (whether a provider answers there)
+//   {"cmd":"rotated"} -> {"ok":true,"config_dir":"/home/...","field":"b4-64x36-...","field_changed":true}
+//                        (`pair --rotate`: the pairing token and the screen's own field read again from
+//                        the provider's configuration directory)
 //   {"cmd":"put_answer","id":7,"answer":"save"|"open"|"dismiss","always":false}
 //       -> {"ok":true,"id":7,"answer":"save","name":"report.pdf"}
 //   anything wrong -> {"ok":false,"error":"what is wrong"}
@@ -19,6 +22,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -34,18 +38,32 @@ namespace umf::provider {
 // One request line's answer (what the socket thread does per line; tests
 // call it directly).
 std::string handle_control_request(const std::string& line, SharedItems& items);
+// Takes the pairing token and the screen's own field as its configuration
+// has them now (after `pair --rotate`); the field shown and whether it
+// changed. Throws std::runtime_error saying why not.
+struct FieldShown {
+    std::string id;
+    bool changed = false;
+};
+struct RotatedRead {
+    std::filesystem::path config_dir;  // where they were read
+    FieldShown field;
+};
+using ReadRotated = std::function<RotatedRead()>;
+
 // The same with any part missing (nullptr): a provider in public mode
 // shares nothing, one started with `--puts always|never` asks nothing, one
 // without a desktop has no browser link.
 std::string handle_control_request(const std::string& line, SharedItems* items, ControlPutDecider* puts,
-                                   const BrowserLink* browsers = nullptr);
+                                   const BrowserLink* browsers = nullptr, const ReadRotated* read_rotated = nullptr);
 
 class ControlSocket {
 public:
     // Binds (replacing a stale socket file) and starts answering. Throws
     // std::runtime_error naming the path when it cannot.
     ControlSocket(std::filesystem::path path, std::shared_ptr<SharedItems> items,
-                  std::shared_ptr<ControlPutDecider> puts = nullptr, std::shared_ptr<const BrowserLink> browsers = nullptr);
+                  std::shared_ptr<ControlPutDecider> puts = nullptr, std::shared_ptr<const BrowserLink> browsers = nullptr,
+                  ReadRotated read_rotated = {});
     ~ControlSocket();
     ControlSocket(const ControlSocket&) = delete;
     ControlSocket& operator=(const ControlSocket&) = delete;
@@ -59,6 +77,7 @@ private:
     std::shared_ptr<SharedItems> items_;
     std::shared_ptr<ControlPutDecider> puts_;
     std::shared_ptr<const BrowserLink> browsers_;
+    ReadRotated read_rotated_;
     int listen_fd_ = -1;
     int wake_[2] = {-1, -1};
     std::thread thread_;

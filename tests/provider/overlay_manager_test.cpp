@@ -1,7 +1,7 @@
 // The overlay manager following its requesters, on the offscreen platform:
 // easy locks lower the field within the preset's range, a struggling
 // requester raises it again at once, the windows carry the opacity the
-// manager gives, and a larger module in the preset moves the field. With
+// manager gives, a larger module in the preset or a new seed moves the field. With
 // Region::focus and a blur, the screen under the circle (a grab function
 // given by the test) is blurred and mixed into the circle by the window.
 #if defined(UMF_PROVIDER_TESTS) && defined(UMF_PROVIDER_OVERLAY)
@@ -101,6 +101,24 @@ TEST(OverlayManager, APresetWithLargerModulesMovesTheField) {
     preset.opacity_max = 0.45;
     manager.set_preset(preset);
     EXPECT_EQ(changes, 1);
+}
+
+// A screen's new seed (`pair --rotate --field` while it runs): every window
+// shows the new field, and the service hears of it as of a change of screens.
+TEST(OverlayManager, AnotherFieldSourceIsShownAndRelayed) {
+    umf::test::ensure_gui_application();
+    OverlayManager manager(steady_preset(), nullptr, FieldSource(0x1234, {}));
+    ASSERT_TRUE(manager.layout());
+    int changes = 0;
+    manager.on_screens_changed([&] { ++changes; });
+    const std::string before = manager.layout()->field.id;
+
+    manager.set_fields(FieldSource(0x5678, {}));
+    EXPECT_EQ(changes, 1);
+    ASSERT_TRUE(manager.layout());
+    EXPECT_NE(manager.layout()->field.id, before);
+    EXPECT_NE(manager.layout()->field.id.find("5678"), std::string::npos) << manager.layout()->field.id;
+    EXPECT_EQ(manager.windows()[0]->screen_field().field.id, manager.layout()->field.id);
 }
 
 // Black and white squares of 3 root pixels: edges far finer than a module.

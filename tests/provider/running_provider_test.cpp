@@ -102,6 +102,22 @@ TEST(RunningProvider, CommandsWithoutPortFindTheOneProviderThatRuns) {
     EXPECT_EQ(running_provider_port(given), std::optional<unsigned short>(47124));
 }
 
+// `pair --rotate` asks a running provider to read its pairing and field
+// again (tests/screens/two_screens_test.sh runs the whole): its answer, and
+// why not.
+TEST(RunningProvider, RotatedIsReadAgainWhereTheProviderCan) {
+    SharedItems items;
+    EXPECT_NE(handle_control_request(R"({"cmd":"rotated"})", &items, nullptr).find("at its start only"),
+              std::string::npos);
+    const ReadRotated read = [] { return RotatedRead{"/home/u/.config/umf", {"b4-64x36-00000000000000a1", true}}; };
+    EXPECT_EQ(handle_control_request(R"({"cmd":"rotated"})", &items, nullptr, nullptr, &read),
+              R"({"config_dir":"/home/u/.config/umf","field":"b4-64x36-00000000000000a1","field_changed":true,"ok":true})");
+    const ReadRotated failing = []() -> RotatedRead { throw std::runtime_error("cannot read field-seed"); };
+    const std::string refused = handle_control_request(R"({"cmd":"rotated"})", nullptr, nullptr, nullptr, &failing);
+    EXPECT_NE(refused.find(R"("ok":false)"), std::string::npos) << refused;
+    EXPECT_NE(refused.find("cannot read field-seed"), std::string::npos) << refused;
+}
+
 TEST(RunningProvider, HintsNameThePortWhenItIsNotTheDefault) {
     EXPECT_EQ(with_port("umf-provider puts", kDefaultPort), "umf-provider puts");
     EXPECT_EQ(with_port("umf-provider puts", 47471), "umf-provider puts --port 47471");

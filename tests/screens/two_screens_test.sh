@@ -130,6 +130,33 @@ grab a b
   { echo "FAIL: b forgotten, a's URL and b's picture gave ($status): $out"; exit 1; }
 echo "ok: with --no-switch, or b forgotten, b's picture takes nothing: $out"
 
+# A new pairing and field for a while it runs (pair --rotate --field): it
+# takes both at once. The old URL is refused; with the new one, a picture
+# composed anew takes a's link, and the picture of the old field nothing.
+a_port=${urls[a]#https://127.0.0.1:}
+a_port=${a_port%%/*}
+old_id=$(field_id a)
+mkdir -p "$work/old-a" && cp "$work/a/screen.png" "$work/old-a/screen.png"
+urls[a-old]=${urls[a]}
+urls[a]=$("$bin/umf-provider" pair --rotate --field --config-dir "$work/a/cfg" --port "$a_port" --host 127.0.0.1 \
+          --no-qr 2>"$work/rotate.err")
+grep -q "takes only the new pairing now" "$work/rotate.err" && grep -q "shows the new field now" "$work/rotate.err" ||
+  { echo "FAIL: the running provider did not take the rotation:"; cat "$work/rotate.err"; exit 1; }
+"$bin/umf-provider" compose --board "$work/a/board.json" --screen 1920x1080 --preset kiosk --time 0.75 \
+  --out "$work/a/screen.png" --map "$work/a/map.json" --config-dir "$work/a/cfg" >/dev/null
+[ "$(field_id a)" != "$old_id" ] && grep -q "^field: $(field_id a) " "$work/a.log" ||
+  { echo "FAIL: a does not show the new field $(field_id a) compose drew (was $old_id):"; tail -3 "$work/a.log"; exit 1; }
+grab a a --no-switch
+[ "$status" = 0 ] && grep -q '"url":"https://example.org/screen-a"' <<<"$out" ||
+  { echo "FAIL: the new URL and a's new picture gave ($status): $out"; cat "$work/requester.err"; exit 1; }
+grab a old-a --no-switch
+[ "$status" = 5 ] && ! grep -q '"url"' <<<"$out" ||
+  { echo "FAIL: the new URL and the picture of a's old field gave ($status): $out"; exit 1; }
+grab a-old a --no-switch
+[ "$status" != 0 ] && grep -q '"code":"unauthorized"' <<<"$out" ||
+  { echo "FAIL: the old URL after the rotation gave ($status): $out"; exit 1; }
+echo "ok: rotated while it runs, a shows $(field_id a) (was $old_id), takes the new URL only, and its new picture gives a's link"
+
 # The same two screens with the shipped field: the wrong screen answers.
 screen c --shipped-field
 screen d --shipped-field
