@@ -25,8 +25,8 @@ void sort_addresses(std::vector<std::string>& addresses) {
     addresses.erase(std::unique(addresses.begin(), addresses.end()), addresses.end());
 }
 
-Screen screen_of(const ResolvedService& r) {
-    Screen s;
+AnnouncedScreen screen_of(const ResolvedService& r) {
+    AnnouncedScreen s;
     s.name = r.name;
     s.host = r.host;
     s.port = r.port;
@@ -54,9 +54,9 @@ bool is_fingerprint(const std::string& text) {
            std::all_of(text.begin(), text.end(), [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
-std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved,
+std::vector<AnnouncedScreen> screens_from(const std::vector<ResolvedService>& resolved,
                                  const std::vector<std::string>& paired_fingerprints) {
-    std::vector<Screen> screens;
+    std::vector<AnnouncedScreen> screens;
     std::map<std::string, std::size_t> by_name;
     for (const auto& r : resolved) {
         if (r.port == 0) continue;
@@ -70,7 +70,8 @@ std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved,
                    std::find(paired_fingerprints.begin(), paired_fingerprints.end(), s.fingerprint) !=
                        paired_fingerprints.end();
     }
-    std::sort(screens.begin(), screens.end(), [](const Screen& a, const Screen& b) { return a.name < b.name; });
+    std::sort(screens.begin(), screens.end(),
+              [](const AnnouncedScreen& a, const AnnouncedScreen& b) { return a.name < b.name; });
     return screens;
 }
 

@@ -25,7 +25,7 @@ struct ResolvedService {
 
 // One screen on the network, whatever number of interfaces and protocols it
 // answered on.
-struct Screen {
+struct AnnouncedScreen {
     std::string name;
     std::string host;
     unsigned short port = 0;
@@ -47,7 +47,7 @@ bool is_fingerprint(const std::string& text);
 // a port are dropped: nothing could connect to them. A screen whose
 // fingerprint is one of `paired_fingerprints` (the pairing URL's, the kept
 // screens') is marked paired.
-std::vector<Screen> screens_from(const std::vector<ResolvedService>& resolved,
+std::vector<AnnouncedScreen> screens_from(const std::vector<ResolvedService>& resolved,
                                  const std::vector<std::string>& paired_fingerprints = {});
 
 }  // namespace umf::native

@@ -59,9 +59,9 @@ DiscoverOptions parse_discover_args(int argc, char** argv, int first) {
     const Args a = parse_args(argc, argv, first, {"timeout", "url"}, {"json"});
     if (!a.positional.empty()) throw UsageError("discover takes no arguments, not '" + a.positional.front() + "'");
     DiscoverOptions o;
-    if (auto t = a.get("timeout")) o.timeout_s = parse_seconds(*t);
-    o.json = a.has_flag("json");
-    if (auto url = a.get("url")) {
+    if (auto t = get(a, "timeout")) o.timeout_s = parse_seconds(*t);
+    o.json = has_flag(a, "json");
+    if (auto url = get(a, "url")) {
         try {
             o.paired_fingerprints.push_back(protocol::parse_pairing_url(*url).fingerprint);
         } catch (const protocol::PairingUrlError& e) {
@@ -89,7 +89,7 @@ int run_discover(const DiscoverOptions& o, std::FILE* out) {
                      e.what());
         return kConnection;
     }
-    const std::vector<native::Screen> screens = native::screens_from(resolved, o.paired_fingerprints);
+    const std::vector<native::AnnouncedScreen> screens = native::screens_from(resolved, o.paired_fingerprints);
     if (screens.empty()) {
         std::fprintf(stderr, "discover: no screen answered within %g s\n", o.timeout_s);
         return kNothing;

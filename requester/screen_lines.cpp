@@ -18,7 +18,7 @@ std::string printable(std::string text) {
 
 }  // namespace
 
-std::string screen_line(const native::Screen& s) {
+std::string screen_line(const native::AnnouncedScreen& s) {
     std::string addresses;
     for (const auto& a : s.addresses) addresses += (addresses.empty() ? "" : ",") + a;
     std::string line = printable(s.name) + "  https://" + printable(s.host) + ":" + std::to_string(s.port) + "  " +
@@ -28,7 +28,7 @@ std::string screen_line(const native::Screen& s) {
     return line;
 }
 
-std::string screen_json(const native::Screen& s, bool with_paired) {
+std::string screen_json(const native::AnnouncedScreen& s, bool with_paired) {
     Json j;
     j["name"] = s.name;
     j["host"] = s.host;

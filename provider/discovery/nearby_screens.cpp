@@ -29,10 +29,12 @@ bool is_local_host(const std::string& host) {
 
 }  // namespace
 
-std::vector<NearbyScreen> nearby_from(const std::vector<native::Screen>& screens, const std::string& own_fingerprint) {
+std::vector<NearbyScreen> nearby_from(const std::vector<native::AnnouncedScreen>& screens,
+                                      const std::string& own_fingerprint) {
     std::vector<NearbyScreen> out;
     for (const auto& s : screens) {
-        if (s.fingerprint.empty() || s.fingerprint == own_fingerprint || s.port == 0 || !is_local_host(s.host)) continue;
+        const bool other = !s.fingerprint.empty() && s.fingerprint != own_fingerprint;
+        if (!other || s.port == 0 || !is_local_host(s.host)) continue;
         out.push_back({s.name, "https://" + s.host + ":" + std::to_string(s.port), s.fingerprint});
     }
     std::sort(out.begin(), out.end(), [](const NearbyScreen& a, const NearbyScreen& b) { return a.name < b.name; });

@@ -28,7 +28,8 @@ struct NearbyScreen {
 // fingerprint other than `own_fingerprint` and a host name under .local
 // (an announcer's host of any other form never becomes a link). At most
 // kMaxNearbyScreens.
-std::vector<NearbyScreen> nearby_from(const std::vector<native::Screen>& screens, const std::string& own_fingerprint);
+std::vector<NearbyScreen> nearby_from(const std::vector<native::AnnouncedScreen>& screens,
+                                      const std::string& own_fingerprint);
 
 // {"screens":[{"name":...,"origin":...,"fingerprint":...},...]}; bytes of a
 // name that are not UTF-8 become U+FFFD.

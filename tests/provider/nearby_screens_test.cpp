@@ -12,13 +12,13 @@
 
 namespace {
 
-using umf::native::Screen;
+using umf::native::AnnouncedScreen;
 using namespace umf::provider;
 
 const std::string kOwn(64, 'a');
 
-Screen screen(std::string name, std::string host, unsigned short port, std::string fingerprint) {
-    Screen s;
+AnnouncedScreen screen(std::string name, std::string host, unsigned short port, std::string fingerprint) {
+    AnnouncedScreen s;
     s.name = std::move(name);
     s.host = std::move(host);
     s.port = port;
@@ -42,7 +42,7 @@ TEST(NearbyScreens, OtherScreensAtLocalNamesByName) {
 }
 
 TEST(NearbyScreens, ARoomFullIsCut) {
-    std::vector<Screen> many;
+    std::vector<AnnouncedScreen> many;
     for (int i = 0; i < 40; ++i)
         many.push_back(screen("umf on s" + std::to_string(100 + i), "s" + std::to_string(i) + ".local", 8443,
                               std::string(64, 'b')));

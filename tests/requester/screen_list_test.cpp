@@ -17,7 +17,7 @@ namespace {
 
 using umf::native::is_fingerprint;
 using umf::native::ResolvedService;
-using umf::native::Screen;
+using umf::native::AnnouncedScreen;
 using umf::requester::screen_json;
 using umf::requester::screen_line;
 using umf::native::screens_from;
@@ -58,7 +58,7 @@ TEST(RequesterDiscover, OneScreenPerNameWithAllItsAddresses) {
     const auto screens = screens_from({desk("fe80::1%umf0"), desk("10.0.0.5"), desk("192.168.1.20"), desk("10.0.0.5"),
                                        desk("")});
     ASSERT_EQ(screens.size(), 1u);
-    const Screen& s = screens[0];
+    const AnnouncedScreen& s = screens[0];
     EXPECT_EQ(s.name, "umf on desk");
     EXPECT_EQ(s.host, "desk.local");
     EXPECT_EQ(s.port, 8443);
