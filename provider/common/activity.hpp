@@ -9,7 +9,8 @@
 #include <optional>
 #include <string>
 
-#include "content/resolver.hpp"
+#include "common/screen_point.hpp"
+#include "protocol/messages.hpp"
 
 namespace umf::provider {
 

@@ -13,7 +13,7 @@
 
 #include "server/http_sessions.hpp"
 #include "server/service.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity.hpp"
 
 namespace umf::provider {
 

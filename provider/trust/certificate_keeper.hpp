@@ -13,7 +13,7 @@
 #include <string>
 #include <thread>
 
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity.hpp"
 #include "trust/serving_names.hpp"
 
 namespace umf::provider {

@@ -6,7 +6,7 @@
 
 #include "native/certificate_fingerprint.hpp"
 #include "native/openssl_error.hpp"
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity.hpp"
 
 namespace umf::provider {
 

@@ -2,7 +2,7 @@
 
 #include <openssl/x509.h>
 
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity.hpp"
 
 namespace umf::provider {
 

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity.hpp"
 
 namespace umf::provider {
 

@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <string>
 
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity.hpp"
 #include "trust/root_authority.hpp"
 #include "trust/serving_names.hpp"
 

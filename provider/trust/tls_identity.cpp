@@ -1,4 +1,4 @@
-#include "server/tls_identity.hpp"
+#include "trust/tls_identity.hpp"
 
 #include "native/openssl_error.hpp"
 

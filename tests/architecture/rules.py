@@ -1,0 +1,170 @@
+#!/usr/bin/env python3
+"""Rules of docs/ARCHITECTURE.md, checked on the sources.
+
+include-graph: every quoted #include is resolved the way the build resolves it (the
+including file's folder, its component's include root, shared/, the
+repository root) to the folder it lands in, and every arrow must point down:
+  - between components: shared/ includes only itself; native/ and tools/
+    shared/; provider/, requester/, browser/host/ and web/wasm/ shared/ and
+    native/, never each other;
+  - within shared/ and within provider/: from a folder to one listed below it
+    in LAYERS (or to itself);
+  - Qt (<Q...>) only in provider/, OpenCV (<opencv2/...>) only in requester/.
+There are no named exceptions: a new arrow up is a failure, which moves a
+file or splits one, or changes LAYERS here and in docs/ARCHITECTURE.md.
+
+type-names: no two headers define a type of one name at namespace scope
+(one meaning per word: a `Screen` of the protocol and one of the network
+would be read for each other).
+
+  python3 tests/architecture/rules.py include-graph|type-names REPOSITORY
+"""
+import os
+import re
+import sys
+
+# Each component's folders, lowest first: a folder may include its own and
+# those before it.
+LAYERS = {
+    'shared': ['io', 'cli', 'data', 'field', 'detect', 'protocol', 'overlay', 'aiming', 'requester_core'],
+    'provider': ['common', 'board', 'screen', 'desktop', 'content', 'put', 'browser', 'trust', 'discovery',
+                 'field_overlay', 'server', 'tuning', 'commands', '.'],
+}
+# What each component may include besides itself.
+COMPONENTS = {
+    'shared': [],
+    'native': ['shared'],
+    'tools': ['shared'],
+    'provider': ['shared', 'native'],
+    'requester': ['shared', 'native'],
+    'browser': ['shared', 'native'],
+    'web': ['shared'],
+}
+# Where a component's own "folder/file.hpp" includes start.
+INCLUDE_ROOTS = {'shared': 'shared', 'provider': 'provider'}
+QUOTED = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+ANGLED = re.compile(r'^\s*#\s*include\s+<([^>]+)>')
+SOURCE = ('.hpp', '.cpp', '.h')
+
+
+def resolve(repo, path, target):
+    """The repository-relative file an include names, or None (generated code)."""
+    here = os.path.dirname(path)
+    component = path.split('/')[0]
+    candidates = [os.path.join(here, target)]
+    if component in INCLUDE_ROOTS:
+        candidates.append(os.path.join(INCLUDE_ROOTS[component], target))
+    candidates += [os.path.join('shared', target), target]
+    for c in candidates:
+        c = os.path.normpath(c)
+        if os.path.isfile(os.path.join(repo, c)):
+            return c
+    return None
+
+
+def folder(path):
+    """(component, folder within it) of a repository-relative path."""
+    parts = path.split('/')
+    component = parts[0]
+    inner = parts[1] if len(parts) > 2 else '.'
+    return component, inner
+
+
+def check(repo):
+    problems = []
+    arrows = 0
+    for component in COMPONENTS:
+        for dirpath, dirnames, files in os.walk(os.path.join(repo, component)):
+            dirnames[:] = [d for d in dirnames if d not in ('node_modules', 'extension')]
+            for name in files:
+                if not name.endswith(SOURCE):
+                    continue
+                path = os.path.relpath(os.path.join(dirpath, name), repo)
+                with open(os.path.join(repo, path), encoding='utf-8', errors='replace') as f:
+                    lines = f.readlines()
+                for number, line in enumerate(lines, 1):
+                    where = f'{path}:{number}'
+                    angled = ANGLED.match(line)
+                    if angled:
+                        header = angled.group(1)
+                        if re.match(r'Q[A-Za-z]+$|Qt[A-Za-z]+/', header) and component != 'provider':
+                            problems.append(f'{where}: Qt (<{header}>) outside provider/')
+                        if header.startswith('opencv2/') and component != 'requester':
+                            problems.append(f'{where}: OpenCV (<{header}>) outside requester/')
+                        continue
+                    quoted = QUOTED.match(line)
+                    if not quoted:
+                        continue
+                    target = resolve(repo, path, quoted.group(1))
+                    if target is None:
+                        continue  # generated (Wayland protocol code, emscripten's module)
+                    arrows += 1
+                    problem = arrow_problem(path, target)
+                    if problem:
+                        problems.append(f'{where}: {path} -> {target}: {problem}')
+    return problems, arrows
+
+
+def arrow_problem(source, target):
+    (src_component, src_folder), (dst_component, dst_folder) = folder(source), folder(target)
+    if src_component != dst_component:
+        if dst_component not in COMPONENTS.get(src_component, []):
+            return f'{src_component}/ may not include {dst_component}/'
+        return None
+    layers = LAYERS.get(src_component)
+    if not layers or src_folder == dst_folder:
+        return None
+    for f in (src_folder, dst_folder):
+        if f not in layers:
+            return f'{src_component}/{f}/ is in no layer of tests/architecture/include_graph.py'
+    if layers.index(dst_folder) > layers.index(src_folder):
+        return f'an arrow up, from {src_component}/{src_folder}/ to {src_component}/{dst_folder}/'
+    return None
+
+
+# A type defined at namespace scope: at the start of its line, not a
+# declaration (no ';' on the line), not a nested type defined out of line (A::B).
+TYPE = re.compile(r'^(?:struct|class|enum class|enum)\s+([A-Za-z_]\w*)(?!\s*::)\b[^;]*$')
+
+
+def sources(repo, suffixes):
+    for component in COMPONENTS:
+        for dirpath, dirnames, files in os.walk(os.path.join(repo, component)):
+            dirnames[:] = [d for d in dirnames if d not in ('node_modules', 'extension')]
+            for name in sorted(files):
+                if name.endswith(suffixes):
+                    yield os.path.relpath(os.path.join(dirpath, name), repo)
+
+
+def check_type_names(repo):
+    places = {}
+    for path in sources(repo, ('.hpp', '.h')):
+        with open(os.path.join(repo, path), encoding='utf-8', errors='replace') as f:
+            for number, line in enumerate(f, 1):
+                m = TYPE.match(line)
+                if m:
+                    places.setdefault(m.group(1), []).append(f'{path}:{number}')
+    problems = [f'{name} is defined in {len(where)} places: {", ".join(where)}'
+                for name, where in sorted(places.items()) if len(where) > 1]
+    return problems, len(places)
+
+
+def main():
+    if len(sys.argv) != 3 or sys.argv[1] not in ('include-graph', 'type-names'):
+        print(__doc__)
+        return 2
+    repo = os.path.abspath(sys.argv[2])
+    if sys.argv[1] == 'include-graph':
+        problems, arrows = check(repo)
+        summary = f'include graph: {arrows} arrows, {len(problems)} against the rule'
+    else:
+        problems, types = check_type_names(repo)
+        summary = f'type names: {types} types at namespace scope, {len(problems)} defined twice'
+    for p in problems:
+        print(p)
+    print(summary)
+    return 1 if problems else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())
