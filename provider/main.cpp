@@ -262,9 +262,8 @@ int dispatch(int argc, char** argv) {
     if (command == "puts")
         return run_puts(parse_command_args(argc, argv, first, {"port", "accept", "dismiss"}, {"open", "always", "json"}));
     if (command == "compose") {
-        std::vector<std::string> options = {"content", "board", "preset", "time", "out", "map", "screen", "config-dir"};
-        for (const auto& o : umf::provider::preset_setting_options()) options.push_back(o);
-        const auto args = parse_command_args(argc, argv, first, options, {"shipped-field", "own-field"});
+        const auto args = parse_command_args(argc, argv, first, umf::provider::compose_options(),
+                                             umf::provider::compose_flags());
         const auto config_dir = config_dir_option(args);
         auto compose_args = args;  // compose's own options only
         compose_args.named.erase("config-dir");

@@ -8,10 +8,6 @@ namespace umf::requester {
 
 namespace {
 
-bool contains(const std::vector<std::string>& list, const std::string& s) {
-    return std::find(list.begin(), list.end(), s) != list.end();
-}
-
 // The whole of `text` as a finite number, or nothing.
 std::optional<double> to_number(const std::string& text) {
     if (text.empty()) return std::nullopt;
@@ -22,50 +18,6 @@ std::optional<double> to_number(const std::string& text) {
 }
 
 }  // namespace
-
-bool Args::has_flag(const std::string& name) const { return contains(flags, name); }
-
-std::optional<std::string> Args::get(const std::string& name) const {
-    for (const auto& [n, v] : named)
-        if (n == name) return v;
-    return std::nullopt;
-}
-
-Args parse_args(int argc, char** argv, int first, const std::vector<std::string>& options,
-                const std::vector<std::string>& flags) {
-    Args a;
-    bool only_files = false;
-    for (int i = first; i < argc; ++i) {
-        const std::string s = argv[i];
-        if (only_files || s.rfind("--", 0) != 0) {
-            a.positional.push_back(s);
-            continue;
-        }
-        if (s == "--") {
-            only_files = true;
-            continue;
-        }
-        std::string name = s.substr(2);
-        std::optional<std::string> value;
-        if (auto eq = name.find('='); eq != std::string::npos) {
-            value = name.substr(eq + 1);
-            name.resize(eq);
-        }
-        if (a.get(name) || a.has_flag(name)) throw UsageError("--" + name + " is given twice");
-        if (contains(flags, name)) {
-            if (value) throw UsageError("--" + name + " takes no value");
-            a.flags.push_back(name);
-            continue;
-        }
-        if (!contains(options, name)) throw UsageError("unknown option --" + name);
-        if (!value) {
-            if (i + 1 >= argc) throw UsageError("--" + name + " needs a value");
-            value = argv[++i];
-        }
-        a.named.emplace_back(name, *value);
-    }
-    return a;
-}
 
 double parse_seconds(const std::string& text) {
     const auto s = to_number(text);

@@ -1,5 +1,5 @@
-// What every umf-requester command shares: exit codes, the usage error and
-// the parsing of "--name value", "--name=value", flags and file arguments.
+// What every umf-requester command shares: exit codes, the input error and
+// the command line (shared/cli/args.hpp) with the values only it reads.
 #pragma once
 
 #include <optional>
@@ -8,9 +8,11 @@
 #include <utility>
 #include <vector>
 
+#include "cli/args.hpp"
+
 namespace umf::requester {
 
-enum Exit {
+enum RequesterExit {
     kOk = 0,         // the command ran; per-frame trouble is reported in its output
     kUsage = 2,      // wrong usage
     kInputError = 3,  // the field file, the video or the output could not be read or written;
@@ -21,31 +23,19 @@ enum Exit {
                       // discover: no screen answered
 };
 
-// Wrong usage: main prints it with a pointer to --help and exits with kUsage.
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
 // A file or stream the command cannot work without: exits with kInputError.
 struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-struct Args {
-    std::vector<std::string> positional;                       // in the order given
-    std::vector<std::pair<std::string, std::string>> named;    // without the leading "--"
-    std::vector<std::string> flags;
-
-    bool has_flag(const std::string& name) const;
-    std::optional<std::string> get(const std::string& name) const;
-};
-
-// Parses argv[first..]: "--name value" and "--name=value" for options,
-// "--name" alone for the known flags, everything else (and everything after
-// a lone "--") as positional. Throws UsageError for an option given twice, an
-// option outside `options` or `flags`, or an option without its value.
-Args parse_args(int argc, char** argv, int first, const std::vector<std::string>& options,
-                const std::vector<std::string>& flags);
+// The project's one parser (shared/cli/args.hpp): "--name value",
+// "--name=value", the known flags and the words; UsageError makes main print
+// it with a pointer to --help and exit with kUsage.
+using cli::Args;
+using cli::get;
+using cli::has_flag;
+using cli::parse_args;
+using cli::UsageError;
 
 // "X,Y" as two finite numbers; throws UsageError naming the option.
 std::pair<double, double> parse_point(const std::string& option, const std::string& text);

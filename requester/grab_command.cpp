@@ -145,9 +145,9 @@ GrabOptions parse_grab_args(int argc, char** argv, int first) {
     if (!a.positional.empty()) throw UsageError("grab takes no file arguments; use --image FILE or --video FILE");
     GrabOptions o;
     o.pointing = parse_pointing_args(a, "grab");
-    o.out = a.get("out");
+    o.out = get(a, "out");
     if (o.out && o.out->empty()) throw UsageError("--out needs a directory");
-    o.open = a.has_flag("open");
+    o.open = has_flag(a, "open");
     return o;
 }
 

@@ -120,15 +120,15 @@ void write_line(std::FILE* out, const Json& j) {
 LocateOptions parse_locate_args(int argc, char** argv, int first) {
     const Args a = parse_args(argc, argv, first, {"field", "aim", "video"}, {"sequence"});
     LocateOptions o;
-    auto field = a.get("field");
+    auto field = get(a, "field");
     if (!field) throw UsageError("locate needs --field F.json");
     o.field_path = *field;
-    o.sequence = a.has_flag("sequence");
-    if (auto aim = a.get("aim")) {
+    o.sequence = has_flag(a, "sequence");
+    if (auto aim = get(a, "aim")) {
         auto [x, y] = parse_point("aim", *aim);
         o.aim = Eigen::Vector2d(x, y);
     }
-    o.video = a.get("video");
+    o.video = get(a, "video");
     o.images = a.positional;
     if (o.video && !o.images.empty()) throw UsageError("locate reads either image files or --video FILE, not both");
     if (!o.video && o.images.empty()) throw UsageError("locate needs image files or --video FILE");

@@ -37,12 +37,12 @@ PairOptions parse_pair_args(int argc, char** argv, int first) {
     const Args a = parse_args(argc, argv, first, {"forget"}, {"list"});
     PairOptions o;
     o.file = default_paired_screens_file();
-    const int actions = (a.has_flag("list") ? 1 : 0) + (a.get("forget") ? 1 : 0) + (a.positional.empty() ? 0 : 1);
+    const int actions = (has_flag(a, "list") ? 1 : 0) + (get(a, "forget") ? 1 : 0) + (a.positional.empty() ? 0 : 1);
     if (actions != 1) throw UsageError("pair takes one pairing URL, or --list, or --forget NAME|URL");
     if (a.positional.size() > 1) throw UsageError("pair takes one pairing URL at a time");
-    if (a.has_flag("list")) {
+    if (has_flag(a, "list")) {
         o.action = PairOptions::Action::list;
-    } else if (auto name = a.get("forget")) {
+    } else if (auto name = get(a, "forget")) {
         o.action = PairOptions::Action::forget;
         o.what = *name;
     } else {

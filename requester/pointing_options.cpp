@@ -27,7 +27,7 @@ const std::vector<std::string> kPointingFlagNames = {"auto", "no-window", "no-sw
 
 PointingOptions parse_pointing_args(const Args& a, const std::string& verb) {
     PointingOptions o;
-    const auto url = a.get("url");
+    const auto url = get(a, "url");
     o.paired_file = default_paired_screens_file();
     try {
         o.paired = read_paired_screens(o.paired_file);
@@ -48,24 +48,24 @@ PointingOptions parse_pointing_args(const Args& a, const std::string& verb) {
     } else {
         o.url = o.paired.front().url;
     }
-    o.switch_screens = !a.has_flag("no-switch");
-    const int inputs = (a.get("camera") ? 1 : 0) + (a.get("video") ? 1 : 0) + (a.get("image") ? 1 : 0);
+    o.switch_screens = !has_flag(a, "no-switch");
+    const int inputs = (get(a, "camera") ? 1 : 0) + (get(a, "video") ? 1 : 0) + (get(a, "image") ? 1 : 0);
     if (inputs > 1) throw UsageError(verb + " reads one of --camera, --video or --image");
-    if (auto c = a.get("camera")) o.camera_index = parse_camera(*c);
-    if (auto v = a.get("video")) {
+    if (auto c = get(a, "camera")) o.camera_index = parse_camera(*c);
+    if (auto v = get(a, "video")) {
         o.input = FrameInput::video;
         o.path = *v;
     }
-    if (auto i = a.get("image")) {
+    if (auto i = get(a, "image")) {
         o.input = FrameInput::image;
         o.path = *i;
     }
     if ((o.input != FrameInput::camera) && o.path.empty()) throw UsageError("--video and --image need a file name");
-    o.auto_act = a.has_flag("auto") || o.input == FrameInput::image;
-    if (auto t = a.get("timeout")) o.timeout_s = parse_seconds(*t);
-    o.window = o.input != FrameInput::image && !a.has_flag("no-window") && has_display();
+    o.auto_act = has_flag(a, "auto") || o.input == FrameInput::image;
+    if (auto t = get(a, "timeout")) o.timeout_s = parse_seconds(*t);
+    o.window = o.input != FrameInput::image && !has_flag(a, "no-window") && has_display();
     if (o.input != FrameInput::image && !o.window && !o.auto_act)
-        throw UsageError(std::string(a.has_flag("no-window") ? "with --no-window" : "without a display ($DISPLAY is unset)") +
+        throw UsageError(std::string(has_flag(a, "no-window") ? "with --no-window" : "without a display ($DISPLAY is unset)") +
                          " no key can say when to " + verb + ": add --auto to " + verb + " on a steady aim");
     return o;
 }

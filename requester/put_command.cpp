@@ -241,7 +241,7 @@ PutOptions parse_put_args(int argc, char** argv, int first) {
         if (what.empty()) throw UsageError("put needs a FILE or an http(s) LINK, not an empty name");
         o.file = what;
     }
-    if (auto t = a.get("title")) {
+    if (auto t = get(a, "title")) {
         if (t->size() > p::kMaxTitleBytes)
             throw UsageError("--title has " + std::to_string(t->size()) + " bytes; at most " +
                              std::to_string(p::kMaxTitleBytes));

@@ -13,8 +13,7 @@ using cli::UsageError;
 
 Args parse_command_args(int argc, char** argv, int first, const std::vector<std::string>& options,
                         const std::vector<std::string>& flags, std::size_t max_positional) {
-    Args a = cli::parse_args(argc, argv, first, flags);
-    cli::reject_unknown(a, options);
+    Args a = cli::parse_args(argc, argv, first, options, flags);
     if (a.positional.size() > max_positional)
         throw UsageError("unexpected argument " + a.positional[max_positional]);
     return a;

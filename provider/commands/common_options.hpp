@@ -12,7 +12,7 @@ namespace umf::provider {
 inline constexpr unsigned short kDefaultPort = 47470;
 
 // Exit codes of every umf-provider command.
-enum Exit {
+enum ProviderExit {
     kOk = 0,
     kUsage = 2,
     kConfigError = 3,  // the configuration directory, identity, token, board or an input cannot be read or written

@@ -134,9 +134,6 @@ bool same_field(const Field& a, const Field& b) {
 fs::path absolute_path(const fs::path& p) { return fs::absolute(p).lexically_normal(); }
 
 int compose(const cli::Args& args, const fs::path& config_dir) {
-    std::vector<std::string> known = {"content", "board", "screen", "preset", "time", "out", "map"};
-    for (const auto& o : preset_setting_options()) known.push_back(o);
-    cli::reject_unknown(args, known);
     if (!args.positional.empty()) throw UsageError("compose: unexpected argument " + args.positional.front());
     for (const auto& flag : args.flags)
         if (flag != "shipped-field" && flag != "own-field") throw UsageError("compose: unexpected flag --" + flag);
@@ -224,6 +221,14 @@ int compose(const cli::Args& args, const fs::path& config_dir) {
 }
 
 }  // namespace
+
+std::vector<std::string> compose_options() {
+    std::vector<std::string> options = {"content", "board", "preset", "time", "out", "map", "screen", "config-dir"};
+    for (const auto& o : preset_setting_options()) options.push_back(o);
+    return options;
+}
+
+std::vector<std::string> compose_flags() { return {"shipped-field", "own-field"}; }
 
 int run_compose(const cli::Args& args, const fs::path& config_dir) {
     try {

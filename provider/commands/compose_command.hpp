@@ -5,6 +5,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "cli/args.hpp"
 
@@ -16,7 +18,11 @@ extern const char* const kComposeUsage;
 inline constexpr int kComposeInputError = 3;   // content, board, presets or field cannot be read or are invalid
 inline constexpr int kComposeOutputError = 4;  // OUT.png or MAP.json cannot be written
 
-// `args` holds the options after "compose" (cli::parse_args, no flags).
+// The options and flags of `umf-provider compose` (with --config-dir).
+std::vector<std::string> compose_options();
+std::vector<std::string> compose_flags();
+
+// `args` holds the options after "compose", parsed against those.
 // Presets are the built-ins and, when config_dir/presets.json exists, the
 // user's own (taking precedence over a built-in of the same name). Needs a
 // QGuiApplication (screen/gui_application.hpp). Reports errors other than

@@ -119,7 +119,7 @@ HttpSessions::Reply HttpSessions::hello(std::string_view body, const std::string
     entry->state.outbox = [weak = weak_from_this()](std::uint64_t session, std::string message) {
         if (auto self = weak.lock()) self->push(session, std::move(message));
     };
-    Outcome out;
+    Replies out;
     try {
         out = service_->handle_text(entry->state, body);
     } catch (...) {
@@ -158,7 +158,7 @@ HttpSessions::Reply HttpSessions::message(std::string_view id, std::string_view 
         entry->last_seen = std::chrono::steady_clock::now();
         ++entry->requests_under_way;
     }
-    Outcome out;
+    Replies out;
     {
         std::lock_guard state_lock(entry->state_mutex);
         bool ended;

@@ -222,7 +222,7 @@ std::optional<ScreenPoint> Service::screen_point(p::FieldPoint point) const {
     for (std::size_t i = 0; i < screens.size(); ++i) {
         const p::FieldRect& r = screens[i].region;
         if (point.u < r.u0 || point.u >= r.u1 || point.v < r.v0 || point.v >= r.v1) continue;
-        const overlay::ScreenPoint s = overlay::field_to_screen(map->placements[i], point.u, point.v);
+        const overlay::PixelPoint s = overlay::field_to_screen(map->placements[i], point.u, point.v);
         ScreenPoint out;
         out.screen = static_cast<int>(i);
         out.x = s.x;
@@ -240,22 +240,22 @@ Resolved Service::resolve(const ScreenPoint& point, Purpose purpose) const {
     return {};
 }
 
-Outcome Service::handle_text(SessionState& state, std::string_view text, SteadyTime now) const {
+Replies Service::handle_text(SessionState& state, std::string_view text, SteadyTime now) const {
     // Parsing checks the size before anything else.
     p::ParseLimits limits;
     limits.max_bytes = static_cast<std::size_t>(config_.limits.max_message_bytes);
     return handle(state, p::parse_message(text, limits), now);
 }
 
-Outcome Service::handle_binary(SessionState& state) const {
-    Outcome out;
+Replies Service::handle_binary(SessionState& state) const {
+    Replies out;
     out.replies.push_back(p::Error{std::nullopt, p::ErrorCode::bad_request, "binary frames are not accepted"});
     out.close = !state.welcomed;
     return out;
 }
 
-Outcome Service::hello(SessionState& state, const p::Hello& hello, SteadyTime now) const {
-    Outcome out;
+Replies Service::hello(SessionState& state, const p::Hello& hello, SteadyTime now) const {
+    Replies out;
     out.close = true;
     bool flood_begins = false;
     {
@@ -386,8 +386,8 @@ p::Message Service::put(SessionState& state, const p::Put& put, SteadyTime now) 
     return puts_->offer({state.id, state.client, state.device}, put, point);
 }
 
-Outcome Service::handle(SessionState& state, const p::ParseResult& parsed, SteadyTime now) const {
-    Outcome out;
+Replies Service::handle(SessionState& state, const p::ParseResult& parsed, SteadyTime now) const {
+    Replies out;
     if (const auto* error = std::get_if<p::ProtocolError>(&parsed)) {
         out.replies.push_back(p::to_error(*error));
         out.close = !state.welcomed;

@@ -94,7 +94,9 @@ struct SessionState {
     std::function<void(std::uint64_t session, std::string encoded_message)> outbox;
 };
 
-struct Outcome {
+// The service's answer to one frame: the messages to send, in order, and
+// what then becomes of the connection.
+struct Replies {
     std::vector<protocol::Message> replies;
     bool close = false;  // close the WebSocket (policy violation, 1008) after sending the replies
     // With close: 1012 (service restart) instead, for a session whose welcome
@@ -118,11 +120,11 @@ public:
     // welcome, anything else an error and `close`. After it: seeking gets
     // nothing, aim a target, grab a content, anything malformed or not a
     // request an error; the session is never closed.
-    Outcome handle_text(SessionState& state, std::string_view text, SteadyTime now = std::chrono::steady_clock::now()) const;
+    Replies handle_text(SessionState& state, std::string_view text, SteadyTime now = std::chrono::steady_clock::now()) const;
     // A binary frame: bad_request (and `close` before the welcome).
-    Outcome handle_binary(SessionState& state) const;
+    Replies handle_binary(SessionState& state) const;
     // A parsed frame (what handle_text does after parsing).
-    Outcome handle(SessionState& state, const protocol::ParseResult& parsed,
+    Replies handle(SessionState& state, const protocol::ParseResult& parsed,
                    SteadyTime now = std::chrono::steady_clock::now()) const;
 
     // The screen point a field point lies on, or nullopt when no screen
@@ -163,7 +165,7 @@ public:
 
 private:
     bool token_matches(std::string_view token) const;
-    Outcome hello(SessionState& state, const protocol::Hello& hello, SteadyTime now) const;
+    Replies hello(SessionState& state, const protocol::Hello& hello, SteadyTime now) const;
     std::optional<protocol::Message> aim(SessionState& state, const protocol::Aim& aim, SteadyTime now) const;
     // Nullopt when the answer comes later through the session's outbox (a
     // large file being hashed).

@@ -98,7 +98,7 @@ void WebSocketSession::on_read(beast::error_code ec, std::size_t) {
     const std::string text = beast::buffers_to_string(buffer_.data());
     buffer_.consume(buffer_.size());
     if (buffer_.capacity() > 4096) buffer_.shrink_to_fit();  // after a rare large message
-    const Outcome outcome = ws_.got_binary() ? service_->handle_binary(*state_) : service_->handle_text(*state_, text);
+    const Replies outcome = ws_.got_binary() ? service_->handle_binary(*state_) : service_->handle_text(*state_, text);
     for (const auto& reply : outcome.replies) send(encode_reply(reply));
     if (outcome.close) {
         closing_ = true;

@@ -2,37 +2,50 @@
 
 namespace umf::cli {
 
-Args parse_args(int argc, char** argv, int first, const std::vector<std::string>& known_flags) {
+namespace {
+
+bool contains(const std::vector<std::string>& list, const std::string& s) {
+    for (const auto& x : list)
+        if (x == s) return true;
+    return false;
+}
+
+}  // namespace
+
+Args parse_args(int argc, char** argv, int first, const std::vector<std::string>& options,
+                const std::vector<std::string>& flags) {
     Args a;
+    bool only_words = false;
     for (int i = first; i < argc; ++i) {
-        std::string s = argv[i];
-        if (s.rfind("--", 0) != 0 || s.size() == 2) {
+        const std::string s = argv[i];
+        if (only_words || s.rfind("--", 0) != 0) {
             a.positional.push_back(s);
             continue;
         }
-        std::string name = s.substr(2);
-        if (auto eq = name.find('='); eq != std::string::npos) {
-            a.named[name.substr(0, eq)] = name.substr(eq + 1);
+        if (s == "--") {
+            only_words = true;
             continue;
         }
-        bool is_flag = false;
-        for (const auto& f : known_flags) is_flag |= f == name;
-        if (is_flag) {
+        std::string name = s.substr(2);
+        std::optional<std::string> value;
+        if (auto eq = name.find('='); eq != std::string::npos) {
+            value = name.substr(eq + 1);
+            name.resize(eq);
+        }
+        if (a.named.count(name) || has_flag(a, name)) throw UsageError("--" + name + " is given twice");
+        if (contains(flags, name)) {
+            if (value) throw UsageError("--" + name + " takes no value");
             a.flags.push_back(name);
             continue;
         }
-        if (i + 1 >= argc) throw UsageError("--" + name + " needs a value");
-        a.named[name] = argv[++i];
+        if (!contains(options, name)) throw UsageError("unknown option --" + name);
+        if (!value) {
+            if (i + 1 >= argc) throw UsageError("--" + name + " needs a value");
+            value = argv[++i];
+        }
+        a.named.emplace(name, *value);
     }
     return a;
-}
-
-void reject_unknown(const Args& a, const std::vector<std::string>& allowed) {
-    for (const auto& [name, value] : a.named) {
-        bool ok = false;
-        for (const auto& n : allowed) ok |= n == name;
-        if (!ok) throw UsageError("unknown option --" + name);
-    }
 }
 
 bool has_flag(const Args& a, const std::string& flag) {

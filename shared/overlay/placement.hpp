@@ -15,7 +15,7 @@ struct FieldPlacement {
     bool operator==(const FieldPlacement&) const = default;
 };
 
-struct ScreenPoint {
+struct PixelPoint {
     double x = 0.0;
     double y = 0.0;
 };
@@ -26,7 +26,7 @@ struct FieldArea {
     bool contains(double u, double v) const { return u >= u0 && u < u1 && v >= v0 && v < v1; }
 };
 
-inline ScreenPoint field_to_screen(const FieldPlacement& p, double u, double v) {
+inline PixelPoint field_to_screen(const FieldPlacement& p, double u, double v) {
     return {p.origin_x + p.module_px * u, p.origin_y + p.module_px * v};
 }
 inline void screen_to_field(const FieldPlacement& p, double x, double y, double& u, double& v) {

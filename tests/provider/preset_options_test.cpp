@@ -13,7 +13,7 @@ using umf::cli::UsageError;
 umf::cli::Args args(std::vector<std::string> words) {
     std::vector<char*> argv{const_cast<char*>("umf-provider")};
     for (auto& w : words) argv.push_back(w.data());
-    return umf::cli::parse_args(static_cast<int>(argv.size()), argv.data(), 1, {});
+    return umf::cli::parse_args(static_cast<int>(argv.size()), argv.data(), 1, preset_setting_options(), {});
 }
 
 umf::overlay::Preset balanced() {

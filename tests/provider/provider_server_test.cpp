@@ -233,7 +233,7 @@ protected:
         ASSERT_FALSE(out.close);
         ASSERT_TRUE(state.welcomed);
     }
-    static p::ErrorCode code_of(const Outcome& out) {
+    static p::ErrorCode code_of(const Replies& out) {
         EXPECT_EQ(out.replies.size(), 1u);
         const auto* e = out.replies.empty() ? nullptr : std::get_if<p::Error>(&out.replies[0]);
         EXPECT_NE(e, nullptr);

@@ -278,7 +278,13 @@ TEST_F(Compose, UserPresetsAndBadInput) {
     EXPECT_THROW(run_compose(base({{"board", board}, {"screen", "640by360"}}), config()), cli::UsageError);
     EXPECT_THROW(run_compose(base({{"board", board}, {"screen", "0x360"}}), config()), cli::UsageError);
     EXPECT_THROW(run_compose(base({{"board", board}, {"time", "soon"}}), config()), cli::UsageError);
-    EXPECT_THROW(run_compose(base({{"board", board}, {"colour", "red"}}), config()), cli::UsageError);
+    {
+        std::vector<std::string> words = {"compose", "--board", board, "--colour", "red"};
+        std::vector<char*> argv;
+        for (auto& w : words) argv.push_back(w.data());
+        EXPECT_THROW(cli::parse_args(static_cast<int>(argv.size()), argv.data(), 1, compose_options(), compose_flags()),
+                     cli::UsageError);
+    }
     cli::Args no_out = base({{"board", board}});
     no_out.named.erase("out");
     EXPECT_THROW(run_compose(no_out, config()), cli::UsageError);
@@ -347,7 +353,7 @@ TEST_F(Compose, DetectorFindsTheFieldOnTheComposedBoard) {
         const GreyView view{shot.grey.data, shot.grey.cols, shot.grey.rows, static_cast<std::ptrdiff_t>(shot.grey.step)};
         const Detection d = detector.detect(view);
         ASSERT_TRUE(d.found) << "tile " << aim.tile << ": " << d.failure;
-        const overlay::ScreenPoint found = overlay::field_to_screen(placement, d.aim_field.x(), d.aim_field.y());
+        const overlay::PixelPoint found = overlay::field_to_screen(placement, d.aim_field.x(), d.aim_field.y());
         const double error_modules =
             std::hypot(found.x - pose.aim_screen_px.x, found.y - pose.aim_screen_px.y) / placement.module_px;
         EXPECT_LT(error_modules, 0.2) << "tile " << aim.tile << ": found (" << found.x << ", " << found.y

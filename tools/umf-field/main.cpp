@@ -24,7 +24,7 @@
 
 namespace {
 
-enum Exit {
+enum FieldToolExit {
     kOk = 0,
     kNotOrientable = 1,  // verify found conflicts
     kUsage = 2,
@@ -67,7 +67,6 @@ using umf::cli::UsageError;
 using umf::cli::get;
 using umf::cli::has_flag;
 using umf::cli::parse_args;
-using umf::cli::reject_unknown;
 using umf::cli::to_integer;
 using umf::cli::to_number;
 
@@ -89,8 +88,6 @@ std::string partial_path(const std::string& out) {
 }
 
 int cmd_generate(const Args& a) {
-    reject_unknown(a, {"width", "height", "window", "colors", "key", "seed", "chains", "threads", "time-limit",
-                       "contrast-steps", "id", "out"});
     if (!a.positional.empty()) throw UsageError("generate takes no file argument; use --out F.json");
     umf::GeneratorOptions o;
     auto need = [&](const char* n) {
@@ -172,7 +169,6 @@ int cmd_generate(const Args& a) {
 }
 
 int cmd_verify(const Args& a) {
-    reject_unknown(a, {"max-listed"});
     std::string path = one_field_path(a, "verify");
     long max_listed = to_integer("max-listed", get(a, "max-listed").value_or("50"), 0, 1LL << 40);
     umf::Field f = umf::load_field(path);
@@ -197,7 +193,6 @@ int cmd_verify(const Args& a) {
 }
 
 int cmd_render(const Args& a) {
-    reject_unknown(a, {"out", "module-px", "module-mm", "dpi", "quiet-zone", "caption"});
     std::string path = one_field_path(a, "render");
     auto out = get(a, "out");
     if (!out) throw UsageError("render needs --out F.png|F.svg|F.pdf");
@@ -231,7 +226,6 @@ int cmd_render(const Args& a) {
 }
 
 int cmd_info(const Args& a) {
-    reject_unknown(a, {});
     std::string path = one_field_path(a, "info");
     umf::Field f = umf::load_field(path);
     auto report = umf::verify_field(f);
@@ -289,10 +283,16 @@ int main(int argc, char** argv) {
                 std::fputs(kUsageText, stdout);
                 return kOk;
             }
-        if (cmd == "generate") return cmd_generate(parse_args(argc, argv, 2, {"quiet"}));
-        if (cmd == "verify") return cmd_verify(parse_args(argc, argv, 2, {}));
-        if (cmd == "render") return cmd_render(parse_args(argc, argv, 2, {}));
-        if (cmd == "info") return cmd_info(parse_args(argc, argv, 2, {"json"}));
+        if (cmd == "generate")
+            return cmd_generate(parse_args(argc, argv, 2,
+                                           {"width", "height", "window", "colors", "key", "seed", "chains", "threads",
+                                            "time-limit", "contrast-steps", "id", "out"},
+                                           {"quiet"}));
+        if (cmd == "verify") return cmd_verify(parse_args(argc, argv, 2, {"max-listed"}, {}));
+        if (cmd == "render")
+            return cmd_render(
+                parse_args(argc, argv, 2, {"out", "module-px", "module-mm", "dpi", "quiet-zone", "caption"}, {}));
+        if (cmd == "info") return cmd_info(parse_args(argc, argv, 2, {}, {"json"}));
         throw UsageError("unknown command '" + cmd + "'");
     } catch (const UsageError& e) {
         std::fprintf(stderr, "umf-field: %s\n(umf-field --help lists the commands and options)\n", e.what());
