@@ -33,16 +33,15 @@ using aiming::usable_point;
 bool aiming(core::Phase phase) { return phase == core::Phase::searching || phase == core::Phase::locked; }
 
 // A frame's result as the core takes it: the aim the protocol would carry.
-core::Sighting sighting(bool locked, const Eigen::Vector2d& point, const Detection& d, int width, int height) {
+core::Sighting sighting(bool locked, const Eigen::Vector2d& point, const Detection& d) {
     core::Sighting s;
     s.another_field = !locked && d.another_field;
     if (!locked || !usable_point(point)) return s;
-    const std::optional<p::Aim> aim = aiming::aim_message(point, d, width, height);
+    const std::optional<p::Aim> aim = aiming::aim_message(point, d);
     if (!aim) return s;
     s.locked = true;
     s.point = aim->point;
     s.confidence = aim->confidence;
-    s.quad = aim->quad;
     return s;
 }
 
@@ -250,7 +249,7 @@ Json AimingSession::act_on_still(const Frame& frame, const PointAction& action) 
     Detection d = detector_->detect(view, centre);
     // One photo: any other kept screen whose field it shows is worth asking.
     if (!d.found && switch_to_screen_in(view, action)) d = detector_->detect(view, centre);
-    const core::Sighting seen = sighting(d.found, d.aim_field, d, view.width, view.height);
+    const core::Sighting seen = sighting(d.found, d.aim_field, d);
     if (seen.another_field) throw another_screen(frame.name);
     if (!seen.locked)
         throw GrabFailure("not_found_in_view",
@@ -325,7 +324,7 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
         const TrackResult r = tracker->update(view, centre);
         take_replies(t);
         const bool locked = r.state == TrackState::locked;
-        const core::Sighting seen = sighting(locked, r.aim_field, r.detection, view.width, view.height);
+        const core::Sighting seen = sighting(locked, r.aim_field, r.detection);
         carry(pointer_->frame(t, seen));
         show_target();
         if (seen.locked && !ever_locked) log("locked on the field");

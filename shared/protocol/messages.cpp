@@ -60,25 +60,6 @@ FieldPoint read_point(MemberReader& r, const char* key) {
     return p.value_or(FieldPoint{});
 }
 
-std::optional<std::array<FieldPoint, 4>> read_quad(MemberReader& r, const char* key) {
-    const json* v = r.get(key);
-    if (!r.ok() || !v) return std::nullopt;
-    if (!v->is_array() || v->size() != 4) {
-        r.fail(r.name(key) + " must be an array of 4 points");
-        return std::nullopt;
-    }
-    std::array<FieldPoint, 4> quad;
-    for (std::size_t i = 0; i < 4; ++i) {
-        auto p = point_from((*v)[i]);
-        if (!p) {
-            r.fail(r.name(std::string(key) + "[" + std::to_string(i) + "]") + kPointShape);
-            return std::nullopt;
-        }
-        quad[i] = *p;
-    }
-    return quad;
-}
-
 ContentKind read_kind(MemberReader& r) {
     std::string name = r.text("kind", 1, 16);
     if (!r.ok()) return ContentKind::none;
@@ -230,7 +211,6 @@ Welcome read_welcome(MemberReader& r) {
 Aim read_aim(MemberReader& r) {
     Aim m;
     m.point = read_point(r, "point");
-    m.quad = read_quad(r, "quad");
     m.confidence = r.number("confidence", 0.0, 1.0);
     return m;
 }
@@ -525,11 +505,6 @@ struct Writer {
     ordered_json operator()(const Aim& m) const {
         auto o = header("aim", m.id);
         o["point"] = point_json(m.point);
-        if (m.quad) {
-            ordered_json quad = ordered_json::array();
-            for (const auto& p : *m.quad) quad.push_back(point_json(p));
-            o["quad"] = std::move(quad);
-        }
         o["confidence"] = m.confidence;
         return o;
     }

@@ -173,9 +173,6 @@ struct Seeking {
 struct Aim {
     std::optional<RequestId> id;
     FieldPoint point;  // under the crosshair
-    // The camera image's corners (top-left, top-right, bottom-right,
-    // bottom-left) in the field, for the provider to outline the view.
-    std::optional<std::array<FieldPoint, 4>> quad;
     double confidence = 0.0;  // 0..1
     bool operator==(const Aim&) const = default;
 };

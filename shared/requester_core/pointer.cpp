@@ -88,7 +88,7 @@ Step Pointer::frame(double t, const Sighting& s) {
         view_.aim = s.point;
         view_.steady = t - steady_since_ >= timing_.steady_s && steady_frames_ >= timing_.steady_min_frames;
         if (!last_aim_ || t - *last_aim_ >= aim_interval_s_) {
-            step.send.push_back(p::Aim{next_id(), s.point, s.quad, std::clamp(s.confidence, 0.0, 1.0)});
+            step.send.push_back(p::Aim{next_id(), s.point, std::clamp(s.confidence, 0.0, 1.0)});
             last_aim_ = t;
         }
         if (auto_act_ && view_.steady) append(step, tap(t));

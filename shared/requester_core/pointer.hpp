@@ -48,7 +48,6 @@ struct Sighting {
     bool locked = false;
     protocol::FieldPoint point;
     double confidence = 0.0;
-    std::optional<std::array<protocol::FieldPoint, 4>> quad;  // the view's outline, when known
     // Not locked because another screen's field is under the aim
     // (Detection::another_field).
     bool another_field = false;

@@ -48,12 +48,6 @@ Sighting sighting(const json& event) {
     if (s.locked) s.point = point(event.at("point"));
     s.confidence = number(event, "confidence", 0.0);
     s.another_field = event.value("another_field", false);
-    if (const auto quad = event.find("quad"); quad != event.end() && !quad->is_null()) {
-        if (!quad->is_array() || quad->size() != 4) throw std::invalid_argument("a quad is four points");
-        std::array<p::FieldPoint, 4> corners;
-        for (std::size_t i = 0; i < 4; ++i) corners[i] = point((*quad)[i]);
-        s.quad = corners;
-    }
     return s;
 }
 

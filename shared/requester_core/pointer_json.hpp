@@ -5,7 +5,7 @@
 // Setup: {"welcome": {...the welcome message...}, "auto": false,
 //         "timing": {"steady_s": 0.5, ...}}                       (all but welcome optional)
 // Events, each with "t" in seconds:
-//   {"event": "frame", "locked": true, "point": [u, v], "confidence": 0.9, "quad": [[u, v] x 4]}
+//   {"event": "frame", "locked": true, "point": [u, v], "confidence": 0.9, "another_field": false}
 //   {"event": "tap"}            {"event": "tick"}          {"event": "dismiss"}
 //   {"event": "message", "message": {...a provider's message...}}
 //   {"event": "downloaded", "ok": true, "message": "why not"}

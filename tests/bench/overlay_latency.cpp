@@ -147,7 +147,7 @@ int main(int argc, char** argv) {
         const int k = i % 2;
         const p::FieldPoint point = field_point(places[k].first, places[k].second);
         const auto start = Clock::now();
-        ws.write(net::buffer(p::encode(p::Aim{p::RequestId{std::int64_t{i + 2}}, point, std::nullopt, 0.95})));
+        ws.write(net::buffer(p::encode(p::Aim{p::RequestId{std::int64_t{i + 2}}, point, 0.95})));
         bool shown = false;
         while (!shown && Clock::now() - start < std::chrono::seconds(2)) {
             for (const Probe& probe : probes[k]) {

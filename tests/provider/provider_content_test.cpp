@@ -38,7 +38,7 @@ std::string grab_text(const std::string& id, double u, double v) {
     return p::encode(p::Grab{p::RequestId{id}, {u, v}});
 }
 std::string aim_text(int id, double u, double v) {
-    return p::encode(p::Aim{p::RequestId{std::int64_t{id}}, {u, v}, std::nullopt, 0.9});
+    return p::encode(p::Aim{p::RequestId{std::int64_t{id}}, {u, v}, 0.9});
 }
 
 class ProviderContent : public ::testing::Test {

@@ -83,7 +83,6 @@ public:
     int grabs() const { return grabs_; }
     int downloads() const { return downloads_; }
     int aims() const { return aims_; }
-    int aims_with_quad() const { return aims_with_quad_; }
     int seekings() const { return seekings_; }
 
 private:
@@ -148,7 +147,6 @@ private:
                 ++seekings_;
             } else if (const auto* a = std::get_if<p::Aim>(m)) {
                 ++aims_;
-                if (a->quad) ++aims_with_quad_;
                 std::lock_guard lock(mutex_);
                 reply = p::Target{a->id, a->point, content_.kind, content_.title};
             } else if (const auto* g = std::get_if<p::Grab>(m)) {
@@ -220,7 +218,7 @@ private:
     std::mutex mutex_;
     std::vector<std::thread> connections_;
     FakeContent content_;
-    std::atomic<int> requests_{0}, hellos_{0}, grabs_{0}, downloads_{0}, aims_{0}, aims_with_quad_{0}, seekings_{0};
+    std::atomic<int> requests_{0}, hellos_{0}, grabs_{0}, downloads_{0}, aims_{0}, seekings_{0};
 };
 
 }  // namespace umf::test
