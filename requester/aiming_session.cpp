@@ -289,7 +289,7 @@ Json AimingSession::act_from(FrameSource& source, const PointAction& action) {
     std::optional<double> timeout = o_.timeout_s;
     if (!timeout && live) timeout = kDefaultCameraTimeoutS;
 
-    if (o_.window) preview_ = std::make_unique<Preview>("umf-requester " + action.verb + " - " + welcome_.provider.name);
+    if (o_.window) preview_ = std::make_unique<Preview>("umf-requester " + action.verb);
     status_.provider = welcome_.provider.name;
     status_.auto_act = o_.auto_act;
     status_.verb = action.verb;

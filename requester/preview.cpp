@@ -138,6 +138,14 @@ cv::Mat Preview::render(const cv::Mat& frame, const PreviewStatus& status) {
 PreviewKey Preview::show(const cv::Mat& frame, const PreviewStatus& status, int wait_ms) {
     cv::imshow(title_, render(frame, status));
     shown_ = true;
+    if (status.provider != captioned_) {
+        captioned_ = status.provider;
+        try {
+            cv::setWindowTitle(title_, captioned_.empty() ? title_ : title_ + " - " + captioned_);
+        } catch (const cv::Exception&) {
+            // A highgui backend without titles: the banner names the screen all the same.
+        }
+    }
     const int key = cv::waitKey(std::max(1, wait_ms));
     // The window's close button: the window is gone, so is the user.
     if (cv::getWindowProperty(title_, cv::WND_PROP_VISIBLE) < 1) return PreviewKey::quit;

@@ -28,7 +28,9 @@ struct PreviewStatus {
 
 class Preview {
 public:
-    explicit Preview(std::string window_title);
+    // `window_name` ("umf-requester grab"): the window's title is it and
+    // the screen the status names, and follows a switch to another screen.
+    explicit Preview(std::string window_name);
     ~Preview();
     Preview(const Preview&) = delete;
     Preview& operator=(const Preview&) = delete;
@@ -41,7 +43,8 @@ public:
     static cv::Mat render(const cv::Mat& frame, const PreviewStatus& status);
 
 private:
-    std::string title_;
+    std::string title_;     // the window's name, which OpenCV knows it by
+    std::string captioned_;  // the screen its title names
     bool shown_ = false;
 };
 
