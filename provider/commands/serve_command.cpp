@@ -319,12 +319,12 @@ std::shared_ptr<Service> make_service(Serving& s) {
 // The service, the server on its port, the browser link and the control socket.
 void start_server(const ServeHooks& hooks, Serving& s) {
     try {
-        auto service = s.service = make_service(s);
+        s.service = make_service(s);
         ServerOptions options;
         options.bind_address = s.bind;
         options.port = s.port;
         options.threads = 2;
-        s.server = std::make_unique<Server>(service, s.identity, options);
+        s.server = std::make_unique<Server>(s.service, s.identity, options);
         s.server->start();
         s.certificate_keeper = keep_certificate(s.dir, *s.server, s.local_name, s.names);
         if (hooks.keeper) tell_keeper_port(*hooks.keeper, s.server->port());

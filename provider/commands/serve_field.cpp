@@ -8,28 +8,28 @@
 #include "field_overlay/overlay_manager.hpp"
 #include "screen/board_window.hpp"
 #include "screen/desktop_layout.hpp"
-#include "screen/screen_field.hpp"
 #include "server/service.hpp"
 
 namespace umf::provider {
 
 FieldShown show_own_field(const FieldShowing& s) {
-    if (!s.fields.own())  // --shipped-field: a new seed is for the next start without it
-        return {screen_field_for(s.width, s.height, s.module_px, s.fields).field.id, false};
-    FieldSource fresh = own_field_source(s.config_dir);
-    const bool changed = fresh.seed() != s.fields.seed();
-    if (changed) s.fields = std::move(fresh);
+    bool changed = false;
+    if (s.fields.own()) {  // --shipped-field: a new seed is for the next start without it
+        FieldSource fresh = own_field_source(s.config_dir);
+        changed = fresh.seed() != s.fields.seed();
+        if (changed) s.fields = std::move(fresh);
+    }
     if (s.overlay) {
         if (changed) s.overlay->set_fields(s.fields);  // its screens-changed callback tells the service
         return {s.overlay->layout() ? s.overlay->layout()->field.id : std::string(), changed};
     }
-    const ScreenField field = screen_field_for(s.width, s.height, s.module_px, s.fields);
-    if (changed) {
-        if (s.board_window) s.board_window->show_field(s.board_image, field);
-        s.service.set_screens(lay_out_desktop({{s.screen_name, 0, 0, s.width, s.height, s.module_px}}, s.fields));
-        std::cout << "field: " << field.field.id << " (this screen's own, with a new seed)\n" << std::flush;
-    }
-    return {field.field.id, changed};
+    // The one screen's field as the service has it: laid out anew only for a new seed.
+    if (!changed) return {s.service.screens()->field.definition.id, false};
+    const DesktopLayout layout = lay_out_desktop({{s.screen_name, 0, 0, s.width, s.height, s.module_px}}, s.fields);
+    if (s.board_window) s.board_window->show_field(s.board_image, layout.screens.at(0).field);
+    s.service.set_screens(layout);
+    std::cout << "field: " << layout.field.id << " (this screen's own, with a new seed)\n" << std::flush;
+    return {layout.field.id, true};
 }
 
 FieldShown show_own_field_from_any_thread(const FieldShowing& showing) {

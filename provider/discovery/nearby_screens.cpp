@@ -1,40 +1,18 @@
 #include "discovery/nearby_screens.hpp"
 
 #include <algorithm>
-#include <cctype>
 #include <nlohmann/json.hpp>
 
+#include "protocol/pairing_url.hpp"
+
 namespace umf::provider {
-
-namespace {
-
-// A DNS name under .local, letters, digits and hyphens, nothing a URL
-// would read as anything but a host.
-bool is_local_host(const std::string& host) {
-    constexpr std::string_view kLocal = ".local";
-    if (host.size() <= kLocal.size() || host.size() > 253 || !host.ends_with(kLocal)) return false;
-    std::size_t label = 0;
-    for (const char c : host) {
-        if (c == '.') {
-            if (label == 0) return false;
-            label = 0;
-        } else if (std::isalnum(static_cast<unsigned char>(c)) || c == '-') {
-            if (++label > 63) return false;
-        } else {
-            return false;
-        }
-    }
-    return true;
-}
-
-}  // namespace
 
 std::vector<NearbyScreen> nearby_from(const std::vector<native::AnnouncedScreen>& screens,
                                       const std::string& own_fingerprint) {
     std::vector<NearbyScreen> out;
     for (const auto& s : screens) {
         const bool other = !s.fingerprint.empty() && s.fingerprint != own_fingerprint;
-        if (!other || s.port == 0 || !is_local_host(s.host)) continue;
+        if (!other || s.port == 0 || !protocol::is_local_host_name(s.host)) continue;
         out.push_back({s.name, "https://" + s.host + ":" + std::to_string(s.port), s.fingerprint});
     }
     std::sort(out.begin(), out.end(), [](const NearbyScreen& a, const NearbyScreen& b) { return a.name < b.name; });

@@ -82,6 +82,10 @@ std::string format_pairing_url(const std::string& host, unsigned short port, con
            "&fp=" + fingerprint + (name.empty() ? "" : "&n=" + name);
 }
 
+bool is_local_host_name(std::string_view name) {
+    return name.size() > 6 && iequals(name.substr(name.size() - 6), ".local") && is_host_name(name);
+}
+
 std::optional<std::string> normalise_fingerprint(std::string_view text) {
     const bool colons = text.find(':') != std::string_view::npos;
     std::string hex;
@@ -209,8 +213,7 @@ PairingUrl parse_pairing_url(std::string_view url) {
                               "colon-separated pairs");
     if (name) {
         // Only an mDNS name: the one the screen announces on its local network.
-        const bool local = name->size() > 6 && iequals(std::string_view(*name).substr(name->size() - 6), ".local");
-        if (!local || !is_host_name(*name))
+        if (!is_local_host_name(*name))
             throw PairingUrlError("the pairing URL's name '" + *name + "' is not a NAME.local host name");
         out.name = std::move(*name);
     }

@@ -41,6 +41,10 @@ std::string format_pairing_url(const std::string& host, unsigned short port, con
 // Throws PairingUrlError with what is wrong.
 PairingUrl parse_pairing_url(std::string_view url);
 
+// True for an mDNS host name, NAME.local (RFC 1123 labels), the only kind a
+// screen is announced and paired by: a pairing URL's `n`, a nearby screen.
+bool is_local_host_name(std::string_view name);
+
 // The fingerprint as 64 lowercase hex digits: accepts upper case and the
 // colon-separated form ("AB:CD:...") that `openssl x509 -fingerprint` prints.
 std::optional<std::string> normalise_fingerprint(std::string_view text);

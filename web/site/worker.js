@@ -78,7 +78,7 @@ self.onmessage = async (event) => {
         bitmap.close?.();
       }
     } else if (message.type === 'nearby-fields') {
-      for (const d of nearby) d.destroy();
+      for (const d of nearby) d?.destroy();  // null: a field that could not be used
       nearby = [];
       // A field this detector cannot use is a screen not offered: the rest stay in order.
       for (const field of message.fields)
