@@ -24,10 +24,10 @@
 #include "desktop/display_socket.hpp"
 #include "desktop/gnome/gnome_install.hpp"
 #include "desktop/kde/kde_install.hpp"
-#include "desktop/session.hpp"
+#include "desktop/desktop_choice.hpp"
 #include "screen/gui_application.hpp"
 #include "common/config_dir.hpp"
-#include "server/control_socket.hpp"
+#include "service/control_socket.hpp"
 #include "tuning/desktop_controls.hpp"
 
 namespace {
@@ -174,7 +174,7 @@ public:
 // the role in `hooks` and the port, the desktop and `headless` as it says.
 std::optional<int> serve_under_keeper(umf::cli::Args& args, bool& headless, ServeHooks& hooks) {
     if (headless || umf::cli::get(args, "desktop").value_or("") == "none") return std::nullopt;
-    const SessionFacts session = session_from_environment();
+    const DesktopFacts session = desktop_facts_from_environment();
     if (session.wayland_display.empty() && session.x_display.empty()) return std::nullopt;
     const char* runtime = std::getenv("XDG_RUNTIME_DIR");
     KeeperSettings keeper;

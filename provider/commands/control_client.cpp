@@ -2,7 +2,7 @@
 
 #include "commands/common_options.hpp"
 #include "put/put_text.hpp"
-#include "server/control_socket.hpp"
+#include "service/control_socket.hpp"
 
 namespace umf::provider {
 

@@ -12,9 +12,9 @@
 #include "commands/control_client.hpp"
 #include "put/put_text.hpp"
 #include "screen/field_source.hpp"
-#include "server/control_socket.hpp"
-#include "server/pairing.hpp"
-#include "server/pairing_qr.hpp"
+#include "service/control_socket.hpp"
+#include "service/pairing.hpp"
+#include "service/pairing_qr.hpp"
 #include "trust/tls_identity_store.hpp"
 
 namespace umf::provider {

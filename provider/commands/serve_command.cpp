@@ -24,11 +24,11 @@
 #include "content/image_snapshot.hpp"
 #include "content/shared_items.hpp"
 #include "desktop/open_desktop.hpp"
-#include "desktop/session.hpp"
+#include "desktop/desktop_choice.hpp"
 #include "field_overlay/overlay_activity.hpp"
 #include "put/put_deciders.hpp"
 #include "put/put_prompt_window.hpp"
-#include "server/console_activity.hpp"
+#include "service/console_activity.hpp"
 #include "field_overlay/overlay_manager.hpp"
 #include "overlay/preset.hpp"
 #include "screen/desktop_layout.hpp"
@@ -38,12 +38,12 @@
 #include "common/config_dir.hpp"
 #include "browser/browser_link.hpp"
 #include "browser/browser_resolver.hpp"
-#include "server/control_socket.hpp"
-#include "server/pairing.hpp"
-#include "server/pairing_qr.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
-#include "server/static_site.hpp"
+#include "service/control_socket.hpp"
+#include "service/pairing.hpp"
+#include "service/pairing_qr.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
+#include "service/static_site.hpp"
 #include "commands/serve_field.hpp"
 #include "commands/serve_reach.hpp"
 #include "trust/tls_identity_store.hpp"
@@ -143,7 +143,7 @@ void read_command_line(const cli::Args& a, Serving& s) {
         }
     }
     try {
-        s.desktop_choice = choose_desktop(session_from_environment(), get(a, "desktop"));
+        s.desktop_choice = choose_desktop(desktop_facts_from_environment(), get(a, "desktop"));
     } catch (const std::invalid_argument& e) {
         throw UsageError(e.what());
     }
@@ -324,7 +324,7 @@ void start_server(const ServeHooks& hooks, Serving& s) {
         options.bind_address = s.bind;
         options.port = s.port;
         options.threads = 2;
-        s.server = std::make_unique<Server>(s.service, s.identity, options);
+        s.server = make_server(s.service, s.identity, options);
         s.server->start();
         s.certificate_keeper = keep_certificate(s.dir, *s.server, s.local_name, s.names);
         if (hooks.keeper) tell_keeper_port(*hooks.keeper, s.server->port());

@@ -8,7 +8,7 @@
 #include "field_overlay/overlay_manager.hpp"
 #include "screen/board_window.hpp"
 #include "screen/desktop_layout.hpp"
-#include "server/service.hpp"
+#include "service/service.hpp"
 
 namespace umf::provider {
 

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "screen/field_source.hpp"
-#include "server/control_socket.hpp"
+#include "service/control_socket.hpp"
 
 namespace umf::provider {
 

@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "commands/common_options.hpp"
-#include "server/server.hpp"
+#include "net/server.hpp"
 #include "trust/root_export.hpp"
 
 namespace umf::provider {

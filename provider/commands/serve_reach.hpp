@@ -13,7 +13,7 @@
 
 #include "discovery/avahi_announcement.hpp"
 #include "discovery/nearby_browse.hpp"
-#include "server/static_site.hpp"
+#include "service/static_site.hpp"
 #include "trust/root_authority.hpp"
 #include "trust/certificate_keeper.hpp"
 #include "trust/serving_names.hpp"

@@ -7,7 +7,7 @@
 #include <tuple>
 #include <utility>
 
-#include "common/http_response_headers.hpp"
+#include "net/http_response_headers.hpp"
 #include "content/verified_file_body.hpp"
 
 namespace umf::provider {

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <functional>
 
-#include "common/http_exchange.hpp"
+#include "net/http_exchange.hpp"
 #include "content/download_table.hpp"
 
 namespace umf::provider {

@@ -38,7 +38,7 @@ bool socket_accepts(const DisplaySocket& socket) {
 
 }  // namespace
 
-std::vector<DisplaySocket> display_sockets(const SessionFacts& facts, const std::string& runtime_dir) {
+std::vector<DisplaySocket> display_sockets(const DesktopFacts& facts, const std::string& runtime_dir) {
     std::vector<DisplaySocket> out;
     if (!facts.wayland_display.empty()) {
         const std::filesystem::path name(facts.wayland_display);
@@ -54,7 +54,7 @@ std::vector<DisplaySocket> display_sockets(const SessionFacts& facts, const std:
     return out;
 }
 
-bool displays_answer(const SessionFacts& facts, const std::string& runtime_dir) {
+bool displays_answer(const DesktopFacts& facts, const std::string& runtime_dir) {
     const auto sockets = display_sockets(facts, runtime_dir);
     // Each display counts once: an X server answers on its file or its abstract name.
     for (std::size_t i = 0; i < sockets.size();) {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "desktop/session.hpp"
+#include "desktop/desktop_choice.hpp"
 
 namespace umf::provider {
 
@@ -21,10 +21,10 @@ struct DisplaySocket {
 // name in the runtime directory or an absolute path; DISPLAY ":N", ":N.S"
 // or "unix:N" is /tmp/.X11-unix/XN. A display on another host gives
 // nothing to try. Pure.
-std::vector<DisplaySocket> display_sockets(const SessionFacts& facts, const std::string& runtime_dir);
+std::vector<DisplaySocket> display_sockets(const DesktopFacts& facts, const std::string& runtime_dir);
 
 // True when every display the session names has a socket that accepts a
 // connection (for X: the file or the abstract name); connects and closes.
-bool displays_answer(const SessionFacts& facts, const std::string& runtime_dir);
+bool displays_answer(const DesktopFacts& facts, const std::string& runtime_dir);
 
 }  // namespace umf::provider

@@ -1,4 +1,4 @@
-// The desktop backend for a session, opened (desktop/session.hpp chooses
+// The desktop backend for a session, opened (desktop/desktop_choice.hpp chooses
 // which), and what it tells the console: which backend runs and what does
 // not work there. A session whose backend cannot be opened, or a Wayland
 // compositor with none, gets no desktop: no field is shown there at all
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "desktop/desktop.hpp"
-#include "desktop/session.hpp"
+#include "desktop/desktop_choice.hpp"
 
 namespace umf::provider {
 

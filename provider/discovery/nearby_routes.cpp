@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "common/http_response_headers.hpp"
+#include "net/http_response_headers.hpp"
 #include "field/field_io.hpp"
 
 namespace umf::provider {

@@ -5,7 +5,7 @@
 // the screen.
 #pragma once
 
-#include "common/http_exchange.hpp"
+#include "net/http_exchange.hpp"
 #include "discovery/nearby_screens.hpp"
 #include "protocol/messages.hpp"
 

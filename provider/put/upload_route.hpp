@@ -10,7 +10,7 @@
 #include <boost/beast/http/empty_body.hpp>
 #include <boost/beast/http/parser.hpp>
 
-#include "common/http_exchange.hpp"
+#include "net/http_exchange.hpp"
 #include "put/put_desk.hpp"
 
 namespace umf::provider {

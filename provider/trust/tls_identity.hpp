@@ -1,6 +1,6 @@
 // The provider's TLS identity: the chain it serves and that chain's key,
 // and the fingerprint a pairing URL pins. Made and kept here
-// (tls_identity_store.hpp), served by server/, and replaced while serving
+// (tls_identity_store.hpp), served by net/server.hpp, and replaced while serving
 // when the serving certificate is issued again, for the connections that
 // come after (CurrentIdentity).
 #pragma once

@@ -3,7 +3,7 @@
 #include <QPainter>
 #include <QPixmap>
 
-#include "server/pairing_qr.hpp"
+#include "service/pairing_qr.hpp"
 
 namespace umf::provider {
 

@@ -61,9 +61,9 @@
 #include "board/board.hpp"
 #include "content/board_resolver.hpp"
 #include "protocol/messages.hpp"
-#include "server/pairing.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "service/pairing.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/pinned_client.hpp"
 
@@ -280,14 +280,14 @@ ServerChild start_server_child(const Options& o, const TlsIdentity& identity, co
                                                            std::vector<std::shared_ptr<const Resolver>>{resolver});
             ServerOptions options;
             options.threads = o.server_threads;
-            Server server(service, identity, options);
-            server.start();
-            const unsigned short port = server.port();
+            const auto server = make_server(service, identity, options);
+            server->start();
+            const unsigned short port = server->port();
             if (::write(report[1], &port, sizeof port) != sizeof port) ::_exit(1);
             char c;
             while (::read(control[0], &c, 1) < 0 && errno == EINTR) {
             }
-            server.stop(std::chrono::milliseconds(1000));
+            server->stop(std::chrono::milliseconds(1000));
         } catch (const std::exception& e) {
             std::fprintf(stderr, "server child: %s\n", e.what());
             ::_exit(1);

@@ -25,7 +25,7 @@
 
 #include "desktop/x11/x11_desktop.hpp"
 #include "protocol/messages.hpp"
-#include "server/pairing.hpp"
+#include "service/pairing.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/pinned_client.hpp"
 #include "support/temp_dir.hpp"

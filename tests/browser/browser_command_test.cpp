@@ -11,7 +11,7 @@
 
 #include "browser/browser_link.hpp"
 #include "commands/browser_command.hpp"
-#include "server/control_socket.hpp"
+#include "service/control_socket.hpp"
 #include "support/scoped_env.hpp"
 #include "support/temp_dir.hpp"
 

@@ -1,5 +1,5 @@
-// The provider's HTTP request path (provider/server/http_session.cpp) without its
-// socket: a connection's bytes parsed by Beast as HttpSession parses them (the
+// The provider's HTTP request path (provider/net/http_connection.cpp) without its
+// socket: a connection's bytes parsed by Beast as HttpConnection parses them (the
 // header first, under its 8 KiB limit; the framing check; the body under its
 // 16 KiB limit, in a buffer of at most both), then what a complete request
 // reaches without a socket: the HTTPS transport's sessions (hello, message,
@@ -28,10 +28,10 @@
 #include "content/board_resolver.hpp"
 #include "content/download_table.hpp"
 #include "put/put_decision.hpp"
-#include "server/http_framing.hpp"
-#include "server/http_sessions.hpp"
-#include "server/service.hpp"
-#include "server/http_routes.hpp"
+#include "net/http_framing.hpp"
+#include "net/api_sessions.hpp"
+#include "service/service.hpp"
+#include "service/service_server.hpp"
 
 namespace beast = boost::beast;
 namespace http = beast::http;
@@ -39,7 +39,7 @@ namespace provider = umf::provider;
 
 namespace {
 
-// As HttpSession has them.
+// As HttpConnection has them.
 constexpr std::size_t kMaxRequestHeaderBytes = 8 * 1024;
 constexpr std::size_t kMaxRequestBodyBytes = 16 * 1024;
 constexpr int kMaxRequestsPerInput = 8;
@@ -61,7 +61,7 @@ public:
 struct Provider {
     boost::asio::io_context io;
     std::shared_ptr<provider::Service> service;
-    std::shared_ptr<provider::HttpSessions> sessions;
+    std::shared_ptr<provider::ApiSessions> sessions;
     std::string session;  // a welcomed session's id, for /api/session/... ("" once ended)
 
     Provider() {
@@ -77,10 +77,10 @@ struct Provider {
         config.puts.folder = std::filesystem::temp_directory_path();
         service = std::make_shared<provider::Service>(
             std::move(config), kToken, std::vector<std::shared_ptr<const provider::Resolver>>{resolver});
-        sessions = provider::HttpSessions::create(io.get_executor(), service);
+        sessions = provider::ApiSessions::create(io.get_executor(), service);
     }
 
-    static std::string session_of(const provider::HttpSessions::Reply& reply) {
+    static std::string session_of(const provider::ApiSessions::Reply& reply) {
         if (reply.ended) return {};
         const auto body = nlohmann::json::parse(reply.body, nullptr, false);
         if (!body.is_object() || !body.contains("session") || !body["session"].is_string()) return {};
@@ -141,7 +141,7 @@ beast::error_code read(Parser& parser, Wire& wire, std::size_t max_buffer, bool 
     }
 }
 
-// HttpSession::serve_api's routing, calling what it calls.
+// HttpConnection::serve_api's routing, calling what it calls.
 void serve_api(Provider& p, const http::request<http::string_body>& req) {
     beast::string_view path = req.target();
     path = path.substr(0, path.find('?'));
@@ -159,23 +159,23 @@ void serve_api(Provider& p, const http::request<http::string_body>& req) {
     if (id.empty()) return;
     // An id of the right length is taken as sent (an unknown session); any
     // other stands for the welcomed one, which no input could guess.
-    const std::string session = id.size() == provider::kHttpSessionIdChars ? std::string(id) : p.welcomed_session();
+    const std::string session = id.size() == provider::kApiSessionIdChars ? std::string(id) : p.welcomed_session();
     if (session.empty()) return;
     const bool fixture = session == p.session;
-    std::optional<provider::HttpSessions::Reply> reply;
+    std::optional<provider::ApiSessions::Reply> reply;
     if (tail.empty()) {
         reply = p.sessions->message(session, req.body());
     } else if (tail == "/close") {
         reply = p.sessions->close(session);
     } else if (tail == "/events") {
-        auto start = p.sessions->begin_poll(session, [](provider::HttpSessions::Reply) {});
+        auto start = p.sessions->begin_poll(session, [](provider::ApiSessions::Reply) {});
         if (start.now) reply = std::move(start.now);
         else p.sessions->cancel_poll(start.ticket);  // the client left at once
     }
     if (fixture && reply && reply->ended) p.session.clear();
 }
 
-// The routes' socket-free part (server/http_routes.cpp).
+// The routes' socket-free part (net/http_connection.cpp, service/service_server.cpp).
 void serve(Provider& p, const http::request<http::string_body>& req) {
     const beast::string_view target = req.target();
     const std::string_view path(target.data(), target.size());
@@ -192,7 +192,7 @@ void serve(Provider& p, const http::request<http::string_body>& req) {
     (void)p.service->site().find(path);
 }
 
-// One request as HttpSession::read_request, on_header and on_request take it;
+// One request as HttpConnection::read_request, on_header and on_request take it;
 // whether the connection goes on to another.
 bool one_request(Provider& p, Wire& wire) {
     http::request_parser<http::empty_body> header;

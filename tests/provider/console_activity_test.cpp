@@ -7,7 +7,7 @@
 
 #include <sstream>
 
-#include "server/console_activity.hpp"
+#include "service/console_activity.hpp"
 
 namespace {
 

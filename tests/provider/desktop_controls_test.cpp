@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "server/pairing_qr.hpp"
+#include "service/pairing_qr.hpp"
 #include "tuning/desktop_controls.hpp"
 
 namespace {

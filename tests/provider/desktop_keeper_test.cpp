@@ -30,7 +30,7 @@ using namespace umf::provider;
 using namespace umf::test;
 
 TEST(DisplaySocket, EachNamedDisplayHasItsSockets) {
-    SessionFacts facts;
+    DesktopFacts facts;
     facts.wayland_display = "wayland-1";
     facts.x_display = ":3.0";
     const auto sockets = display_sockets(facts, "/run/user/1000");
@@ -57,7 +57,7 @@ TEST(DisplaySocket, EachNamedDisplayHasItsSockets) {
 
 TEST(DisplaySocket, ADisplayAnswersWhileItsServerListens) {
     TempDir dir;
-    SessionFacts facts;
+    DesktopFacts facts;
     facts.wayland_display = "wayland-test";
     EXPECT_FALSE(displays_answer(facts, dir.path.string()));
     const int fd = ::socket(AF_UNIX, SOCK_STREAM, 0);

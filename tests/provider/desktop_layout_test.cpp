@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "screen/desktop_layout.hpp"
-#include "server/service.hpp"
+#include "service/service.hpp"
 
 namespace {
 

@@ -2,13 +2,13 @@
 // quiet heap alone (the flood benchmark in docs/BENCHMARKS.md measures it).
 #ifdef UMF_PROVIDER_TESTS
 
-#include "server/heap_trim.hpp"
+#include "net/heap_trim.hpp"
 
 #include <gtest/gtest.h>
 
 #include <memory>
 
-#include "server/listener.hpp"
+#include "net/connection_registry.hpp"
 
 namespace {
 
@@ -16,7 +16,7 @@ using namespace umf::provider;
 
 TEST(HeapTrimmer, TrimsOnlyAfterEnoughConnectionsEnded) {
     boost::asio::io_context io;
-    auto registry = std::make_shared<SessionRegistry>();
+    auto registry = std::make_shared<ConnectionRegistry>();
     auto trimmer = std::make_shared<HeapTrimmer>(io, registry, std::chrono::milliseconds(10), 3);
     trimmer->start();
     io.run_for(std::chrono::milliseconds(60));

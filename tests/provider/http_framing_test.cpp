@@ -3,15 +3,15 @@
 // such a body is never served, whatever stands in front of the provider.
 #ifdef UMF_PROVIDER_TESTS
 
-#include "server/http_framing.hpp"
+#include "net/http_framing.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
 #include "protocol/http_error_body.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/raw_tls_client.hpp"
 #include "support/temp_dir.hpp"
@@ -51,7 +51,7 @@ protected:
     void SetUp() override {
         auto service = std::make_shared<umf::provider::Service>(umf::provider::default_service_config(),
                                                                 "framing-test-token-0123456789");
-        server = std::make_unique<umf::provider::Server>(
+        server = umf::provider::make_server(
             service, umf::provider::load_or_create_tls_identity(dir.path / "cfg"));
         server->start();
     }

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "protocol/http_error_body.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/raw_tls_client.hpp"
 #include "support/temp_dir.hpp"
@@ -21,12 +21,12 @@ using namespace umf::provider;
 TEST(LingeringClose, ABodyTooLargeSentAtOnceStillGetsIts413) {
     umf::test::TempDir dir;
     auto service = std::make_shared<Service>(default_service_config(), "linger-test-token-0123456789");
-    Server server(service, load_or_create_tls_identity(dir.path / "cfg"));
-    server.start();
+    const auto server = make_server(service, load_or_create_tls_identity(dir.path / "cfg"));
+    server->start();
     const std::string body(8 << 20, 'x');
     for (int attempt = 0; attempt < 5; ++attempt) {
         const auto got = umf::test::raw_tls_exchange(
-            server.port(), "POST /api/hello HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: " +
+            server->port(), "POST /api/hello HTTP/1.1\r\nHost: x\r\nContent-Type: application/json\r\nContent-Length: " +
                                std::to_string(body.size()) + "\r\n\r\n" + body);
         SCOPED_TRACE("attempt " + std::to_string(attempt) + ", write: " + got.write_error);
         ASSERT_EQ(got.received.rfind("HTTP/1.1 413 ", 0), 0u) << got.received;
@@ -35,7 +35,7 @@ TEST(LingeringClose, ABodyTooLargeSentAtOnceStillGetsIts413) {
         EXPECT_EQ(error->code, umf::protocol::ErrorCode::too_large);
         EXPECT_TRUE(got.closed);
     }
-    EXPECT_EQ(umf::test::raw_tls_exchange(server.port(), "GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
+    EXPECT_EQ(umf::test::raw_tls_exchange(server->port(), "GET / HTTP/1.1\r\nHost: x\r\nConnection: close\r\n\r\n")
                   .received.rfind("HTTP/1.1 200 ", 0),
               0u)
         << "the provider serves on";

@@ -18,9 +18,9 @@
 #include "content/file_facts.hpp"
 #include "content/shared_items.hpp"
 #include "protocol/messages.hpp"
-#include "server/control_socket.hpp"
-#include "server/pairing_qr.hpp"
-#include "server/service.hpp"
+#include "service/control_socket.hpp"
+#include "service/pairing_qr.hpp"
+#include "service/service.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {

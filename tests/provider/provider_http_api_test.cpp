@@ -17,10 +17,10 @@
 
 #include "content/board_resolver.hpp"
 #include "protocol/messages.hpp"
-#include "server/http_sessions.hpp"
-#include "server/pairing.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "net/api_sessions.hpp"
+#include "service/pairing.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/process.hpp"
 #include "support/temp_dir.hpp"
@@ -101,7 +101,7 @@ protected:
     static void SetUpTestSuite() {
         if (run_command("curl --version >/dev/null 2>&1").exit_code != 0) GTEST_SKIP() << "curl is not installed";
     }
-    void start(HttpSessionOptions options = {}) {
+    void start(ApiSessionOptions options = {}) {
         doc = dir.path / "report.txt";
         std::ofstream(doc) << "the report\n";
         Board board;
@@ -110,8 +110,8 @@ protected:
         service = std::make_shared<Service>(default_service_config(), kToken,
                                             std::vector<std::shared_ptr<const Resolver>>{resolver}, nullptr, recorder);
         ServerOptions server_options;
-        server_options.http_sessions = options;
-        server = std::make_unique<Server>(service, load_or_create_tls_identity(dir.path / "cfg"), server_options);
+        server_options.api_sessions = options;
+        server = make_server(service, load_or_create_tls_identity(dir.path / "cfg"), server_options);
         server->start();
     }
     std::string url(const std::string& path) const {
@@ -193,7 +193,7 @@ TEST_F(ProviderHttpApi, HelloAimGrabAndTheDownload) {
     EXPECT_NE(r.headers.find("Content-Type: application/json"), std::string::npos) << r.headers;
     EXPECT_NE(r.headers.find("Cache-Control: no-store"), std::string::npos) << r.headers;
     EXPECT_EQ(r.headers.find("Access-Control"), std::string::npos) << "no CORS at all";
-    EXPECT_EQ(server->http_sessions().size(), 1u);
+    EXPECT_EQ(server->api_sessions().size(), 1u);
 
     // seeking: no reply; aim: the target; grab: the content and its link.
     const auto replies = curl_many({{"POST", "/api/session/" + session, R"({"type":"seeking","v":1})"},
@@ -221,7 +221,7 @@ TEST_F(ProviderHttpApi, HelloAimGrabAndTheDownload) {
     ASSERT_EQ(bad.messages().size(), 1u);
     EXPECT_EQ(std::get<p::Error>(bad.messages()[0]).code, p::ErrorCode::bad_request);
     EXPECT_EQ(bad.closed(), 0);
-    EXPECT_EQ(server->http_sessions().size(), 1u);
+    EXPECT_EQ(server->api_sessions().size(), 1u);
 }
 
 TEST_F(ProviderHttpApi, ARefusedHelloIsClosedWithoutASession) {
@@ -239,7 +239,7 @@ TEST_F(ProviderHttpApi, ARefusedHelloIsClosedWithoutASession) {
     const Response version = post("/api/hello", R"({"type":"hello","v":2,"id":1,"token":"x","client":""})");
     EXPECT_EQ(version.closed(), 1008);
     EXPECT_EQ(std::get<p::Error>(version.messages().at(0)).code, p::ErrorCode::unsupported_version);
-    EXPECT_EQ(server->http_sessions().size(), 0u);
+    EXPECT_EQ(server->api_sessions().size(), 0u);
     EXPECT_EQ(recorder->left_count(), 0u) << "no session began, so none left";
 }
 
@@ -269,7 +269,7 @@ TEST_F(ProviderHttpApi, UnknownSessionsPathsAndMethods) {
     EXPECT_NE(get_hello.headers.find("Allow: POST"), std::string::npos) << get_hello.headers;
     EXPECT_EQ(call({"OPTIONS", "/api/hello", ""}).status, 405) << "no CORS preflight is ever answered";
     EXPECT_EQ(call({"POST", "/index.html", "{}"}).status, 405) << "POST only under /api/";
-    EXPECT_EQ(server->http_sessions().size(), 1u) << "the guesses ended nothing";
+    EXPECT_EQ(server->api_sessions().size(), 1u) << "the guesses ended nothing";
 }
 
 TEST_F(ProviderHttpApi, PostsMustBeJson) {
@@ -281,12 +281,12 @@ TEST_F(ProviderHttpApi, PostsMustBeJson) {
         ASSERT_EQ(r.messages().size(), 1u) << r.raw;
         EXPECT_EQ(std::get<p::Error>(r.messages()[0]).code, p::ErrorCode::bad_request);
     }
-    EXPECT_EQ(server->http_sessions().size(), 0u);
+    EXPECT_EQ(server->api_sessions().size(), 0u);
     EXPECT_EQ(call({"POST", "/api/hello", hello(), "Application/JSON; charset=utf-8"}).status, 200);
     const std::string session = welcome();
     EXPECT_EQ(call({"POST", "/api/session/" + session, R"({"type":"seeking","v":1})", "text/plain"}).status, 415);
     EXPECT_EQ(call({"POST", "/api/session/" + session + "/close", "", "text/plain"}).status, 415);
-    EXPECT_EQ(server->http_sessions().size(), 2u);
+    EXPECT_EQ(server->api_sessions().size(), 2u);
 }
 
 TEST_F(ProviderHttpApi, BodiesAboveTheLimitAre413) {
@@ -317,7 +317,7 @@ TEST_F(ProviderHttpApi, RateLimitsAreTheWebSocketsOnes) {
 }
 
 TEST_F(ProviderHttpApi, ALongPollIsAnsweredEmptyAtItsTimeout) {
-    HttpSessionOptions options;
+    ApiSessionOptions options;
     options.poll_timeout = 200ms;
     start(options);
     const std::string session = welcome();
@@ -337,16 +337,16 @@ TEST_F(ProviderHttpApi, ALongPollIsAnsweredEmptyAtItsTimeout) {
     EXPECT_EQ(again[1].raw, R"({"messages":[]})");
     ASSERT_EQ(again[2].messages().size(), 1u) << again[2].raw;
     EXPECT_TRUE(std::holds_alternative<p::Target>(again[2].messages()[0]));
-    EXPECT_EQ(server->http_sessions().polls_waiting(), 0u);
+    EXPECT_EQ(server->api_sessions().polls_waiting(), 0u);
 }
 
 TEST_F(ProviderHttpApi, AnOpenPollHearsThatTheScreensChanged) {
-    HttpSessionOptions options;
+    ApiSessionOptions options;
     options.poll_timeout = 10s;
     start(options);
     const std::string polled = welcome(), idle = welcome();
     auto pending = std::async(std::launch::async, [&] { return poll(polled); });
-    ASSERT_TRUE(eventually([&] { return server->http_sessions().polls_waiting() == 1; }));
+    ASSERT_TRUE(eventually([&] { return server->api_sessions().polls_waiting() == 1; }));
     const auto t0 = std::chrono::steady_clock::now();
     service->set_screens(lay_out_desktop({{"left", 0, 0, 1920, 1080}, {"right", 1920, 0, 1920, 1080}}));
     ASSERT_EQ(pending.wait_for(5s), std::future_status::ready);
@@ -354,14 +354,14 @@ TEST_F(ProviderHttpApi, AnOpenPollHearsThatTheScreensChanged) {
     const Response r = pending.get();
     EXPECT_EQ(r.status, 200);
     EXPECT_EQ(r.raw, R"({"messages":[],"closed":1012})");
-    EXPECT_EQ(server->http_sessions().size(), 1u) << "the polled session ended";
+    EXPECT_EQ(server->api_sessions().size(), 1u) << "the polled session ended";
     EXPECT_EQ(recorder->left_count(), 1u);
 
     // The other, welcomed before too, hears it at its next request.
     const Response stale = post("/api/session/" + idle, R"({"type":"aim","v":1,"point":[1,1],"confidence":1})");
     EXPECT_EQ(stale.status, 200);
     EXPECT_EQ(stale.raw, R"({"messages":[],"closed":1012})");
-    EXPECT_EQ(server->http_sessions().size(), 0u);
+    EXPECT_EQ(server->api_sessions().size(), 0u);
     EXPECT_EQ(recorder->left_count(), 2u);
     EXPECT_EQ(post("/api/session/" + idle, R"({"type":"seeking","v":1})").status, 404);
 
@@ -377,7 +377,7 @@ TEST_F(ProviderHttpApi, AnOpenPollHearsThatTheScreensChanged) {
 }
 
 TEST_F(ProviderHttpApi, IdleSessionsExpireAndTheListenerHearsIt) {
-    HttpSessionOptions options;
+    ApiSessionOptions options;
     options.idle_expiry = 800ms;
     options.poll_timeout = 1200ms;
     start(options);
@@ -387,27 +387,27 @@ TEST_F(ProviderHttpApi, IdleSessionsExpireAndTheListenerHearsIt) {
         std::this_thread::sleep_for(200ms);
         EXPECT_EQ(post("/api/session/" + busy, R"({"type":"seeking","v":1})").status, 200);
     }
-    EXPECT_TRUE(eventually([&] { return server->http_sessions().size() == 1; }, 3s));
+    EXPECT_TRUE(eventually([&] { return server->api_sessions().size() == 1; }, 3s));
     EXPECT_EQ(recorder->left_count(), 1u);
     EXPECT_EQ(post("/api/session/" + idle, R"({"type":"seeking","v":1})").status, 404);
     EXPECT_EQ(poll(busy).raw, R"({"messages":[]})");
     EXPECT_EQ(post("/api/session/" + busy, R"({"type":"seeking","v":1})").status, 200);
 
-    EXPECT_TRUE(eventually([&] { return server->http_sessions().size() == 0; }, 3s));
+    EXPECT_TRUE(eventually([&] { return server->api_sessions().size() == 0; }, 3s));
     EXPECT_EQ(recorder->left_count(), 2u);
     EXPECT_EQ(poll(busy).status, 404);
 }
 
 TEST_F(ProviderHttpApi, The257thSessionIsRefused) {
     start();
-    ASSERT_EQ(HttpSessionOptions{}.max_sessions, 256u);
+    ASSERT_EQ(ApiSessionOptions{}.max_sessions, 256u);
     std::vector<Call> hellos(256, Call{"POST", "/api/hello", hello()});
     std::vector<std::string> sessions;
     for (const auto& r : curl_many(hellos)) {
         EXPECT_EQ(r.status, 200);
         sessions.push_back(r.session());
     }
-    EXPECT_EQ(server->http_sessions().size(), 256u);
+    EXPECT_EQ(server->api_sessions().size(), 256u);
     const Response refused = post("/api/hello", hello());
     EXPECT_EQ(refused.status, 503);
     EXPECT_FALSE(refused.body.contains("session"));
@@ -422,7 +422,7 @@ TEST_F(ProviderHttpApi, The257thSessionIsRefused) {
 }
 
 TEST_F(ProviderHttpApi, AClientLeavingMidPollLeavesNothingBehind) {
-    HttpSessionOptions options;
+    ApiSessionOptions options;
     options.poll_timeout = 20s;
     start(options);
     const std::string session = welcome();
@@ -431,43 +431,43 @@ TEST_F(ProviderHttpApi, AClientLeavingMidPollLeavesNothingBehind) {
     EXPECT_EQ(cut.status, 0) << "curl gave up";
     EXPECT_LT(std::chrono::steady_clock::now() - t0, 5s);
     // The connection, its timer and the waiter are gone at once, not after 20 s.
-    EXPECT_TRUE(eventually([&] { return server->session_count() == 0; }, 2s)) << server->session_count();
-    EXPECT_EQ(server->http_sessions().polls_waiting(), 0u);
+    EXPECT_TRUE(eventually([&] { return server->connection_count() == 0; }, 2s)) << server->connection_count();
+    EXPECT_EQ(server->api_sessions().polls_waiting(), 0u);
     // The HTTP session itself stays until it expires: the phone may poll again.
-    EXPECT_EQ(server->http_sessions().size(), 1u);
+    EXPECT_EQ(server->api_sessions().size(), 1u);
     EXPECT_EQ(post("/api/session/" + session, R"({"type":"aim","v":1,"point":[1,1],"confidence":1})").status, 200);
     EXPECT_EQ(call({"GET", "/", ""}).status, 200) << "the server serves on";
 }
 
 TEST_F(ProviderHttpApi, CloseEndsTheSessionAndAnswersItsPoll) {
-    HttpSessionOptions options;
+    ApiSessionOptions options;
     options.poll_timeout = 10s;
     start(options);
     const std::string session = welcome();
     auto pending = std::async(std::launch::async, [&] { return poll(session); });
-    ASSERT_TRUE(eventually([&] { return server->http_sessions().polls_waiting() == 1; }));
+    ASSERT_TRUE(eventually([&] { return server->api_sessions().polls_waiting() == 1; }));
     const Response closed = post("/api/session/" + session + "/close", "");
     EXPECT_EQ(closed.status, 200);
     EXPECT_EQ(closed.raw, R"({"messages":[],"closed":1000})");
     ASSERT_EQ(pending.wait_for(5s), std::future_status::ready);
     EXPECT_EQ(pending.get().raw, R"({"messages":[],"closed":1000})");
-    EXPECT_EQ(server->http_sessions().size(), 0u);
+    EXPECT_EQ(server->api_sessions().size(), 0u);
     EXPECT_EQ(recorder->left_count(), 1u);
     EXPECT_EQ(post("/api/session/" + session, R"({"type":"seeking","v":1})").status, 404);
     EXPECT_EQ(post("/api/session/" + session + "/close", "").status, 404);
 }
 
 TEST_F(ProviderHttpApi, ANewerPollTakesOverAndStopAnswersPolls) {
-    HttpSessionOptions options;
+    ApiSessionOptions options;
     options.poll_timeout = 10s;
     start(options);
     const std::string session = welcome();
     auto first = std::async(std::launch::async, [&] { return poll(session); });
-    ASSERT_TRUE(eventually([&] { return server->http_sessions().polls_waiting() == 1; }));
+    ASSERT_TRUE(eventually([&] { return server->api_sessions().polls_waiting() == 1; }));
     auto second = std::async(std::launch::async, [&] { return poll(session); });
     ASSERT_EQ(first.wait_for(5s), std::future_status::ready);
     EXPECT_EQ(first.get().raw, R"({"messages":[]})");
-    ASSERT_TRUE(eventually([&] { return server->http_sessions().polls_waiting() == 1; }));
+    ASSERT_TRUE(eventually([&] { return server->api_sessions().polls_waiting() == 1; }));
 
     const auto t0 = std::chrono::steady_clock::now();
     server->stop();

@@ -14,10 +14,10 @@
 #include "native/sha256.hpp"
 #include "protocol/http_error_body.hpp"
 #include "protocol/messages.hpp"
-#include "server/pairing.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
-#include "server/static_site.hpp"
+#include "service/pairing.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
+#include "service/static_site.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/process.hpp"
 #include "support/temp_dir.hpp"
@@ -64,7 +64,7 @@ protected:
         service = std::make_shared<Service>(default_service_config(), kToken,
                                             std::vector<std::shared_ptr<const Resolver>>{resolver});
         const TlsIdentity identity = load_or_create_tls_identity(dir.path / "cfg");
-        server = std::make_unique<Server>(service, identity);
+        server = make_server(service, identity);
         server->start();
     }
     // The content a grab over the WebSocket would get, and its link.
@@ -93,9 +93,9 @@ protected:
         return out;
     }
     bool sessions_drain() {
-        for (int i = 0; i < 200 && server->session_count() > 0; ++i)
+        for (int i = 0; i < 200 && server->connection_count() > 0; ++i)
             std::this_thread::sleep_for(std::chrono::milliseconds(25));
-        return server->session_count() == 0;
+        return server->connection_count() == 0;
     }
 };
 
@@ -133,7 +133,7 @@ TEST_F(ProviderHttp, NoClientPathReachesTheFileSystem) {
     EXPECT_EQ(curl("/", "-X POST --data x=1").status, 405);
     EXPECT_EQ(curl("/", "-X DELETE").status, 405);
     EXPECT_EQ(curl("/", "-H 'X-Big: " + std::string(9000, 'a') + "'").status, 431);
-    EXPECT_EQ(server->session_count() > 100, false);
+    EXPECT_EQ(server->connection_count() > 100, false);
 }
 
 TEST_F(ProviderHttp, PagesCarryAContentSecurityPolicyForAWasmWorker) {
@@ -184,7 +184,7 @@ TEST_F(ProviderHttp, NearbyScreensAndTheFieldAreServedWithoutAToken) {
     config.nearby = nearby;
     server->stop();
     service = std::make_shared<Service>(std::move(config), kToken);
-    server = std::make_unique<Server>(service, load_or_create_tls_identity(dir.path / "cfg"));
+    server = make_server(service, load_or_create_tls_identity(dir.path / "cfg"));
     server->start();
     const Response two = curl("/nearby.json");
     EXPECT_EQ(two.status, 200);
@@ -240,7 +240,7 @@ TEST_F(ProviderHttp, AClientThatLeavesMidDownloadLeavesNothingBehind) {
     const std::string link = grab_link();
     const Response cut = curl(link, "--limit-rate 1M --max-time 0.5");
     EXPECT_EQ(cut.body.size() < fs::file_size(big), true);
-    EXPECT_TRUE(sessions_drain()) << server->session_count() << " sessions still open";
+    EXPECT_TRUE(sessions_drain()) << server->connection_count() << " sessions still open";
     EXPECT_EQ(curl(link).status, 404) << "the link was used by the first request";
     EXPECT_EQ(curl("/").status, 200) << "the server serves on";
     EXPECT_EQ(fs::file_size(big), 24u << 20) << "the file is untouched";

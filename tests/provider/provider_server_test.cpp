@@ -30,9 +30,9 @@
 
 #include "protocol/messages.hpp"
 #include "common/config_dir.hpp"
-#include "server/pairing.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "service/pairing.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/temp_dir.hpp"
 #include "support/pinned_client.hpp"
@@ -369,7 +369,7 @@ protected:
     }
     void start() {
         service = std::make_shared<Service>(default_service_config(), token);
-        server = std::make_unique<Server>(service, identity);
+        server = make_server(service, identity);
         server->start();
         ASSERT_NE(server->port(), 0);
     }
@@ -424,14 +424,14 @@ TEST_F(ProviderServer, ConnectionsBeyondTheCapAreClosed) {
     server->stop();
     ServerOptions options;
     options.max_connections = 2;
-    server = std::make_unique<Server>(std::make_shared<const Service>(default_service_config(), token), identity, options);
+    server = make_server(std::make_shared<const Service>(default_service_config(), token), identity, options);
     server->start();
     auto a = client(), b = client(), c = client();
     a->connect_and_hello(token);
     b->connect_and_hello(token);
     EXPECT_TRUE(c->connect()) << "a third connection is refused";
     a.reset();
-    for (int i = 0; i < 100 && server->session_count() > 1; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    for (int i = 0; i < 100 && server->connection_count() > 1; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
     auto d = client();
     d->connect_and_hello(token);  // room again
 }
@@ -506,7 +506,7 @@ TEST_F(ProviderServer, ShutdownClosesSessionsWithGoingAway) {
     EXPECT_EQ(a->read_close(), websocket::close_code::going_away);
     EXPECT_EQ(b->read_close(), websocket::close_code::going_away);
     ASSERT_EQ(stopped.wait_for(kOpTimeout), std::future_status::ready);
-    EXPECT_EQ(server->session_count(), 0u);
+    EXPECT_EQ(server->connection_count(), 0u);
 
     // A restart keeps the identity, so the pinned fingerprint still holds.
     server.reset();

@@ -20,8 +20,8 @@
 #include "put/put_desk.hpp"
 #include "put/trusted_devices.hpp"
 #include "put/upload_sink.hpp"
-#include "server/console_activity.hpp"
-#include "server/service.hpp"
+#include "service/console_activity.hpp"
+#include "service/service.hpp"
 #include "support/temp_dir.hpp"
 #include "put_test_support.hpp"
 

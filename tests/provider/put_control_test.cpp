@@ -22,7 +22,7 @@
 #include "put/put_deciders.hpp"
 #include "put/put_folder.hpp"
 #include "put/put_text.hpp"
-#include "server/control_socket.hpp"
+#include "service/control_socket.hpp"
 #include "support/scoped_env.hpp"
 #include "support/temp_dir.hpp"
 

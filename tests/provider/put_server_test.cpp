@@ -30,8 +30,8 @@
 #include "content/file_facts.hpp"
 #include "protocol/http_error_body.hpp"
 #include "protocol/messages.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/pinned_client.hpp"
 #include "support/process.hpp"
@@ -201,7 +201,7 @@ protected:
         config.puts.max_bytes = max_bytes;
         config.puts.trusted_devices = dir.path / "cfg" / "trusted-devices.json";
         service = std::make_shared<Service>(std::move(config), kToken);
-        server = std::make_unique<Server>(service, identity);
+        server = make_server(service, identity);
         server->start();
     }
     std::unique_ptr<Requester> requester(const std::optional<std::string>& device = std::nullopt) {

@@ -18,8 +18,8 @@
 #include "put/trusted_devices.hpp"
 #include "put/upload_sink.hpp"
 #include "put/upload_table.hpp"
-#include "server/http_sessions.hpp"
-#include "server/service.hpp"
+#include "net/api_sessions.hpp"
+#include "service/service.hpp"
 #include "support/temp_dir.hpp"
 #include "put_test_support.hpp"
 
@@ -422,7 +422,7 @@ TEST(PutHttpSessions, APushedAnswerReachesTheLongPoll) {
     config.puts.folder = dir.path;
     auto service = std::make_shared<Service>(std::move(config), kToken);
     boost::asio::io_context io;
-    auto sessions = HttpSessions::create(io.get_executor(), service);
+    auto sessions = ApiSessions::create(io.get_executor(), service);
     const auto welcomed = sessions->hello(hello(), "127.0.0.1");
     ASSERT_EQ(welcomed.status, 200);
     const auto body = nlohmann::json::parse(welcomed.body);
@@ -431,8 +431,8 @@ TEST(PutHttpSessions, APushedAnswerReachesTheLongPoll) {
     const auto asked = sessions->message(id, p::encode(url_put()));
     EXPECT_EQ(nlohmann::json::parse(asked.body)["messages"][0]["status"], "asking");
 
-    std::optional<HttpSessions::Reply> heard;
-    const auto start = sessions->begin_poll(id, [&](HttpSessions::Reply r) { heard = std::move(r); });
+    std::optional<ApiSessions::Reply> heard;
+    const auto start = sessions->begin_poll(id, [&](ApiSessions::Reply r) { heard = std::move(r); });
     ASSERT_FALSE(start.now);
     FakeXdgOpen xdg(dir.path / "bin");
     decider->answer(decider->offers(1).at(0).id, {PutAnswer::save, false});

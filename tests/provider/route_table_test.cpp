@@ -1,16 +1,16 @@
-// The HTTP session's route table: the first route that matches a request's
+// The HTTP connection's route table: the first route that matches a request's
 // target and method takes it, paths ignore the query, and a route for some
 // methods lets the others fall through to later routes.
 #ifdef UMF_PROVIDER_TESTS
 
-#include "server/route_table.hpp"
+#include "net/route_table.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "server/http_routes.hpp"
-#include "server/service.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 
 namespace {
 
@@ -72,18 +72,16 @@ TEST(RouteTable, TheProvidersRoutesTakeWhatTheyServe) {
     EXPECT_EQ(header.find(http::verb::get, "/share"), nullptr);
     EXPECT_EQ(header.find(http::verb::post, "/api/hello"), nullptr);
 
-    const auto* api = request.find(http::verb::post, "/api/hello");
+    // The HTTPS transport (/api/) is the connection's own, before any route.
+    EXPECT_EQ(request.find(http::verb::post, "/api/hello"), nullptr);
     const auto* download = request.find(http::verb::get, "/dl/abc");
     const auto* site = request.find(http::verb::get, "/index.html");
-    ASSERT_NE(api, nullptr);
     ASSERT_NE(download, nullptr);
     ASSERT_NE(site, nullptr);
-    EXPECT_NE(api, download);
     EXPECT_NE(download, site);
-    EXPECT_EQ(request.find(http::verb::get, "/api/session/x/events"), api);
     EXPECT_EQ(request.find(http::verb::head, "/dl/abc"), download);
     EXPECT_EQ(request.find(http::verb::get, "/share"), site);
-    // Outside /api/ only GET and HEAD are served (the session answers 405).
+    // Outside /api/ only GET and HEAD are served (the connection answers 405).
     EXPECT_EQ(request.find(http::verb::post, "/dl/abc"), nullptr);
     EXPECT_EQ(request.find(http::verb::post, "/index.html"), nullptr);
 }

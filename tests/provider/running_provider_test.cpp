@@ -21,7 +21,7 @@
 #include "content/shared_items.hpp"
 #include "io/runtime_dir.hpp"
 #include "put/put_deciders.hpp"
-#include "server/control_socket.hpp"
+#include "service/control_socket.hpp"
 #include "support/scoped_env.hpp"
 #include "support/temp_dir.hpp"
 

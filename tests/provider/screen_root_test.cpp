@@ -24,8 +24,8 @@
 #include "common/config_dir.hpp"
 #include "native/certificate_fingerprint.hpp"
 #include "native/certificate_pin.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "support/pinned_client.hpp"
 #include "support/temp_dir.hpp"
 #include "trust/certificate_keeper.hpp"
@@ -277,9 +277,9 @@ TEST(ScreenRoot, ARunningServerServesTheCertificateIssuedAgain) {
     TempDir dir;
     const TlsIdentity identity = load_or_issue_tls_identity(dir.path, kNames, Clock::now()).identity;
     auto service = std::make_shared<const Service>(default_service_config(), std::string(32, 't'));
-    Server server(service, identity);
-    server.start();
-    const std::string before = served_leaf_pem(server.port(), identity.fingerprint);
+    const auto server = make_server(service, identity);
+    server->start();
+    const std::string before = served_leaf_pem(server->port(), identity.fingerprint);
     EXPECT_EQ(before, certificate_pem(read_certificate(identity.certificate_pem).get()));
 
     // The machine gets another address: the keeper issues again and the server serves it.
@@ -290,7 +290,7 @@ TEST(ScreenRoot, ARunningServerServesTheCertificateIssuedAgain) {
     settings.interval = std::chrono::milliseconds(50);
     settings.names = [&] { return moved ? serving_names("desk-7.local", {"192.168.1.20", "10.44.0.9"}) : kNames; };
     settings.issued = [&](const TlsIdentity& now, const std::string&) {
-        server.replace_identity(now);
+        server->replace_identity(now);
         ++issued;
     };
     {
@@ -303,11 +303,11 @@ TEST(ScreenRoot, ARunningServerServesTheCertificateIssuedAgain) {
             std::this_thread::sleep_for(std::chrono::milliseconds(20));
         EXPECT_EQ(issued, 1);
     }
-    const std::string after = served_leaf_pem(server.port(), identity.fingerprint);  // the old pin still holds
+    const std::string after = served_leaf_pem(server->port(), identity.fingerprint);  // the old pin still holds
     EXPECT_NE(after, before);
     X509Ptr leaf = read_certificate(after);
     EXPECT_EQ(X509_check_ip_asc(leaf.get(), "10.44.0.9", 0), 1);
-    server.stop();
+    server->stop();
 }
 
 }  // namespace

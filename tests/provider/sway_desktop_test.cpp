@@ -213,7 +213,7 @@ protected:
         test::ensure_gui_application();
         sway_ = std::make_unique<SwaySession>();
         desktop_ = std::make_unique<WlrootsDesktop>(
-            WlrootsSession{sway_->wayland_socket(), sway_->swaysock(), {}, sway_->runtime_dir()});
+            WlrootsSockets{sway_->wayland_socket(), sway_->swaysock(), {}, sway_->runtime_dir()});
     }
     // Starts foot and xterm side by side and waits for both.
     void start_two_windows() {

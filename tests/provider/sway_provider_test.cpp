@@ -50,7 +50,7 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     const auto plain = sway.start_client({"foot", "-o", "colors.background=808080", "-o", "colors.foreground=808080",
                                           "-T", "plain grey", "sleep", "120"});
     const auto desktop =
-        make_wlroots_desktop(WlrootsSession{sway.wayland_socket(), sway.swaysock(), {}, sway.runtime_dir()});
+        make_wlroots_desktop(WlrootsSockets{sway.wayland_socket(), sway.swaysock(), {}, sway.runtime_dir()});
     std::map<std::string, WindowInfo> windows;
     ASSERT_TRUE(test::wait_until(
         [&] {

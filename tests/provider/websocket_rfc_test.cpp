@@ -21,9 +21,9 @@
 #include <thread>
 #include <vector>
 
-#include "server/pairing.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "service/pairing.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/temp_dir.hpp"
 
@@ -81,7 +81,7 @@ protected:
         dir_ = std::make_unique<TempDir>();
         const TlsIdentity identity = load_or_create_tls_identity(dir_->path);
         token_ = load_or_create_token(dir_->path);
-        server_ = std::make_unique<Server>(std::make_shared<const Service>(default_service_config(), token_), identity);
+        server_ = make_server(std::make_shared<const Service>(default_service_config(), token_), identity);
         server_->start();
     }
     static void TearDownTestSuite() {
@@ -322,9 +322,9 @@ TEST_F(WebSocketRfc, ServerSurvivesEverything) {
     const json last = run_case("survives");
     expect_closed_with(last, {1000});
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
-    while (server_->session_count() != 0 && std::chrono::steady_clock::now() < deadline)
+    while (server_->connection_count() != 0 && std::chrono::steady_clock::now() < deadline)
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    EXPECT_EQ(server_->session_count(), 0u);
+    EXPECT_EQ(server_->connection_count(), 0u);
 }
 
 }  // namespace

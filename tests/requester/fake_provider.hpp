@@ -25,7 +25,7 @@
 
 #include "protocol/http_error_body.hpp"
 #include "protocol/messages.hpp"
-#include "server/service.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 
 namespace umf::test {

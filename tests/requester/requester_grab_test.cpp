@@ -27,9 +27,9 @@
 
 #include "../detect/photo.hpp"
 #include "fake_provider.hpp"
-#include "server/pairing.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "service/pairing.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 
 namespace {
@@ -139,7 +139,7 @@ protected:
     }
 
     void start_server() {
-        server_ = std::make_unique<Server>(std::make_shared<const Service>(default_service_config(), token_), identity_);
+        server_ = make_server(std::make_shared<const Service>(default_service_config(), token_), identity_);
         server_->start();
         ASSERT_NE(server_->port(), 0);
     }

@@ -26,9 +26,9 @@
 #include "../detect/photo.hpp"
 #include "fake_provider.hpp"
 #include "put/put_decision.hpp"
-#include "server/pairing.hpp"
-#include "server/server.hpp"
-#include "server/service.hpp"
+#include "service/pairing.hpp"
+#include "service/service_server.hpp"
+#include "service/service.hpp"
 #include "trust/tls_identity_store.hpp"
 #include "support/temp_dir.hpp"
 
@@ -98,7 +98,7 @@ protected:
         config.puts.folder = dir_.path / "screen";
         fs::create_directories(config.puts.folder);
         config.puts.trusted_devices = dir_.path / "config" / "trusted-devices.json";
-        server_ = std::make_unique<Server>(std::make_shared<const Service>(std::move(config), token_), identity_);
+        server_ = make_server(std::make_shared<const Service>(std::move(config), token_), identity_);
         server_->start();
         ASSERT_NE(server_->port(), 0);
     }

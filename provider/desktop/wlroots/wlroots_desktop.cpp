@@ -32,27 +32,27 @@ int overlap(const WindowRect& a, const WindowRect& b) {
 
 }  // namespace
 
-WlrootsSession wlroots_session_from_environment() {
+WlrootsSockets wlroots_sockets_from_environment() {
     const std::string runtime_dir = env("XDG_RUNTIME_DIR");
     return {env("WAYLAND_DISPLAY"), live_swaysock(env("SWAYSOCK"), runtime_dir), env("HYPRLAND_INSTANCE_SIGNATURE"),
             runtime_dir};
 }
 
-std::unique_ptr<Desktop> make_wlroots_desktop(WlrootsSession session) {
-    return std::make_unique<WlrootsDesktop>(std::move(session));
+std::unique_ptr<Desktop> make_wlroots_desktop(WlrootsSockets sockets) {
+    return std::make_unique<WlrootsDesktop>(std::move(sockets));
 }
 
-WlrootsDesktop::WlrootsDesktop(WlrootsSession session) : session_(std::move(session)) {}
+WlrootsDesktop::WlrootsDesktop(WlrootsSockets sockets) : sockets_(std::move(sockets)) {}
 
 std::string WlrootsDesktop::hyprland_socket() const {
-    return session_.hyprland_signature.empty() ? std::string()
-                                               : hyprland_socket_path(session_.hyprland_signature, session_.runtime_dir);
+    return sockets_.hyprland_signature.empty() ? std::string()
+                                               : hyprland_socket_path(sockets_.hyprland_signature, sockets_.runtime_dir);
 }
 
 DesktopAbilities WlrootsDesktop::abilities() const {
     DesktopAbilities a;
     try {
-        const auto connection = WaylandConnection::open(session_.wayland_display, kProbeTimeout);
+        const auto connection = WaylandConnection::open(sockets_.wayland_display, kProbeTimeout);
         a.field = connection->layer_shell() && connection->shm();
         a.snapshots = connection->screencopy() != nullptr;
         if (!a.field) a.notes.push_back("the compositor offers no layer shell (zwlr_layer_shell_v1): the field cannot be shown");
@@ -61,15 +61,15 @@ DesktopAbilities WlrootsDesktop::abilities() const {
     } catch (const DesktopError& e) {
         a.notes.push_back(std::string(e.what()) + ": the field and snapshots are off");
     }
-    if (!session_.swaysock.empty()) {
+    if (!sockets_.swaysock.empty()) {
         try {
-            sway_request(session_.swaysock, SwayMessage::get_version);
+            sway_request(sockets_.swaysock, SwayMessage::get_version);
             a.windows = a.placement = true;
         } catch (const DesktopError& e) {
             a.notes.push_back(std::string("sway's IPC does not answer (") + e.what() +
                               "): the window under the point and placing new windows are off");
         }
-    } else if (!session_.hyprland_signature.empty()) {
+    } else if (!sockets_.hyprland_signature.empty()) {
         try {
             hyprland_request(hyprland_socket(), "j/monitors");
             a.windows = true;
@@ -88,10 +88,10 @@ DesktopAbilities WlrootsDesktop::abilities() const {
 
 std::vector<DesktopOutput> WlrootsDesktop::outputs() const {
     try {
-        if (!session_.swaysock.empty()) return sway_outputs(sway_request(session_.swaysock, SwayMessage::get_outputs));
-        if (!session_.hyprland_signature.empty()) return hyprland_outputs(hyprland_request(hyprland_socket(), "j/monitors"));
+        if (!sockets_.swaysock.empty()) return sway_outputs(sway_request(sockets_.swaysock, SwayMessage::get_outputs));
+        if (!sockets_.hyprland_signature.empty()) return hyprland_outputs(hyprland_request(hyprland_socket(), "j/monitors"));
         std::vector<DesktopOutput> out;
-        const auto connection = WaylandConnection::open(session_.wayland_display, kProbeTimeout);
+        const auto connection = WaylandConnection::open(sockets_.wayland_display, kProbeTimeout);
         for (const auto& o : connection->outputs())
             out.push_back({o->name, {o->x, o->y, o->width, o->height}, static_cast<double>(o->scale)});
         return out;
@@ -102,8 +102,8 @@ std::vector<DesktopOutput> WlrootsDesktop::outputs() const {
 }
 
 std::vector<WindowInfo> WlrootsDesktop::windows() const {
-    if (!session_.swaysock.empty()) return sway_visible_windows(sway_request(session_.swaysock, SwayMessage::get_tree));
-    if (!session_.hyprland_signature.empty()) {
+    if (!sockets_.swaysock.empty()) return sway_visible_windows(sway_request(sockets_.swaysock, SwayMessage::get_tree));
+    if (!sockets_.hyprland_signature.empty()) {
         const std::string socket = hyprland_socket();
         return hyprland_visible_windows(hyprland_request(socket, "j/clients"), hyprland_request(socket, "j/monitors"));
     }
@@ -134,18 +134,18 @@ Capture WlrootsDesktop::capture(const WindowRect& rect) const {
     const int x0 = std::max(rect.x, o.x), y0 = std::max(rect.y, o.y);
     const int x1 = std::min(rect.x + rect.width, o.x + o.width), y1 = std::min(rect.y + rect.height, o.y + o.height);
     if (x1 <= x0 || y1 <= y0) return {};
-    return screencopy_region(session_.wayland_display, output->name, {x0 - o.x, y0 - o.y, x1 - x0, y1 - y0});
+    return screencopy_region(sockets_.wayland_display, output->name, {x0 - o.x, y0 - o.y, x1 - x0, y1 - y0});
 }
 
 std::unique_ptr<NewWindowWatch> WlrootsDesktop::watch_new_window(const WindowPlacement& where) const {
-    if (session_.swaysock.empty()) return nullptr;
-    return SwayNewWindowWatch::create(session_.swaysock, where);
+    if (sockets_.swaysock.empty()) return nullptr;
+    return SwayNewWindowWatch::create(sockets_.swaysock, where);
 }
 
 std::unique_ptr<FieldSurface> WlrootsDesktop::make_field_surface(QScreen* screen, ScreenField field,
                                                                  const std::vector<std::string>& palette) {
     try {
-        return LayerFieldSurface::create(session_.wayland_display, screen, std::move(field), palette);
+        return LayerFieldSurface::create(sockets_.wayland_display, screen, std::move(field), palette);
     } catch (const DesktopError& e) {
         std::cerr << "umf: " << e.what() << "\n";
         return nullptr;

@@ -14,17 +14,17 @@
 namespace umf::provider {
 
 // Where the compositor is: the environment's, or a test's own.
-struct WlrootsSession {
+struct WlrootsSockets {
     std::string wayland_display;     // WAYLAND_DISPLAY: a name in XDG_RUNTIME_DIR, or a path
     std::string swaysock;            // SWAYSOCK
     std::string hyprland_signature;  // HYPRLAND_INSTANCE_SIGNATURE
     std::string runtime_dir;         // XDG_RUNTIME_DIR
 };
-WlrootsSession wlroots_session_from_environment();
+WlrootsSockets wlroots_sockets_from_environment();
 
 class WlrootsDesktop final : public Desktop {
 public:
-    explicit WlrootsDesktop(WlrootsSession session);
+    explicit WlrootsDesktop(WlrootsSockets sockets);
 
     std::string name() const override { return "wlroots"; }
     DesktopAbilities abilities() const override;
@@ -43,10 +43,10 @@ public:
 private:
     std::string hyprland_socket() const;
 
-    WlrootsSession session_;
+    WlrootsSockets sockets_;
 };
 
 // What the lead wires into the session's choice of backend.
-std::unique_ptr<Desktop> make_wlroots_desktop(WlrootsSession session = wlroots_session_from_environment());
+std::unique_ptr<Desktop> make_wlroots_desktop(WlrootsSockets sockets = wlroots_sockets_from_environment());
 
 }  // namespace umf::provider
