@@ -1,4 +1,4 @@
-#include "aiming_session.hpp"
+#include "requester/aiming_session.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -9,10 +9,10 @@
 
 #include <opencv2/core.hpp>
 
-#include "aiming/aim.hpp"
-#include "detect/tracker.hpp"
-#include "grab_failure.hpp"
-#include "grey_frame.hpp"
+#include "requester/grab_failure.hpp"
+#include "requester/grey_frame.hpp"
+#include "shared/aiming/aim.hpp"
+#include "shared/detect/tracker.hpp"
 
 namespace umf::requester {
 

@@ -12,15 +12,15 @@
 #include <optional>
 #include <string>
 
-#include "grab_failure.hpp"
-#include "detect/detector.hpp"
-#include "frame_source.hpp"
-#include "pointing_options.hpp"
-#include "protocol/pairing_url.hpp"
-#include "preview.hpp"
-#include "protocol/messages.hpp"
-#include "provider_connection.hpp"
-#include "requester_core/pointer.hpp"
+#include "requester/frame_source.hpp"
+#include "requester/grab_failure.hpp"
+#include "requester/pointing_options.hpp"
+#include "requester/preview.hpp"
+#include "requester/provider_connection.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/protocol/messages.hpp"
+#include "shared/protocol/pairing_url.hpp"
+#include "shared/requester_core/pointer.hpp"
 
 namespace umf::requester {
 

@@ -1,4 +1,4 @@
-#include "cli.hpp"
+#include "requester/cli.hpp"
 
 #include <algorithm>
 #include <cmath>

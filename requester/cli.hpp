@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "cli/args.hpp"
+#include "shared/cli/args.hpp"
 
 namespace umf::requester {
 

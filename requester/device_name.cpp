@@ -1,4 +1,4 @@
-#include "device_name.hpp"
+#include "requester/device_name.hpp"
 
 #include <unistd.h>
 
@@ -7,10 +7,10 @@
 #include <random>
 #include <system_error>
 
-#include "download_dir.hpp"
-#include "io/atomic_file.hpp"
-#include "pinned_tls.hpp"
-#include "protocol/messages.hpp"
+#include "requester/download_dir.hpp"
+#include "requester/pinned_tls.hpp"
+#include "shared/io/atomic_file.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::requester {
 

@@ -1,13 +1,13 @@
-#include "discover_command.hpp"
+#include "requester/discover_command.hpp"
 
 #include <cerrno>
 #include <cstring>
 #include <vector>
 
-#include "cli.hpp"
-#include "paired_screens.hpp"
-#include "protocol/pairing_url.hpp"
-#include "screen_lines.hpp"
+#include "requester/cli.hpp"
+#include "requester/paired_screens.hpp"
+#include "requester/screen_lines.hpp"
+#include "shared/protocol/pairing_url.hpp"
 #ifdef UMF_WITH_AVAHI
 #include "native/screen_discovery.hpp"
 #endif

@@ -1,4 +1,4 @@
-#include "download.hpp"
+#include "requester/download.hpp"
 
 #include <fcntl.h>
 #include <stdio.h>
@@ -14,12 +14,12 @@
 #include <cstring>
 #include <memory>
 
-#include "cli.hpp"
-#include "grab_failure.hpp"
-#include "protocol/http_error_body.hpp"
-#include "protocol/messages.hpp"
-#include "io/store_file.hpp"
 #include "native/sha256.hpp"
+#include "requester/cli.hpp"
+#include "requester/grab_failure.hpp"
+#include "shared/io/store_file.hpp"
+#include "shared/protocol/http_error_body.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::requester {
 

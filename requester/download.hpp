@@ -11,8 +11,8 @@
 #include <optional>
 #include <string>
 
-#include "protocol/pairing_url.hpp"
-#include "pinned_tls.hpp"
+#include "requester/pinned_tls.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 namespace umf::requester {
 

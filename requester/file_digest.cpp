@@ -1,4 +1,4 @@
-#include "file_digest.hpp"
+#include "requester/file_digest.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,4 +1,4 @@
-#include "frame_source.hpp"
+#include "requester/frame_source.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -13,7 +13,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "cli.hpp"
+#include "requester/cli.hpp"
 
 namespace umf::requester {
 

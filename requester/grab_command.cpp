@@ -1,17 +1,17 @@
-#include "grab_command.hpp"
+#include "requester/grab_command.hpp"
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "aiming_session.hpp"
-#include "cli.hpp"
-#include "device_name.hpp"
-#include "download.hpp"
-#include "download_dir.hpp"
-#include "grab_failure.hpp"
-#include "open_url.hpp"
-#include "protocol/messages.hpp"
+#include "requester/aiming_session.hpp"
+#include "requester/cli.hpp"
+#include "requester/device_name.hpp"
+#include "requester/download.hpp"
+#include "requester/download_dir.hpp"
+#include "requester/grab_failure.hpp"
+#include "requester/open_url.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::requester {
 

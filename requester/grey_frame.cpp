@@ -1,4 +1,4 @@
-#include "grey_frame.hpp"
+#include "requester/grey_frame.hpp"
 
 namespace umf::requester {
 

@@ -8,7 +8,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "detect/image.hpp"
+#include "shared/detect/image.hpp"
 
 namespace umf::requester {
 

@@ -1,4 +1,4 @@
-#include "locate_command.hpp"
+#include "requester/locate_command.hpp"
 
 #include <unistd.h>
 
@@ -9,12 +9,12 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "detect/detector.hpp"
-#include "detect/image.hpp"
-#include "detect/tracker.hpp"
-#include "field/field_io.hpp"
-#include "frame_source.hpp"
-#include "grey_frame.hpp"
+#include "requester/frame_source.hpp"
+#include "requester/grey_frame.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/detect/image.hpp"
+#include "shared/detect/tracker.hpp"
+#include "shared/field/field_io.hpp"
 
 namespace umf::requester {
 

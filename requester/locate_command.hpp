@@ -12,7 +12,7 @@
 
 #include <Eigen/Core>
 
-#include "cli.hpp"
+#include "requester/cli.hpp"
 
 namespace umf::requester {
 

@@ -9,13 +9,13 @@
 #include <opencv2/core.hpp>
 #include <opencv2/core/utils/logger.hpp>
 
-#include "cli.hpp"
-#include "discover_command.hpp"
-#include "field/field_io.hpp"
-#include "grab_command.hpp"
-#include "locate_command.hpp"
-#include "pair_command.hpp"
-#include "put_command.hpp"
+#include "requester/cli.hpp"
+#include "requester/discover_command.hpp"
+#include "requester/grab_command.hpp"
+#include "requester/locate_command.hpp"
+#include "requester/pair_command.hpp"
+#include "requester/put_command.hpp"
+#include "shared/field/field_io.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "open_url.hpp"
+#include "requester/open_url.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>

@@ -1,10 +1,10 @@
-#include "pair_command.hpp"
+#include "requester/pair_command.hpp"
 
-#include "cli.hpp"
-#include "device_name.hpp"
-#include "grab_failure.hpp"
-#include "paired_screens.hpp"
-#include "provider_connection.hpp"
+#include "requester/cli.hpp"
+#include "requester/device_name.hpp"
+#include "requester/grab_failure.hpp"
+#include "requester/paired_screens.hpp"
+#include "requester/provider_connection.hpp"
 
 namespace umf::requester {
 

@@ -1,4 +1,4 @@
-#include "paired_screens.hpp"
+#include "requester/paired_screens.hpp"
 
 #include <algorithm>
 #include <fstream>
@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
-#include "cli.hpp"
-#include "download_dir.hpp"
-#include "io/atomic_file.hpp"
 #include "native/private_file.hpp"
+#include "requester/cli.hpp"
+#include "requester/download_dir.hpp"
+#include "shared/io/atomic_file.hpp"
 
 namespace umf::requester {
 

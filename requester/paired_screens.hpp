@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "protocol/pairing_url.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 namespace umf::requester {
 

@@ -1,4 +1,4 @@
-#include "pinned_tls.hpp"
+#include "requester/pinned_tls.hpp"
 
 #include "native/certificate_fingerprint.hpp"
 #include "native/certificate_pin.hpp"
@@ -12,8 +12,8 @@
 #include <boost/beast/core.hpp>
 #include <memory>
 
-#include "cli.hpp"
-#include "grab_failure.hpp"
+#include "requester/cli.hpp"
+#include "requester/grab_failure.hpp"
 
 namespace umf::requester {
 

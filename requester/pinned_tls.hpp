@@ -16,7 +16,7 @@
 #include <functional>
 #include <string>
 
-#include "protocol/pairing_url.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 namespace umf::requester {
 

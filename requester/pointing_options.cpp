@@ -1,8 +1,8 @@
-#include "pointing_options.hpp"
+#include "requester/pointing_options.hpp"
 
 #include <cstdlib>
 
-#include "aiming_session.hpp"  // log
+#include "requester/aiming_session.hpp"  // log
 
 namespace umf::requester {
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
-#include "paired_screens.hpp"
-#include "protocol/pairing_url.hpp"
+#include "requester/cli.hpp"
+#include "requester/paired_screens.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 namespace umf::requester {
 

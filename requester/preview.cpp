@@ -1,4 +1,4 @@
-#include "preview.hpp"
+#include "requester/preview.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "provider_connection.hpp"
+#include "requester/provider_connection.hpp"
 
 #include <boost/asio/ssl.hpp>
 #include <boost/beast/core.hpp>
@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "cli.hpp"
-#include "grab_failure.hpp"
+#include "requester/cli.hpp"
+#include "requester/grab_failure.hpp"
 
 namespace umf::requester {
 

@@ -1,4 +1,4 @@
-#include "put_command.hpp"
+#include "requester/put_command.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -6,13 +6,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "cli.hpp"
-#include "device_name.hpp"
-#include "grab_failure.hpp"
-#include "protocol/media_types.hpp"
-#include "protocol/messages.hpp"
-#include "file_digest.hpp"
-#include "upload.hpp"
+#include "requester/cli.hpp"
+#include "requester/device_name.hpp"
+#include "requester/file_digest.hpp"
+#include "requester/grab_failure.hpp"
+#include "requester/upload.hpp"
+#include "shared/protocol/media_types.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::requester {
 

@@ -9,7 +9,7 @@
 #include <optional>
 #include <string>
 
-#include "aiming_session.hpp"
+#include "requester/aiming_session.hpp"
 
 namespace umf::requester {
 

@@ -1,4 +1,4 @@
-#include "screen_lines.hpp"
+#include "requester/screen_lines.hpp"
 
 #include <nlohmann/json.hpp>
 

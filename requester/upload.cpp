@@ -1,4 +1,4 @@
-#include "upload.hpp"
+#include "requester/upload.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -14,9 +14,9 @@
 #include <cstring>
 #include <optional>
 
-#include "cli.hpp"
-#include "grab_failure.hpp"
-#include "protocol/http_error_body.hpp"
+#include "requester/cli.hpp"
+#include "requester/grab_failure.hpp"
+#include "shared/protocol/http_error_body.hpp"
 
 namespace umf::requester {
 

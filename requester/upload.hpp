@@ -9,9 +9,9 @@
 #include <functional>
 #include <string>
 
-#include "protocol/pairing_url.hpp"
-#include "pinned_tls.hpp"
-#include "protocol/messages.hpp"
+#include "requester/pinned_tls.hpp"
+#include "shared/protocol/messages.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 namespace umf::requester {
 

@@ -1,4 +1,4 @@
-#include "host/host_relay.hpp"
+#include "browser/host/host_relay.hpp"
 
 #include <poll.h>
 #include <sys/socket.h>
@@ -9,8 +9,8 @@
 #include <optional>
 #include <string>
 
-#include "host/native_messaging.hpp"
-#include "host/provider_socket.hpp"
+#include "browser/host/native_messaging.hpp"
+#include "browser/host/provider_socket.hpp"
 
 namespace umf::browser {
 

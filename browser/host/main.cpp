@@ -8,8 +8,8 @@
 #include <cstring>
 #include <iostream>
 
-#include "host/host_relay.hpp"
-#include "io/runtime_dir.hpp"
+#include "browser/host/host_relay.hpp"
+#include "shared/io/runtime_dir.hpp"
 
 int main(int argc, char** argv) {
     // Browsers pass the caller's origin (and on Windows a window handle);

@@ -1,4 +1,4 @@
-#include "host/native_messaging.hpp"
+#include "browser/host/native_messaging.hpp"
 
 #include <cstdint>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "host/provider_socket.hpp"
+#include "browser/host/provider_socket.hpp"
 
 #include <sys/socket.h>
 #include <sys/stat.h>
@@ -9,7 +9,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "io/runtime_dir.hpp"
+#include "shared/io/runtime_dir.hpp"
 
 namespace umf::browser {
 

@@ -1,4 +1,4 @@
-#include "board/board.hpp"
+#include "provider/board/board.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -12,9 +12,9 @@
 #include <set>
 #include <system_error>
 
-#include "field/png_writer.hpp"
-#include "io/atomic_file.hpp"
-#include "io/pdf_objects.hpp"
+#include "shared/field/png_writer.hpp"
+#include "shared/io/atomic_file.hpp"
+#include "shared/io/pdf_objects.hpp"
 
 namespace umf::provider {
 

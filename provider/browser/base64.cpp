@@ -1,4 +1,4 @@
-#include "browser/base64.hpp"
+#include "provider/browser/base64.hpp"
 
 namespace umf::provider {
 

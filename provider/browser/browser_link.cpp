@@ -1,4 +1,4 @@
-#include "browser/browser_link.hpp"
+#include "provider/browser/browser_link.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -10,8 +10,8 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "protocol/json_checks.hpp"
-#include "common/owner_socket.hpp"
+#include "provider/common/owner_socket.hpp"
+#include "shared/protocol/json_checks.hpp"
 
 namespace umf::provider {
 

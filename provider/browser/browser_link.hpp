@@ -22,7 +22,7 @@
 #include <thread>
 #include <vector>
 
-#include "browser/browser_windows.hpp"
+#include "provider/browser/browser_windows.hpp"
 
 namespace umf::provider {
 

@@ -1,12 +1,12 @@
-#include "browser/browser_resolver.hpp"
+#include "provider/browser/browser_resolver.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <stdexcept>
 
-#include "browser/base64.hpp"
-#include "browser/element_content.hpp"
-#include "content/file_facts.hpp"
+#include "provider/browser/base64.hpp"
+#include "provider/browser/element_content.hpp"
+#include "provider/content/file_facts.hpp"
 
 namespace umf::provider {
 

@@ -11,9 +11,9 @@
 #include <memory>
 #include <ostream>
 
-#include "browser/browser_link.hpp"
-#include "content/resolver.hpp"
-#include "desktop/desktop.hpp"
+#include "provider/browser/browser_link.hpp"
+#include "provider/content/resolver.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

@@ -1,8 +1,8 @@
-#include "browser/browser_status.hpp"
+#include "provider/browser/browser_status.hpp"
 
 #include <sstream>
 
-#include "put/put_text.hpp"
+#include "provider/put/put_text.hpp"
 
 namespace umf::provider {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "browser/browser_windows.hpp"
+#include "provider/browser/browser_windows.hpp"
 
 namespace umf::provider {
 

@@ -1,13 +1,13 @@
-#include "browser/browser_windows.hpp"
+#include "provider/browser/browser_windows.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "protocol/json_checks.hpp"
-#include "protocol/messages.hpp"
-#include "put/put_text.hpp"
+#include "provider/put/put_text.hpp"
+#include "shared/protocol/json_checks.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

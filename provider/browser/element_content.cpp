@@ -1,11 +1,11 @@
-#include "browser/element_content.hpp"
+#include "provider/browser/element_content.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include "protocol/json_checks.hpp"
-#include "put/put_text.hpp"
+#include "provider/put/put_text.hpp"
+#include "shared/protocol/json_checks.hpp"
 
 namespace umf::provider {
 

@@ -6,8 +6,8 @@
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 
-#include "browser/browser_windows.hpp"
-#include "content/resolver.hpp"
+#include "provider/browser/browser_windows.hpp"
+#include "provider/content/resolver.hpp"
 
 namespace umf::provider {
 

@@ -1,10 +1,10 @@
-#include "browser/host_manifests.hpp"
+#include "provider/browser/host_manifests.hpp"
 
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "browser/base64.hpp"
 #include "native/sha256.hpp"
+#include "provider/browser/base64.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "commands/browser_command.hpp"
+#include "provider/commands/browser_command.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -7,11 +7,11 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "browser/browser_status.hpp"
-#include "browser/host_manifests.hpp"
-#include "commands/common_options.hpp"
-#include "commands/control_client.hpp"
-#include "io/atomic_file.hpp"
+#include "provider/browser/browser_status.hpp"
+#include "provider/browser/host_manifests.hpp"
+#include "provider/commands/common_options.hpp"
+#include "provider/commands/control_client.hpp"
+#include "shared/io/atomic_file.hpp"
 
 namespace umf::provider {
 

@@ -7,7 +7,7 @@
 
 #include <iostream>
 
-#include "cli/args.hpp"
+#include "shared/cli/args.hpp"
 
 namespace umf::provider {
 

@@ -1,9 +1,9 @@
-#include "commands/common_options.hpp"
+#include "provider/commands/common_options.hpp"
 
 #include <optional>
 
-#include "common/config_dir.hpp"
-#include "trust/serving_names.hpp"
+#include "provider/common/config_dir.hpp"
+#include "provider/trust/serving_names.hpp"
 
 namespace umf::provider {
 

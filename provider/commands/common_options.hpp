@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/args.hpp"
+#include "shared/cli/args.hpp"
 
 namespace umf::provider {
 

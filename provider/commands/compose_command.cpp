@@ -1,4 +1,4 @@
-#include "commands/compose_command.hpp"
+#include "provider/commands/compose_command.hpp"
 
 #include <QBuffer>
 #include <QByteArray>
@@ -12,14 +12,14 @@
 #include <system_error>
 #include <vector>
 
-#include "board/board.hpp"
-#include "commands/preset_options.hpp"
-#include "field/field_io.hpp"
-#include "io/atomic_file.hpp"
-#include "overlay/preset.hpp"
-#include "overlay/pulse.hpp"
-#include "screen/screen_field.hpp"
-#include "screen/screen_image.hpp"
+#include "provider/board/board.hpp"
+#include "provider/commands/preset_options.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "provider/screen/screen_image.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/io/atomic_file.hpp"
+#include "shared/overlay/preset.hpp"
+#include "shared/overlay/pulse.hpp"
 
 namespace umf::provider {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/args.hpp"
+#include "shared/cli/args.hpp"
 
 namespace umf::provider {
 

@@ -1,8 +1,8 @@
-#include "commands/control_client.hpp"
+#include "provider/commands/control_client.hpp"
 
-#include "commands/common_options.hpp"
-#include "put/put_text.hpp"
-#include "service/control_socket.hpp"
+#include "provider/commands/common_options.hpp"
+#include "provider/put/put_text.hpp"
+#include "provider/service/control_socket.hpp"
 
 namespace umf::provider {
 

@@ -7,7 +7,7 @@
 #include <ostream>
 #include <string>
 
-#include "cli/args.hpp"
+#include "shared/cli/args.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "commands/desktop_keeper.hpp"
+#include "provider/commands/desktop_keeper.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
@@ -11,7 +11,7 @@
 #include <cstring>
 #include <string>
 
-#include "commands/common_options.hpp"
+#include "provider/commands/common_options.hpp"
 
 namespace umf::provider {
 namespace {

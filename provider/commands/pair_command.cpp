@@ -1,4 +1,4 @@
-#include "commands/pair_command.hpp"
+#include "provider/commands/pair_command.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -8,14 +8,14 @@
 #include <vector>
 #include <nlohmann/json.hpp>
 
-#include "commands/common_options.hpp"
-#include "commands/control_client.hpp"
-#include "put/put_text.hpp"
-#include "screen/field_source.hpp"
-#include "service/control_socket.hpp"
-#include "service/pairing.hpp"
-#include "service/pairing_qr.hpp"
-#include "trust/tls_identity_store.hpp"
+#include "provider/commands/common_options.hpp"
+#include "provider/commands/control_client.hpp"
+#include "provider/put/put_text.hpp"
+#include "provider/screen/field_source.hpp"
+#include "provider/service/control_socket.hpp"
+#include "provider/service/pairing.hpp"
+#include "provider/service/pairing_qr.hpp"
+#include "provider/trust/tls_identity_store.hpp"
 
 namespace umf::provider {
 

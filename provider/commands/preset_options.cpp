@@ -1,6 +1,6 @@
-#include "commands/preset_options.hpp"
+#include "provider/commands/preset_options.hpp"
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf::provider {
 

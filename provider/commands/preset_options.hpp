@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "cli/args.hpp"
-#include "overlay/preset.hpp"
+#include "shared/cli/args.hpp"
+#include "shared/overlay/preset.hpp"
 
 namespace umf::provider {
 

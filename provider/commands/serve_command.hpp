@@ -8,8 +8,8 @@
 #include <optional>
 #include <string>
 
-#include "cli/args.hpp"
-#include "commands/desktop_keeper.hpp"
+#include "provider/commands/desktop_keeper.hpp"
+#include "shared/cli/args.hpp"
 
 namespace umf::provider {
 

@@ -1,14 +1,14 @@
-#include "commands/serve_field.hpp"
+#include "provider/commands/serve_field.hpp"
 
 #include <QCoreApplication>
 #include <QMetaObject>
 #include <iostream>
 #include <stdexcept>
 
-#include "field_overlay/overlay_manager.hpp"
-#include "screen/board_window.hpp"
-#include "screen/desktop_layout.hpp"
-#include "service/service.hpp"
+#include "provider/field_overlay/overlay_manager.hpp"
+#include "provider/screen/board_window.hpp"
+#include "provider/screen/desktop_layout.hpp"
+#include "provider/service/service.hpp"
 
 namespace umf::provider {
 

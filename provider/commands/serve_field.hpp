@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <string>
 
-#include "screen/field_source.hpp"
-#include "service/control_socket.hpp"
+#include "provider/screen/field_source.hpp"
+#include "provider/service/control_socket.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "commands/serve_parts.hpp"
+#include "provider/commands/serve_parts.hpp"
 
 #include <unistd.h>
 
@@ -8,14 +8,14 @@
 #include <iostream>
 #include <thread>
 
-#include "browser/browser_link.hpp"
-#include "browser/browser_resolver.hpp"
-#include "content/snapshot_resolver.hpp"
-#include "content/window_resolver.hpp"
-#include "field_overlay/overlay_manager.hpp"
-#include "put/put_folder.hpp"
-#include "content/shared_items_file.hpp"
-#include "put/trusted_devices.hpp"
+#include "provider/browser/browser_link.hpp"
+#include "provider/browser/browser_resolver.hpp"
+#include "provider/content/shared_items_file.hpp"
+#include "provider/content/snapshot_resolver.hpp"
+#include "provider/content/window_resolver.hpp"
+#include "provider/field_overlay/overlay_manager.hpp"
+#include "provider/put/put_folder.hpp"
+#include "provider/put/trusted_devices.hpp"
 
 namespace umf::provider {
 

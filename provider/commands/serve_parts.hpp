@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "cli/args.hpp"
-#include "content/resolver.hpp"
-#include "content/shared_items.hpp"
-#include "desktop/open_desktop.hpp"
-#include "put/put_deciders.hpp"
-#include "put/put_prompt_window.hpp"
+#include "provider/content/resolver.hpp"
+#include "provider/content/shared_items.hpp"
+#include "provider/desktop/open_desktop.hpp"
+#include "provider/put/put_deciders.hpp"
+#include "provider/put/put_prompt_window.hpp"
+#include "shared/cli/args.hpp"
 
 namespace umf::provider {
 

@@ -1,10 +1,10 @@
-#include "commands/serve_reach.hpp"
+#include "provider/commands/serve_reach.hpp"
 
 #include <iostream>
 
-#include "commands/common_options.hpp"
-#include "net/server.hpp"
-#include "trust/root_export.hpp"
+#include "provider/commands/common_options.hpp"
+#include "provider/net/server.hpp"
+#include "provider/trust/root_export.hpp"
 
 namespace umf::provider {
 

@@ -11,12 +11,12 @@
 #include <ostream>
 #include <string>
 
-#include "discovery/avahi_announcement.hpp"
-#include "discovery/nearby_browse.hpp"
-#include "service/static_site.hpp"
-#include "trust/root_authority.hpp"
-#include "trust/certificate_keeper.hpp"
-#include "trust/serving_names.hpp"
+#include "provider/discovery/avahi_announcement.hpp"
+#include "provider/discovery/nearby_browse.hpp"
+#include "provider/service/static_site.hpp"
+#include "provider/trust/certificate_keeper.hpp"
+#include "provider/trust/root_authority.hpp"
+#include "provider/trust/serving_names.hpp"
 
 namespace umf::provider {
 

@@ -1,11 +1,11 @@
-#include "commands/trust_command.hpp"
+#include "provider/commands/trust_command.hpp"
 
 #include <fstream>
 
-#include "commands/common_options.hpp"
-#include "commands/control_client.hpp"
-#include "trust/root_export.hpp"
-#include "trust/tls_identity_store.hpp"
+#include "provider/commands/common_options.hpp"
+#include "provider/commands/control_client.hpp"
+#include "provider/trust/root_export.hpp"
+#include "provider/trust/tls_identity_store.hpp"
 
 namespace umf::provider {
 

@@ -6,7 +6,7 @@
 
 #include <iostream>
 
-#include "cli/args.hpp"
+#include "shared/cli/args.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "common/base64url.hpp"
+#include "provider/common/base64url.hpp"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "common/config_dir.hpp"
+#include "provider/common/config_dir.hpp"
 
 #include <sys/stat.h>
 
@@ -9,8 +9,8 @@
 #include <iterator>
 #include <system_error>
 
-#include "io/atomic_file.hpp"
 #include "native/private_file.hpp"
+#include "shared/io/atomic_file.hpp"
 
 namespace umf::provider {
 

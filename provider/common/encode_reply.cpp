@@ -1,4 +1,4 @@
-#include "common/encode_reply.hpp"
+#include "provider/common/encode_reply.hpp"
 
 #include <exception>
 #include <optional>

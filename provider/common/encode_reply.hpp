@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

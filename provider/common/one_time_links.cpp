@@ -1,10 +1,10 @@
-#include "common/one_time_links.hpp"
+#include "provider/common/one_time_links.hpp"
 
 #include <openssl/rand.h>
 
 #include <stdexcept>
 
-#include "common/base64url.hpp"
+#include "provider/common/base64url.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "common/owner_socket.hpp"
+#include "provider/common/owner_socket.hpp"
 
 #include <fcntl.h>
 #include <sys/socket.h>

@@ -1,4 +1,4 @@
-#include "common/screen_name.hpp"
+#include "provider/common/screen_name.hpp"
 
 #include <climits>
 #include <unistd.h>

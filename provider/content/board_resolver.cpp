@@ -1,8 +1,8 @@
-#include "content/board_resolver.hpp"
+#include "provider/content/board_resolver.hpp"
 
 #include <stdexcept>
 
-#include "content/file_facts.hpp"
+#include "provider/content/file_facts.hpp"
 
 namespace umf::provider {
 

@@ -3,8 +3,8 @@
 
 #include <vector>
 
-#include "board/board.hpp"
-#include "content/resolver.hpp"
+#include "provider/board/board.hpp"
+#include "provider/content/resolver.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "content/download_route.hpp"
+#include "provider/content/download_route.hpp"
 
 #include <boost/beast/http/empty_body.hpp>
 #include <cctype>
@@ -7,8 +7,8 @@
 #include <tuple>
 #include <utility>
 
-#include "net/http_response_headers.hpp"
-#include "content/verified_file_body.hpp"
+#include "provider/content/verified_file_body.hpp"
+#include "provider/net/http_response_headers.hpp"
 
 namespace umf::provider {
 

@@ -8,8 +8,8 @@
 #include <filesystem>
 #include <functional>
 
-#include "net/http_exchange.hpp"
-#include "content/download_table.hpp"
+#include "provider/content/download_table.hpp"
+#include "provider/net/http_exchange.hpp"
 
 namespace umf::provider {
 

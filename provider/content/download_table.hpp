@@ -15,8 +15,8 @@
 #include <string>
 #include <string_view>
 
-#include "content/file_facts.hpp"
-#include "common/one_time_links.hpp"
+#include "provider/common/one_time_links.hpp"
+#include "provider/content/file_facts.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "content/file_facts.hpp"
+#include "provider/content/file_facts.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "native/sha256.hpp"
-#include "protocol/media_types.hpp"
+#include "shared/protocol/media_types.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "content/image_snapshot.hpp"
+#include "provider/content/image_snapshot.hpp"
 
 #include <QBuffer>
 #include <algorithm>

@@ -4,7 +4,7 @@
 
 #include <QImage>
 
-#include "content/resolver.hpp"
+#include "provider/content/resolver.hpp"
 
 namespace umf::provider {
 

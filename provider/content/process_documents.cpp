@@ -1,4 +1,4 @@
-#include "content/process_documents.hpp"
+#include "provider/content/process_documents.hpp"
 
 #include <pwd.h>
 #include <sys/stat.h>
@@ -14,7 +14,7 @@
 #include <system_error>
 #include <utility>
 
-#include "content/recent_files.hpp"
+#include "provider/content/recent_files.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "content/recent_files.hpp"
+#include "provider/content/recent_files.hpp"
 
 #include <QByteArray>
 #include <QString>

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "common/screen_point.hpp"
-#include "protocol/messages.hpp"
+#include "provider/common/screen_point.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

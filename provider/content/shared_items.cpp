@@ -1,9 +1,9 @@
-#include "content/shared_items.hpp"
+#include "provider/content/shared_items.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "content/board_resolver.hpp"
+#include "provider/content/board_resolver.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "content/shared_items_file.hpp"
+#include "provider/content/shared_items_file.hpp"
 
 #include <sys/stat.h>
 

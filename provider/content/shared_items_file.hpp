@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "content/shared_items.hpp"
+#include "provider/content/shared_items.hpp"
 
 namespace umf::provider {
 

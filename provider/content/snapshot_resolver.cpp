@@ -1,4 +1,4 @@
-#include "content/snapshot_resolver.hpp"
+#include "provider/content/snapshot_resolver.hpp"
 
 #include <QBuffer>
 #include <QByteArray>
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <string_view>
 
-#include "content/resolver.hpp"
-#include "desktop/desktop.hpp"
+#include "provider/content/resolver.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "content/verified_file_body.hpp"
+#include "provider/content/verified_file_body.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

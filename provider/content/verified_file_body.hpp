@@ -17,8 +17,8 @@
 #include <string>
 #include <utility>
 
-#include "content/file_facts.hpp"
 #include "native/sha256.hpp"
+#include "provider/content/file_facts.hpp"
 
 namespace umf::provider {
 

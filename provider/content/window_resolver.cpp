@@ -1,9 +1,9 @@
-#include "content/window_resolver.hpp"
+#include "provider/content/window_resolver.hpp"
 
 #include <stdexcept>
 
-#include "content/file_facts.hpp"
-#include "protocol/messages.hpp"
+#include "provider/content/file_facts.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

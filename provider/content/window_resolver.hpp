@@ -9,10 +9,10 @@
 #include <memory>
 #include <optional>
 
-#include "content/process_documents.hpp"
-#include "content/recent_files.hpp"
-#include "content/resolver.hpp"
-#include "desktop/desktop.hpp"
+#include "provider/content/process_documents.hpp"
+#include "provider/content/recent_files.hpp"
+#include "provider/content/resolver.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

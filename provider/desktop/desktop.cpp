@@ -1,4 +1,4 @@
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 #include <algorithm>
 #include <climits>

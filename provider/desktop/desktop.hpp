@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "screen/screen_field.hpp"
+#include "provider/screen/screen_field.hpp"
 
 class QScreen;
 
@@ -116,10 +116,10 @@ public:
     virtual bool supports_painted_pulse() const { return false; }
     virtual void set_painted_pulse(bool) {}
     virtual void set_backdrop(QImage, QPoint) {}
-    // The ring and title where a phone points (screen/pointer_mark.hpp), at
+    // The ring and title where a phone points (screen/aim_mark.hpp), at
     // full strength whatever the pulse, for a surface that draws them itself
     // (on X11 they have a window of their own); nullopt removes them.
-    virtual void set_pointer(std::optional<QPointF> /*point_px*/, const QString& /*title*/) {}
+    virtual void set_aim_mark(std::optional<QPointF> /*point_px*/, const QString& /*title*/) {}
     virtual void show() = 0;
     virtual void hide() = 0;
     virtual bool is_visible() const = 0;

@@ -1,4 +1,4 @@
-#include "desktop/desktop_choice.hpp"
+#include "provider/desktop/desktop_choice.hpp"
 
 #include <algorithm>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "desktop/display_socket.hpp"
+#include "provider/desktop/display_socket.hpp"
 
 #include <sys/socket.h>
 #include <sys/un.h>

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "desktop/desktop_choice.hpp"
+#include "provider/desktop/desktop_choice.hpp"
 
 namespace umf::provider {
 

@@ -1,12 +1,12 @@
-#include "desktop/open_desktop.hpp"
+#include "provider/desktop/open_desktop.hpp"
 
 #include <exception>
 
-#include "desktop/gnome/gnome_desktop.hpp"
-#include "desktop/kde/kde_desktop.hpp"
-#include "desktop/wlroots/layer_field_surface.hpp"
-#include "desktop/wlroots/wlroots_desktop.hpp"
-#include "desktop/x11/x11_desktop.hpp"
+#include "provider/desktop/gnome/gnome_desktop.hpp"
+#include "provider/desktop/kde/kde_desktop.hpp"
+#include "provider/desktop/wlroots/layer_field_surface.hpp"
+#include "provider/desktop/wlroots/wlroots_desktop.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
 
 namespace umf::provider {
 

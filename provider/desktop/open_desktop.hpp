@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "desktop/desktop.hpp"
-#include "desktop/desktop_choice.hpp"
+#include "provider/desktop/desktop.hpp"
+#include "provider/desktop/desktop_choice.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "desktop/window_placement.hpp"
+#include "provider/desktop/window_placement.hpp"
 
 #include <unistd.h>
 

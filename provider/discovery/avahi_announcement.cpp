@@ -1,4 +1,4 @@
-#include "discovery/avahi_announcement.hpp"
+#include "provider/discovery/avahi_announcement.hpp"
 
 #include <QDBusConnection>
 #include <QDBusInterface>

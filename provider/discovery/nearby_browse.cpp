@@ -1,4 +1,4 @@
-#include "discovery/nearby_browse.hpp"
+#include "provider/discovery/nearby_browse.hpp"
 
 #ifdef UMF_WITH_AVAHI
 #include "native/screen_discovery.hpp"

@@ -13,7 +13,7 @@
 #include <string>
 #include <thread>
 
-#include "discovery/nearby_screens.hpp"
+#include "provider/discovery/nearby_screens.hpp"
 
 namespace umf::provider {
 

@@ -1,10 +1,10 @@
-#include "discovery/nearby_routes.hpp"
+#include "provider/discovery/nearby_routes.hpp"
 
 #include <memory>
 #include <string>
 
-#include "net/http_response_headers.hpp"
-#include "field/field_io.hpp"
+#include "provider/net/http_response_headers.hpp"
+#include "shared/field/field_io.hpp"
 
 namespace umf::provider {
 

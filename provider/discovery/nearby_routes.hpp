@@ -5,9 +5,9 @@
 // the screen.
 #pragma once
 
-#include "net/http_exchange.hpp"
-#include "discovery/nearby_screens.hpp"
-#include "protocol/messages.hpp"
+#include "provider/discovery/nearby_screens.hpp"
+#include "provider/net/http_exchange.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

@@ -1,9 +1,9 @@
-#include "discovery/nearby_screens.hpp"
+#include "provider/discovery/nearby_screens.hpp"
 
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
-#include "protocol/pairing_url.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 namespace umf::provider {
 

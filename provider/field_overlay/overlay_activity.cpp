@@ -1,4 +1,4 @@
-#include "field_overlay/overlay_activity.hpp"
+#include "provider/field_overlay/overlay_activity.hpp"
 
 #include <QMetaObject>
 
@@ -12,24 +12,24 @@ void OverlayActivity::set_screen_indices(std::vector<int> screen_indices) {
     screen_indices_ = std::move(screen_indices);
 }
 
-std::optional<int> OverlayActivity::take_pointer(std::uint64_t session) {
+std::optional<int> OverlayActivity::take_aim_mark(std::uint64_t session) {
     std::lock_guard lock(mutex_);
-    const auto it = pointer_screen_.find(session);
-    if (it == pointer_screen_.end()) return std::nullopt;
+    const auto it = aim_mark_screen_.find(session);
+    if (it == aim_mark_screen_.end()) return std::nullopt;
     const int index = it->second;
-    pointer_screen_.erase(it);
+    aim_mark_screen_.erase(it);
     return index;
 }
 
 void OverlayActivity::seeking(std::uint64_t session) {
     // A requester that seeks has lost its lock: its ring and circle go.
-    const std::optional<int> previous = take_pointer(session);
+    const std::optional<int> previous = take_aim_mark(session);
     OverlayManager* m = manager_;
     QMetaObject::invokeMethod(
         m,
         [m, previous] {
             if (previous) {
-                m->set_pointer(*previous, std::nullopt, {});
+                m->set_aim_mark(*previous, std::nullopt, {});
                 m->set_focus(*previous, std::nullopt);
             }
             m->report_seeking();
@@ -44,9 +44,9 @@ void OverlayActivity::aimed(const AimActivity& aim) {
         std::lock_guard lock(mutex_);
         if (aim.screen && aim.screen->screen >= 0 && aim.screen->screen < static_cast<int>(screen_indices_.size()))
             index = screen_indices_[aim.screen->screen];
-        if (auto it = pointer_screen_.find(aim.session); it != pointer_screen_.end()) previous = it->second;
-        if (index) pointer_screen_[aim.session] = *index;
-        else pointer_screen_.erase(aim.session);
+        if (auto it = aim_mark_screen_.find(aim.session); it != aim_mark_screen_.end()) previous = it->second;
+        if (index) aim_mark_screen_[aim.session] = *index;
+        else aim_mark_screen_.erase(aim.session);
     }
     OverlayManager* m = manager_;
     const QPointF at = aim.screen ? QPointF(aim.screen->x, aim.screen->y) : QPointF();
@@ -57,11 +57,11 @@ void OverlayActivity::aimed(const AimActivity& aim) {
         [m, index, previous, at, title, confidence] {
             m->report_aim(confidence);
             if (previous && previous != index) {
-                m->set_pointer(*previous, std::nullopt, {});
+                m->set_aim_mark(*previous, std::nullopt, {});
                 m->set_focus(*previous, std::nullopt);
             }
             if (index) {
-                m->set_pointer(*index, at, title);
+                m->set_aim_mark(*index, at, title);
                 m->set_focus(*index, at);
             }
         },
@@ -69,13 +69,13 @@ void OverlayActivity::aimed(const AimActivity& aim) {
 }
 
 void OverlayActivity::left(std::uint64_t session) {
-    const std::optional<int> previous = take_pointer(session);
+    const std::optional<int> previous = take_aim_mark(session);
     if (!previous) return;
     OverlayManager* m = manager_;
     QMetaObject::invokeMethod(
         m,
         [m, index = *previous] {
-            m->set_pointer(index, std::nullopt, {});
+            m->set_aim_mark(index, std::nullopt, {});
             m->set_focus(index, std::nullopt);
         },
         Qt::QueuedConnection);

@@ -1,5 +1,5 @@
 // The overlay hearing the requesters: a seeking or aiming requester brings an
-// on-demand field up, an aim moves the pointer ring (with the title of what a
+// on-demand field up, an aim moves the aim ring (with the title of what a
 // grab would take) and the focus region to where it points, and a requester
 // that seeks again (it lost its lock) or leaves takes its ring away. The service calls in from the server's
 // threads; everything is handed to the manager's (Qt) thread.
@@ -10,8 +10,8 @@
 #include <optional>
 #include <vector>
 
-#include "field_overlay/overlay_manager.hpp"
-#include "common/activity.hpp"
+#include "provider/common/activity.hpp"
+#include "provider/field_overlay/overlay_manager.hpp"
 
 namespace umf::provider {
 
@@ -31,12 +31,12 @@ public:
 
 private:
     // The screen of the session's ring, which it no longer has.
-    std::optional<int> take_pointer(std::uint64_t session);
+    std::optional<int> take_aim_mark(std::uint64_t session);
 
     OverlayManager* manager_;
     std::mutex mutex_;
     std::vector<int> screen_indices_;
-    std::map<std::uint64_t, int> pointer_screen_;  // session -> manager index of its ring
+    std::map<std::uint64_t, int> aim_mark_screen_;  // session -> manager index of its ring
 };
 
 }  // namespace umf::provider

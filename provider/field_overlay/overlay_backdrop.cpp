@@ -7,9 +7,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "desktop/x11/x11_desktop.hpp"
-#include "field_overlay/overlay_entry.hpp"
-#include "overlay/background_blur.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
+#include "provider/field_overlay/overlay_entry.hpp"
+#include "shared/overlay/background_blur.hpp"
 
 namespace umf::provider {
 

@@ -11,8 +11,8 @@
 #include <memory>
 #include <optional>
 
-#include "field_overlay/overlay_manager.hpp"
-#include "overlay/background_blur.hpp"
+#include "provider/field_overlay/overlay_manager.hpp"
+#include "shared/overlay/background_blur.hpp"
 
 namespace umf::provider {
 
@@ -48,7 +48,7 @@ struct OverlayManager::Entry {
     std::unique_ptr<FieldSurface> window;
     std::optional<QPointF> focus;
     // The ring where a requester points, made at the first aim here.
-    std::unique_ptr<PointerWindow> pointer;
+    std::unique_ptr<AimWindow> aim_window;
     bool pointing = false;
     qint64 pointed_ms = 0;
     // Where and what, for a surface that draws the ring itself (Wayland).

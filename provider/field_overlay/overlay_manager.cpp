@@ -1,4 +1,4 @@
-#include "field_overlay/overlay_manager.hpp"
+#include "provider/field_overlay/overlay_manager.hpp"
 
 #include <QElapsedTimer>
 #include <QGuiApplication>
@@ -8,9 +8,9 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "field_overlay/overlay_entry.hpp"
-#include "overlay/pulse.hpp"
-#include "screen/desktop_layout.hpp"
+#include "provider/field_overlay/overlay_entry.hpp"
+#include "provider/screen/desktop_layout.hpp"
+#include "shared/overlay/pulse.hpp"
 
 namespace umf::provider {
 
@@ -73,8 +73,8 @@ OverlayManager::OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> 
         notify();
     });
     connect(&pulse_timer_, &QTimer::timeout, this, [this] { tick(); });
-    pointer_timer_.setSingleShot(true);
-    connect(&pointer_timer_, &QTimer::timeout, this, [this] { expire_pointers(); });
+    aim_mark_timer_.setSingleShot(true);
+    connect(&aim_mark_timer_, &QTimer::timeout, this, [this] { expire_aim_marks(); });
     seeking_timer_.setSingleShot(true);
     seeking_timer_.setTimerType(Qt::PreciseTimer);
     connect(&seeking_timer_, &QTimer::timeout, this, [this] {
@@ -86,7 +86,7 @@ OverlayManager::OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> 
     connect(&raise_timer_, &QTimer::timeout, this, [this] {
         for (auto& entry : entries_) {
             if (entry->window->is_visible()) entry->window->raise();
-            if (entry->pointer && entry->pointer->isVisible()) entry->pointer->raise();
+            if (entry->aim_window && entry->aim_window->isVisible()) entry->aim_window->raise();
         }
     });
     raise_timer_.start(kRaiseIntervalMs);
@@ -277,7 +277,7 @@ void OverlayManager::apply_shown(double opacity) {
         } else if (window.is_visible()) {
             window.hide();
         }
-        show_pointer(*entry);
+        show_aim_mark(*entry);
     }
 }
 
@@ -327,62 +327,62 @@ void OverlayManager::refocus(Entry& entry, bool aimed) {
     }
 }
 
-void OverlayManager::set_pointer(int index, std::optional<QPointF> point_px, const QString& title) {
+void OverlayManager::set_aim_mark(int index, std::optional<QPointF> point_px, const QString& title) {
     Entry* entry = entry_for(index);
     if (!entry) return;
     entry->pointing = point_px.has_value();
     if (point_px) {
         if (x11_windows_) {
-            if (!entry->pointer) entry->pointer = std::make_unique<PointerWindow>(entry->screen);
-            entry->pointer->point_at(*point_px, title);
+            if (!entry->aim_window) entry->aim_window = std::make_unique<AimWindow>(entry->screen);
+            entry->aim_window->point_at(*point_px, title);
         }
         entry->pointed_px = *point_px;
         entry->pointed_title = title;
         entry->pointed_ms = clock_.elapsed();
-        pointer_timer_.start(kPointerHoldMs);
+        aim_mark_timer_.start(kAimMarkHoldMs);
     }
-    show_pointer(*entry);
+    show_aim_mark(*entry);
 }
 
-void OverlayManager::show_pointer(Entry& entry) {
+void OverlayManager::show_aim_mark(Entry& entry) {
     // With the field: not in a snapshot, not while the overlay is off or faded out.
     const bool shown = entry.pointing && visible_ && snapshot_depth_ == 0 && applied_opacity_ > 0;
     if (!x11_windows_) {
         // The surface draws the ring into its own pixels (Wayland).
-        entry.window->set_pointer(shown ? std::optional<QPointF>(entry.pointed_px) : std::nullopt, entry.pointed_title);
+        entry.window->set_aim_mark(shown ? std::optional<QPointF>(entry.pointed_px) : std::nullopt, entry.pointed_title);
         return;
     }
-    if (!entry.pointer) return;
+    if (!entry.aim_window) return;
     if (shown) {
-        if (!entry.pointer->isVisible()) entry.pointer->show();
-        entry.pointer->raise();  // above the field's window, which may have been raised since
-    } else if (!shown && entry.pointer->isVisible()) {
-        entry.pointer->hide();
+        if (!entry.aim_window->isVisible()) entry.aim_window->show();
+        entry.aim_window->raise();  // above the field's window, which may have been raised since
+    } else if (!shown && entry.aim_window->isVisible()) {
+        entry.aim_window->hide();
     }
 }
 
-void OverlayManager::expire_pointers() {
+void OverlayManager::expire_aim_marks() {
     // A requester that stopped aiming without seeking or leaving (a phone
     // put down with the page open) leaves no ring behind.
     const qint64 now = clock_.elapsed();
     qint64 next = -1;
     for (auto& entry : entries_) {
         if (!entry->pointing) continue;
-        const qint64 left = kPointerHoldMs - (now - entry->pointed_ms);
+        const qint64 left = kAimMarkHoldMs - (now - entry->pointed_ms);
         if (left <= 0) {
             entry->pointing = false;
-            show_pointer(*entry);
+            show_aim_mark(*entry);
         } else if (next < 0 || left < next) {
             next = left;
         }
     }
-    if (next >= 0) pointer_timer_.start(static_cast<int>(next) + 1);
+    if (next >= 0) aim_mark_timer_.start(static_cast<int>(next) + 1);
 }
 
-std::vector<PointerWindow*> OverlayManager::pointer_windows() const {
-    std::vector<PointerWindow*> out;
+std::vector<AimWindow*> OverlayManager::aim_windows() const {
+    std::vector<AimWindow*> out;
     for (const auto& entry : entries_)
-        if (entry->pointer && entry->pointer->isVisible()) out.push_back(entry->pointer.get());
+        if (entry->aim_window && entry->aim_window->isVisible()) out.push_back(entry->aim_window.get());
     return out;
 }
 

@@ -31,11 +31,11 @@
 #include <optional>
 #include <vector>
 
-#include "overlay/adaptive.hpp"
-#include "desktop/x11/overlay_window.hpp"
-#include "field_overlay/pointer_window.hpp"
-#include "overlay/preset.hpp"
-#include "screen/desktop_layout.hpp"
+#include "provider/desktop/x11/overlay_window.hpp"
+#include "provider/field_overlay/aim_window.hpp"
+#include "provider/screen/desktop_layout.hpp"
+#include "shared/overlay/adaptive.hpp"
+#include "shared/overlay/preset.hpp"
 
 class QScreen;
 
@@ -52,7 +52,7 @@ class OverlayManager : public QObject {
 public:
     // The field's surfaces come from `desktop` (desktop/desktop.hpp); without
     // one they are X11 windows (desktop/x11/overlay_window.hpp), as on Qt's
-    // xcb and offscreen platforms. The pointer ring's own window and the
+    // xcb and offscreen platforms. The aim ring's own window and the
     // blurred backdrop are X11 only. `fields`: the shipped fields or the
     // screen's own (screen/field_source.hpp).
     explicit OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> desktop = nullptr,
@@ -87,11 +87,11 @@ public:
     bool circles_shown() const { return circles_applied_; }
     // The ring and title where a requester points on screen `index`
     // (physical pixels), in a window of its own that does not pulse; nullopt
-    // removes it. A ring not moved for kPointerHoldMs goes by itself.
-    void set_pointer(int index, std::optional<QPointF> point_px, const QString& title);
-    static constexpr int kPointerHoldMs = 2000;
-    // The pointer windows shown now, for tests.
-    std::vector<PointerWindow*> pointer_windows() const;
+    // removes it. A ring not moved for kAimMarkHoldMs goes by itself.
+    void set_aim_mark(int index, std::optional<QPointF> point_px, const QString& title);
+    static constexpr int kAimMarkHoldMs = 2000;
+    // The aim windows shown now, for tests.
+    std::vector<AimWindow*> aim_windows() const;
 
     void set_visible(bool visible);
     bool visible() const { return visible_; }
@@ -150,8 +150,8 @@ private:
     void refocus(Entry& entry, bool aimed);
     // Every screen's refocus, when circles_shown() changes.
     void refocus_all();
-    void show_pointer(Entry& entry);
-    void expire_pointers();
+    void show_aim_mark(Entry& entry);
+    void expire_aim_marks();
     bool circles_wanted() const;
     // Region::focus with a blur and a way to grab: the painted pulse.
     bool backdrop_mode() const;
@@ -165,7 +165,7 @@ private:
     overlay::Preset preset_;
     FieldSource fields_;
     std::shared_ptr<Desktop> desktop_;
-    bool x11_windows_ = true;  // surfaces and pointer rings are Qt windows on X11
+    bool x11_windows_ = true;  // surfaces and aim rings are Qt windows on X11
     overlay::AdaptiveOverlay adaptive_;
     std::vector<std::unique_ptr<Entry>> entries_;
     std::optional<DesktopLayout> layout_;
@@ -175,7 +175,7 @@ private:
     std::optional<qint64> last_seeking_ms_;
     bool circles_applied_ = false;
     QTimer seeking_timer_;
-    QTimer pointer_timer_;  // fires when kSeekingHoldMs has passed since the last seeking
+    QTimer aim_mark_timer_;  // fires when kSeekingHoldMs has passed since the last seeking
     QTimer pulse_timer_;
     QTimer raise_timer_;
     double applied_opacity_ = -1.0;

@@ -1,4 +1,4 @@
-#include "net/api_sessions.hpp"
+#include "provider/net/api_sessions.hpp"
 
 #include <openssl/crypto.h>
 #include <openssl/rand.h>
@@ -7,7 +7,7 @@
 #include <exception>
 #include <stdexcept>
 
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

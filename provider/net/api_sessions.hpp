@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include "net/message_handler.hpp"
+#include "provider/net/message_handler.hpp"
 
 namespace umf::provider {
 

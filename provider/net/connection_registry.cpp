@@ -1,4 +1,4 @@
-#include "net/connection_registry.hpp"
+#include "provider/net/connection_registry.hpp"
 
 namespace umf::provider {
 

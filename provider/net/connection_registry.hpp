@@ -8,7 +8,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "net/connection.hpp"
+#include "provider/net/connection.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "net/detect_connection.hpp"
+#include "provider/net/detect_connection.hpp"
 
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
@@ -8,8 +8,8 @@
 #include <chrono>
 #include <string>
 
-#include "net/http_connection.hpp"
-#include "net/listener.hpp"
+#include "provider/net/http_connection.hpp"
+#include "provider/net/listener.hpp"
 
 namespace umf::provider {
 

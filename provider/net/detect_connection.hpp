@@ -10,11 +10,11 @@
 #include <boost/beast/core/flat_buffer.hpp>
 #include <memory>
 
-#include "net/tls_stream.hpp"
-#include "net/connection.hpp"
-#include "net/http_routes.hpp"
-#include "net/api_sessions.hpp"
-#include "net/message_handler.hpp"
+#include "provider/net/api_sessions.hpp"
+#include "provider/net/connection.hpp"
+#include "provider/net/http_routes.hpp"
+#include "provider/net/message_handler.hpp"
+#include "provider/net/tls_stream.hpp"
 
 namespace umf::provider {
 

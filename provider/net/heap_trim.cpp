@@ -1,8 +1,8 @@
-#include "net/heap_trim.hpp"
+#include "provider/net/heap_trim.hpp"
 
 #include <boost/asio/post.hpp>
 
-#include "net/connection_registry.hpp"
+#include "provider/net/connection_registry.hpp"
 
 #if defined(__GLIBC__)
 #include <malloc.h>

@@ -1,15 +1,15 @@
-#include "net/http_connection.hpp"
+#include "provider/net/http_connection.hpp"
 
 #include <boost/asio/post.hpp>
 #include <boost/beast/websocket/rfc6455.hpp>
 #include <limits>
 
-#include "net/http_response_headers.hpp"
-#include "protocol/http_error_body.hpp"
-#include "net/http_framing.hpp"
-#include "net/lingering_close.hpp"
-#include "net/listener.hpp"
-#include "net/websocket_connection.hpp"
+#include "provider/net/http_framing.hpp"
+#include "provider/net/http_response_headers.hpp"
+#include "provider/net/lingering_close.hpp"
+#include "provider/net/listener.hpp"
+#include "provider/net/websocket_connection.hpp"
+#include "shared/protocol/http_error_body.hpp"
 
 namespace umf::provider {
 

@@ -19,12 +19,12 @@
 #include <optional>
 #include <string>
 
-#include "net/http_exchange.hpp"
-#include "net/tls_stream.hpp"
-#include "net/connection.hpp"
-#include "net/http_routes.hpp"
-#include "net/message_handler.hpp"
-#include "net/api_sessions.hpp"
+#include "provider/net/api_sessions.hpp"
+#include "provider/net/connection.hpp"
+#include "provider/net/http_exchange.hpp"
+#include "provider/net/http_routes.hpp"
+#include "provider/net/message_handler.hpp"
+#include "provider/net/tls_stream.hpp"
 
 namespace umf::provider {
 

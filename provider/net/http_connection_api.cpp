@@ -3,7 +3,7 @@
 // which waits on a timer of the strand while a read watches for the client
 // leaving; that read becomes the start of the next request once the poll is
 // answered.
-#include "net/http_connection.hpp"
+#include "provider/net/http_connection.hpp"
 
 #include <boost/asio/post.hpp>
 

@@ -15,8 +15,8 @@
 #include <optional>
 #include <string>
 
-#include "net/tls_stream.hpp"
-#include "protocol/messages.hpp"
+#include "provider/net/tls_stream.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

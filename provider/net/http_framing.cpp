@@ -1,4 +1,4 @@
-#include "net/http_framing.hpp"
+#include "provider/net/http_framing.hpp"
 
 #include <boost/beast/core/string.hpp>
 

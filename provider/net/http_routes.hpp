@@ -10,8 +10,8 @@
 #include <boost/beast/http/parser.hpp>
 #include <functional>
 
-#include "net/http_exchange.hpp"
-#include "net/route_table.hpp"
+#include "provider/net/http_exchange.hpp"
+#include "provider/net/route_table.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "net/lingering_close.hpp"
+#include "provider/net/lingering_close.hpp"
 
 #include <array>
 #include <chrono>

@@ -1,11 +1,11 @@
-#include "net/listener.hpp"
+#include "provider/net/listener.hpp"
 
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/beast/core/bind_handler.hpp>
 #include <chrono>
 
-#include "net/detect_connection.hpp"
+#include "provider/net/detect_connection.hpp"
 
 namespace umf::provider {
 

@@ -11,9 +11,9 @@
 #include <cstdint>
 #include <memory>
 
-#include "net/connection_registry.hpp"
-#include "net/http_routes.hpp"
-#include "net/message_handler.hpp"
+#include "provider/net/connection_registry.hpp"
+#include "provider/net/http_routes.hpp"
+#include "provider/net/message_handler.hpp"
 
 namespace umf::provider {
 

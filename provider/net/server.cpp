@@ -1,11 +1,11 @@
-#include "net/server.hpp"
+#include "provider/net/server.hpp"
 
 #include <boost/asio/ip/address.hpp>
 #include <boost/asio/strand.hpp>
 #include <stdexcept>
 
-#include "net/heap_trim.hpp"
-#include "net/listener.hpp"
+#include "provider/net/heap_trim.hpp"
+#include "provider/net/listener.hpp"
 
 namespace umf::provider {
 

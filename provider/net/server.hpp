@@ -12,10 +12,10 @@
 #include <thread>
 #include <vector>
 
-#include "net/api_sessions.hpp"
-#include "net/http_routes.hpp"
-#include "net/message_handler.hpp"
-#include "trust/tls_identity.hpp"
+#include "provider/net/api_sessions.hpp"
+#include "provider/net/http_routes.hpp"
+#include "provider/net/message_handler.hpp"
+#include "provider/trust/tls_identity.hpp"
 
 namespace umf::provider {
 

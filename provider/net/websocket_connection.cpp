@@ -1,12 +1,12 @@
-#include "net/websocket_connection.hpp"
+#include "provider/net/websocket_connection.hpp"
 
 #include <boost/asio/post.hpp>
 #include <boost/beast/core/bind_handler.hpp>
 #include <boost/beast/core/buffers_to_string.hpp>
 #include <chrono>
 
-#include "net/lingering_close.hpp"
-#include "net/listener.hpp"
+#include "provider/net/lingering_close.hpp"
+#include "provider/net/listener.hpp"
 
 namespace umf::provider {
 

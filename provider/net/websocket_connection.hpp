@@ -15,9 +15,9 @@
 #include <memory>
 #include <string>
 
-#include "net/tls_stream.hpp"
-#include "net/connection.hpp"
-#include "net/message_handler.hpp"
+#include "provider/net/connection.hpp"
+#include "provider/net/message_handler.hpp"
+#include "provider/net/tls_stream.hpp"
 
 namespace umf::provider {
 

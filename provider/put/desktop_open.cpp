@@ -1,6 +1,6 @@
-#include "put/desktop_open.hpp"
+#include "provider/put/desktop_open.hpp"
 
-#include "desktop/window_placement.hpp"
+#include "provider/desktop/window_placement.hpp"
 
 #include <fcntl.h>
 #include <spawn.h>

@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "desktop/window_placement.hpp"
+#include "provider/desktop/window_placement.hpp"
 
 namespace umf::provider {
 

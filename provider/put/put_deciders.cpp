@@ -1,4 +1,4 @@
-#include "put/put_deciders.hpp"
+#include "provider/put/put_deciders.hpp"
 
 namespace umf::provider {
 

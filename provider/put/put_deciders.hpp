@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "put/put_decision.hpp"
+#include "provider/put/put_decision.hpp"
 
 namespace umf::provider {
 

@@ -12,10 +12,10 @@
 #include <optional>
 #include <string>
 
-#include "content/resolver.hpp"
-#include "protocol/messages.hpp"
+#include "provider/content/resolver.hpp"
+#include "shared/protocol/messages.hpp"
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

@@ -1,13 +1,13 @@
-#include "put/put_desk.hpp"
+#include "provider/put/put_desk.hpp"
 
 #include <cstdio>
 #include <exception>
 #include <vector>
 
-#include "common/encode_reply.hpp"
-#include "put/desktop_open.hpp"
-#include "put/put_deciders.hpp"
-#include "put/upload_sink.hpp"
+#include "provider/common/encode_reply.hpp"
+#include "provider/put/desktop_open.hpp"
+#include "provider/put/put_deciders.hpp"
+#include "provider/put/upload_sink.hpp"
 
 namespace umf::provider {
 

@@ -25,13 +25,13 @@
 #include <string_view>
 #include <thread>
 
-#include "content/resolver.hpp"
-#include "protocol/messages.hpp"
-#include "put/put_decision.hpp"
-#include "put/trusted_devices.hpp"
-#include "put/upload_table.hpp"
-#include "desktop/window_placement.hpp"
-#include "common/activity.hpp"
+#include "provider/common/activity.hpp"
+#include "provider/content/resolver.hpp"
+#include "provider/desktop/window_placement.hpp"
+#include "provider/put/put_decision.hpp"
+#include "provider/put/trusted_devices.hpp"
+#include "provider/put/upload_table.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "put/put_folder.hpp"
+#include "provider/put/put_folder.hpp"
 
 #include <pwd.h>
 #include <unistd.h>

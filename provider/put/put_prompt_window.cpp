@@ -1,4 +1,4 @@
-#include "put/put_prompt_window.hpp"
+#include "provider/put/put_prompt_window.hpp"
 
 #include <QEvent>
 #include <QFontMetrics>
@@ -12,7 +12,7 @@
 #include <climits>
 #include <cmath>
 
-#include "put/put_text.hpp"
+#include "provider/put/put_text.hpp"
 
 namespace umf::provider {
 
@@ -107,7 +107,7 @@ PutCard::PutCard(PutOffer offer, QScreen* screen, Clock::time_point deadline, st
     QSurfaceFormat format;
     format.setAlphaBufferSize(8);  // rounded corners
     setFormat(format);
-    // As the pointer ring (pointer_window.cpp): unmanaged, on top, never
+    // As the aim ring (aim_window.cpp): unmanaged, on top, never
     // focused; but it takes clicks (no WindowTransparentForInput).
     setFlags(Qt::FramelessWindowHint | Qt::WindowStaysOnTopHint | Qt::WindowDoesNotAcceptFocus | Qt::Tool |
              Qt::X11BypassWindowManagerHint);

@@ -2,8 +2,8 @@
 // place the phone points at, saying what comes from whom, with buttons
 // Open / Save / Dismiss (a URL: Open / Dismiss), a toggle "Always accept from
 // this device" when the requester named its device, and the time left until
-// the card dismisses the put by itself. Like the pointer ring
-// (overlay/pointer_window.hpp) it is an unmanaged window on top, painted by
+// the card dismisses the put by itself. Like the aim ring
+// (overlay/aim_window.hpp) it is an unmanaged window on top, painted by
 // hand with Qt Gui; unlike the ring it takes clicks, but never the keyboard
 // focus, so whatever the person is typing in keeps it. Several offers at
 // once: one card each, stacked without overlapping.
@@ -24,7 +24,7 @@
 #include <optional>
 #include <vector>
 
-#include "put/put_decision.hpp"
+#include "provider/put/put_decision.hpp"
 
 class QScreen;
 

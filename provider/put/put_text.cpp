@@ -1,4 +1,4 @@
-#include "put/put_text.hpp"
+#include "provider/put/put_text.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "put/put_decision.hpp"
+#include "provider/put/put_decision.hpp"
 
 namespace umf::provider {
 

@@ -1,11 +1,11 @@
-#include "put/trusted_devices.hpp"
+#include "provider/put/trusted_devices.hpp"
 
 #include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "io/atomic_file.hpp"
+#include "shared/io/atomic_file.hpp"
 
 namespace umf::provider {
 

@@ -19,7 +19,7 @@
 #include <string_view>
 #include <vector>
 
-#include "put/put_decision.hpp"
+#include "provider/put/put_decision.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "put/upload_route.hpp"
+#include "provider/put/upload_route.hpp"
 
 #include <boost/beast/core/string.hpp>
 #include <boost/beast/http/buffer_body.hpp>
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "common/encode_reply.hpp"
-#include "put/upload_sink.hpp"
+#include "provider/common/encode_reply.hpp"
+#include "provider/put/upload_sink.hpp"
 
 namespace umf::provider {
 

@@ -10,8 +10,8 @@
 #include <boost/beast/http/empty_body.hpp>
 #include <boost/beast/http/parser.hpp>
 
-#include "net/http_exchange.hpp"
-#include "put/put_desk.hpp"
+#include "provider/net/http_exchange.hpp"
+#include "provider/put/put_desk.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "put/upload_sink.hpp"
+#include "provider/put/upload_sink.hpp"
 
 #include <fcntl.h>
 #include <openssl/evp.h>
@@ -12,7 +12,7 @@
 #include <cstring>
 
 #include "native/sha256.hpp"
-#include "io/store_file.hpp"
+#include "shared/io/store_file.hpp"
 
 namespace umf::provider {
 

@@ -15,7 +15,7 @@
 #include <string>
 #include <string_view>
 
-#include "protocol/error_codes.hpp"
+#include "shared/protocol/error_codes.hpp"
 
 namespace umf::provider {
 

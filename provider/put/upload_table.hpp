@@ -13,10 +13,10 @@
 #include <string>
 #include <string_view>
 
-#include "content/resolver.hpp"
-#include "protocol/messages.hpp"
+#include "provider/content/resolver.hpp"
+#include "shared/protocol/messages.hpp"
 
-#include "common/one_time_links.hpp"
+#include "provider/common/one_time_links.hpp"
 
 namespace umf::provider {
 

@@ -1,12 +1,12 @@
-#include "screen/board_window.hpp"
+#include "provider/screen/board_window.hpp"
 
 #include <QPainter>
 #include <QScreen>
 #include <cmath>
 
-#include "overlay/field_mix.hpp"
-#include "overlay/pulse.hpp"
-#include "screen/screen_image.hpp"
+#include "provider/screen/screen_image.hpp"
+#include "shared/overlay/field_mix.hpp"
+#include "shared/overlay/pulse.hpp"
 
 namespace umf::provider {
 

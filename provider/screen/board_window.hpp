@@ -9,8 +9,8 @@
 #include <QRasterWindow>
 #include <QTimer>
 
-#include "overlay/preset.hpp"
-#include "screen/screen_field.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "shared/overlay/preset.hpp"
 
 class QPainter;
 class QScreen;

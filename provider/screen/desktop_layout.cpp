@@ -1,4 +1,4 @@
-#include "screen/desktop_layout.hpp"
+#include "provider/screen/desktop_layout.hpp"
 
 #include <algorithm>
 #include <climits>

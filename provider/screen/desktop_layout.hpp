@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "overlay/placement.hpp"
-#include "screen/screen_field.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "shared/overlay/placement.hpp"
 
 namespace umf::provider {
 

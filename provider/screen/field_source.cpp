@@ -1,4 +1,4 @@
-#include "screen/field_source.hpp"
+#include "provider/screen/field_source.hpp"
 
 #include <cstdio>
 #include <fstream>
@@ -6,10 +6,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "common/screen_name.hpp"
-#include "field/field_io.hpp"
-#include "field/generator.hpp"
-#include "io/atomic_file.hpp"
+#include "provider/common/screen_name.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/field/generator.hpp"
+#include "shared/io/atomic_file.hpp"
 
 namespace umf::provider {
 

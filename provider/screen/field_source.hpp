@@ -16,7 +16,7 @@
 #include <mutex>
 #include <string>
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "screen/gui_application.hpp"
+#include "provider/screen/gui_application.hpp"
 
 #include <QtGlobal>
 

@@ -1,9 +1,9 @@
-#include "screen/screen_field.hpp"
+#include "provider/screen/screen_field.hpp"
 
 #include <cmath>
 
-#include "field/default_field.hpp"
-#include "field/field_io.hpp"
+#include "shared/field/default_field.hpp"
+#include "shared/field/field_io.hpp"
 
 namespace umf::provider {
 

@@ -7,9 +7,9 @@
 
 #include <string>
 
-#include "field/field.hpp"
-#include "overlay/placement.hpp"
-#include "screen/field_source.hpp"
+#include "provider/screen/field_source.hpp"
+#include "shared/field/field.hpp"
+#include "shared/overlay/placement.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "screen/screen_image.hpp"
+#include "provider/screen/screen_image.hpp"
 
 #include <QFont>
 #include <QFontMetrics>
@@ -14,8 +14,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "overlay/background_blur.hpp"
-#include "overlay/field_mix.hpp"
+#include "shared/overlay/background_blur.hpp"
+#include "shared/overlay/field_mix.hpp"
 
 namespace umf::provider {
 

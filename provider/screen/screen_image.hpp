@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "board/board.hpp"
-#include "screen/screen_field.hpp"
+#include "provider/board/board.hpp"
+#include "provider/screen/screen_field.hpp"
 
 namespace umf::provider {
 

@@ -1,6 +1,6 @@
-#include "service/console_activity.hpp"
+#include "provider/service/console_activity.hpp"
 
-#include "put/put_text.hpp"
+#include "provider/put/put_text.hpp"
 
 namespace umf::provider {
 

@@ -9,7 +9,7 @@
 #include <ostream>
 #include <string>
 
-#include "common/activity.hpp"
+#include "provider/common/activity.hpp"
 
 namespace umf::provider {
 

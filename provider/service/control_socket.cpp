@@ -1,4 +1,4 @@
-#include "service/control_socket.hpp"
+#include "provider/service/control_socket.hpp"
 
 #include <algorithm>
 
@@ -16,9 +16,9 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "browser/browser_status.hpp"
-#include "put/put_text.hpp"
-#include "common/owner_socket.hpp"
+#include "provider/browser/browser_status.hpp"
+#include "provider/common/owner_socket.hpp"
+#include "provider/put/put_text.hpp"
 
 namespace umf::provider {
 

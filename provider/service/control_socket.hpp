@@ -28,10 +28,10 @@
 #include <thread>
 #include <vector>
 
-#include "browser/browser_link.hpp"
-#include "content/shared_items.hpp"
-#include "io/runtime_dir.hpp"  // control_socket_path
-#include "put/put_deciders.hpp"
+#include "provider/browser/browser_link.hpp"
+#include "provider/content/shared_items.hpp"
+#include "provider/put/put_deciders.hpp"
+#include "shared/io/runtime_dir.hpp"  // control_socket_path
 
 namespace umf::provider {
 

@@ -1,6 +1,6 @@
-#include "service/pairing.hpp"
+#include "provider/service/pairing.hpp"
 
-#include "protocol/pairing_url.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 #include <openssl/crypto.h>
 #include <openssl/evp.h>
@@ -8,7 +8,7 @@
 
 #include <stdexcept>
 
-#include "common/config_dir.hpp"
+#include "provider/common/config_dir.hpp"
 
 namespace umf::provider {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "common/base64url.hpp"
+#include "provider/common/base64url.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "service/pairing_qr.hpp"
+#include "provider/service/pairing_qr.hpp"
 
 #include <qrencode.h>
 

@@ -1,12 +1,12 @@
-#include "service/service.hpp"
+#include "provider/service/service.hpp"
 
 #include <cstdio>
 #include <stdexcept>
 #include <type_traits>
 
-#include "common/screen_name.hpp"
-#include "overlay/preset.hpp"
-#include "service/pairing.hpp"
+#include "provider/common/screen_name.hpp"
+#include "provider/service/pairing.hpp"
+#include "shared/overlay/preset.hpp"
 
 #ifndef UMF_PROVIDER_VERSION
 #define UMF_PROVIDER_VERSION "0.0.0"

@@ -18,20 +18,20 @@
 #include <string_view>
 #include <vector>
 
-#include "content/download_table.hpp"
-#include "content/file_facts.hpp"
-#include "content/resolver.hpp"
-#include "discovery/nearby_screens.hpp"
-#include "screen/desktop_layout.hpp"
-#include "overlay/preset.hpp"
-#include "common/activity.hpp"
-#include "net/message_handler.hpp"
-#include "overlay/placement.hpp"
-#include "protocol/messages.hpp"
-#include "put/put_decision.hpp"
-#include "put/put_desk.hpp"
-#include "service/rate_limit.hpp"
-#include "service/static_site.hpp"
+#include "provider/common/activity.hpp"
+#include "provider/content/download_table.hpp"
+#include "provider/content/file_facts.hpp"
+#include "provider/content/resolver.hpp"
+#include "provider/discovery/nearby_screens.hpp"
+#include "provider/net/message_handler.hpp"
+#include "provider/put/put_decision.hpp"
+#include "provider/put/put_desk.hpp"
+#include "provider/screen/desktop_layout.hpp"
+#include "provider/service/rate_limit.hpp"
+#include "provider/service/static_site.hpp"
+#include "shared/overlay/placement.hpp"
+#include "shared/overlay/preset.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::provider {
 

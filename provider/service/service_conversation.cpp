@@ -3,8 +3,8 @@
 #include <memory>
 #include <utility>
 
-#include "common/encode_reply.hpp"
-#include "service/service.hpp"
+#include "provider/common/encode_reply.hpp"
+#include "provider/service/service.hpp"
 
 namespace umf::provider {
 

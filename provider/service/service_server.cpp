@@ -1,11 +1,11 @@
-#include "service/service_server.hpp"
+#include "provider/service/service_server.hpp"
 
 #include <utility>
 
-#include "content/download_route.hpp"
-#include "discovery/nearby_routes.hpp"
-#include "put/upload_route.hpp"
-#include "service/site_route.hpp"
+#include "provider/content/download_route.hpp"
+#include "provider/discovery/nearby_routes.hpp"
+#include "provider/put/upload_route.hpp"
+#include "provider/service/site_route.hpp"
 
 namespace umf::provider {
 

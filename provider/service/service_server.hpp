@@ -4,9 +4,9 @@
 
 #include <memory>
 
-#include "net/http_routes.hpp"
-#include "net/server.hpp"
-#include "service/service.hpp"
+#include "provider/net/http_routes.hpp"
+#include "provider/net/server.hpp"
+#include "provider/service/service.hpp"
 
 namespace umf::provider {
 

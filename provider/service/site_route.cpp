@@ -1,10 +1,10 @@
-#include "service/site_route.hpp"
+#include "provider/service/site_route.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <string>
 
-#include "net/http_response_headers.hpp"
+#include "provider/net/http_response_headers.hpp"
 
 namespace umf::provider {
 

@@ -3,8 +3,8 @@
 // which a share reaches only when the page's service worker did not take it.
 #pragma once
 
-#include "net/http_exchange.hpp"
-#include "service/static_site.hpp"
+#include "provider/net/http_exchange.hpp"
+#include "provider/service/static_site.hpp"
 
 namespace umf::provider {
 

@@ -1,10 +1,10 @@
-#include "service/static_site.hpp"
+#include "provider/service/static_site.hpp"
 
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
 
-#include "content/file_facts.hpp"
+#include "provider/content/file_facts.hpp"
 
 namespace umf::provider {
 

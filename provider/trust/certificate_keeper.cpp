@@ -1,6 +1,6 @@
-#include "trust/certificate_keeper.hpp"
+#include "provider/trust/certificate_keeper.hpp"
 
-#include "trust/tls_identity_store.hpp"
+#include "provider/trust/tls_identity_store.hpp"
 
 namespace umf::provider {
 

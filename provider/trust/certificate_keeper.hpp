@@ -13,8 +13,8 @@
 #include <string>
 #include <thread>
 
-#include "trust/tls_identity.hpp"
-#include "trust/serving_names.hpp"
+#include "provider/trust/serving_names.hpp"
+#include "provider/trust/tls_identity.hpp"
 
 namespace umf::provider {
 

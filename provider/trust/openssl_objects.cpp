@@ -1,4 +1,4 @@
-#include "trust/openssl_objects.hpp"
+#include "provider/trust/openssl_objects.hpp"
 
 #include <openssl/err.h>
 #include <openssl/pem.h>
@@ -6,7 +6,7 @@
 
 #include "native/certificate_fingerprint.hpp"
 #include "native/openssl_error.hpp"
-#include "trust/tls_identity.hpp"
+#include "provider/trust/tls_identity.hpp"
 
 namespace umf::provider {
 

@@ -1,8 +1,8 @@
-#include "trust/root_authority.hpp"
+#include "provider/trust/root_authority.hpp"
 
 #include <openssl/x509.h>
 
-#include "trust/tls_identity.hpp"
+#include "provider/trust/tls_identity.hpp"
 
 namespace umf::provider {
 

@@ -10,7 +10,7 @@
 #include <chrono>
 #include <string>
 
-#include "trust/openssl_objects.hpp"
+#include "provider/trust/openssl_objects.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "trust/root_export.hpp"
+#include "provider/trust/root_export.hpp"
 
 #include <openssl/evp.h>
 

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "trust/root_authority.hpp"
+#include "provider/trust/root_authority.hpp"
 
 namespace umf::provider {
 

@@ -1,10 +1,10 @@
-#include "trust/serving_certificate.hpp"
+#include "provider/trust/serving_certificate.hpp"
 
 #include <openssl/x509v3.h>
 
 #include <algorithm>
 
-#include "trust/tls_identity.hpp"
+#include "provider/trust/tls_identity.hpp"
 
 namespace umf::provider {
 

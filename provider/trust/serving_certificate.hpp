@@ -7,8 +7,8 @@
 #include <chrono>
 #include <string>
 
-#include "trust/root_authority.hpp"
-#include "trust/serving_names.hpp"
+#include "provider/trust/root_authority.hpp"
+#include "provider/trust/serving_names.hpp"
 
 namespace umf::provider {
 

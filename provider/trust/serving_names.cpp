@@ -1,4 +1,4 @@
-#include "trust/serving_names.hpp"
+#include "provider/trust/serving_names.hpp"
 
 #include <arpa/inet.h>
 #include <ifaddrs.h>

@@ -1,4 +1,4 @@
-#include "trust/tls_identity.hpp"
+#include "provider/trust/tls_identity.hpp"
 
 #include "native/openssl_error.hpp"
 

@@ -1,7 +1,7 @@
-#include "trust/tls_identity_store.hpp"
+#include "provider/trust/tls_identity_store.hpp"
 
-#include "common/config_dir.hpp"
-#include "trust/serving_certificate.hpp"
+#include "provider/common/config_dir.hpp"
+#include "provider/trust/serving_certificate.hpp"
 
 namespace umf::provider {
 

@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <string>
 
-#include "trust/tls_identity.hpp"
-#include "trust/root_authority.hpp"
-#include "trust/serving_names.hpp"
+#include "provider/trust/root_authority.hpp"
+#include "provider/trust/serving_names.hpp"
+#include "provider/trust/tls_identity.hpp"
 
 namespace umf::provider {
 

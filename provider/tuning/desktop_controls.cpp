@@ -1,9 +1,9 @@
-#include "tuning/desktop_controls.hpp"
+#include "provider/tuning/desktop_controls.hpp"
 
 #include <QPainter>
 #include <QPixmap>
 
-#include "service/pairing_qr.hpp"
+#include "provider/service/pairing_qr.hpp"
 
 namespace umf::provider {
 

@@ -11,10 +11,10 @@
 #include <memory>
 #include <string>
 
-#include "field_overlay/overlay_manager.hpp"
-#include "tuning/preset_store.hpp"
-#include "tuning/tray_menu.hpp"
-#include "tuning/tuning_window.hpp"
+#include "provider/field_overlay/overlay_manager.hpp"
+#include "provider/tuning/preset_store.hpp"
+#include "provider/tuning/tray_menu.hpp"
+#include "provider/tuning/tuning_window.hpp"
 
 namespace umf::provider {
 

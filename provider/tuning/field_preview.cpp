@@ -1,4 +1,4 @@
-#include "tuning/field_preview.hpp"
+#include "provider/tuning/field_preview.hpp"
 
 #include <QGuiApplication>
 #include <QPainter>
@@ -7,12 +7,12 @@
 #include <QTimer>
 #include <cmath>
 
-#include "field/default_field.hpp"
-#include "field/field_io.hpp"
-#include "overlay/background_blur.hpp"
-#include "overlay/field_mix.hpp"
-#include "overlay/placement.hpp"
-#include "overlay/pulse.hpp"
+#include "shared/field/default_field.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/overlay/background_blur.hpp"
+#include "shared/overlay/field_mix.hpp"
+#include "shared/overlay/placement.hpp"
+#include "shared/overlay/pulse.hpp"
 
 namespace umf::provider {
 

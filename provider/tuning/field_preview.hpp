@@ -10,8 +10,8 @@
 #include <QLabel>
 #include <optional>
 
-#include "field/field.hpp"
-#include "overlay/preset.hpp"
+#include "shared/field/field.hpp"
+#include "shared/overlay/preset.hpp"
 
 class QTimer;
 

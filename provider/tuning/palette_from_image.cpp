@@ -1,4 +1,4 @@
-#include "tuning/palette_from_image.hpp"
+#include "provider/tuning/palette_from_image.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,4 +1,4 @@
-#include "tuning/preset_store.hpp"
+#include "provider/tuning/preset_store.hpp"
 
 #include <algorithm>
 #include <cstdlib>

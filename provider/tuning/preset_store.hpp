@@ -11,7 +11,7 @@
 #include <string_view>
 #include <vector>
 
-#include "overlay/preset.hpp"
+#include "shared/overlay/preset.hpp"
 
 namespace umf::provider {
 

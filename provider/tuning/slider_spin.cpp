@@ -1,4 +1,4 @@
-#include "tuning/slider_spin.hpp"
+#include "provider/tuning/slider_spin.hpp"
 
 #include <QDoubleSpinBox>
 #include <QHBoxLayout>

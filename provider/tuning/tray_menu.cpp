@@ -1,4 +1,4 @@
-#include "tuning/tray_menu.hpp"
+#include "provider/tuning/tray_menu.hpp"
 
 #include <QAction>
 #include <QActionGroup>

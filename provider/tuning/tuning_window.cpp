@@ -1,4 +1,4 @@
-#include "tuning/tuning_window.hpp"
+#include "provider/tuning/tuning_window.hpp"
 
 #include <QColorDialog>
 #include <QComboBox>
@@ -16,9 +16,9 @@
 #include <QVBoxLayout>
 #include <algorithm>
 
-#include "tuning/field_preview.hpp"
-#include "tuning/palette_from_image.hpp"
-#include "tuning/slider_spin.hpp"
+#include "provider/tuning/field_preview.hpp"
+#include "provider/tuning/palette_from_image.hpp"
+#include "provider/tuning/slider_spin.hpp"
 
 namespace umf::provider {
 

@@ -13,8 +13,8 @@
 #include <functional>
 #include <string>
 
-#include "overlay/preset.hpp"
-#include "tuning/preset_store.hpp"
+#include "provider/tuning/preset_store.hpp"
+#include "shared/overlay/preset.hpp"
 
 class QComboBox;
 class QFormLayout;

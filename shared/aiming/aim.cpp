@@ -1,4 +1,4 @@
-#include "aiming/aim.hpp"
+#include "shared/aiming/aim.hpp"
 
 #include <algorithm>
 #include <cmath>

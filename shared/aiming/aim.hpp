@@ -7,8 +7,8 @@
 #include <Eigen/Core>
 #include <optional>
 
-#include "detect/detector.hpp"
-#include "protocol/messages.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::aiming {
 

@@ -1,4 +1,4 @@
-#include "cli/args.hpp"
+#include "shared/cli/args.hpp"
 
 namespace umf::cli {
 

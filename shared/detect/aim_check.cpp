@@ -1,4 +1,4 @@
-#include "detect/aim_check.hpp"
+#include "shared/detect/aim_check.hpp"
 
 #include <cmath>
 

@@ -8,9 +8,9 @@
 
 #include <Eigen/Core>
 
-#include "detect/module_grid.hpp"
-#include "detect/placement_vote.hpp"
-#include "detect/window_index.hpp"
+#include "shared/detect/module_grid.hpp"
+#include "shared/detect/placement_vote.hpp"
+#include "shared/detect/window_index.hpp"
 
 namespace umf {
 

@@ -1,4 +1,4 @@
-#include "detect/classify.hpp"
+#include "shared/detect/classify.hpp"
 
 #include <algorithm>
 #include <cmath>

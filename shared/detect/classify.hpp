@@ -6,8 +6,8 @@
 
 #include <Eigen/Core>
 
-#include "detect/image.hpp"
-#include "detect/module_grid.hpp"
+#include "shared/detect/image.hpp"
+#include "shared/detect/module_grid.hpp"
 
 namespace umf {
 

@@ -1,7 +1,7 @@
 // Steps 5 to 8 of detection, from a candidate grid to a confirmed place, and
 // the video path (follow). The search that finds candidate grids is in
 // detector_search.cpp.
-#include "detect/detector.hpp"
+#include "shared/detect/detector.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -10,10 +10,10 @@
 #include <cmath>
 #include <optional>
 
-#include "detect/aim_check.hpp"
-#include "detect/field_likeness.hpp"
-#include "detect/homography.hpp"
-#include "detect/stage_time.hpp"
+#include "shared/detect/aim_check.hpp"
+#include "shared/detect/field_likeness.hpp"
+#include "shared/detect/homography.hpp"
+#include "shared/detect/stage_time.hpp"
 
 namespace umf {
 

@@ -25,17 +25,17 @@
 #include <string>
 #include <vector>
 
-#include "detect/aim_check.hpp"
-#include "detect/classify.hpp"
-#include "detect/edgels.hpp"
-#include "detect/field_likeness.hpp"
-#include "detect/grid_lines.hpp"
-#include "detect/image.hpp"
-#include "detect/lattice.hpp"
-#include "detect/placement_vote.hpp"
-#include "detect/refine.hpp"
-#include "detect/vanishing_points.hpp"
-#include "detect/window_index.hpp"
+#include "shared/detect/aim_check.hpp"
+#include "shared/detect/classify.hpp"
+#include "shared/detect/edgels.hpp"
+#include "shared/detect/field_likeness.hpp"
+#include "shared/detect/grid_lines.hpp"
+#include "shared/detect/image.hpp"
+#include "shared/detect/lattice.hpp"
+#include "shared/detect/placement_vote.hpp"
+#include "shared/detect/refine.hpp"
+#include "shared/detect/vanishing_points.hpp"
+#include "shared/detect/window_index.hpp"
 
 namespace umf {
 

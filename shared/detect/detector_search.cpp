@@ -10,10 +10,10 @@
 #include <limits>
 #include <optional>
 
-#include "detect/detector.hpp"
-#include "detect/field_edgels.hpp"
-#include "detect/homography.hpp"
-#include "detect/stage_time.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/detect/field_edgels.hpp"
+#include "shared/detect/homography.hpp"
+#include "shared/detect/stage_time.hpp"
 
 namespace umf {
 

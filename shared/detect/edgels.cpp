@@ -1,4 +1,4 @@
-#include "detect/edgels.hpp"
+#include "shared/detect/edgels.hpp"
 
 #include <algorithm>
 #include <cmath>

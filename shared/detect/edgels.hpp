@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "detect/image.hpp"
+#include "shared/detect/image.hpp"
 
 namespace umf {
 

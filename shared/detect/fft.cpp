@@ -1,4 +1,4 @@
-#include "detect/fft.hpp"
+#include "shared/detect/fft.hpp"
 
 #include <cmath>
 #include <stdexcept>

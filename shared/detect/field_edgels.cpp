@@ -1,4 +1,4 @@
-#include "detect/field_edgels.hpp"
+#include "shared/detect/field_edgels.hpp"
 
 #include <algorithm>
 #include <array>

@@ -9,7 +9,7 @@
 
 #include <vector>
 
-#include "detect/edgels.hpp"
+#include "shared/detect/edgels.hpp"
 
 namespace umf {
 

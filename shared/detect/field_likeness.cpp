@@ -1,4 +1,4 @@
-#include "detect/field_likeness.hpp"
+#include "shared/detect/field_likeness.hpp"
 
 #include <algorithm>
 #include <array>

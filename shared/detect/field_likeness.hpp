@@ -6,8 +6,8 @@
 // this field's places shows another screen's field.
 #pragma once
 
-#include "detect/module_grid.hpp"
-#include "detect/placement_vote.hpp"
+#include "shared/detect/module_grid.hpp"
+#include "shared/detect/placement_vote.hpp"
 
 namespace umf {
 

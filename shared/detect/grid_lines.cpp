@@ -1,4 +1,4 @@
-#include "detect/grid_lines.hpp"
+#include "shared/detect/grid_lines.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>

@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "detect/edgels.hpp"
-#include "detect/vanishing_points.hpp"
+#include "shared/detect/edgels.hpp"
+#include "shared/detect/vanishing_points.hpp"
 
 namespace umf {
 

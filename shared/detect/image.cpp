@@ -1,4 +1,4 @@
-#include "detect/image.hpp"
+#include "shared/detect/image.hpp"
 
 #include <algorithm>
 #include <array>

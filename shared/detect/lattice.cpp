@@ -1,10 +1,10 @@
-#include "detect/lattice.hpp"
+#include "shared/detect/lattice.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 
-#include "detect/fft.hpp"
+#include "shared/detect/fft.hpp"
 
 namespace umf {
 namespace {

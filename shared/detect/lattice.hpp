@@ -13,7 +13,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "detect/image.hpp"
+#include "shared/detect/image.hpp"
 
 namespace umf {
 

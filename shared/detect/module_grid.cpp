@@ -1,4 +1,4 @@
-#include "detect/module_grid.hpp"
+#include "shared/detect/module_grid.hpp"
 
 namespace umf {
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "field/window_code.hpp"
+#include "shared/field/window_code.hpp"
 
 namespace umf {
 

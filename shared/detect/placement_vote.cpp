@@ -1,4 +1,4 @@
-#include "detect/placement_vote.hpp"
+#include "shared/detect/placement_vote.hpp"
 
 #include <algorithm>
 #include <cmath>

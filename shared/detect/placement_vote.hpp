@@ -4,8 +4,8 @@
 // A wrong place is worse than none, so the thresholds lean to caution.
 #pragma once
 
-#include "detect/module_grid.hpp"
-#include "detect/window_index.hpp"
+#include "shared/detect/module_grid.hpp"
+#include "shared/detect/window_index.hpp"
 
 namespace umf {
 

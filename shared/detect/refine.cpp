@@ -1,4 +1,4 @@
-#include "detect/refine.hpp"
+#include "shared/detect/refine.hpp"
 
 #include <Eigen/LU>
 #include <algorithm>

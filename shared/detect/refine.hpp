@@ -8,9 +8,9 @@
 
 #include <Eigen/Core>
 
-#include "detect/homography.hpp"
-#include "detect/image.hpp"
-#include "field/field.hpp"
+#include "shared/detect/homography.hpp"
+#include "shared/detect/image.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf {
 

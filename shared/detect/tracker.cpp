@@ -1,4 +1,4 @@
-#include "detect/tracker.hpp"
+#include "shared/detect/tracker.hpp"
 
 #include <Eigen/LU>
 

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "detect/detector.hpp"
+#include "shared/detect/detector.hpp"
 
 namespace umf {
 

@@ -1,4 +1,4 @@
-#include "detect/vanishing_points.hpp"
+#include "shared/detect/vanishing_points.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>

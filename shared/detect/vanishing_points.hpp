@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "detect/edgels.hpp"
+#include "shared/detect/edgels.hpp"
 
 namespace umf {
 

@@ -1,4 +1,4 @@
-#include "detect/window_index.hpp"
+#include "shared/detect/window_index.hpp"
 
 #include <stdexcept>
 #include <string>

@@ -7,8 +7,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "field/field.hpp"
-#include "field/window_code.hpp"
+#include "shared/field/field.hpp"
+#include "shared/field/window_code.hpp"
 
 namespace umf {
 

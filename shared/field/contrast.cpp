@@ -1,4 +1,4 @@
-#include "field/contrast.hpp"
+#include "shared/field/contrast.hpp"
 
 #include <cstdlib>
 

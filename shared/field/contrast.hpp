@@ -3,7 +3,7 @@
 // invisible and small steps between shades are easy to misread.
 #pragma once
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf {
 

@@ -1,10 +1,10 @@
-#include "field/contrast_polish.hpp"
+#include "shared/field/contrast_polish.hpp"
 
 #include <algorithm>
 #include <random>
 #include <vector>
 
-#include "field/contrast.hpp"
+#include "shared/field/contrast.hpp"
 
 namespace umf {
 

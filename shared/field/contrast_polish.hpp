@@ -5,8 +5,8 @@
 
 #include <cstdint>
 
-#include "field/field.hpp"
-#include "field/window_classes.hpp"
+#include "shared/field/field.hpp"
+#include "shared/field/window_classes.hpp"
 
 namespace umf {
 

@@ -1,4 +1,4 @@
-#include "field/default_field.hpp"
+#include "shared/field/default_field.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 #include <algorithm>
 #include <cmath>

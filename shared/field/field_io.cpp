@@ -1,11 +1,11 @@
-#include "field/field_io.hpp"
+#include "shared/field/field_io.hpp"
 
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "io/atomic_file.hpp"
+#include "shared/io/atomic_file.hpp"
 
 namespace umf {
 

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf {
 

@@ -1,4 +1,4 @@
-#include "field/generator.hpp"
+#include "shared/field/generator.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,9 +7,9 @@
 #include <thread>
 #include <vector>
 
-#include "field/contrast_polish.hpp"
-#include "field/sequential_search.hpp"
-#include "field/window_classes.hpp"
+#include "shared/field/contrast_polish.hpp"
+#include "shared/field/sequential_search.hpp"
+#include "shared/field/window_classes.hpp"
 
 namespace umf {
 

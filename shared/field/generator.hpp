@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf {
 

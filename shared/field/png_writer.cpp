@@ -1,4 +1,4 @@
-#include "field/png_writer.hpp"
+#include "shared/field/png_writer.hpp"
 
 #include <algorithm>
 #include <cmath>

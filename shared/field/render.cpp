@@ -1,11 +1,11 @@
-#include "field/render.hpp"
+#include "shared/field/render.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <stdexcept>
 
-#include "field/render_internal.hpp"
+#include "shared/field/render_internal.hpp"
 
 namespace umf {
 

@@ -23,7 +23,7 @@
 
 #include <string>
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf {
 

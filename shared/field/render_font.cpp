@@ -1,7 +1,7 @@
 // A 5x7 pixel font for printable ASCII, drawn for this project, so that PNG
 // captions need no font files or font libraries. Lower-case letters with
 // descenders sit one row higher, as on character LCDs.
-#include "field/render_internal.hpp"
+#include "shared/field/render_internal.hpp"
 
 namespace umf::render_detail {
 

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <map>
 
-#include "field/render_internal.hpp"
-#include "io/pdf_objects.hpp"
+#include "shared/field/render_internal.hpp"
+#include "shared/io/pdf_objects.hpp"
 
 namespace umf::render_detail {
 

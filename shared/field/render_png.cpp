@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "field/render_internal.hpp"
+#include "shared/field/render_internal.hpp"
 
 namespace umf::render_detail {
 

@@ -2,7 +2,7 @@
 // coordinates and the physical size lives only in the width/height attributes.
 #include <map>
 
-#include "field/render_internal.hpp"
+#include "shared/field/render_internal.hpp"
 
 namespace umf::render_detail {
 

@@ -1,4 +1,4 @@
-#include "field/sequential_search.hpp"
+#include "shared/field/sequential_search.hpp"
 
 #include <algorithm>
 #include <limits>

@@ -8,8 +8,8 @@
 #include <random>
 #include <vector>
 
-#include "field/field.hpp"
-#include "field/window_classes.hpp"
+#include "shared/field/field.hpp"
+#include "shared/field/window_classes.hpp"
 
 namespace umf {
 

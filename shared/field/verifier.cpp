@@ -1,9 +1,9 @@
-#include "field/verifier.hpp"
+#include "shared/field/verifier.hpp"
 
 #include <stdexcept>
 #include <unordered_map>
 
-#include "field/window_code.hpp"
+#include "shared/field/window_code.hpp"
 
 namespace umf {
 

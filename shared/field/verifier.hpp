@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf {
 

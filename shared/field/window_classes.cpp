@@ -1,4 +1,4 @@
-#include "field/window_classes.hpp"
+#include "shared/field/window_classes.hpp"
 
 namespace umf {
 

@@ -8,7 +8,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "field/window_code.hpp"
+#include "shared/field/window_code.hpp"
 
 namespace umf {
 

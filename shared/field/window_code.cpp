@@ -1,4 +1,4 @@
-#include "field/window_code.hpp"
+#include "shared/field/window_code.hpp"
 
 #include <algorithm>
 #include <stdexcept>

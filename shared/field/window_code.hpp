@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf {
 

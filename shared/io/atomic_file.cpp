@@ -1,4 +1,4 @@
-#include "io/atomic_file.hpp"
+#include "shared/io/atomic_file.hpp"
 
 #include <cstdio>
 #include <fstream>

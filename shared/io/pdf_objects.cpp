@@ -1,4 +1,4 @@
-#include "io/pdf_objects.hpp"
+#include "shared/io/pdf_objects.hpp"
 
 #include <cstdio>
 

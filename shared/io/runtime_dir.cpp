@@ -1,4 +1,4 @@
-#include "io/runtime_dir.hpp"
+#include "shared/io/runtime_dir.hpp"
 
 #include <unistd.h>
 

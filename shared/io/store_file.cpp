@@ -1,4 +1,4 @@
-#include "io/store_file.hpp"
+#include "shared/io/store_file.hpp"
 
 #include <fcntl.h>
 #include <stdio.h>
@@ -7,7 +7,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "io/unique_name.hpp"
+#include "shared/io/unique_name.hpp"
 
 namespace umf::io {
 

@@ -1,9 +1,9 @@
-#include "overlay/adaptive.hpp"
+#include "shared/overlay/adaptive.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "overlay/pulse.hpp"
+#include "shared/overlay/pulse.hpp"
 
 namespace umf::overlay {
 

@@ -11,7 +11,7 @@
 
 #include <optional>
 
-#include "overlay/preset.hpp"
+#include "shared/overlay/preset.hpp"
 
 namespace umf::overlay {
 

@@ -1,4 +1,4 @@
-#include "overlay/background_blur.hpp"
+#include "shared/overlay/background_blur.hpp"
 
 #include <algorithm>
 #include <array>

@@ -8,8 +8,8 @@
 // a buffer that cannot be what it says is reported by the return value.
 #pragma once
 
-#include "overlay/field_mix.hpp"
-#include "overlay/placement.hpp"
+#include "shared/overlay/field_mix.hpp"
+#include "shared/overlay/placement.hpp"
 
 namespace umf::overlay {
 

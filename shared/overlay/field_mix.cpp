@@ -1,4 +1,4 @@
-#include "overlay/field_mix.hpp"
+#include "shared/overlay/field_mix.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "field/field.hpp"
-#include "overlay/placement.hpp"
+#include "shared/field/field.hpp"
+#include "shared/overlay/placement.hpp"
 
 namespace umf::overlay {
 

@@ -1,4 +1,4 @@
-#include "overlay/placement.hpp"
+#include "shared/overlay/placement.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "overlay/preset.hpp"
+#include "shared/overlay/preset.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "field/field.hpp"
-#include "io/atomic_file.hpp"
+#include "shared/field/field.hpp"
+#include "shared/io/atomic_file.hpp"
 
 namespace umf::overlay {
 

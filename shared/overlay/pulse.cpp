@@ -1,4 +1,4 @@
-#include "overlay/pulse.hpp"
+#include "shared/overlay/pulse.hpp"
 
 #include <cmath>
 #include <numbers>

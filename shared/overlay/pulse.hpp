@@ -4,7 +4,7 @@
 
 #include <optional>
 
-#include "overlay/preset.hpp"
+#include "shared/overlay/preset.hpp"
 
 namespace umf::overlay {
 

@@ -1,4 +1,4 @@
-#include "protocol/http_error_body.hpp"
+#include "shared/protocol/http_error_body.hpp"
 
 #include <nlohmann/json.hpp>
 

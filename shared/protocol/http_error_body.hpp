@@ -11,7 +11,7 @@
 #include <string>
 #include <string_view>
 
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::protocol {
 

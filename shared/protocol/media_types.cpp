@@ -1,4 +1,4 @@
-#include "protocol/media_types.hpp"
+#include "shared/protocol/media_types.hpp"
 
 #include <algorithm>
 #include <cctype>

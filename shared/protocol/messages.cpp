@@ -1,4 +1,4 @@
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 #include <cctype>
 #include <cmath>
@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
-#include "field/field_io.hpp"
-#include "protocol/json_checks.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/protocol/json_checks.hpp"
 
 namespace umf::protocol {
 

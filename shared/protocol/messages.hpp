@@ -22,8 +22,8 @@
 #include <variant>
 #include <vector>
 
-#include "field/field.hpp"
-#include "protocol/error_codes.hpp"
+#include "shared/field/field.hpp"
+#include "shared/protocol/error_codes.hpp"
 
 namespace umf::protocol {
 

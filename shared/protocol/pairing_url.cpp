@@ -1,4 +1,4 @@
-#include "protocol/pairing_url.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 #include <arpa/inet.h>
 

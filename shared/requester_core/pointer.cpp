@@ -1,11 +1,11 @@
-#include "requester_core/pointer.hpp"
+#include "shared/requester_core/pointer.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "aiming/aim.hpp"
-#include "protocol/media_types.hpp"
+#include "shared/aiming/aim.hpp"
+#include "shared/protocol/media_types.hpp"
 
 namespace umf::requester_core {
 

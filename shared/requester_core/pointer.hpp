@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::requester_core {
 

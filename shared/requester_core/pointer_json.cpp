@@ -1,8 +1,8 @@
-#include "requester_core/pointer_json.hpp"
+#include "shared/requester_core/pointer_json.hpp"
 
 #include <stdexcept>
 
-#include "protocol/http_error_body.hpp"
+#include "shared/protocol/http_error_body.hpp"
 
 namespace umf::requester_core {
 

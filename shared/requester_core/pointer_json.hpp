@@ -22,7 +22,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "requester_core/pointer.hpp"
+#include "shared/requester_core/pointer.hpp"
 
 namespace umf::requester_core {
 

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
 """Rules of docs/ARCHITECTURE.md, checked on the sources.
 
-include-graph: every quoted #include is resolved the way the build resolves it (the
-including file's folder, its component's include root, shared/, the
-repository root) to the folder it lands in, and every arrow must point down:
+include-graph: every quoted #include names its file from the repository root
+(the build's one include root: "shared/protocol/messages.hpp",
+"provider/net/server.hpp", "tests/support/temp_dir.hpp"), and every arrow must
+point down:
   - between components: shared/ includes only itself; native/ and tools/
     shared/; provider/, requester/, browser/host/ and web/wasm/ shared/ and
     native/, never each other;
@@ -40,26 +41,25 @@ COMPONENTS = {
     'browser': ['shared', 'native'],
     'web': ['shared'],
 }
-# Where a component's own "folder/file.hpp" includes start.
-INCLUDE_ROOTS = {'shared': 'shared', 'provider': 'provider'}
 QUOTED = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 ANGLED = re.compile(r'^\s*#\s*include\s+<([^>]+)>')
 SOURCE = ('.hpp', '.cpp', '.h')
+# Headers made by the build (wayland-scanner's client code), on its own include path.
+GENERATED = re.compile(r'^[a-z0-9-]+-client-protocol\.h$')
 
 
 def resolve(repo, path, target):
-    """The repository-relative file an include names, or None (generated code)."""
-    here = os.path.dirname(path)
-    component = path.split('/')[0]
-    candidates = [os.path.join(here, target)]
-    if component in INCLUDE_ROOTS:
-        candidates.append(os.path.join(INCLUDE_ROOTS[component], target))
-    candidates += [os.path.join('shared', target), target]
-    for c in candidates:
-        c = os.path.normpath(c)
-        if os.path.isfile(os.path.join(repo, c)):
-            return c
-    return None
+    """The repository-relative file an include names: (file, rooted), or
+    (None, True) for generated code. Every include names its file from the
+    repository root; one that resolves only from its own folder is not rooted."""
+    if os.path.isfile(os.path.join(repo, target)) and os.path.normpath(target) == target:
+        return target, True
+    here = os.path.normpath(os.path.join(os.path.dirname(path), target))
+    if os.path.isfile(os.path.join(repo, here)):
+        return here, False
+    if GENERATED.search(target):
+        return None, True
+    return target, False
 
 
 def folder(path):
@@ -73,7 +73,7 @@ def folder(path):
 def check(repo):
     problems = []
     arrows = 0
-    for component in COMPONENTS:
+    for component in list(COMPONENTS) + ['tests']:
         for dirpath, dirnames, files in os.walk(os.path.join(repo, component)):
             dirnames[:] = [d for d in dirnames if d not in ('node_modules', 'extension')]
             for name in files:
@@ -85,19 +85,26 @@ def check(repo):
                 for number, line in enumerate(lines, 1):
                     where = f'{path}:{number}'
                     angled = ANGLED.match(line)
-                    if angled:
+                    if angled and component != 'tests':
                         header = angled.group(1)
                         if re.match(r'Q[A-Za-z]+$|Qt[A-Za-z]+/', header) and component != 'provider':
                             problems.append(f'{where}: Qt (<{header}>) outside provider/')
                         if header.startswith('opencv2/') and component != 'requester':
                             problems.append(f'{where}: OpenCV (<{header}>) outside requester/')
+                    if angled:
                         continue
                     quoted = QUOTED.match(line)
                     if not quoted:
                         continue
-                    target = resolve(repo, path, quoted.group(1))
+                    target, rooted = resolve(repo, path, quoted.group(1))
                     if target is None:
-                        continue  # generated (Wayland protocol code, emscripten's module)
+                        continue  # generated: Wayland protocol code
+                    if not rooted:
+                        problems.append(f'{where}: "{quoted.group(1)}" is not named from the repository root'
+                                        + (f': "{target}"' if target != quoted.group(1) else ''))
+                        continue
+                    if component == 'tests':
+                        continue  # tests may include any component
                     arrows += 1
                     problem = arrow_problem(path, target)
                     if problem:

@@ -1,4 +1,4 @@
-#include "bench/aruco_baseline.hpp"
+#include "tests/bench/aruco_baseline.hpp"
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>

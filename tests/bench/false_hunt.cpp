@@ -16,12 +16,12 @@
 #include <iostream>
 #include <string>
 
-#include "bench/scenario.hpp"
-#include "detect/detector.hpp"
-#include "detect/homography.hpp"
-#include "detect/refine.hpp"
-#include "field/field_io.hpp"
-#include "sim/field_mix.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/detect/homography.hpp"
+#include "shared/detect/refine.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/bench/scenario.hpp"
+#include "tests/sim/field_mix.hpp"
 
 using namespace umf;
 

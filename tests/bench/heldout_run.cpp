@@ -1,4 +1,4 @@
-#include "bench/heldout_run.hpp"
+#include "tests/bench/heldout_run.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 
@@ -11,8 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "bench/methods.hpp"
-#include "field/field_io.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/bench/methods.hpp"
 
 namespace umf::bench {
 namespace {

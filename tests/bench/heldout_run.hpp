@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "bench/heldout_scenario.hpp"
+#include "tests/bench/heldout_scenario.hpp"
 
 namespace umf::bench {
 

@@ -1,11 +1,11 @@
-#include "bench/heldout_scenario.hpp"
+#include "tests/bench/heldout_scenario.hpp"
 
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <cmath>
 
-#include "sim/sequence.hpp"
+#include "tests/sim/sequence.hpp"
 
 namespace umf::bench {
 namespace {

@@ -19,12 +19,12 @@
 #include <string>
 #include <vector>
 
-#include "bench/scenario.hpp"
-#include "field/field.hpp"
-#include "sim/camera.hpp"
-#include "sim/field_mix.hpp"
-#include "sim/heldout_content.hpp"
-#include "sim/phone_camera.hpp"
+#include "shared/field/field.hpp"
+#include "tests/bench/scenario.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/field_mix.hpp"
+#include "tests/sim/heldout_content.hpp"
+#include "tests/sim/phone_camera.hpp"
 
 namespace umf::bench {
 

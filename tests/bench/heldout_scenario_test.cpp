@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "bench/heldout_scenario.hpp"
-#include "sim/camera.hpp"
+#include "tests/bench/heldout_scenario.hpp"
+#include "tests/sim/camera.hpp"
 
 namespace {
 

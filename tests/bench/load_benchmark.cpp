@@ -58,14 +58,14 @@
 #include <unordered_map>
 #include <vector>
 
-#include "board/board.hpp"
-#include "content/board_resolver.hpp"
-#include "protocol/messages.hpp"
-#include "service/pairing.hpp"
-#include "service/service_server.hpp"
-#include "service/service.hpp"
-#include "trust/tls_identity_store.hpp"
-#include "support/pinned_client.hpp"
+#include "provider/board/board.hpp"
+#include "provider/content/board_resolver.hpp"
+#include "provider/service/pairing.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "shared/protocol/messages.hpp"
+#include "tests/support/pinned_client.hpp"
 
 namespace {
 

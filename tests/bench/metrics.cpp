@@ -1,4 +1,4 @@
-#include "bench/metrics.hpp"
+#include "tests/bench/metrics.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -23,13 +23,13 @@
 #include <thread>
 #include <vector>
 
-#include "desktop/x11/x11_desktop.hpp"
-#include "protocol/messages.hpp"
-#include "service/pairing.hpp"
-#include "trust/tls_identity_store.hpp"
-#include "support/pinned_client.hpp"
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
+#include "provider/service/pairing.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "shared/protocol/messages.hpp"
+#include "tests/support/pinned_client.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace {
 

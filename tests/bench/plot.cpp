@@ -1,4 +1,4 @@
-#include "bench/plot.hpp"
+#include "tests/bench/plot.hpp"
 
 #include <opencv2/imgproc.hpp>
 

@@ -1,4 +1,4 @@
-#include "bench/scenario.hpp"
+#include "tests/bench/scenario.hpp"
 
 #include <opencv2/imgproc.hpp>
 

@@ -14,10 +14,10 @@
 #include <string>
 #include <vector>
 
-#include "sim/camera.hpp"
-#include "sim/sensor_pipeline.hpp"
-#include "sim/screen_content.hpp"
-#include "sim/sequence.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/screen_content.hpp"
+#include "tests/sim/sensor_pipeline.hpp"
+#include "tests/sim/sequence.hpp"
 
 namespace umf::bench {
 

@@ -28,17 +28,17 @@
 #include <thread>
 #include <vector>
 
-#include "bench/aruco_baseline.hpp"
-#include "bench/heldout_run.hpp"
-#include "bench/metrics.hpp"
-#include "bench/methods.hpp"
-#include "bench/plot.hpp"
-#include "bench/scenario.hpp"
-#include "detect/detector.hpp"
-#include "detect/tracker.hpp"
-#include "field/field_io.hpp"
-#include "sim/field_mix.hpp"
-#include "sim/screen_content.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/detect/tracker.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/bench/aruco_baseline.hpp"
+#include "tests/bench/heldout_run.hpp"
+#include "tests/bench/methods.hpp"
+#include "tests/bench/metrics.hpp"
+#include "tests/bench/plot.hpp"
+#include "tests/bench/scenario.hpp"
+#include "tests/sim/field_mix.hpp"
+#include "tests/sim/screen_content.hpp"
 
 namespace {
 

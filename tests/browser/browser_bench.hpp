@@ -15,12 +15,12 @@
 #include <regex>
 #include <sstream>
 
-#include "browser/browser_link.hpp"
-#include "browser/browser_resolver.hpp"
-#include "browser/host_manifests.hpp"
-#include "desktop/x11/x11_desktop.hpp"
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "provider/browser/browser_link.hpp"
+#include "provider/browser/browser_resolver.hpp"
+#include "provider/browser/host_manifests.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace umf::provider::browser_test {
 

@@ -9,11 +9,11 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "browser/browser_link.hpp"
-#include "commands/browser_command.hpp"
-#include "service/control_socket.hpp"
-#include "support/scoped_env.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/browser/browser_link.hpp"
+#include "provider/commands/browser_command.hpp"
+#include "provider/service/control_socket.hpp"
+#include "tests/support/scoped_env.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace umf::provider {
 namespace {

@@ -11,13 +11,13 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "browser/browser_link.hpp"
-#include "browser/browser_resolver.hpp"
-#include "desktop/x11/x11_desktop.hpp"
-#include "common/owner_socket.hpp"
-#include "host/native_messaging.hpp"
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "browser/host/native_messaging.hpp"
+#include "provider/browser/browser_link.hpp"
+#include "provider/browser/browser_resolver.hpp"
+#include "provider/common/owner_socket.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace umf::provider {
 namespace {

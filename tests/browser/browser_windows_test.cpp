@@ -7,10 +7,10 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "browser/base64.hpp"
-#include "browser/browser_windows.hpp"
-#include "browser/element_content.hpp"
-#include "browser/host_manifests.hpp"
+#include "provider/browser/base64.hpp"
+#include "provider/browser/browser_windows.hpp"
+#include "provider/browser/element_content.hpp"
+#include "provider/browser/host_manifests.hpp"
 
 namespace umf::provider {
 namespace {

@@ -2,7 +2,7 @@
 // browsers (browser_bench.hpp), and the time the provider takes to resolve a
 // point on a browser window.
 #ifdef UMF_PROVIDER_TESTS
-#include "browser/browser_bench.hpp"
+#include "tests/browser/browser_bench.hpp"
 
 namespace umf::provider::browser_test {
 namespace {

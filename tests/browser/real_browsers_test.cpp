@@ -2,7 +2,7 @@
 // aims at a page's link, image, video and passage, a URL put as a tab there,
 // hostile pages, a private window, and no companion at all.
 #ifdef UMF_PROVIDER_TESTS
-#include "browser/browser_bench.hpp"
+#include "tests/browser/browser_bench.hpp"
 
 namespace umf::provider::browser_test {
 namespace {

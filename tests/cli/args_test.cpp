@@ -1,5 +1,5 @@
 // The one command-line parser of umf-field, umf-provider and umf-requester.
-#include "cli/args.hpp"
+#include "shared/cli/args.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-#include "detect/aim_check.hpp"
+#include "shared/detect/aim_check.hpp"
 
 #include <gtest/gtest.h>
 
-#include "field/field_io.hpp"
+#include "shared/field/field_io.hpp"
 
 using namespace umf;
 

@@ -12,10 +12,10 @@
 #include <tuple>
 #include <vector>
 
-#include "detect/detector.hpp"
-#include "detect/photo.hpp"
-#include "detect/tracker.hpp"
-#include "field/generator.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/detect/tracker.hpp"
+#include "shared/field/generator.hpp"
+#include "tests/detect/photo.hpp"
 
 namespace {
 

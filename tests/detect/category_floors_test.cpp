@@ -8,10 +8,10 @@
 #include <Eigen/Geometry>
 #include <iostream>
 
-#include "bench/scenario.hpp"
-#include "detect/tracker.hpp"
-#include "field/field_io.hpp"
-#include "sim/field_mix.hpp"
+#include "shared/detect/tracker.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/bench/scenario.hpp"
+#include "tests/sim/field_mix.hpp"
 
 namespace {
 

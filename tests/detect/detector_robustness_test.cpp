@@ -6,9 +6,9 @@
 #include <cmath>
 #include <random>
 
-#include "detect/detector.hpp"
-#include "detect/photo.hpp"
-#include "detect/tracker.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/detect/tracker.hpp"
+#include "tests/detect/photo.hpp"
 
 namespace {
 

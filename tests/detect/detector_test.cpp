@@ -1,10 +1,10 @@
-#include "detect/detector.hpp"
+#include "shared/detect/detector.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "photo.hpp"
+#include "tests/detect/photo.hpp"
 
 using namespace umf;
 

@@ -1,11 +1,11 @@
-#include "detect/edgels.hpp"
+#include "shared/detect/edgels.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "field/field_io.hpp"
+#include "shared/field/field_io.hpp"
 
 using namespace umf;
 

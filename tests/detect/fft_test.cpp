@@ -5,7 +5,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "detect/fft.hpp"
+#include "shared/detect/fft.hpp"
 
 namespace {
 

@@ -8,9 +8,9 @@
 #include <iostream>
 #include <vector>
 
-#include "detect/edgels.hpp"
-#include "detect/field_edgels.hpp"
-#include "detect/image.hpp"
+#include "shared/detect/edgels.hpp"
+#include "shared/detect/field_edgels.hpp"
+#include "shared/detect/image.hpp"
 
 namespace umf {
 namespace {

@@ -1,10 +1,10 @@
-#include "detect/grid_lines.hpp"
+#include "shared/detect/grid_lines.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "photo.hpp"
+#include "tests/detect/photo.hpp"
 
 using namespace umf;
 

@@ -1,4 +1,4 @@
-#include "detect/homography.hpp"
+#include "shared/detect/homography.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "detect/lattice.hpp"
+#include "shared/detect/lattice.hpp"
 
 namespace {
 

@@ -4,12 +4,12 @@
 
 #include <string>
 
-#include "detect/image.hpp"
-#include "field/field.hpp"
-#include "field/field_io.hpp"
-#include "sim/camera.hpp"
-#include "sim/field_mix.hpp"
-#include "sim/screen_content.hpp"
+#include "shared/detect/image.hpp"
+#include "shared/field/field.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/field_mix.hpp"
+#include "tests/sim/screen_content.hpp"
 
 namespace umf::test {
 

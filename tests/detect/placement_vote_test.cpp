@@ -1,4 +1,4 @@
-#include "detect/placement_vote.hpp"
+#include "shared/detect/placement_vote.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <random>
 #include <utility>
 
-#include "field/field_io.hpp"
+#include "shared/field/field_io.hpp"
 
 using namespace umf;
 

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "detect/photo.hpp"
-#include "detect/tracker.hpp"
-#include "sim/sequence.hpp"
+#include "shared/detect/tracker.hpp"
+#include "tests/detect/photo.hpp"
+#include "tests/sim/sequence.hpp"
 
 namespace {
 

@@ -1,11 +1,11 @@
-#include "detect/vanishing_points.hpp"
+#include "shared/detect/vanishing_points.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "photo.hpp"
+#include "tests/detect/photo.hpp"
 
 using namespace umf;
 

@@ -1,10 +1,10 @@
 // The default field for a screen exists, covers the screen, and keeps the
 // module size the benchmark measured.
-#include "field/default_field.hpp"
+#include "shared/field/default_field.hpp"
 
 #include <gtest/gtest.h>
 
-#include "field/field_io.hpp"
+#include "shared/field/field_io.hpp"
 
 TEST(DefaultField, CoversCommonScreensWithShippedFields) {
     struct Case {

@@ -1,4 +1,4 @@
-#include "field/field_io.hpp"
+#include "shared/field/field_io.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "test_fields.hpp"
+#include "tests/field/test_fields.hpp"
 
 using namespace umf;
 

@@ -1,10 +1,10 @@
-#include "field/generator.hpp"
+#include "shared/field/generator.hpp"
 
 #include <gtest/gtest.h>
 
-#include "field/contrast.hpp"
-#include "field/verifier.hpp"
-#include "test_fields.hpp"
+#include "shared/field/contrast.hpp"
+#include "shared/field/verifier.hpp"
+#include "tests/field/test_fields.hpp"
 
 using namespace umf;
 

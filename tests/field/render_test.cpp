@@ -19,9 +19,9 @@
 #include <string>
 #include <vector>
 
-#include "field/field.hpp"
-#include "field/png_writer.hpp"
-#include "field/render.hpp"
+#include "shared/field/field.hpp"
+#include "shared/field/png_writer.hpp"
+#include "shared/field/render.hpp"
 
 namespace {
 

@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "field/field_io.hpp"
-#include "field/verifier.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/field/verifier.hpp"
 
 namespace fs = std::filesystem;
 

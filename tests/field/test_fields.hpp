@@ -4,7 +4,7 @@
 #include <random>
 #include <string>
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf::test {
 

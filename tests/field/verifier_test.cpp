@@ -1,4 +1,4 @@
-#include "field/verifier.hpp"
+#include "shared/field/verifier.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,9 +6,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "field/field_io.hpp"
-#include "field/window_code.hpp"
-#include "test_fields.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/field/window_code.hpp"
+#include "tests/field/test_fields.hpp"
 
 using namespace umf;
 

@@ -1,9 +1,9 @@
-#include "field/window_code.hpp"
+#include "shared/field/window_code.hpp"
 
 #include <gtest/gtest.h>
 
-#include "field/window_classes.hpp"
-#include "test_fields.hpp"
+#include "shared/field/window_classes.hpp"
+#include "tests/field/test_fields.hpp"
 
 using namespace umf;
 

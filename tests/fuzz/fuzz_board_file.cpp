@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <string_view>
 
-#include "board/board.hpp"
+#include "provider/board/board.hpp"
 
 namespace provider = umf::provider;
 

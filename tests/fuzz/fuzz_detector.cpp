@@ -13,8 +13,8 @@
 
 #include <Eigen/Core>
 
-#include "detect/detector.hpp"
-#include "field/field_io.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/field/field_io.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "field/field_io.hpp"
+#include "shared/field/field_io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

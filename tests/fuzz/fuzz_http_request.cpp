@@ -24,14 +24,14 @@
 #include <boost/beast/websocket/rfc6455.hpp>
 #include <nlohmann/json.hpp>
 
-#include "board/board.hpp"
-#include "content/board_resolver.hpp"
-#include "content/download_table.hpp"
-#include "put/put_decision.hpp"
-#include "net/http_framing.hpp"
-#include "net/api_sessions.hpp"
-#include "service/service.hpp"
-#include "service/service_server.hpp"
+#include "provider/board/board.hpp"
+#include "provider/content/board_resolver.hpp"
+#include "provider/content/download_table.hpp"
+#include "provider/net/api_sessions.hpp"
+#include "provider/net/http_framing.hpp"
+#include "provider/put/put_decision.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
 
 namespace beast = boost::beast;
 namespace http = beast::http;

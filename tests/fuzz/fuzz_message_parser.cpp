@@ -9,7 +9,7 @@
 #include <string_view>
 #include <variant>
 
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace p = umf::protocol;
 

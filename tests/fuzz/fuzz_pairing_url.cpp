@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "protocol/pairing_url.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 namespace p = umf::protocol;
 

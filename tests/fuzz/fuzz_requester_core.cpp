@@ -10,8 +10,8 @@
 #include <string_view>
 #include <variant>
 
-#include "protocol/messages.hpp"
-#include "requester_core/pointer.hpp"
+#include "shared/protocol/messages.hpp"
+#include "shared/requester_core/pointer.hpp"
 
 namespace p = umf::protocol;
 namespace core = umf::requester_core;

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "io/pdf_objects.hpp"
+#include "shared/io/pdf_objects.hpp"
 
 namespace {
 

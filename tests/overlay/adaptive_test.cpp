@@ -3,8 +3,8 @@
 // region grows the same way, within bounds.
 #include <gtest/gtest.h>
 
-#include "overlay/adaptive.hpp"
-#include "overlay/pulse.hpp"
+#include "shared/overlay/adaptive.hpp"
+#include "shared/overlay/pulse.hpp"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // overlay::blur_background, the blur under the field (a preset's `blur`):
 // nothing at strength 0, a Gaussian of half a module at 1, only within its
 // box, the image's mean kept, and no size too odd for it.
-#include "overlay/background_blur.hpp"
+#include "shared/overlay/background_blur.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "field/field_io.hpp"
-#include "overlay/field_mix.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/overlay/field_mix.hpp"
 
 namespace {
 

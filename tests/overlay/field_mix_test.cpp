@@ -1,6 +1,6 @@
 // overlay::mix_field, the provider's mixing, against the camera simulator's
 // reference (tests/sim/field_mix.hpp): the same bytes, in every byte order.
-#include "overlay/field_mix.hpp"
+#include "shared/overlay/field_mix.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <random>
 #include <string>
 
-#include "field/field_io.hpp"
-#include "sim/field_mix.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/sim/field_mix.hpp"
 
 namespace {
 

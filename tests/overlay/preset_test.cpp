@@ -1,4 +1,4 @@
-#include "overlay/preset.hpp"
+#include "shared/overlay/preset.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "overlay/pulse.hpp"
+#include "shared/overlay/pulse.hpp"
 
 using namespace umf::overlay;
 

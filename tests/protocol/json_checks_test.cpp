@@ -1,4 +1,4 @@
-#include "protocol/json_checks.hpp"
+#include "shared/protocol/json_checks.hpp"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // requester's puts read them from the same table.
 #include <gtest/gtest.h>
 
-#include "protocol/media_types.hpp"
+#include "shared/protocol/media_types.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <random>
 #include <set>
 
-#include "field/field_io.hpp"
-#include "protocol/json_checks.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/protocol/json_checks.hpp"
 
 using namespace umf;
 using namespace umf::protocol;

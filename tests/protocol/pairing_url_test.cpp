@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "protocol/pairing_url.hpp"
+#include "shared/protocol/pairing_url.hpp"
 
 namespace {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 using namespace umf::protocol;
 

@@ -19,20 +19,20 @@
 #include <string>
 #include <vector>
 
-#include "board/board.hpp"
-#include "commands/compose_command.hpp"
-#include "detect/detector.hpp"
-#include "overlay/background_blur.hpp"
-#include "overlay/field_mix.hpp"
-#include "overlay/preset.hpp"
-#include "provider/gui_test_app.hpp"
-#include "screen/board_window.hpp"
-#include "screen/field_source.hpp"
-#include "screen/screen_field.hpp"
-#include "screen/screen_image.hpp"
-#include "sim/camera.hpp"
-#include "sim/screen_content.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/board/board.hpp"
+#include "provider/commands/compose_command.hpp"
+#include "provider/screen/board_window.hpp"
+#include "provider/screen/field_source.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "provider/screen/screen_image.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/overlay/background_blur.hpp"
+#include "shared/overlay/field_mix.hpp"
+#include "shared/overlay/preset.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/screen_content.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -18,16 +18,16 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "board/board.hpp"
-#include "detect/detector.hpp"
-#include "overlay/placement.hpp"
-#include "overlay/preset.hpp"
-#include "overlay/pulse.hpp"
-#include "provider/gui_test_app.hpp"
-#include "screen/screen_field.hpp"
-#include "screen/screen_image.hpp"
-#include "sim/camera.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/board/board.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "provider/screen/screen_image.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/overlay/placement.hpp"
+#include "shared/overlay/preset.hpp"
+#include "shared/overlay/pulse.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace umf::provider {
 namespace {

@@ -2,7 +2,7 @@
 // Built only with the provider (UMF_PROVIDER_TESTS, see tests/CMakeLists.txt).
 #ifdef UMF_PROVIDER_TESTS
 
-#include "board/board.hpp"
+#include "provider/board/board.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -11,17 +11,17 @@
 #include <filesystem>
 #include <fstream>
 
-#include "board/board.hpp"
-#include "desktop/x11/x11_desktop.hpp"
-#include "detect/detector.hpp"
-#include "overlay/preset.hpp"
-#include "provider/gui_test_app.hpp"
-#include "screen/board_window.hpp"
-#include "screen/field_source.hpp"
-#include "screen/screen_field.hpp"
-#include "screen/screen_image.hpp"
-#include "support/x11_session.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/board/board.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
+#include "provider/screen/board_window.hpp"
+#include "provider/screen/field_source.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "provider/screen/screen_image.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/overlay/preset.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace {
 

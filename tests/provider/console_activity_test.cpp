@@ -7,7 +7,7 @@
 
 #include <sstream>
 
-#include "service/console_activity.hpp"
+#include "provider/service/console_activity.hpp"
 
 namespace {
 

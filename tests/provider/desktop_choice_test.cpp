@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#include "desktop/desktop_choice.hpp"
+#include "provider/desktop/desktop_choice.hpp"
 
 namespace umf::provider {
 namespace {

@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "service/pairing_qr.hpp"
-#include "tuning/desktop_controls.hpp"
+#include "provider/service/pairing_qr.hpp"
+#include "provider/tuning/desktop_controls.hpp"
 
 namespace {
 

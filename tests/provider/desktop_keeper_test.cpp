@@ -15,13 +15,13 @@
 #include <fstream>
 #include <sstream>
 
-#include "commands/desktop_keeper.hpp"
-#include "content/shared_items.hpp"
-#include "content/shared_items_file.hpp"
-#include "desktop/display_socket.hpp"
-#include "support/process.hpp"
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "provider/commands/desktop_keeper.hpp"
+#include "provider/content/shared_items.hpp"
+#include "provider/content/shared_items_file.hpp"
+#include "provider/desktop/display_socket.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace {
 

@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "screen/desktop_layout.hpp"
-#include "service/service.hpp"
+#include "provider/screen/desktop_layout.hpp"
+#include "provider/service/service.hpp"
 
 namespace {
 

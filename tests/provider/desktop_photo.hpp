@@ -23,10 +23,10 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "desktop/desktop.hpp"
-#include "detect/detector.hpp"
-#include "support/files.hpp"
-#include "support/process.hpp"
+#include "provider/desktop/desktop.hpp"
+#include "shared/detect/detector.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/process.hpp"
 
 namespace umf::test {
 

@@ -9,12 +9,12 @@
 #include <fstream>
 #include <string>
 
-#include "common/screen_name.hpp"
-#include "field/field_io.hpp"
-#include "field/verifier.hpp"
-#include "screen/field_source.hpp"
-#include "screen/screen_field.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/common/screen_name.hpp"
+#include "provider/screen/field_source.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/field/verifier.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -12,18 +12,18 @@
 #include <cstdlib>
 #include <iostream>
 
-#include "desktop/gnome/gnome_desktop.hpp"
-#include "desktop/gnome/gnome_extension.hpp"
-#include "desktop/gnome/gnome_field_surface.hpp"
-#include "desktop/gnome/gnome_install.hpp"
-#include "desktop/gnome/gnome_shell_client.hpp"
-#include "desktop/gnome/gnome_window_watch.hpp"
-#include "provider/gui_test_app.hpp"
-#include "provider/qt_pump.hpp"
-#include "screen/pointer_mark.hpp"
-#include "screen/screen_field.hpp"
-#include "support/gnome_session.hpp"
-#include "support/mutter_remote_desktop.hpp"
+#include "provider/desktop/gnome/gnome_desktop.hpp"
+#include "provider/desktop/gnome/gnome_extension.hpp"
+#include "provider/desktop/gnome/gnome_field_surface.hpp"
+#include "provider/desktop/gnome/gnome_install.hpp"
+#include "provider/desktop/gnome/gnome_shell_client.hpp"
+#include "provider/desktop/gnome/gnome_window_watch.hpp"
+#include "provider/screen/aim_mark.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/provider/qt_pump.hpp"
+#include "tests/support/gnome_session.hpp"
+#include "tests/support/mutter_remote_desktop.hpp"
 
 namespace umf::provider {
 namespace {
@@ -431,7 +431,7 @@ TEST(GnomeDesktop, ThePointerMarkShowsAtFullStrengthAboveTheField) {
         int brightest = 0, darkest = 255;
         for (int k = 0; k < 360; k += 3) {
             const double a = k * M_PI / 180.0;
-            for (const double r : {kPointerRingRadius - 1, kPointerRingRadius, kPointerRingRadius + 1}) {
+            for (const double r : {kAimRingRadius - 1, kAimRingRadius, kAimRingRadius + 1}) {
                 const QRgb p = pixel(shot, static_cast<int>(std::lround(point.x() + r * std::cos(a))),
                                      static_cast<int>(std::lround(point.y() + r * std::sin(a))));
                 brightest = std::max(brightest, std::min({qRed(p), qGreen(p), qBlue(p)}));
@@ -442,7 +442,7 @@ TEST(GnomeDesktop, ThePointerMarkShowsAtFullStrengthAboveTheField) {
     };
     const Capture before = desktop->capture_as_shown(screen);
     const Capture plain_before = desktop->capture({600, 450, 400, 100});
-    surface->set_pointer(point, "Report");
+    surface->set_aim_mark(point, "Report");
     std::pair<int, int> extremes;
     Capture with;
     EXPECT_TRUE(test::wait_until([&] {
@@ -455,9 +455,9 @@ TEST(GnomeDesktop, ThePointerMarkShowsAtFullStrengthAboveTheField) {
     EXPECT_LE(differs(plain_before, desktop->capture({600, 450, 400, 100}), 0, 0, 400, 100), 2)
         << "the mark is in a snapshot";
 
-    surface->set_pointer(QPointF(1300, 400), "Report");
+    surface->set_aim_mark(QPointF(1300, 400), "Report");
     std::this_thread::sleep_for(300ms);
-    surface->set_pointer(std::nullopt, {});
+    surface->set_aim_mark(std::nullopt, {});
     EXPECT_TRUE(test::wait_until(
         [&] { return differs(before, desktop->capture_as_shown(screen), 660, 380, 1500, 520) <= 2; }, 5s))
         << "the mark left pixels behind";

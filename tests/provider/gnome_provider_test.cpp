@@ -17,16 +17,16 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "desktop/gnome/gnome_desktop.hpp"
-#include "desktop/gnome/gnome_shell_client.hpp"
-#include "desktop_photo.hpp"
-#include "detect/detector.hpp"
-#include "overlay/placement.hpp"
-#include "provider/gui_test_app.hpp"
-#include "screen/field_source.hpp"
-#include "screen/screen_field.hpp"
-#include "support/files.hpp"
-#include "support/gnome_session.hpp"
+#include "provider/desktop/gnome/gnome_desktop.hpp"
+#include "provider/desktop/gnome/gnome_shell_client.hpp"
+#include "provider/screen/field_source.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/overlay/placement.hpp"
+#include "tests/provider/desktop_photo.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/gnome_session.hpp"
 
 namespace umf::provider {
 namespace {

@@ -14,11 +14,11 @@
 #include <sstream>
 #include <string>
 
-#include "board/board.hpp"
-#include "sim/camera.hpp"
-#include "support/files.hpp"
-#include "support/process.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/board/board.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

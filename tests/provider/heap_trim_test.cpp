@@ -2,13 +2,13 @@
 // quiet heap alone (the flood benchmark in docs/BENCHMARKS.md measures it).
 #ifdef UMF_PROVIDER_TESTS
 
-#include "net/heap_trim.hpp"
+#include "provider/net/heap_trim.hpp"
 
 #include <gtest/gtest.h>
 
 #include <memory>
 
-#include "net/connection_registry.hpp"
+#include "provider/net/connection_registry.hpp"
 
 namespace {
 

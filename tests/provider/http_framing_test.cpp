@@ -3,18 +3,18 @@
 // such a body is never served, whatever stands in front of the provider.
 #ifdef UMF_PROVIDER_TESTS
 
-#include "net/http_framing.hpp"
+#include "provider/net/http_framing.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "protocol/http_error_body.hpp"
-#include "service/service_server.hpp"
-#include "service/service.hpp"
-#include "trust/tls_identity_store.hpp"
-#include "support/raw_tls_client.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "shared/protocol/http_error_body.hpp"
+#include "tests/support/raw_tls_client.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -14,14 +14,14 @@
 #include <fstream>
 #include <thread>
 
-#include "desktop/kde/kde_desktop.hpp"
-#include "desktop/kde/kwin_screenshot.hpp"
-#include "desktop/kde/kwin_scripts.hpp"
-#include "desktop/kde/wayland_outputs.hpp"
-#include "provider/gui_test_app.hpp"
-#include "support/kwin_session.hpp"
-#include "support/process.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/desktop/kde/kde_desktop.hpp"
+#include "provider/desktop/kde/kwin_screenshot.hpp"
+#include "provider/desktop/kde/kwin_scripts.hpp"
+#include "provider/desktop/kde/wayland_outputs.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/support/kwin_session.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

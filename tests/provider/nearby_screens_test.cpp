@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "discovery/nearby_screens.hpp"
+#include "provider/discovery/nearby_screens.hpp"
 
 namespace {
 

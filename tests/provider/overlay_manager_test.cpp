@@ -15,11 +15,11 @@
 #include <cmath>
 #include <thread>
 
-#include "overlay/background_blur.hpp"
-#include "field_overlay/overlay_manager.hpp"
-#include "provider/gui_test_app.hpp"
-#include "provider/qt_pump.hpp"
-#include "screen/board_window.hpp"
+#include "provider/field_overlay/overlay_manager.hpp"
+#include "provider/screen/board_window.hpp"
+#include "shared/overlay/background_blur.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/provider/qt_pump.hpp"
 
 namespace {
 
@@ -341,12 +341,12 @@ TEST(OverlayManager, ThePointerRingHasAWindowOfItsOwnThatDoesNotPulse) {
     preset.opacity_min = preset.opacity_max = 0.2;  // a faint field
     OverlayManager manager(preset);
     const int index = manager.screens()[0].index;
-    EXPECT_TRUE(manager.pointer_windows().empty());
+    EXPECT_TRUE(manager.aim_windows().empty());
 
     const QPointF at(300, 250);
-    manager.set_pointer(index, at, "report.pdf");
-    ASSERT_EQ(manager.pointer_windows().size(), 1u);
-    PointerWindow& ring = *manager.pointer_windows()[0];
+    manager.set_aim_mark(index, at, "report.pdf");
+    ASSERT_EQ(manager.aim_windows().size(), 1u);
+    AimWindow& ring = *manager.aim_windows()[0];
     EXPECT_EQ(ring.title(), "report.pdf");
     EXPECT_EQ(ring.opacity(), 1.0) << "the ring must not fade with the field";
     // The ring's centre is on the point (the offscreen screen's origin is 0, 0).
@@ -362,33 +362,33 @@ TEST(OverlayManager, ThePointerRingHasAWindowOfItsOwnThatDoesNotPulse) {
         ring.paint_to(painter);
     }
     const QPoint c = ring.ring_centre().toPoint();
-    const QRgb on_ring = image.pixel(c.x() + static_cast<int>(PointerWindow::kRingRadius), c.y());
+    const QRgb on_ring = image.pixel(c.x() + static_cast<int>(AimWindow::kRingRadius), c.y());
     EXPECT_GE(qAlpha(on_ring), 240);
     EXPECT_GT(qGray(on_ring), 200);
     EXPECT_EQ(qAlpha(image.pixel(c)), 0);
     // The title makes the window wider than the ring.
-    EXPECT_GT(ring.width(), 2 * PointerWindow::kRingRadius + 40);
+    EXPECT_GT(ring.width(), 2 * AimWindow::kRingRadius + 40);
 
     // A snapshot takes it away with the field, and brings it back.
     manager.hide_for_snapshot();
-    EXPECT_TRUE(manager.pointer_windows().empty());
+    EXPECT_TRUE(manager.aim_windows().empty());
     manager.show_after_snapshot();
-    EXPECT_EQ(manager.pointer_windows().size(), 1u);
+    EXPECT_EQ(manager.aim_windows().size(), 1u);
 
     // Moved: the same window follows.
-    manager.set_pointer(index, QPointF(900, 100), "");
-    ASSERT_EQ(manager.pointer_windows().size(), 1u);
-    EXPECT_NEAR(manager.pointer_windows()[0]->geometry().left() + manager.pointer_windows()[0]->ring_centre().x(),
+    manager.set_aim_mark(index, QPointF(900, 100), "");
+    ASSERT_EQ(manager.aim_windows().size(), 1u);
+    EXPECT_NEAR(manager.aim_windows()[0]->geometry().left() + manager.aim_windows()[0]->ring_centre().x(),
                 900.0, 1.0);
 
     // Not moved for a while: it goes by itself.
-    EXPECT_TRUE(pump_until([&] { return manager.pointer_windows().empty(); }, OverlayManager::kPointerHoldMs + 1000));
+    EXPECT_TRUE(pump_until([&] { return manager.aim_windows().empty(); }, OverlayManager::kAimMarkHoldMs + 1000));
 
     // Removed at once when told.
-    manager.set_pointer(index, at, "x");
-    EXPECT_EQ(manager.pointer_windows().size(), 1u);
-    manager.set_pointer(index, std::nullopt, {});
-    EXPECT_TRUE(manager.pointer_windows().empty());
+    manager.set_aim_mark(index, at, "x");
+    EXPECT_EQ(manager.aim_windows().size(), 1u);
+    manager.set_aim_mark(index, std::nullopt, {});
+    EXPECT_TRUE(manager.aim_windows().empty());
 }
 
 }  // namespace

@@ -29,15 +29,15 @@
 #include <fstream>
 #include <iostream>
 
-#include "desktop/x11/x11_desktop.hpp"
-#include "desktop/x11/compositor.hpp"
-#include "field_overlay/overlay_manager.hpp"
-#include "desktop/x11/overlay_window.hpp"
-#include "screen/board_window.hpp"
-#include "screen/screen_field.hpp"
-#include "provider/qt_pump.hpp"
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "provider/desktop/x11/compositor.hpp"
+#include "provider/desktop/x11/overlay_window.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
+#include "provider/field_overlay/overlay_manager.hpp"
+#include "provider/screen/board_window.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "tests/provider/qt_pump.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 // Last: Xlib's macros clash with Qt's headers.
 #include <X11/Xlib.h>

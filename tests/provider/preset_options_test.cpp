@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "commands/preset_options.hpp"
+#include "provider/commands/preset_options.hpp"
 
 namespace {
 

@@ -17,8 +17,8 @@
 #include <thread>
 #include <vector>
 
-#include "content/process_documents.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/content/process_documents.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

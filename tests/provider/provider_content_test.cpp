@@ -13,15 +13,15 @@
 #include <mutex>
 #include <thread>
 
-#include "content/board_resolver.hpp"
-#include "content/download_table.hpp"
-#include "content/file_facts.hpp"
-#include "content/shared_items.hpp"
-#include "protocol/messages.hpp"
-#include "service/control_socket.hpp"
-#include "service/pairing_qr.hpp"
-#include "service/service.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/content/board_resolver.hpp"
+#include "provider/content/download_table.hpp"
+#include "provider/content/file_facts.hpp"
+#include "provider/content/shared_items.hpp"
+#include "provider/service/control_socket.hpp"
+#include "provider/service/pairing_qr.hpp"
+#include "provider/service/service.hpp"
+#include "shared/protocol/messages.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

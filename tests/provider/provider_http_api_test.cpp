@@ -15,15 +15,15 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "content/board_resolver.hpp"
-#include "protocol/messages.hpp"
-#include "net/api_sessions.hpp"
-#include "service/pairing.hpp"
-#include "service/service_server.hpp"
-#include "service/service.hpp"
-#include "trust/tls_identity_store.hpp"
-#include "support/process.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/content/board_resolver.hpp"
+#include "provider/net/api_sessions.hpp"
+#include "provider/service/pairing.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "shared/protocol/messages.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -9,18 +9,18 @@
 #include <fstream>
 #include <thread>
 
-#include "content/board_resolver.hpp"
-#include "field/field_io.hpp"
 #include "native/sha256.hpp"
-#include "protocol/http_error_body.hpp"
-#include "protocol/messages.hpp"
-#include "service/pairing.hpp"
-#include "service/service_server.hpp"
-#include "service/service.hpp"
-#include "service/static_site.hpp"
-#include "trust/tls_identity_store.hpp"
-#include "support/process.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/content/board_resolver.hpp"
+#include "provider/service/pairing.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
+#include "provider/service/static_site.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/protocol/http_error_body.hpp"
+#include "shared/protocol/messages.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -28,14 +28,14 @@
 #include <string>
 #include <thread>
 
-#include "protocol/messages.hpp"
-#include "common/config_dir.hpp"
-#include "service/pairing.hpp"
-#include "service/service_server.hpp"
-#include "service/service.hpp"
-#include "trust/tls_identity_store.hpp"
-#include "support/temp_dir.hpp"
-#include "support/pinned_client.hpp"
+#include "provider/common/config_dir.hpp"
+#include "provider/service/pairing.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "shared/protocol/messages.hpp"
+#include "tests/support/pinned_client.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

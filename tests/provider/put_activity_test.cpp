@@ -15,15 +15,15 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "content/file_facts.hpp"
-#include "protocol/messages.hpp"
-#include "put/put_desk.hpp"
-#include "put/trusted_devices.hpp"
-#include "put/upload_sink.hpp"
-#include "service/console_activity.hpp"
-#include "service/service.hpp"
-#include "support/temp_dir.hpp"
-#include "put_test_support.hpp"
+#include "provider/content/file_facts.hpp"
+#include "provider/put/put_desk.hpp"
+#include "provider/put/trusted_devices.hpp"
+#include "provider/put/upload_sink.hpp"
+#include "provider/service/console_activity.hpp"
+#include "provider/service/service.hpp"
+#include "shared/protocol/messages.hpp"
+#include "tests/provider/put_test_support.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

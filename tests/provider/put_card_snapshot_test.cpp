@@ -15,14 +15,14 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "desktop/x11/x11_desktop.hpp"
-#include "detect/detector.hpp"
-#include "screen/field_source.hpp"
-#include "screen/screen_field.hpp"
-#include "desktop_photo.hpp"
-#include "support/process.hpp"
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
+#include "provider/screen/field_source.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "shared/detect/detector.hpp"
+#include "tests/provider/desktop_photo.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace {
 

@@ -16,15 +16,15 @@
 #include <thread>
 #include <vector>
 
-#include "cli/args.hpp"
-#include "commands/pair_command.hpp"
-#include "content/shared_items.hpp"
-#include "put/put_deciders.hpp"
-#include "put/put_folder.hpp"
-#include "put/put_text.hpp"
-#include "service/control_socket.hpp"
-#include "support/scoped_env.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/commands/pair_command.hpp"
+#include "provider/content/shared_items.hpp"
+#include "provider/put/put_deciders.hpp"
+#include "provider/put/put_folder.hpp"
+#include "provider/put/put_text.hpp"
+#include "provider/service/control_socket.hpp"
+#include "shared/cli/args.hpp"
+#include "tests/support/scoped_env.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

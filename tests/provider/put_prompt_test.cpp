@@ -17,10 +17,10 @@
 #include <thread>
 #include <vector>
 
-#include "provider/gui_test_app.hpp"
-#include "provider/qt_pump.hpp"
-#include "put/put_prompt_window.hpp"
-#include "put/put_text.hpp"
+#include "provider/put/put_prompt_window.hpp"
+#include "provider/put/put_text.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/provider/qt_pump.hpp"
 
 namespace {
 

@@ -27,16 +27,16 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "content/file_facts.hpp"
-#include "protocol/http_error_body.hpp"
-#include "protocol/messages.hpp"
-#include "service/service_server.hpp"
-#include "service/service.hpp"
-#include "trust/tls_identity_store.hpp"
-#include "support/pinned_client.hpp"
-#include "support/process.hpp"
-#include "support/temp_dir.hpp"
-#include "put_test_support.hpp"
+#include "provider/content/file_facts.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "shared/protocol/http_error_body.hpp"
+#include "shared/protocol/messages.hpp"
+#include "tests/provider/put_test_support.hpp"
+#include "tests/support/pinned_client.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -6,22 +6,22 @@
 
 #include <gtest/gtest.h>
 
-#include "io/unique_name.hpp"
+#include "shared/io/unique_name.hpp"
 
 #include <boost/asio/io_context.hpp>
 #include <nlohmann/json.hpp>
 
-#include "content/file_facts.hpp"
-#include "protocol/json_checks.hpp"
-#include "protocol/messages.hpp"
-#include "put/put_desk.hpp"
-#include "put/trusted_devices.hpp"
-#include "put/upload_sink.hpp"
-#include "put/upload_table.hpp"
-#include "net/api_sessions.hpp"
-#include "service/service.hpp"
-#include "support/temp_dir.hpp"
-#include "put_test_support.hpp"
+#include "provider/content/file_facts.hpp"
+#include "provider/net/api_sessions.hpp"
+#include "provider/put/put_desk.hpp"
+#include "provider/put/trusted_devices.hpp"
+#include "provider/put/upload_sink.hpp"
+#include "provider/put/upload_table.hpp"
+#include "provider/service/service.hpp"
+#include "shared/protocol/json_checks.hpp"
+#include "shared/protocol/messages.hpp"
+#include "tests/provider/put_test_support.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -21,9 +21,9 @@
 #include <thread>
 #include <vector>
 
-#include "content/file_facts.hpp"
-#include "protocol/messages.hpp"
-#include "put/put_decision.hpp"
+#include "provider/content/file_facts.hpp"
+#include "provider/put/put_decision.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::test {
 

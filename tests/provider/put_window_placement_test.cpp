@@ -15,11 +15,11 @@
 #include <fstream>
 #include <future>
 
-#include "desktop/x11/x11_desktop.hpp"
-#include "put/desktop_open.hpp"
-#include "desktop/x11/x11_window_watch.hpp"
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
+#include "provider/desktop/x11/x11_window_watch.hpp"
+#include "provider/put/desktop_open.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace {
 

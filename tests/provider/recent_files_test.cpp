@@ -11,8 +11,8 @@
 #include <string>
 #include <thread>
 
-#include "content/recent_files.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/content/recent_files.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -3,14 +3,14 @@
 // methods lets the others fall through to later routes.
 #ifdef UMF_PROVIDER_TESTS
 
-#include "net/route_table.hpp"
+#include "provider/net/route_table.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "service/service_server.hpp"
-#include "service/service.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
 
 namespace {
 

@@ -14,16 +14,16 @@
 #include <cstring>
 #include <sstream>
 
-#include "cli/args.hpp"
-#include "commands/common_options.hpp"
-#include "commands/control_client.hpp"
-#include "commands/pair_command.hpp"
-#include "content/shared_items.hpp"
-#include "io/runtime_dir.hpp"
-#include "put/put_deciders.hpp"
-#include "service/control_socket.hpp"
-#include "support/scoped_env.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/commands/common_options.hpp"
+#include "provider/commands/control_client.hpp"
+#include "provider/commands/pair_command.hpp"
+#include "provider/content/shared_items.hpp"
+#include "provider/put/put_deciders.hpp"
+#include "provider/service/control_socket.hpp"
+#include "shared/cli/args.hpp"
+#include "shared/io/runtime_dir.hpp"
+#include "tests/support/scoped_env.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -21,18 +21,18 @@
 #include <string>
 #include <thread>
 
-#include "common/config_dir.hpp"
 #include "native/certificate_fingerprint.hpp"
 #include "native/certificate_pin.hpp"
-#include "service/service_server.hpp"
-#include "service/service.hpp"
-#include "support/pinned_client.hpp"
-#include "support/temp_dir.hpp"
-#include "trust/certificate_keeper.hpp"
-#include "trust/openssl_objects.hpp"
-#include "trust/root_export.hpp"
-#include "trust/serving_certificate.hpp"
-#include "trust/tls_identity_store.hpp"
+#include "provider/common/config_dir.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
+#include "provider/trust/certificate_keeper.hpp"
+#include "provider/trust/openssl_objects.hpp"
+#include "provider/trust/root_export.hpp"
+#include "provider/trust/serving_certificate.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "tests/support/pinned_client.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

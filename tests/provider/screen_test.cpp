@@ -18,18 +18,18 @@
 #include <set>
 #include <string>
 
-#include "board/board.hpp"
-#include "commands/compose_command.hpp"
-#include "detect/detector.hpp"
-#include "field/field_io.hpp"
-#include "gui_test_app.hpp"
-#include "overlay/field_mix.hpp"
-#include "overlay/preset.hpp"
-#include "overlay/pulse.hpp"
-#include "screen/field_source.hpp"
-#include "screen/screen_field.hpp"
-#include "screen/screen_image.hpp"
-#include "sim/camera.hpp"
+#include "provider/board/board.hpp"
+#include "provider/commands/compose_command.hpp"
+#include "provider/screen/field_source.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "provider/screen/screen_image.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/overlay/field_mix.hpp"
+#include "shared/overlay/preset.hpp"
+#include "shared/overlay/pulse.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/sim/camera.hpp"
 
 namespace {
 

@@ -18,18 +18,18 @@
 #include <thread>
 #include <wayland-client.h>
 
-#include "desktop/wlroots/field_pixels.hpp"
-#include "desktop/wlroots/hyprland_ipc.hpp"
-#include "desktop/wlroots/layer_field_surface.hpp"
-#include "desktop/wlroots/screencopy_capture.hpp"
-#include "desktop/wlroots/sway_ipc.hpp"
-#include "desktop/wlroots/sway_tree.hpp"
-#include "desktop/wlroots/wlroots_desktop.hpp"
-#include "provider/gui_test_app.hpp"
-#include "screen/board_window.hpp"
-#include "screen/pointer_mark.hpp"
-#include "screen/screen_field.hpp"
-#include "support/sway_session.hpp"
+#include "provider/desktop/wlroots/field_pixels.hpp"
+#include "provider/desktop/wlroots/hyprland_ipc.hpp"
+#include "provider/desktop/wlroots/layer_field_surface.hpp"
+#include "provider/desktop/wlroots/screencopy_capture.hpp"
+#include "provider/desktop/wlroots/sway_ipc.hpp"
+#include "provider/desktop/wlroots/sway_tree.hpp"
+#include "provider/desktop/wlroots/wlroots_desktop.hpp"
+#include "provider/screen/aim_mark.hpp"
+#include "provider/screen/board_window.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "tests/provider/gui_test_app.hpp"
+#include "tests/support/sway_session.hpp"
 
 namespace umf::provider {
 namespace {
@@ -326,7 +326,7 @@ TEST_F(SwayDesktop, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {
         int brightest = 0, darkest = 255;
         for (int k = 0; k < 360; k += 3) {
             const double a = k * M_PI / 180.0;
-            for (const double r : {kPointerRingRadius - 1, kPointerRingRadius, kPointerRingRadius + 1}) {
+            for (const double r : {kAimRingRadius - 1, kAimRingRadius, kAimRingRadius + 1}) {
                 const QRgb p = shot.pixel(static_cast<int>(std::lround(point.x() + r * std::cos(a))),
                                           static_cast<int>(std::lround(point.y() + r * std::sin(a))));
                 const int v = std::min({qRed(p), qGreen(p), qBlue(p)});
@@ -337,7 +337,7 @@ TEST_F(SwayDesktop, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {
         return std::pair(brightest, darkest);
     };
     const QImage before = grim(*sway_, screen);
-    surface.set_pointer(point, "Report");
+    surface.set_aim_mark(point, "Report");
     pump(surface, 300ms);
     const QImage with = grim(*sway_, screen);
     const auto [bright, dark] = ring_extremes(with);
@@ -353,9 +353,9 @@ TEST_F(SwayDesktop, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {
     EXPECT_LE(worst, 2) << "the ring changed the field elsewhere";
 
     // Moved, then gone: nothing of it stays behind.
-    surface.set_pointer(QPointF(1300, 400), "Report");
+    surface.set_aim_mark(QPointF(1300, 400), "Report");
     pump(surface, 300ms);
-    surface.set_pointer(std::nullopt, {});
+    surface.set_aim_mark(std::nullopt, {});
     pump(surface, 300ms);
     const QImage after = grim(*sway_, screen);
     int left_behind = 0;

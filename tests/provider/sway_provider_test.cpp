@@ -17,14 +17,14 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "desktop/wlroots/wlroots_desktop.hpp"
-#include "desktop_photo.hpp"
-#include "detect/detector.hpp"
-#include "screen/field_source.hpp"
-#include "screen/screen_field.hpp"
-#include "support/files.hpp"
-#include "support/process.hpp"
-#include "support/sway_session.hpp"
+#include "provider/desktop/wlroots/wlroots_desktop.hpp"
+#include "provider/screen/field_source.hpp"
+#include "provider/screen/screen_field.hpp"
+#include "shared/detect/detector.hpp"
+#include "tests/provider/desktop_photo.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/process.hpp"
+#include "tests/support/sway_session.hpp"
 
 namespace umf::provider {
 namespace {

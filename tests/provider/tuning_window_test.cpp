@@ -17,12 +17,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "support/temp_dir.hpp"
-#include "tuning/palette_from_image.hpp"
-#include "tuning/preset_store.hpp"
-#include "tuning/slider_spin.hpp"
-#include "tuning/tray_menu.hpp"
-#include "tuning/tuning_window.hpp"
+#include "provider/tuning/palette_from_image.hpp"
+#include "provider/tuning/preset_store.hpp"
+#include "provider/tuning/slider_spin.hpp"
+#include "provider/tuning/tray_menu.hpp"
+#include "provider/tuning/tuning_window.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -14,9 +14,9 @@
 #include <sstream>
 #include <thread>
 
-#include "support/files.hpp"
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace {
 
@@ -80,7 +80,7 @@ TEST(WaylandSession, ACompositorWithoutABackendGetsNoOverlayAndIsToldWhatWorks) 
     EXPECT_NE(log.find("pairing URL: https://"), std::string::npos) << "not serving:\n" << log;
     const std::string tree = run({"xwininfo", "-root", "-tree"}, session);
     EXPECT_EQ(tree.find("umf overlay"), std::string::npos) << tree;
-    EXPECT_EQ(tree.find("umf pointer"), std::string::npos) << tree;
+    EXPECT_EQ(tree.find("umf aim mark"), std::string::npos) << tree;
     // No window of the provider's is mapped at all on the compositor's
     // Xwayland but the invisible ones Qt keeps for itself (1x1..3x3), so no
     // click can land on one.

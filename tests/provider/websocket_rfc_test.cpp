@@ -21,11 +21,11 @@
 #include <thread>
 #include <vector>
 
-#include "service/pairing.hpp"
-#include "service/service_server.hpp"
-#include "service/service.hpp"
-#include "trust/tls_identity_store.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/service/pairing.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

@@ -31,13 +31,13 @@
 #include <thread>
 #include <vector>
 
-#include "content/snapshot_resolver.hpp"
-#include "io/pdf_objects.hpp"
-#include "content/file_facts.hpp"
-#include "content/window_resolver.hpp"
-#include "desktop/x11/x11_desktop.hpp"
-#include "support/x11_session.hpp"
-#include "support/temp_dir.hpp"
+#include "provider/content/file_facts.hpp"
+#include "provider/content/snapshot_resolver.hpp"
+#include "provider/content/window_resolver.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
+#include "shared/io/pdf_objects.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace {
 

@@ -8,8 +8,8 @@
 
 #include <string>
 
-#include "../../requester/download_dir.hpp"
-#include "io/unique_name.hpp"
+#include "requester/download_dir.hpp"
+#include "shared/io/unique_name.hpp"
 
 namespace {
 

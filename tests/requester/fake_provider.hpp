@@ -23,10 +23,10 @@
 #include <thread>
 #include <vector>
 
-#include "protocol/http_error_body.hpp"
-#include "protocol/messages.hpp"
-#include "service/service.hpp"
-#include "trust/tls_identity_store.hpp"
+#include "provider/service/service.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "shared/protocol/http_error_body.hpp"
+#include "shared/protocol/messages.hpp"
 
 namespace umf::test {
 

@@ -10,9 +10,9 @@
 #include <fstream>
 #include <string>
 
-#include "../../requester/cli.hpp"
-#include "../../requester/paired_screens.hpp"
-#include "support/temp_dir.hpp"
+#include "requester/cli.hpp"
+#include "requester/paired_screens.hpp"
+#include "tests/support/temp_dir.hpp"
 
 namespace {
 

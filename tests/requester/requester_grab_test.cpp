@@ -25,12 +25,12 @@
 #include <string>
 #include <vector>
 
-#include "../detect/photo.hpp"
-#include "fake_provider.hpp"
-#include "service/pairing.hpp"
-#include "service/service_server.hpp"
-#include "service/service.hpp"
-#include "trust/tls_identity_store.hpp"
+#include "provider/service/pairing.hpp"
+#include "provider/service/service.hpp"
+#include "provider/service/service_server.hpp"
+#include "provider/trust/tls_identity_store.hpp"
+#include "tests/detect/photo.hpp"
+#include "tests/requester/fake_provider.hpp"
 
 namespace {
 

@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "../../requester/screen_lines.hpp"
 #include "native/screen_list.hpp"
+#include "requester/screen_lines.hpp"
 
 namespace {
 

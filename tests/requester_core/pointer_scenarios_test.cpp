@@ -11,7 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "requester_core/pointer_json.hpp"
+#include "shared/requester_core/pointer_json.hpp"
 
 namespace umf::requester_core {
 namespace {

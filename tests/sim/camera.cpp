@@ -1,11 +1,11 @@
-#include "sim/camera.hpp"
+#include "tests/sim/camera.hpp"
 
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
 
-#include "sim/homography.hpp"
-#include "sim/resample.hpp"
+#include "tests/sim/homography.hpp"
+#include "tests/sim/resample.hpp"
 
 namespace umf::sim {
 namespace {

@@ -22,8 +22,8 @@
 
 #include <opencv2/core.hpp>
 
-#include "sim/degradation.hpp"
-#include "sim/field_mix.hpp"
+#include "tests/sim/degradation.hpp"
+#include "tests/sim/field_mix.hpp"
 
 namespace umf::sim {
 

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "field/field_io.hpp"
-#include "sim/camera.hpp"
-#include "sim/field_mix.hpp"
-#include "sim/homography.hpp"
-#include "sim/screen_content.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/field_mix.hpp"
+#include "tests/sim/homography.hpp"
+#include "tests/sim/screen_content.hpp"
 
 namespace {
 

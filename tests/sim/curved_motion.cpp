@@ -1,4 +1,4 @@
-#include "sim/curved_motion.hpp"
+#include "tests/sim/curved_motion.hpp"
 
 #include <opencv2/imgproc.hpp>
 

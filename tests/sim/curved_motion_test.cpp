@@ -4,7 +4,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "sim/curved_motion.hpp"
+#include "tests/sim/curved_motion.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "sim/degradation.hpp"
+#include "tests/sim/degradation.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>

@@ -5,9 +5,9 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "sim/camera.hpp"
-#include "sim/degradation.hpp"
-#include "sim/screen_content.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/degradation.hpp"
+#include "tests/sim/screen_content.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "sim/field_mix.hpp"
+#include "tests/sim/field_mix.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 
 #include <vector>
 
-#include "field/field.hpp"
+#include "shared/field/field.hpp"
 
 namespace umf::sim {
 

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <string>
 
-#include "field/field_io.hpp"
-#include "sim/field_mix.hpp"
-#include "sim/screen_content.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/sim/field_mix.hpp"
+#include "tests/sim/screen_content.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "sim/heldout_content.hpp"
+#include "tests/sim/heldout_content.hpp"
 
 #include <opencv2/imgproc.hpp>
 

@@ -5,7 +5,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "sim/heldout_content.hpp"
+#include "tests/sim/heldout_content.hpp"
 
 namespace {
 

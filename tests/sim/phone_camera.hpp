@@ -18,12 +18,12 @@
 #include <cstdint>
 #include <optional>
 
-#include "sim/camera.hpp"
-#include "sim/curved_motion.hpp"
-#include "sim/phone_processing.hpp"
-#include "sim/pixel_structure.hpp"
-#include "sim/rolling_shutter.hpp"
-#include "sim/video_compression.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/curved_motion.hpp"
+#include "tests/sim/phone_processing.hpp"
+#include "tests/sim/pixel_structure.hpp"
+#include "tests/sim/rolling_shutter.hpp"
+#include "tests/sim/video_compression.hpp"
 
 namespace umf::sim {
 

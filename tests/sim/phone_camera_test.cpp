@@ -5,8 +5,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "sim/phone_camera.hpp"
-#include "sim/heldout_content.hpp"
+#include "tests/sim/heldout_content.hpp"
+#include "tests/sim/phone_camera.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "sim/phone_processing.hpp"
+#include "tests/sim/phone_processing.hpp"
 
 #include <opencv2/imgproc.hpp>
 

@@ -6,7 +6,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "sim/phone_processing.hpp"
+#include "tests/sim/phone_processing.hpp"
 
 namespace {
 

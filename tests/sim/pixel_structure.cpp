@@ -1,4 +1,4 @@
-#include "sim/pixel_structure.hpp"
+#include "tests/sim/pixel_structure.hpp"
 
 #include <cmath>
 

@@ -7,8 +7,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "sim/homography.hpp"
-#include "sim/pixel_structure.hpp"
+#include "tests/sim/homography.hpp"
+#include "tests/sim/pixel_structure.hpp"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "sim/resample.hpp"
+#include "tests/sim/resample.hpp"
 
 #include <opencv2/imgproc.hpp>
 
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "sim/homography.hpp"
+#include "tests/sim/homography.hpp"
 
 namespace umf::sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "sim/rolling_shutter.hpp"
+#include "tests/sim/rolling_shutter.hpp"
 
 #include <opencv2/imgproc.hpp>
 

@@ -12,7 +12,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "sim/camera.hpp"
+#include "tests/sim/camera.hpp"
 
 namespace umf::sim {
 

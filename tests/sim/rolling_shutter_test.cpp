@@ -4,10 +4,10 @@
 
 #include <opencv2/core.hpp>
 
-#include "sim/camera.hpp"
-#include "sim/degradation.hpp"
-#include "sim/homography.hpp"
-#include "sim/rolling_shutter.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/degradation.hpp"
+#include "tests/sim/homography.hpp"
+#include "tests/sim/rolling_shutter.hpp"
 
 namespace {
 

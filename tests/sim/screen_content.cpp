@@ -1,4 +1,4 @@
-#include "sim/screen_content.hpp"
+#include "tests/sim/screen_content.hpp"
 
 #include <opencv2/imgproc.hpp>
 

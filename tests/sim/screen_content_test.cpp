@@ -3,7 +3,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "sim/screen_content.hpp"
+#include "tests/sim/screen_content.hpp"
 
 namespace {
 

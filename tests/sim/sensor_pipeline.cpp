@@ -1,11 +1,11 @@
-#include "sim/sensor_pipeline.hpp"
+#include "tests/sim/sensor_pipeline.hpp"
 
 #include <opencv2/imgproc.hpp>
 
 #include <cmath>
 #include <stdexcept>
 
-#include "sim/degradation.hpp"
+#include "tests/sim/degradation.hpp"
 
 namespace umf::sim {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "sim/sensor_pipeline.hpp"
+#include "tests/sim/sensor_pipeline.hpp"
 
 namespace umf::sim {
 namespace {

@@ -1,4 +1,4 @@
-#include "sim/sequence.hpp"
+#include "tests/sim/sequence.hpp"
 
 #include <algorithm>
 #include <cmath>

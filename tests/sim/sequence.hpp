@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "sim/camera.hpp"
+#include "tests/sim/camera.hpp"
 
 namespace umf::sim {
 

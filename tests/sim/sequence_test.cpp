@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/sequence.hpp"
+#include "tests/sim/sequence.hpp"
 
 namespace {
 

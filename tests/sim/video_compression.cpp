@@ -1,8 +1,8 @@
-#include "sim/video_compression.hpp"
+#include "tests/sim/video_compression.hpp"
 
 #include <opencv2/imgproc.hpp>
 
-#include "sim/degradation.hpp"
+#include "tests/sim/degradation.hpp"
 
 namespace umf::sim {
 

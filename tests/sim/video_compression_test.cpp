@@ -6,8 +6,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "sim/degradation.hpp"
-#include "sim/video_compression.hpp"
+#include "tests/sim/degradation.hpp"
+#include "tests/sim/video_compression.hpp"
 
 namespace {
 

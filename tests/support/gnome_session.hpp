@@ -16,9 +16,9 @@
 #include <fstream>
 #include <regex>
 
-#include "desktop/gnome/gnome_install.hpp"
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "provider/desktop/gnome/gnome_install.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace umf::test {
 

@@ -18,8 +18,8 @@
 #include <optional>
 #include <string>
 
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace umf::test {
 

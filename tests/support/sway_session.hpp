@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "support/temp_dir.hpp"
-#include "support/x11_session.hpp"
+#include "tests/support/temp_dir.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace umf::test {
 

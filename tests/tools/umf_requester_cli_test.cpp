@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "../detect/photo.hpp"
+#include "tests/detect/photo.hpp"
 
 namespace fs = std::filesystem;
 using Json = nlohmann::ordered_json;

@@ -27,15 +27,15 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "aiming/aim.hpp"
-#include "detect/detector.hpp"
-#include "detect/image.hpp"
-#include "detect/tracker.hpp"
-#include "field/field_io.hpp"
-#include "sim/camera.hpp"
-#include "sim/field_mix.hpp"
-#include "sim/screen_content.hpp"
-#include "sim/sequence.hpp"
+#include "shared/aiming/aim.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/detect/image.hpp"
+#include "shared/detect/tracker.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/field_mix.hpp"
+#include "tests/sim/screen_content.hpp"
+#include "tests/sim/sequence.hpp"
 
 namespace {
 

@@ -14,13 +14,13 @@
 #include <string>
 #include <vector>
 
-#include "cli/args.hpp"
-#include "field/contrast.hpp"
-#include "field/field_io.hpp"
-#include "field/generator.hpp"
-#include "field/render.hpp"
-#include "field/verifier.hpp"
-#include "io/atomic_file.hpp"
+#include "shared/cli/args.hpp"
+#include "shared/field/contrast.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/field/generator.hpp"
+#include "shared/field/render.hpp"
+#include "shared/field/verifier.hpp"
+#include "shared/io/atomic_file.hpp"
 
 namespace {
 

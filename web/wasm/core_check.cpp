@@ -3,9 +3,9 @@
 // Built with NODERAWFS, so it reads host files through node.
 #include <cstdio>
 
-#include "field/field_io.hpp"
-#include "field/generator.hpp"
-#include "field/verifier.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/field/generator.hpp"
+#include "shared/field/verifier.hpp"
 
 int main(int argc, char** argv) {
     int failures = 0;

@@ -1,5 +1,5 @@
 // The C API of detector_module.hpp over shared/'s Detector and Tracker.
-#include "detector_module.hpp"
+#include "web/wasm/detector_module.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -21,11 +21,11 @@
 #include <wasm_simd128.h>
 #endif
 
-#include "aiming/aim.hpp"
-#include "detect/detector.hpp"
-#include "detect/image.hpp"
-#include "detect/tracker.hpp"
-#include "field/field_io.hpp"
+#include "shared/aiming/aim.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/detect/image.hpp"
+#include "shared/detect/tracker.hpp"
+#include "shared/field/field_io.hpp"
 
 static_assert(offsetof(UmfTrackResult, confidence) == 16);
 static_assert(offsetof(UmfTrackResult, H) == 24);

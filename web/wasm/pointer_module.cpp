@@ -16,8 +16,8 @@
 #include <new>
 #include <string>
 
-#include "protocol/pairing_url.hpp"
-#include "requester_core/pointer_json.hpp"
+#include "shared/protocol/pairing_url.hpp"
+#include "shared/requester_core/pointer_json.hpp"
 
 namespace {
 

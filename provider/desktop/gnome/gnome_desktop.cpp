@@ -1,14 +1,14 @@
-#include "desktop/gnome/gnome_desktop.hpp"
+#include "provider/desktop/gnome/gnome_desktop.hpp"
 
 #include <QImage>
 #include <filesystem>
 #include <iostream>
 
-#include "desktop/gnome/gnome_extension.hpp"
-#include "desktop/gnome/gnome_field_surface.hpp"
-#include "desktop/gnome/gnome_shell_client.hpp"
-#include "desktop/gnome/gnome_window_watch.hpp"
-#include "desktop/gnome/private_folder.hpp"
+#include "provider/desktop/gnome/gnome_extension.hpp"
+#include "provider/desktop/gnome/gnome_field_surface.hpp"
+#include "provider/desktop/gnome/gnome_shell_client.hpp"
+#include "provider/desktop/gnome/gnome_window_watch.hpp"
+#include "provider/desktop/gnome/private_folder.hpp"
 
 namespace umf::provider {
 

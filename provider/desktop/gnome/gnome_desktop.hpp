@@ -8,7 +8,7 @@
 #include <chrono>
 #include <memory>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

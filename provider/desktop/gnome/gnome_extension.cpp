@@ -1,4 +1,4 @@
-#include "desktop/gnome/gnome_extension.hpp"
+#include "provider/desktop/gnome/gnome_extension.hpp"
 
 #include <cctype>
 

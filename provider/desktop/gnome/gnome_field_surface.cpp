@@ -1,4 +1,4 @@
-#include "desktop/gnome/gnome_field_surface.hpp"
+#include "provider/desktop/gnome/gnome_field_surface.hpp"
 
 #include <QImage>
 #include <QScreen>
@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <iostream>
 
-#include "desktop/gnome/gnome_shell_client.hpp"
-#include "desktop/gnome/private_folder.hpp"
-#include "screen/board_window.hpp"
-#include "screen/pointer_mark.hpp"
+#include "provider/desktop/gnome/gnome_shell_client.hpp"
+#include "provider/desktop/gnome/private_folder.hpp"
+#include "provider/screen/aim_mark.hpp"
+#include "provider/screen/board_window.hpp"
 
 namespace umf::provider {
 
@@ -30,7 +30,7 @@ GnomeFieldSurface::GnomeFieldSurface(std::shared_ptr<const GnomeShellClient> she
     private_runtime_folder();  // throws when it cannot be used
     send_layer();
     extension_watch_ = shell_->watch_extension([this](bool running) {
-        pointer_.reset();  // gone with the extension: made again at the next aim
+        aim_mark_.reset();  // gone with the extension: made again at the next aim
         if (running) send_layer();
     });
 }
@@ -82,7 +82,7 @@ void GnomeFieldSurface::cover_screen() {
     try {
         const int now = find_monitor();
         if (now == monitor_) return;
-        pointer_.reset();
+        aim_mark_.reset();
         shell_->drop_field(monitor_);
         monitor_ = now;
         send_layer();
@@ -107,40 +107,40 @@ void GnomeFieldSurface::set_focus(std::optional<QPointF> centre_px, double radiu
                              radius_px);
 }
 
-void GnomeFieldSurface::set_pointer(std::optional<QPointF> point_px, const QString& title) {
+void GnomeFieldSurface::set_aim_mark(std::optional<QPointF> point_px, const QString& title) {
     if (!point_px) {
-        drop_pointer();
+        drop_aim_mark();
         return;
     }
     std::string file;
-    if (!pointer_ || pointer_->title != title) {
-        const PointerMark mark = pointer_mark(title, 1.0);
+    if (!aim_mark_ || aim_mark_->title != title) {
+        const AimMark mark = aim_mark(title, 1.0);
         try {
             const auto folder = private_runtime_folder();
             // Three names in turn: the image written over was sent two
             // titles ago and read long since, never the one being read.
-            pointer_images_ = (pointer_images_ + 1) % 3;
-            file = "pointer-" + std::to_string(monitor_) + "-" + std::to_string(pointer_images_) + ".png";
+            aim_mark_images_ = (aim_mark_images_ + 1) % 3;
+            file = "aim-mark-" + std::to_string(monitor_) + "-" + std::to_string(aim_mark_images_) + ".png";
             const auto partial = folder / (file + ".part");
             if (!mark.image.save(QString::fromStdString(partial.string()), "PNG", 90))
                 throw DesktopError("cannot write " + partial.string());
             std::filesystem::rename(partial, folder / file);
         } catch (const std::exception& e) {
-            std::cerr << "umf-provider: the pointer mark on GNOME Shell: " << e.what() << "\n";
+            std::cerr << "umf-provider: the aim mark on GNOME Shell: " << e.what() << "\n";
             return;
         }
-        pointer_ = Pointer{title, mark.ring_centre, {}};
+        aim_mark_ = ShownAimMark{title, mark.ring_centre, {}};
     }
-    const QPointF corner = *point_px - pointer_->ring_centre;
-    if (file.empty() && corner == pointer_->corner) return;
-    pointer_->corner = corner;
-    shell_->send_pointer(monitor_, file, corner.x(), corner.y());
+    const QPointF corner = *point_px - aim_mark_->ring_centre;
+    if (file.empty() && corner == aim_mark_->corner) return;
+    aim_mark_->corner = corner;
+    shell_->send_aim_mark(monitor_, file, corner.x(), corner.y());
 }
 
-void GnomeFieldSurface::drop_pointer() {
-    if (!pointer_) return;
-    pointer_.reset();
-    shell_->send_drop_pointer(monitor_);
+void GnomeFieldSurface::drop_aim_mark() {
+    if (!aim_mark_) return;
+    aim_mark_.reset();
+    shell_->send_drop_aim_mark(monitor_);
 }
 
 void GnomeFieldSurface::show() {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 
@@ -34,7 +34,7 @@ public:
     void set_opacity(double opacity) override;
     double pulse_opacity() const override { return pulse_; }
     void set_focus(std::optional<QPointF> centre_px, double radius_px) override;
-    void set_pointer(std::optional<QPointF> point_px, const QString& title) override;
+    void set_aim_mark(std::optional<QPointF> point_px, const QString& title) override;
     void show() override;
     void hide() override;
     bool is_visible() const override { return visible_; }
@@ -46,11 +46,11 @@ private:
     // Writes the layer and has the extension load it; what fails is said on
     // the console (the Qt thread must not throw).
     void send_layer();
-    void drop_pointer();
+    void drop_aim_mark();
 
     // The mark shown where a phone points: its image is written once per
     // title, a move only places it again.
-    struct Pointer {
+    struct ShownAimMark {
         QString title;
         QPointF ring_centre;  // in the image
         QPointF corner;       // on the monitor, physical pixels
@@ -65,8 +65,8 @@ private:
     std::optional<QPointF> focus_centre_;
     double focus_radius_ = 0.0;
     bool visible_ = false;
-    std::optional<Pointer> pointer_;
-    int pointer_images_ = 0;  // which of three names the last image took
+    std::optional<ShownAimMark> aim_mark_;
+    int aim_mark_images_ = 0;  // which of three names the last image took
     // The extension started again (enabled, or the shell restarted) shows
     // nothing until told: the layer and its state are sent again.
     std::unique_ptr<QObject> extension_watch_;

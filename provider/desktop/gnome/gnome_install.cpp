@@ -1,4 +1,4 @@
-#include "desktop/gnome/gnome_install.hpp"
+#include "provider/desktop/gnome/gnome_install.hpp"
 
 #include <QProcess>
 #include <QStringList>

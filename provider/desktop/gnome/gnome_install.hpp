@@ -7,7 +7,7 @@
 #include <iosfwd>
 #include <string>
 
-#include "desktop/gnome/gnome_extension.hpp"
+#include "provider/desktop/gnome/gnome_extension.hpp"
 
 namespace umf::provider {
 

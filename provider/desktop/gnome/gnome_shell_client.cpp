@@ -1,4 +1,4 @@
-#include "desktop/gnome/gnome_shell_client.hpp"
+#include "provider/desktop/gnome/gnome_shell_client.hpp"
 
 #include <QDBusArgument>
 #include <QDBusConnection>
@@ -12,7 +12,7 @@
 #include <QVariant>
 #include <atomic>
 
-#include "desktop/gnome/gnome_extension.hpp"
+#include "provider/desktop/gnome/gnome_extension.hpp"
 
 namespace umf::provider {
 
@@ -230,10 +230,10 @@ void GnomeShellClient::send_field_visible(int monitor, bool visible) const {
     impl_->send("SetFieldVisible", {monitor, visible});
 }
 
-void GnomeShellClient::send_pointer(int monitor, const std::string& file_name, double x, double y) const {
-    impl_->send("SetPointer", {monitor, QString::fromStdString(file_name), x, y});
+void GnomeShellClient::send_aim_mark(int monitor, const std::string& file_name, double x, double y) const {
+    impl_->send("SetAimMark", {monitor, QString::fromStdString(file_name), x, y});
 }
 
-void GnomeShellClient::send_drop_pointer(int monitor) const { impl_->send("DropPointer", {monitor}); }
+void GnomeShellClient::send_drop_aim_mark(int monitor) const { impl_->send("DropAimMark", {monitor}); }
 
 }  // namespace umf::provider

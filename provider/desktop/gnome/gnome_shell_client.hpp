@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 
@@ -69,11 +69,11 @@ public:
     void send_field_opacity(int monitor, double opacity) const;
     void send_field_focus(int monitor, std::optional<std::pair<double, double>> centre, double radius) const;
     void send_field_visible(int monitor, bool visible) const;
-    // The pointer mark's image (a file in the private folder; empty: the
+    // The aim mark's image (a file in the private folder; empty: the
     // one shown) with its top-left corner at (x, y), the monitor's physical
     // pixels.
-    void send_pointer(int monitor, const std::string& file_name, double x, double y) const;
-    void send_drop_pointer(int monitor) const;
+    void send_aim_mark(int monitor, const std::string& file_name, double x, double y) const;
+    void send_drop_aim_mark(int monitor) const;
 
 private:
     std::string shot(const char* method, const WindowRect& rect) const;

@@ -1,11 +1,11 @@
-#include "desktop/gnome/gnome_window_watch.hpp"
+#include "provider/desktop/gnome/gnome_window_watch.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <thread>
 
-#include "desktop/gnome/gnome_shell_client.hpp"
-#include "desktop/window_placement.hpp"
+#include "provider/desktop/gnome/gnome_shell_client.hpp"
+#include "provider/desktop/window_placement.hpp"
 
 namespace umf::provider {
 

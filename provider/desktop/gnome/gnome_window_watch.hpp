@@ -7,7 +7,7 @@
 #include <memory>
 #include <vector>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "desktop/gnome/private_folder.hpp"
+#include "provider/desktop/gnome/private_folder.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "desktop/kde/kde_desktop.hpp"
+#include "provider/desktop/kde/kde_desktop.hpp"
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,11 +10,11 @@
 #include <iostream>
 #include <mutex>
 
-#include "desktop/kde/kde_window_watch.hpp"
-#include "desktop/kde/kwin_screenshot.hpp"
-#include "desktop/kde/kwin_scripting.hpp"
-#include "desktop/kde/kwin_scripts.hpp"
-#include "desktop/kde/wayland_outputs.hpp"
+#include "provider/desktop/kde/kde_window_watch.hpp"
+#include "provider/desktop/kde/kwin_screenshot.hpp"
+#include "provider/desktop/kde/kwin_scripting.hpp"
+#include "provider/desktop/kde/kwin_scripts.hpp"
+#include "provider/desktop/kde/wayland_outputs.hpp"
 
 namespace umf::provider {
 

@@ -1,11 +1,11 @@
-#include "desktop/kde/kde_install.hpp"
+#include "provider/desktop/kde/kde_install.hpp"
 
 #include <cstdlib>
 #include <ostream>
 #include <system_error>
 
-#include "desktop/kde/kwin_screenshot.hpp"
-#include "io/atomic_file.hpp"
+#include "provider/desktop/kde/kwin_screenshot.hpp"
+#include "shared/io/atomic_file.hpp"
 
 namespace umf::provider {
 

@@ -1,10 +1,10 @@
-#include "desktop/kde/kde_window_watch.hpp"
+#include "provider/desktop/kde/kde_window_watch.hpp"
 
 #include <algorithm>
 #include <map>
 #include <thread>
 
-#include "desktop/window_placement.hpp"
+#include "provider/desktop/window_placement.hpp"
 
 namespace umf::provider {
 

@@ -9,9 +9,9 @@
 #include <optional>
 #include <vector>
 
-#include "desktop/desktop.hpp"
-#include "desktop/kde/kwin_scripting.hpp"
-#include "desktop/kde/kwin_scripts.hpp"
+#include "provider/desktop/desktop.hpp"
+#include "provider/desktop/kde/kwin_scripting.hpp"
+#include "provider/desktop/kde/kwin_scripts.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "desktop/kde/kwin_screenshot.hpp"
+#include "provider/desktop/kde/kwin_screenshot.hpp"
 
 #include <fcntl.h>
 #include <poll.h>

@@ -20,7 +20,7 @@
 #include <chrono>
 #include <string>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

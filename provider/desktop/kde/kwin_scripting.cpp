@@ -1,4 +1,4 @@
-#include "desktop/kde/kwin_scripting.hpp"
+#include "provider/desktop/kde/kwin_scripting.hpp"
 
 #include <unistd.h>
 
@@ -11,8 +11,8 @@
 #include <fstream>
 #include <map>
 
-#include "desktop/desktop.hpp"
-#include "desktop/kde/kwin_scripts.hpp"
+#include "provider/desktop/desktop.hpp"
+#include "provider/desktop/kde/kwin_scripts.hpp"
 
 namespace umf::provider {
 

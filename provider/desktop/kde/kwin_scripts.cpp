@@ -1,4 +1,4 @@
-#include "desktop/kde/kwin_scripts.hpp"
+#include "provider/desktop/kde/kwin_scripts.hpp"
 
 #include <QJsonArray>
 #include <QJsonDocument>

@@ -1,4 +1,4 @@
-#include "desktop/kde/wayland_outputs.hpp"
+#include "provider/desktop/kde/wayland_outputs.hpp"
 
 #include <poll.h>
 #include <wayland-client.h>

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

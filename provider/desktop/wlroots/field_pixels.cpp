@@ -1,4 +1,4 @@
-#include "desktop/wlroots/field_pixels.hpp"
+#include "provider/desktop/wlroots/field_pixels.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
-#include "desktop/wlroots/hyprland_ipc.hpp"
+#include "provider/desktop/wlroots/hyprland_ipc.hpp"
 
-#include "desktop/wlroots/json_fields.hpp"
+#include "provider/desktop/wlroots/json_fields.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <map>
 #include <set>
 
-#include "desktop/wlroots/unix_socket.hpp"
+#include "provider/desktop/wlroots/unix_socket.hpp"
 
 namespace umf::provider {
 

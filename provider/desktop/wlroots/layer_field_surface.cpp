@@ -1,12 +1,12 @@
-#include "desktop/wlroots/layer_field_surface.hpp"
+#include "provider/desktop/wlroots/layer_field_surface.hpp"
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <iostream>
 
-#include "screen/board_window.hpp"
-#include "screen/pointer_mark.hpp"
+#include "provider/screen/aim_mark.hpp"
+#include "provider/screen/board_window.hpp"
 #include "wlr-layer-shell-unstable-v1-client-protocol.h"
 
 namespace umf::provider {
@@ -201,8 +201,8 @@ void LayerFieldSurface::draw_if_due() {
     if (!slot) return;  // all held by the compositor: drawn on a release
     ShmBuffer& buffer = *slot->buffer;
     const bool focused = focus_centre_.has_value();
-    const WindowRect pointer = pointer_box();
-    const WindowRect box = united(focused ? mask_.box : pixels_->field_box(), pointer);
+    const WindowRect mark = aim_mark_box();
+    const WindowRect box = united(focused ? mask_.box : pixels_->field_box(), mark);
     if (slot->content && !(*slot->content == box)) {
         const WindowRect& old = *slot->content;
         for (int y = old.y; y < old.y + old.height; ++y)
@@ -210,14 +210,14 @@ void LayerFieldSurface::draw_if_due() {
     }
     // The ring's place from the last frame is cleared before the field is
     // painted again, or blending would pile up where the field is not.
-    for (int y = pointer.y; y < pointer.y + pointer.height; ++y)
-        std::memset(buffer.row(y) + pointer.x, 0, static_cast<std::size_t>(pointer.width) * 4);
+    for (int y = mark.y; y < mark.y + mark.height; ++y)
+        std::memset(buffer.row(y) + mark.x, 0, static_cast<std::size_t>(mark.width) * 4);
     if (focused) {
         if (!mask_.box.empty()) pixels_->paint_focus(buffer.data(), buffer.stride(), level, mask_);
     } else {
         pixels_->paint(buffer.data(), buffer.stride(), level);
     }
-    blend_pointer(buffer);
+    blend_aim_mark(buffer);
     slot->content = box;
 
     // The buffer is the field's physical pixels; the surface is logical.
@@ -242,19 +242,19 @@ void LayerFieldSurface::draw_if_due() {
     flush();
 }
 
-WindowRect LayerFieldSurface::pointer_box() const {
-    if (!pointer_ || !pixels_) return {};
-    const int x0 = std::max(0, pointer_->at.x()), y0 = std::max(0, pointer_->at.y());
-    const int x1 = std::min(pixels_->width(), pointer_->at.x() + pointer_->mark.image.width());
-    const int y1 = std::min(pixels_->height(), pointer_->at.y() + pointer_->mark.image.height());
+WindowRect LayerFieldSurface::aim_mark_box() const {
+    if (!aim_mark_ || !pixels_) return {};
+    const int x0 = std::max(0, aim_mark_->at.x()), y0 = std::max(0, aim_mark_->at.y());
+    const int x1 = std::min(pixels_->width(), aim_mark_->at.x() + aim_mark_->mark.image.width());
+    const int y1 = std::min(pixels_->height(), aim_mark_->at.y() + aim_mark_->mark.image.height());
     return x1 > x0 && y1 > y0 ? WindowRect{x0, y0, x1 - x0, y1 - y0} : WindowRect{};
 }
 
-void LayerFieldSurface::blend_pointer(ShmBuffer& buffer) const {
-    const WindowRect box = pointer_box();
+void LayerFieldSurface::blend_aim_mark(ShmBuffer& buffer) const {
+    const WindowRect box = aim_mark_box();
     for (int y = box.y; y < box.y + box.height; ++y) {
-        const auto* src = reinterpret_cast<const QRgb*>(pointer_->mark.image.constScanLine(y - pointer_->at.y())) +
-                          (box.x - pointer_->at.x());
+        const auto* src = reinterpret_cast<const QRgb*>(aim_mark_->mark.image.constScanLine(y - aim_mark_->at.y())) +
+                          (box.x - aim_mark_->at.x());
         std::uint32_t* dst = buffer.row(y) + box.x;
         for (int x = 0; x < box.width; ++x) {
             // Both premultiplied ARGB: source over destination.
@@ -269,18 +269,18 @@ void LayerFieldSurface::blend_pointer(ShmBuffer& buffer) const {
     }
 }
 
-void LayerFieldSurface::set_pointer(std::optional<QPointF> point_px, const QString& title) {
+void LayerFieldSurface::set_aim_mark(std::optional<QPointF> point_px, const QString& title) {
     if (!point_px) {
-        if (!pointer_) return;
-        pointer_.reset();
+        if (!aim_mark_) return;
+        aim_mark_.reset();
     } else {
         // The mark is drawn again only for a new title; a move only shifts it.
-        const bool new_mark = !pointer_ || pointer_->title != title;
-        if (new_mark) pointer_ = Pointer{pointer_mark(title, 1.0), {}, title};
-        const QPointF corner = *point_px - pointer_->mark.ring_centre;
+        const bool new_mark = !aim_mark_ || aim_mark_->title != title;
+        if (new_mark) aim_mark_ = ShownAimMark{aim_mark(title, 1.0), {}, title};
+        const QPointF corner = *point_px - aim_mark_->mark.ring_centre;
         const QPoint at(static_cast<int>(std::lround(corner.x())), static_cast<int>(std::lround(corner.y())));
-        if (!new_mark && at == pointer_->at) return;
-        pointer_->at = at;
+        if (!new_mark && at == aim_mark_->at) return;
+        aim_mark_->at = at;
     }
     ++content_generation_;
     draw_if_due();

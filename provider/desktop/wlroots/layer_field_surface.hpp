@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "desktop/desktop.hpp"
-#include "desktop/wlroots/field_pixels.hpp"
-#include "desktop/wlroots/shm_buffer.hpp"
-#include "desktop/wlroots/wayland_connection.hpp"
-#include "screen/pointer_mark.hpp"
+#include "provider/desktop/desktop.hpp"
+#include "provider/desktop/wlroots/field_pixels.hpp"
+#include "provider/desktop/wlroots/shm_buffer.hpp"
+#include "provider/desktop/wlroots/wayland_connection.hpp"
+#include "provider/screen/aim_mark.hpp"
 
 struct zwlr_layer_surface_v1;
 
@@ -39,7 +39,7 @@ public:
     void set_opacity(double opacity) override;
     double pulse_opacity() const override { return pulse_; }
     void set_focus(std::optional<QPointF> centre_px, double radius_px) override;
-    void set_pointer(std::optional<QPointF> point_px, const QString& title) override;
+    void set_aim_mark(std::optional<QPointF> point_px, const QString& title) override;
     void show() override;
     void hide() override;
     bool is_visible() const override { return visible_; }
@@ -93,14 +93,14 @@ private:
     double focus_radius_ = 0.0;
     FocusMask mask_;
     // The ring and title, drawn over the field at full strength.
-    struct Pointer {
-        PointerMark mark;  // at the buffer's physical pixels
+    struct ShownAimMark {
+        AimMark mark;  // at the buffer's physical pixels
         QPoint at;         // its top-left corner in the buffer
         QString title;
     };
-    std::optional<Pointer> pointer_;
-    WindowRect pointer_box() const;
-    void blend_pointer(ShmBuffer& buffer) const;
+    std::optional<ShownAimMark> aim_mark_;
+    WindowRect aim_mark_box() const;
+    void blend_aim_mark(ShmBuffer& buffer) const;
     // What is on screen, so an unchanged step draws nothing.
     int content_generation_ = 0;
     int shown_generation_ = -1;

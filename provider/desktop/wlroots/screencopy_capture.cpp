@@ -1,11 +1,11 @@
-#include "desktop/wlroots/screencopy_capture.hpp"
+#include "provider/desktop/wlroots/screencopy_capture.hpp"
 
 #include <QImage>
 #include <cstring>
 #include <memory>
 
-#include "desktop/wlroots/shm_buffer.hpp"
-#include "desktop/wlroots/wayland_connection.hpp"
+#include "provider/desktop/wlroots/shm_buffer.hpp"
+#include "provider/desktop/wlroots/wayland_connection.hpp"
 #include "wlr-screencopy-unstable-v1-client-protocol.h"
 
 namespace umf::provider {

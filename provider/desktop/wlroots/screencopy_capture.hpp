@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "desktop/wlroots/shm_buffer.hpp"
+#include "provider/desktop/wlroots/shm_buffer.hpp"
 
 #include <sys/mman.h>
 #include <unistd.h>
@@ -7,7 +7,7 @@
 #include <cstring>
 #include <string>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

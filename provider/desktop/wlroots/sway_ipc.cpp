@@ -1,10 +1,10 @@
-#include "desktop/wlroots/sway_ipc.hpp"
+#include "provider/desktop/wlroots/sway_ipc.hpp"
 
 #include <cstring>
 #include <filesystem>
 
-#include "desktop/desktop.hpp"
-#include "desktop/wlroots/unix_socket.hpp"
+#include "provider/desktop/desktop.hpp"
+#include "provider/desktop/wlroots/unix_socket.hpp"
 
 namespace umf::provider {
 

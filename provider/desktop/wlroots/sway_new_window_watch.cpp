@@ -1,12 +1,12 @@
-#include "desktop/wlroots/sway_new_window_watch.hpp"
+#include "provider/desktop/wlroots/sway_new_window_watch.hpp"
 
 #include <cstdlib>
 #include <iostream>
 #include <thread>
 
-#include "desktop/wlroots/sway_ipc.hpp"
-#include "desktop/wlroots/sway_tree.hpp"
-#include "desktop/window_placement.hpp"
+#include "provider/desktop/window_placement.hpp"
+#include "provider/desktop/wlroots/sway_ipc.hpp"
+#include "provider/desktop/wlroots/sway_tree.hpp"
 
 namespace umf::provider {
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "desktop/wlroots/unix_socket.hpp"
+#include "provider/desktop/wlroots/unix_socket.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -9,7 +9,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 namespace umf::provider {
 

@@ -1,4 +1,4 @@
-#include "desktop/wlroots/wayland_connection.hpp"
+#include "provider/desktop/wlroots/wayland_connection.hpp"
 
 #include <poll.h>
 
@@ -6,7 +6,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 #include "wlr-layer-shell-unstable-v1-client-protocol.h"
 #include "wlr-screencopy-unstable-v1-client-protocol.h"
 #include "xdg-output-unstable-v1-client-protocol.h"

@@ -1,17 +1,17 @@
-#include "desktop/wlroots/wlroots_desktop.hpp"
+#include "provider/desktop/wlroots/wlroots_desktop.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
 
-#include "desktop/wlroots/hyprland_ipc.hpp"
-#include "desktop/wlroots/layer_field_surface.hpp"
-#include "desktop/wlroots/screencopy_capture.hpp"
-#include "desktop/wlroots/sway_ipc.hpp"
-#include "desktop/wlroots/sway_new_window_watch.hpp"
-#include "desktop/wlroots/sway_tree.hpp"
-#include "desktop/wlroots/wayland_connection.hpp"
+#include "provider/desktop/wlroots/hyprland_ipc.hpp"
+#include "provider/desktop/wlroots/layer_field_surface.hpp"
+#include "provider/desktop/wlroots/screencopy_capture.hpp"
+#include "provider/desktop/wlroots/sway_ipc.hpp"
+#include "provider/desktop/wlroots/sway_new_window_watch.hpp"
+#include "provider/desktop/wlroots/sway_tree.hpp"
+#include "provider/desktop/wlroots/wayland_connection.hpp"
 
 namespace umf::provider {
 

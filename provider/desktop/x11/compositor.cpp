@@ -1,4 +1,4 @@
-#include "desktop/x11/compositor.hpp"
+#include "provider/desktop/x11/compositor.hpp"
 
 #include <X11/Xlib.h>
 

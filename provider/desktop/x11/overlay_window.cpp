@@ -1,4 +1,4 @@
-#include "desktop/x11/overlay_window.hpp"
+#include "provider/desktop/x11/overlay_window.hpp"
 
 #include <QGuiApplication>
 #include <QPaintEvent>
@@ -10,7 +10,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "screen/board_window.hpp"
+#include "provider/screen/board_window.hpp"
 
 // Last: Xlib's macros (None, Bool) would clash with Qt's headers.
 #include <X11/Xlib.h>

@@ -3,8 +3,8 @@
 // is the window's opacity (_NET_WM_WINDOW_OPACITY), applied by the
 // compositor: changing it costs no repaint, which a full-screen ARGB window
 // at 60 Hz could not afford. A repaint happens only when what is drawn
-// changes: the layer or the focus circle. The pointer ring has a window of
-// its own (pointer_window.hpp).
+// changes: the layer or the focus circle. The aim ring has a window of
+// its own (aim_window.hpp).
 //
 // One exception, the painted pulse (the manager's choice for Region::focus
 // with a preset's blur): the window is given the screen under the focus
@@ -26,8 +26,8 @@
 #include <optional>
 #include <vector>
 
-#include "desktop/desktop.hpp"
-#include "screen/screen_field.hpp"
+#include "provider/desktop/desktop.hpp"
+#include "provider/screen/screen_field.hpp"
 
 class QPainter;
 class QScreen;

@@ -1,9 +1,9 @@
-#include "desktop/x11/x11_desktop.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
 
-#include "desktop/x11/compositor.hpp"
-#include "desktop/x11/overlay_window.hpp"
-#include "desktop/x11/x11_pixels.hpp"
-#include "desktop/x11/x11_window_watch.hpp"
+#include "provider/desktop/x11/compositor.hpp"
+#include "provider/desktop/x11/overlay_window.hpp"
+#include "provider/desktop/x11/x11_pixels.hpp"
+#include "provider/desktop/x11/x11_window_watch.hpp"
 
 #include <unistd.h>
 
@@ -22,7 +22,7 @@
 #include <string_view>
 #include <utility>
 
-#include "protocol/messages.hpp"
+#include "shared/protocol/messages.hpp"
 
 // After the project's headers: Xlib defines macros (None, Status, Bool).
 #include <X11/Xatom.h>

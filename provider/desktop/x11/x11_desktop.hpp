@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 // Xlib's Display, without Xlib in every file that includes this one.
 struct _XDisplay;

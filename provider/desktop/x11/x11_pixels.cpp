@@ -1,4 +1,4 @@
-#include "desktop/x11/x11_pixels.hpp"
+#include "provider/desktop/x11/x11_pixels.hpp"
 
 #include <bit>
 #include <cstdint>

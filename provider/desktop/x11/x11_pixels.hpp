@@ -3,7 +3,7 @@
 // copied a row at a time, anything else read pixel by pixel.
 #pragma once
 
-#include "desktop/desktop.hpp"
+#include "provider/desktop/desktop.hpp"
 
 // Xlib's types, declared rather than included: Xlib's macros (None, Status,
 // Bool) stay out of every file that includes this one.

@@ -1,4 +1,4 @@
-#include "desktop/x11/x11_window_watch.hpp"
+#include "provider/desktop/x11/x11_window_watch.hpp"
 
 #include <unistd.h>
 
@@ -10,7 +10,7 @@
 #include <set>
 #include <thread>
 
-#include "desktop/x11/x11_desktop.hpp"
+#include "provider/desktop/x11/x11_desktop.hpp"
 
 // Last: Xlib's macros clash with the standard library's and Qt's names.
 #include <X11/Xatom.h>

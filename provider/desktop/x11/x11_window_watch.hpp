@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "desktop/desktop.hpp"
-#include "desktop/window_placement.hpp"
+#include "provider/desktop/desktop.hpp"
+#include "provider/desktop/window_placement.hpp"
 
 namespace umf::provider {
 

@@ -34,15 +34,15 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "board/board.hpp"
-#include "detect/detector.hpp"
-#include "detect/image.hpp"
-#include "detect/tracker.hpp"
-#include "field/field_io.hpp"
-#include "overlay/preset.hpp"
-#include "sim/camera.hpp"
-#include "sim/field_mix.hpp"
-#include "support/process.hpp"
+#include "provider/board/board.hpp"
+#include "shared/detect/detector.hpp"
+#include "shared/detect/image.hpp"
+#include "shared/detect/tracker.hpp"
+#include "shared/field/field_io.hpp"
+#include "shared/overlay/preset.hpp"
+#include "tests/sim/camera.hpp"
+#include "tests/sim/field_mix.hpp"
+#include "tests/support/process.hpp"
 
 namespace {
 

@@ -99,7 +99,7 @@ function nextFrame() {
 class UmfShell {
     enable() {
         this._fields = new Map();
-        this._pointers = new Map();
+        this._aimMarks = new Map();
         this._connectors = new Map();
         this._connectorsKnown = false;
         this._shellPid = new Gio.Credentials().get_unix_pid();
@@ -111,7 +111,7 @@ class UmfShell {
         // Chrome added later (a modal dialog, a notification) goes on top of
         // the group: the fields are put back above it.
         const onChildAdded = (_group, child) => {
-            if (!child || (child.name !== 'umf-field' && child.name !== 'umf-pointer'))
+            if (!child || (child.name !== 'umf-field' && child.name !== 'umf-aim-mark'))
                 this._raiseFields();
         };
         // 'actor-added' until Mutter 45 named it 'child-added'.
@@ -136,10 +136,10 @@ class UmfShell {
         this._exported = null;
         Main.layoutManager.disconnect(this._monitorsChanged);
         this._parent.disconnect(this._childAdded);
-        for (const layer of [...this._fields.values(), ...this._pointers.values()])
+        for (const layer of [...this._fields.values(), ...this._aimMarks.values()])
             layer.destroy();
         this._fields.clear();
-        this._pointers.clear();
+        this._aimMarks.clear();
     }
 
     // The D-Bus methods, each as NameAsync(params, invocation) so that the
@@ -169,16 +169,16 @@ class UmfShell {
                 f.actor.visible = visible && !this._snapshotting;
             }),
             DropField: ([monitor]) => {
-                for (const layers of [this._fields, this._pointers]) {
+                for (const layers of [this._fields, this._aimMarks]) {
                     layers.get(monitor)?.destroy();
                     layers.delete(monitor);
                 }
                 return null;
             },
-            SetPointer: ([monitor, name, x, y]) => this._setPointer(monitor, name, x, y),
-            DropPointer: ([monitor]) => {
-                this._pointers.get(monitor)?.destroy();
-                this._pointers.delete(monitor);
+            SetAimMark: ([monitor, name, x, y]) => this._setAimMark(monitor, name, x, y),
+            DropAimMark: ([monitor]) => {
+                this._aimMarks.get(monitor)?.destroy();
+                this._aimMarks.delete(monitor);
                 return null;
             },
             FieldState: () => new GLib.Variant('(a(ibub(iiii)(ii)))', [[...this._fields.entries()].map(([i, f]) => [
@@ -269,20 +269,20 @@ class UmfShell {
                 this._fields.delete(index);
             }
         }
-        for (const [index, pointer] of [...this._pointers.entries()]) {
+        for (const [index, mark] of [...this._aimMarks.entries()]) {
             if (index < monitors.length) {
-                pointer.place(monitors[index], this._scale(index), ...pointer.corner);
+                mark.place(monitors[index], this._scale(index), ...mark.corner);
             } else {
-                pointer.destroy();
-                this._pointers.delete(index);
+                mark.destroy();
+                this._aimMarks.delete(index);
             }
         }
         this._readConnectors();
     }
 
-    // The fields above every window, the pointer marks above the fields.
+    // The fields above every window, the aim marks above the fields.
     _raiseFields() {
-        for (const layer of [...this._fields.values(), ...this._pointers.values()])
+        for (const layer of [...this._fields.values(), ...this._aimMarks.values()])
             this._parent.set_child_above_sibling(layer.actor, null);
     }
 
@@ -297,23 +297,23 @@ class UmfShell {
     }
 
     // `name` empty: the mark already shown, moved.
-    _setPointer(monitor, name, x, y) {
+    _setAimMark(monitor, name, x, y) {
         const monitors = Main.layoutManager.monitors;
         if (!Number.isInteger(monitor) || monitor < 0 || monitor >= monitors.length)
             throw new RefusedError(`no monitor ${monitor}`);
-        let pointer = this._pointers.get(monitor);
-        if (!pointer && name === '')
-            throw new RefusedError(`no pointer mark on monitor ${monitor}`);
+        let mark = this._aimMarks.get(monitor);
+        if (!mark && name === '')
+            throw new RefusedError(`no aim mark on monitor ${monitor}`);
         if (name !== '') {
             const path = privateFileToRead(name);
-            if (!pointer) {
-                pointer = new PointerMark(this._parent);
-                this._pointers.set(monitor, pointer);
+            if (!mark) {
+                mark = new AimMark(this._parent);
+                this._aimMarks.set(monitor, mark);
             }
-            pointer.load(path);
+            mark.load(path);
         }
-        pointer.place(monitors[monitor], this._scale(monitor), x, y);
-        pointer.actor.visible = !this._snapshotting;
+        mark.place(monitors[monitor], this._scale(monitor), x, y);
+        mark.actor.visible = !this._snapshotting;
         this._raiseFields();
         return null;
     }
@@ -400,7 +400,7 @@ class UmfShell {
         const file = Gio.File.new_for_path(privatePath(name));
         this._snapshotting = !withField;
         if (!withField) {
-            for (const layer of [...this._fields.values(), ...this._pointers.values()])
+            for (const layer of [...this._fields.values(), ...this._aimMarks.values()])
                 layer.actor.visible = false;
         }
         try {
@@ -424,8 +424,8 @@ class UmfShell {
             this._snapshotting = false;
             for (const field of this._fields.values())
                 field.actor.visible = field.wanted;
-            for (const pointer of this._pointers.values())
-                pointer.actor.visible = true;
+            for (const mark of this._aimMarks.values())
+                mark.actor.visible = true;
         }
         return new GLib.Variant('(s)', [name]);
     }

@@ -96,9 +96,9 @@ class FieldLayer {
 // field's pulse: an actor of its own above the field. Its image is in the
 // monitor's physical pixels, as the field's, and placed by its top-left
 // corner in them.
-class PointerMark {
+class AimMark {
     constructor(parent) {
-        this.actor = new Clutter.Actor({reactive: false, visible: false, name: 'umf-pointer'});
+        this.actor = new Clutter.Actor({reactive: false, visible: false, name: 'umf-aim-mark'});
         this.actor.set_content_scaling_filters(Clutter.ScalingFilter.NEAREST, Clutter.ScalingFilter.NEAREST);
         this.imageSize = [0, 0];
         this.corner = [0, 0];

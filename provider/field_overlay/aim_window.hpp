@@ -9,15 +9,15 @@
 #include <QRasterWindow>
 #include <QString>
 
-#include "screen/pointer_mark.hpp"
+#include "provider/screen/aim_mark.hpp"
 
 class QScreen;
 
 namespace umf::provider {
 
-class PointerWindow : public QRasterWindow {
+class AimWindow : public QRasterWindow {
 public:
-    explicit PointerWindow(QScreen* screen);
+    explicit AimWindow(QScreen* screen);
 
     // Moves to `point_px` (the screen's physical pixels, as the placement)
     // with `title`; the window is sized to the ring and the title.
@@ -29,14 +29,14 @@ public:
     // Draws the ring and title as paintEvent does (tests render it).
     void paint_to(QPainter& painter);
 
-    static constexpr double kRingRadius = kPointerRingRadius;
-    static constexpr double kTitlePointSize = kPointerTitlePointSize;
+    static constexpr double kRingRadius = kAimRingRadius;
+    static constexpr double kTitlePointSize = kAimTitlePointSize;
 
 protected:
     void paintEvent(QPaintEvent* event) override;
 
 private:
-    static constexpr double kMargin = kPointerMargin;
+    static constexpr double kMargin = kAimMargin;
 
     QString title_;
 };

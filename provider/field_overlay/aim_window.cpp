@@ -1,6 +1,6 @@
-#include "field_overlay/pointer_window.hpp"
+#include "provider/field_overlay/aim_window.hpp"
 
-#include "screen/pointer_mark.hpp"
+#include "provider/screen/aim_mark.hpp"
 
 #include <QPainter>
 #include <QScreen>
@@ -9,7 +9,7 @@
 
 namespace umf::provider {
 
-PointerWindow::PointerWindow(QScreen* screen) {
+AimWindow::AimWindow(QScreen* screen) {
     QSurfaceFormat format;
     format.setAlphaBufferSize(8);
     setFormat(format);
@@ -17,12 +17,12 @@ PointerWindow::PointerWindow(QScreen* screen) {
     // never taking a click or the focus.
     setFlags(Qt::FramelessWindowHint | Qt::WindowStaysOnTopHint | Qt::WindowTransparentForInput |
              Qt::WindowDoesNotAcceptFocus | Qt::Tool | Qt::X11BypassWindowManagerHint);
-    setTitle("umf pointer");
+    setTitle("umf aim mark");
     if (screen) setScreen(screen);
 }
 
-void PointerWindow::point_at(QPointF point_px, const QString& title) {
-    const QSize size = pointer_mark_size(title);
+void AimWindow::point_at(QPointF point_px, const QString& title) {
+    const QSize size = aim_mark_size(title);
     const double dpr = devicePixelRatio();
     const QPoint origin = screen() ? screen()->geometry().topLeft() : QPoint();
     // The ring's centre on the point: Qt places windows in logical pixels
@@ -35,14 +35,14 @@ void PointerWindow::point_at(QPointF point_px, const QString& title) {
     if (new_title) update();
 }
 
-void PointerWindow::paint_to(QPainter& painter) {
+void AimWindow::paint_to(QPainter& painter) {
     painter.setCompositionMode(QPainter::CompositionMode_Source);
     painter.fillRect(QRect(QPoint(), size()), Qt::transparent);
     painter.setCompositionMode(QPainter::CompositionMode_SourceOver);
-    paint_pointer_mark(painter, ring_centre(), title_);
+    paint_aim_mark(painter, ring_centre(), title_);
 }
 
-void PointerWindow::paintEvent(QPaintEvent*) {
+void AimWindow::paintEvent(QPaintEvent*) {
     QPainter painter(this);
     paint_to(painter);
 }
