@@ -414,7 +414,7 @@ TEST(PutUploadSink, StoresOnlyWhatMatchesAndNeverOverwrites) {
     EXPECT_EQ(umf::io::numbered_name(std::string(300, 'a') + ".txt", 1).size(), 255u);
 }
 
-TEST(PutHttpSessions, APushedAnswerReachesTheLongPoll) {
+TEST(PutApiSessions, APushedAnswerReachesTheLongPoll) {
     TempDir dir;
     auto decider = std::make_shared<ScriptedDecider>();
     ServiceConfig config = default_service_config();

@@ -3,8 +3,9 @@
 // per aim, a scripted content per grab) and the one-time downloads, with
 // every answer under the test's control; it also counts what arrived, so a
 // test can tell that a refused certificate kept the hello from being sent.
-// The real server (provider/server) has no downloads yet and answers every
-// grab with "none".
+// The real provider (provider/net under provider/service) serves the tests
+// that need it; this one gives the answers a real one would not (a file
+// that changes, a broken download) on cue.
 #pragma once
 
 #include <atomic>
