@@ -23,6 +23,7 @@
 #include "provider/commands/preset_options.hpp"
 #include "provider/commands/serve_command.hpp"
 #include "provider/commands/trust_command.hpp"
+#include "provider/common/install_paths.hpp"
 #include "provider/common/config_dir.hpp"
 #include "provider/desktop/desktop_choice.hpp"
 #include "provider/desktop/display_socket.hpp"
@@ -58,6 +59,7 @@ usage:
                        --time T --out OUT.png --map MAP.json [--screen WxH] [--config-dir DIR]
                        [--shipped-field]
                        [preset settings, as for serve: --module-px P --blur B ...]
+  umf-provider --version [--verbose]
   umf-provider --help
 
 serve    (the default) listens for requesters on https://ADDR:P (WebSocket at /ws;
@@ -125,6 +127,9 @@ kde      install lets KWin (KDE Plasma) answer the provider's snapshots: it
 compose  writes the screen exactly as shown at time T (content, the board over
          it, the field at the preset's opacity then) and the map from field to
          screen pixels.
+--version prints the version; --verbose adds where this program takes its
+         fields, phone page and browser extension from (PREFIX/share/umf when
+         installed).
 
 --preset      overlay preset: subtle, balanced, visible, static, kiosk, or one
               of yours in CONFIG_DIR/presets.json (default: kiosk with a board,
@@ -221,6 +226,12 @@ void print_qt_message(QtMsgType type, const QMessageLogContext& context, const Q
 int run_command_line(int argc, char** argv) {
     qInstallMessageHandler(print_qt_message);
     // The command word is optional: `umf-provider --board B` serves.
+    if (argc >= 2 && std::strcmp(argv[1], "--version") == 0) {
+        const auto args = parse_command_args(argc, argv, 2, {}, {"verbose"});
+        std::cout << "umf-provider " << UMF_VERSION << "\n";
+        if (umf::cli::has_flag(args, "verbose")) std::cout << install_paths_report();
+        return kOk;
+    }
     std::string command = "serve";
     int first = 1;
     if (argc >= 2 && std::strncmp(argv[1], "--", 2) != 0) {

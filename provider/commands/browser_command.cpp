@@ -11,6 +11,7 @@
 #include "provider/browser/host_manifests.hpp"
 #include "provider/commands/common_options.hpp"
 #include "provider/commands/control_client.hpp"
+#include "provider/common/install_paths.hpp"
 #include "shared/io/atomic_file.hpp"
 
 namespace umf::provider {
@@ -21,25 +22,6 @@ namespace fs = std::filesystem;
 using cli::get;
 using cli::has_flag;
 using cli::UsageError;
-
-fs::path program_dir() {
-    std::error_code ec;
-    const auto self = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? fs::path() : self.parent_path();
-}
-
-// PREFIX/share/umf/browser-extension beside an installed provider, else the
-// source tree's browser/extension.
-std::optional<fs::path> extension_dir() {
-    std::error_code ec;
-    const auto installed = program_dir().parent_path() / "share" / "umf" / "browser-extension";
-    if (fs::is_regular_file(installed / "manifest.json", ec)) return installed;
-#ifdef UMF_BROWSER_EXTENSION_DIR
-    if (fs::is_regular_file(fs::path(UMF_BROWSER_EXTENSION_DIR) / "manifest.json", ec))
-        return fs::path(UMF_BROWSER_EXTENSION_DIR);
-#endif
-    return std::nullopt;
-}
 
 int run_install(const cli::Args& a, std::ostream& out, std::ostream& err) {
     if (get(a, "prefix") && !has_flag(a, "system")) throw UsageError("--prefix goes with --system");
@@ -73,7 +55,7 @@ int run_install(const cli::Args& a, std::ostream& out, std::ostream& err) {
         }
         out << m.browser << ": " << m.file.string() << "\n";
     }
-    const auto ext = extension_dir();
+    const auto ext = browser_extension_dir();
     const std::string dir = ext ? ext->string() : std::string("PREFIX/share/umf/browser-extension");
     out << "host: " << host.string() << "\n"
         << "Now load the extension (" << dir << "):\n"

@@ -25,6 +25,7 @@
 #include "provider/commands/serve_parts.hpp"
 #include "provider/commands/serve_reach.hpp"
 #include "provider/common/config_dir.hpp"
+#include "provider/common/install_paths.hpp"
 #include "provider/content/board_resolver.hpp"
 #include "provider/content/image_snapshot.hpp"
 #include "provider/content/shared_items.hpp"
@@ -255,7 +256,7 @@ void load_web_client(const cli::Args& a, Serving& s) {
     if (auto web = get(a, "web"))
         s.web_dir = *web;
     else
-        s.web_dir = default_web_dir();
+        s.web_dir = web_site_dir();
     try {
         auto site = std::make_shared<StaticSite>(s.web_dir ? StaticSite::from_folder(*s.web_dir) : StaticSite());
         offer_root(*site, s.root);

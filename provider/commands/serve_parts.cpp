@@ -104,21 +104,6 @@ void add_window_resolvers(const OpenedDesktop& desktop, OverlayManager* overlay,
     resolvers.push_back(std::move(snapshots));
 }
 
-// PREFIX/share/umf/web for an installed provider (found from the program's
-// own place, so any prefix works), else the build tree's web/site.
-std::optional<std::filesystem::path> default_web_dir() {
-    std::error_code ec;
-    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        const auto installed = self.parent_path().parent_path() / "share" / "umf" / "web";
-        if (std::filesystem::is_regular_file(installed / "index.html", ec)) return installed;
-    }
-#ifdef UMF_WEB_SITE_DIR
-    if (std::filesystem::is_directory(UMF_WEB_SITE_DIR, ec)) return std::filesystem::path(UMF_WEB_SITE_DIR);
-#endif
-    return std::nullopt;
-}
-
 // What was shared before this provider was started again by its keeper
 // comes back, and every change is written down for the next one.
 void keep_shared_items(SharedItems& items, const std::filesystem::path& file) {

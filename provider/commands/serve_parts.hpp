@@ -51,9 +51,6 @@ void add_window_resolvers(const OpenedDesktop& desktop, OverlayManager* overlay,
                           std::vector<std::shared_ptr<const Resolver>>& resolvers,
                           std::shared_ptr<BrowserLink>& browser_link, std::shared_ptr<BrowserResolver>& browsers);
 
-// PREFIX/share/umf/web for an installed provider (found from the program's
-// own place, so any prefix works), else the build tree's web/site.
-std::optional<std::filesystem::path> default_web_dir();
 
 // What was shared before this provider was started again by its keeper
 // comes back from `file`, and every change is written there for the next one.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "provider/common/install_paths.hpp"
 #include "shared/field/default_field.hpp"
 #include "shared/field/field_io.hpp"
 
@@ -20,7 +21,7 @@ Field quarter_turned(const Field& field) {
 ScreenField screen_field_for(int screen_width, int screen_height, double module_px, const FieldSource& source) {
     const DefaultField choice = field_for_screen(screen_width, screen_height, module_px);
     ScreenField s;
-    FieldSource::Chosen chosen = source.field_for(std::string(UMF_DATA_DIR) + "/fields/" + choice.file);
+    FieldSource::Chosen chosen = source.field_for((shipped_fields_dir() / choice.file).string());
     s.file = std::move(chosen.file);
     s.field = std::move(chosen.field);
     if (choice.quarter_turn) s.field = quarter_turned(s.field);

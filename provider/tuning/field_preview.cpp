@@ -7,6 +7,7 @@
 #include <QTimer>
 #include <cmath>
 
+#include "provider/common/install_paths.hpp"
 #include "shared/field/default_field.hpp"
 #include "shared/field/field_io.hpp"
 #include "shared/overlay/background_blur.hpp"
@@ -72,7 +73,7 @@ FieldPreview::FieldPreview(const QImage& screen, QSize size, QWidget* parent)
     setFixedSize(size_);
     try {
         const DefaultField choice = default_field_for_screen(1920, 1080);
-        field_ = load_field(std::string(UMF_DATA_DIR) + "/fields/" + choice.file);
+        field_ = load_field((shipped_fields_dir() / choice.file).string());
     } catch (const std::exception& e) {
         // Without the shipped field the window still edits presets.
         setText(QString::fromStdString(std::string("no preview: ") + e.what()));

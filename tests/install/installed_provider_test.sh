@@ -1,7 +1,8 @@
 #!/bin/bash
 # An installed umf-provider serves the installed phone page: `cmake --install`
 # into a fresh prefix, the build tree out of reach (the program is run from
-# the prefix), and GET / must be the web client, not the built-in page.
+# the prefix), and GET / must be the web client, not the built-in page; it
+# takes its fields, page and browser extension from the prefix and says so.
 # usage: installed_provider_test.sh BUILD_DIR
 set -euo pipefail
 build=$1
@@ -12,8 +13,16 @@ trap 'stop_provider; rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" >/dev/null
 for f in bin/umf-provider bin/umf-requester bin/umf-browser-host share/umf/web/index.html share/umf/web/app.js \
          share/umf/web/umf-detector.wasm share/umf/web/sw.js share/umf/browser-extension/manifest.json \
-         share/umf/browser-extension/background.js; do
+         share/umf/browser-extension/background.js share/umf/fields/b4-64x36.json share/umf/fields/b4-120x68.json; do
   [ -f "$prefix/$f" ] || { echo "FAIL: $f was not installed"; exit 1; }
+done
+
+version=$("$prefix/bin/umf-provider" --version --verbose)
+grep -q '^umf-provider [0-9]' <<<"$version" || { echo "FAIL: --version said:"; echo "$version"; exit 1; }
+for line in "fields: $prefix/share/umf/fields" "phone page: $prefix/share/umf/web" \
+            "browser extension: $prefix/share/umf/browser-extension"; do
+  grep -qx "$line" <<<"$version" ||
+    { echo "FAIL: --version --verbose does not say '$line':"; echo "$version"; exit 1; }
 done
 
 # The browser companion's set-up names the installed host and extension.
