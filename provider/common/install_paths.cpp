@@ -61,10 +61,10 @@ fs::path installed_share_dir() {
 }
 
 fs::path shipped_fields_dir() {
-    // b4-64x36.json is the field every screen size falls back to.
-    if (auto dir = installed_or_built(share_subdir("fields"), built_fields_dir(), "b4-64x36.json")) return *dir;
     const fs::path installed = share_subdir("fields");
     const char* built = built_fields_dir();
+    // b4-64x36.json is the field every screen size falls back to.
+    if (auto dir = installed_or_built(installed, built, "b4-64x36.json")) return *dir;
     throw std::runtime_error("the shipped fields are missing: looked in " +
                              (installed.empty() ? std::string("PREFIX/share/umf/fields") : installed.string()) +
                              (built ? std::string(" and ") + built : std::string()));
