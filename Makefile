@@ -4,7 +4,7 @@
 PRESET ?= release
 BUILD := build/$(PRESET)
 
-.PHONY: run test deps configure build bench asan sanitize fuzz clean
+.PHONY: run test deps configure build package bench asan sanitize fuzz clean
 
 deps:
 	@scripts/install-deps.sh
@@ -20,6 +20,11 @@ run: build
 
 test: build
 	ctest --preset $(PRESET)
+
+# The Debian packages (umf-provider, umf-requester, umf-field) in
+# $(BUILD)/packages: README.md, "Install".
+package: build
+	cmake --build --preset $(PRESET) --target package
 
 # Benchmarks write their numbers to docs/BENCHMARKS.md by hand: see that file.
 bench: build

@@ -27,6 +27,7 @@
 #include "provider/common/config_dir.hpp"
 #include "provider/desktop/desktop_choice.hpp"
 #include "provider/desktop/display_socket.hpp"
+#include "provider/desktop/autostart.hpp"
 #include "provider/desktop/gnome/gnome_install.hpp"
 #include "provider/desktop/kde/kde_install.hpp"
 #include "provider/screen/gui_application.hpp"
@@ -53,6 +54,7 @@ usage:
   umf-provider puts --accept ID [--open] [--always] | --dismiss ID [--port P]
   umf-provider browser install [--system [--prefix DIR]] [--host PATH]
   umf-provider browser status [--json] [--port P]
+  umf-provider autostart [on|off]
   umf-provider gnome install
   umf-provider kde install
   umf-provider compose (--content SCREEN.png | --board BOARD.json | both) --preset NAME
@@ -117,13 +119,19 @@ browser  install sets up the browser companion, so that pointing at a Chromium,
          to load the extension. status lists the browsers connected to the
          running provider and the page each window shows (private windows
          are never reported).
+autostart on starts the provider (as `umf-provider`, with the overlay) at each
+         login to this desktop, as the tray's "Start at login" does; off stops
+         that; alone, says which. (For a screen without a desktop session, a
+         kiosk, the systemd user unit does it: systemctl --user enable --now
+         umf-provider.)
 gnome    install installs and enables the umf GNOME Shell extension, which
          shows the field and answers the provider on GNOME (Wayland); GNOME
          loads it at the next login.
 kde      install lets KWin (KDE Plasma) answer the provider's snapshots: it
          writes umf-provider.desktop for this program into
          ~/.local/share/applications, which KWin's screenshot interface asks
-         for.
+         for (the menu entry an installed package brings does the same for
+         /usr/bin/umf-provider).
 compose  writes the screen exactly as shown at time T (content, the board over
          it, the field at the preset's opacity then) and the map from field to
          screen pixels.
@@ -257,6 +265,9 @@ int run_command_line(int argc, char** argv) {
             app.reset();
             app = std::make_unique<QApplication>(argc, argv);
             QApplication::setQuitOnLastWindowClosed(false);
+            // Wayland compositors and task bars find the menu entry, and its
+            // icon, by this name (the window's app id).
+            QGuiApplication::setDesktopFileName("umf-provider");
         }
         if (qobject_cast<QApplication*>(app.get()))
             hooks.desktop_controls = [](OverlayManager* overlay, const std::string& status,
@@ -294,6 +305,13 @@ int run_command_line(int argc, char** argv) {
         if (first >= argc || std::strcmp(argv[first], "install") != 0 || first + 1 != argc)
             throw umf::cli::UsageError("kde takes one word: install");
         return run_kde_install(std::cout, std::cerr);
+    }
+    if (command == "autostart") {
+        std::optional<bool> on;
+        if (first + 1 == argc && std::strcmp(argv[first], "on") == 0) on = true;
+        else if (first + 1 == argc && std::strcmp(argv[first], "off") == 0) on = false;
+        else if (first != argc) throw umf::cli::UsageError("autostart takes on, off or nothing");
+        return run_autostart(on, std::cout, std::cerr);
     }
     if (command == "gnome") {
         if (first >= argc || std::strcmp(argv[first], "install") != 0 || first + 1 != argc)

@@ -28,6 +28,10 @@ packages=(
   # with libavahi-client, and requesters resolve .local names through nss-mdns; the tests run
   # a daemon and its tools in network namespaces of their own (iproute2)
   avahi-daemon libavahi-client-dev avahi-utils libnss-mdns iproute2
+  # packaging/: the icon's PNG sizes, and what the package test checks the
+  # packages with (lintian, the menu entry's and AppStream validators, man,
+  # a user systemd for the user unit)
+  librsvg2-bin lintian desktop-file-utils appstream man-db systemd
 )
 
 # node and npm may come from another repository whose nodejs bundles npm

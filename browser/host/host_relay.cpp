@@ -32,6 +32,8 @@ bool write_all(int fd, const std::string& data) {
 }
 
 struct Relay {
+    Relay(const RelayOptions& relay_options, std::ostream& relay_log) : options(relay_options), log(relay_log) {}
+
     const RelayOptions& options;
     std::ostream& log;
     int provider = -1;
@@ -124,7 +126,7 @@ struct Relay {
 }  // namespace
 
 int run_relay(const RelayOptions& options, std::ostream& log) {
-    Relay relay{options, log};
+    Relay relay(options, log);
     FrameReader reader;
     relay.connect();
     for (;;) {

@@ -15,9 +15,20 @@ int main(int argc, char** argv) {
     // Browsers pass the caller's origin (and on Windows a window handle);
     // a person who runs it by hand gets told what it is.
     if (argc > 1 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
-        std::cout << "umf-browser-host: the umf browser companion's native-messaging host.\n"
+        std::cout << "umf-browser-host: the umf browser companion's native-messaging host\n"
+                     "\n"
+                     "usage:\n"
+                     "  umf-browser-host ORIGIN      (as a browser starts it)\n"
+                     "  umf-browser-host --version\n"
+                     "  umf-browser-host --help\n"
+                     "\n"
                      "Browsers start it for the umf extension; it relays between the extension and the\n"
-                     "running umf-provider. Set it up with: umf-provider browser install\n";
+                     "running umf-provider (the page each window shows; never a private window's).\n"
+                     "Set it up with: umf-provider browser install\n";
+        return 0;
+    }
+    if (argc > 1 && std::strcmp(argv[1], "--version") == 0) {
+        std::cout << "umf-browser-host " << UMF_VERSION << "\n";
         return 0;
     }
     if (::isatty(STDIN_FILENO)) {

@@ -2,7 +2,11 @@
 
 #include <QPainter>
 #include <QPixmap>
+#include <iostream>
+#include <stdexcept>
+#include <system_error>
 
+#include "provider/desktop/autostart.hpp"
 #include "provider/service/pairing_qr.hpp"
 
 namespace umf::provider {
@@ -42,10 +46,13 @@ DesktopControls::DesktopControls(OverlayManager* overlay, const std::string& sta
     }
     callbacks.pairing_qr = [this] { show_pairing(); };
     callbacks.quit = std::move(quit);
+    const auto autostart = autostart_entry_path();
+    if (!autostart.empty()) callbacks.start_at_login = [this, autostart](bool on) { start_at_login(autostart, on); };
     if (TrayMenu::available()) {
         tray_ = overlay_ ? std::make_unique<TrayMenu>(names_of(store_), overlay_->preset().name, overlay_->visible(),
                                                       callbacks, status)
                          : std::make_unique<TrayMenu>(callbacks, status);
+        tray_->set_start_at_login(autostart_enabled(autostart));
         tray_->show();
     }
 }
@@ -66,6 +73,21 @@ void DesktopControls::show_tuning() {
     }
     tuning_->show();
     tuning_->raise();
+}
+
+void DesktopControls::start_at_login(const std::filesystem::path& entry, bool on) {
+    std::error_code ec;
+    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
+    try {
+        if (ec) throw std::runtime_error("cannot tell where this program is: " + ec.message());
+        set_autostart(entry, on, self);
+        std::cerr << "umf-provider: " << (on ? "starts at login (" + entry.string() + ")" : "no longer starts at login")
+                  << "\n";
+    } catch (const std::exception& e) {
+        std::cerr << "umf-provider: start at login: " << e.what() << "\n";
+        // The menu shows what is so, not what was asked for.
+        if (tray_) tray_->set_start_at_login(autostart_enabled(entry));
+    }
 }
 
 void DesktopControls::show_pairing() {

@@ -1,6 +1,6 @@
 // What the person at the desk controls the running provider with: the tray
 // icon's menu (what the desktop allows, overlay on/off, preset, tuning,
-// pairing QR code, quit) and the tuning window, which changes the overlay
+// pairing QR code, start at login, quit) and the tuning window, which changes the overlay
 // live. Without a system tray (or with --tune) the tuning window is opened on
 // request at start-up. On a desktop that shows no field the tray has the
 // status line, the pairing QR code and quit.
@@ -8,6 +8,7 @@
 
 #include <QImage>
 #include <QLabel>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -43,6 +44,10 @@ private:
     std::unique_ptr<TrayMenu> tray_;
     std::unique_ptr<TuningWindow> tuning_;
     std::unique_ptr<QLabel> pairing_;
+
+    // The tray's "Start at login": the autostart entry (`entry`) written or
+    // removed; a failure is said on the console and the menu shows what is so.
+    void start_at_login(const std::filesystem::path& entry, bool on);
 };
 
 }  // namespace umf::provider

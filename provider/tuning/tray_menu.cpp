@@ -82,11 +82,18 @@ void TrayMenu::add_common() {
     QObject::connect(menu_->addAction("Pairing QR code…"), &QAction::triggered, menu_.get(), [this] {
         if (callbacks_.pairing_qr) callbacks_.pairing_qr();
     });
+    if (callbacks_.start_at_login) {
+        start_at_login_ = menu_->addAction("Start at login");
+        start_at_login_->setCheckable(true);
+        QObject::connect(start_at_login_, &QAction::toggled, menu_.get(),
+                         [this](bool on) { callbacks_.start_at_login(on); });
+    }
     menu_->addSeparator();
     QObject::connect(menu_->addAction("Quit"), &QAction::triggered, menu_.get(), [this] {
         if (callbacks_.quit) callbacks_.quit();
     });
-    tray_->setIcon(field_icon());
+    // The installed icon (packaging/icons) where the theme has it, else the same drawn here.
+    tray_->setIcon(QIcon::fromTheme("umf-provider", field_icon()));
     tray_->setToolTip("umf provider");
     tray_->setContextMenu(menu_.get());
 }
@@ -118,6 +125,12 @@ void TrayMenu::set_overlay_on(bool on) {
     if (!overlay_) return;
     const QSignalBlocker quiet(overlay_);
     overlay_->setChecked(on);
+}
+
+void TrayMenu::set_start_at_login(bool on) {
+    if (!start_at_login_) return;
+    const QSignalBlocker quiet(start_at_login_);
+    start_at_login_->setChecked(on);
 }
 
 }  // namespace umf::provider

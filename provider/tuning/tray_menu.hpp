@@ -1,5 +1,5 @@
 // The provider's tray icon and its menu: the overlay on or off, the preset,
-// the tuning window, the pairing QR code, quit. Desktops without a tray
+// the tuning window, the pairing QR code, start at login, quit. Desktops without a tray
 // (some tiling window managers, GNOME without an extension) still run the
 // provider: callers check available() and offer the same through the
 // command line instead.
@@ -23,6 +23,8 @@ struct TrayCallbacks {
     std::function<void(const std::string& preset)> preset_chosen;
     std::function<void()> tune;
     std::function<void()> pairing_qr;
+    // "Start at login" is offered when this is set; it gets the new state.
+    std::function<void(bool on)> start_at_login;
     std::function<void()> quit;
 };
 
@@ -45,6 +47,7 @@ public:
     // without calling back.
     void set_presets(const std::vector<std::string>& presets, const std::string& current_preset);
     void set_overlay_on(bool on);
+    void set_start_at_login(bool on);
     // What works on this desktop changed: the line heading the menu and the
     // tooltip say it now (empty: neither says anything).
     void set_status(const std::string& status);
@@ -57,6 +60,7 @@ private:
     std::unique_ptr<QMenu> menu_;
     std::unique_ptr<QSystemTrayIcon> tray_;
     QAction* overlay_ = nullptr;
+    QAction* start_at_login_ = nullptr;
     QMenu* presets_ = nullptr;
     QActionGroup* preset_group_ = nullptr;
     QAction* status_ = nullptr;  // the line heading the menu

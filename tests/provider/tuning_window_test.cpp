@@ -389,6 +389,30 @@ TEST(TrayMenu, ADesktopWithoutAFieldSaysWhatWorks) {
     tray.set_presets({"kiosk"}, "kiosk");
 }
 
+// "Start at login" is there when the provider can write the autostart entry;
+// it says the entry's state without calling back, and calls back when
+// switched.
+TEST(TrayMenu, StartAtLoginIsOfferedAndSwitched) {
+    REQUIRE_WIDGETS();
+    std::vector<bool> calls;
+    TrayCallbacks cb;
+    cb.start_at_login = [&](bool on) { calls.push_back(on); };
+    TrayMenu tray({"balanced"}, "balanced", true, cb);
+    QAction* start = nullptr;
+    for (QAction* a : tray.menu()->actions())
+        if (a->text() == "Start at login") start = a;
+    ASSERT_NE(start, nullptr);
+    EXPECT_TRUE(start->isCheckable());
+    EXPECT_FALSE(start->isChecked());
+    tray.set_start_at_login(true);
+    EXPECT_TRUE(start->isChecked());
+    EXPECT_TRUE(calls.empty()) << "following the entry's state is not a switch";
+    start->trigger();
+    start->trigger();
+    EXPECT_EQ(calls, (std::vector<bool>{false, true}));
+    EXPECT_EQ(tray.menu()->actions().back()->text(), "Quit");
+}
+
 // The desktop's abilities change while the provider runs (GNOME's extension
 // stopped, or came back): the tray says what works now.
 TEST(TrayMenu, TheStatusFollowsTheDesktop) {

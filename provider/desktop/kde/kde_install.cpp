@@ -4,7 +4,7 @@
 #include <ostream>
 #include <system_error>
 
-#include "provider/desktop/kde/kwin_screenshot.hpp"
+#include "provider/desktop/desktop_entry.hpp"
 #include "shared/io/atomic_file.hpp"
 
 namespace umf::provider {
@@ -15,9 +15,9 @@ int install_kde_desktop_entry(const fs::path& executable, const fs::path& applic
                               std::ostream& err) {
     std::error_code ec;
     fs::create_directories(applications, ec);
-    const fs::path file = applications / "umf-provider.desktop";
+    const fs::path file = applications / kDesktopEntryName;
     try {
-        umf::write_file_atomically(file.string(), kde_screenshot_desktop_entry(executable.string()));
+        umf::write_file_atomically(file.string(), provider_desktop_entry(executable.string()));
     } catch (const std::exception& e) {
         err << "umf-provider: cannot write " << file.string() << ": " << e.what() << "\n";
         return 3;

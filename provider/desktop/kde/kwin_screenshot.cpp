@@ -63,16 +63,6 @@ Capture capture_from_raw(const QVariantMap& layout, const QByteArray& data) {
     return capture;
 }
 
-std::string kde_screenshot_desktop_entry(const std::string& executable) {
-    return "[Desktop Entry]\n"
-           "Type=Application\n"
-           "Name=umf provider\n"
-           "Comment=Shares the document under the point with a phone\n"
-           "Exec=" + executable + "\n"
-           "NoDisplay=true\n"
-           "X-KDE-DBUS-Restricted-Interfaces=org.kde.KWin.ScreenShot2\n";
-}
-
 Capture kwin_capture_area(QDBusConnection& bus, const WindowRect& rect, std::chrono::milliseconds timeout) {
     if (rect.empty()) return {};
     int fds[2];

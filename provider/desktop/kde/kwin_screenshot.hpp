@@ -9,8 +9,8 @@
 // application .desktop file whose Exec= is exactly that path (no
 // arguments) and which names org.kde.KWin.ScreenShot2 in
 // X-KDE-DBUS-Restricted-Interfaces; others get
-// org.kde.KWin.ScreenShot2.Error.NoAuthorized. kde_screenshot_desktop_entry()
-// is the file umf installs. The interface lives in KWin's screenshot effect,
+// org.kde.KWin.ScreenShot2.Error.NoAuthorized. The provider's desktop entry
+// (desktop/desktop_entry.hpp) is such a file. The interface lives in KWin's screenshot effect,
 // which KWin 5.27 loads only with OpenGL compositing (not with QPainter, as
 // on a machine without a GPU).
 #pragma once
@@ -27,10 +27,6 @@ namespace umf::provider {
 // The image KWin wrote, as the seam's Capture. Throws DesktopError for a
 // layout it does not know or data that is too short.
 Capture capture_from_raw(const QVariantMap& layout, const QByteArray& data);
-
-// The application entry that lets `executable` (an absolute path, as
-// installed) use ScreenShot2.
-std::string kde_screenshot_desktop_entry(const std::string& executable);
 
 // The area's pixels as shown. Throws DesktopError (no screenshot interface,
 // refused, timed out).
