@@ -15,6 +15,12 @@ Sha256::~Sha256() = default;
 
 void Sha256::update(const void* data, std::size_t size) { EVP_DigestUpdate(ctx_.get(), data, size); }
 
+std::unique_ptr<Sha256> Sha256::copy() const {
+    auto twin = std::make_unique<Sha256>();
+    if (EVP_MD_CTX_copy_ex(twin->ctx_.get(), ctx_.get()) != 1) throw std::runtime_error("OpenSSL cannot copy a SHA-256");
+    return twin;
+}
+
 std::string Sha256::hex() {
     unsigned char digest[EVP_MAX_MD_SIZE];
     unsigned int size = 0;

@@ -19,6 +19,10 @@ public:
     Sha256& operator=(const Sha256&) = delete;
 
     void update(const void* data, std::size_t size);
+    // A hasher in the same state, to go on from here apart from this one (a
+    // resumed download's checkpoint). Throws std::runtime_error as the
+    // constructor does.
+    std::unique_ptr<Sha256> copy() const;
     // 64 lowercase hex digits; the hasher is used up.
     std::string hex();
 

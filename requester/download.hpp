@@ -2,12 +2,15 @@
 // "Downloads"), with the same certificate pin as the session. The bytes go
 // to a private temporary file in the target directory and are checked
 // (Content-Length, size, SHA-256) while they stream; only a complete, checked
-// file gets a real name, and never one that already exists. On any failure
-// nothing is left behind.
+// file gets a real name, and never one that already exists. A connection
+// that breaks is asked again for the rest (HTTP Range with If-Range), with
+// backoff, while that brings new bytes; on any failure nothing is left
+// behind.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -34,8 +37,12 @@ struct SavedFile {
 // directory or the file, "connection"/"certificate" for the network,
 // the provider's code ("not_found", "too_large", "internal") for an HTTP
 // error it explains, "download" for a short, long or corrupt transfer.
+// `progress` hears of each resume ("the connection was lost at 410.0 MB of
+// 1073.7 MB (...); resuming in 250 ms"). It gives up when nothing new has
+// arrived for timeouts.download_idle.
 SavedFile download_file(const protocol::PairingUrl& provider, const DownloadRequest& request, const std::filesystem::path& dir,
-                        const NetTimeouts& timeouts = {});
+                        const NetTimeouts& timeouts = {},
+                        const std::function<void(const std::string&)>& progress = {});
 
 // Links (or renames without replacing) the finished temporary file at
 // `temp` to `name`, or "name (1)", "name (2)"... in `dir`, whichever is free

@@ -89,7 +89,8 @@ private:
     void download(const p::Content& c) {
         const std::filesystem::path dir = o_.out ? std::filesystem::path(*o_.out) : default_download_dir();
         log("downloading " + *c.name + " (" + std::to_string(*c.size) + " bytes) to " + dir.string());
-        saved_ = download_file(session_.connection().url(), {*c.download, *c.name, *c.size, c.sha256}, dir);
+        saved_ = download_file(session_.connection().url(), {*c.download, *c.name, *c.size, c.sha256}, dir, {},
+                               [this](const std::string& line) { log(line); });
         log("saved " + saved_->path.string());
     }
 

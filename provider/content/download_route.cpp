@@ -1,12 +1,15 @@
 #include "provider/content/download_route.hpp"
 
 #include <boost/beast/http/empty_body.hpp>
+#include <boost/beast/http/string_body.hpp>
+#include <memory>
 #include <cctype>
 #include <chrono>
 #include <string>
 #include <tuple>
 #include <utility>
 
+#include "provider/content/resume_range.hpp"
 #include "provider/content/verified_file_body.hpp"
 #include "provider/net/http_response_headers.hpp"
 
@@ -36,36 +39,88 @@ std::string content_disposition(const std::string& name) {
 
 }  // namespace
 
+namespace {
+
+// Ends a transfer's lease when the last holder lets go: complete when the
+// whole body went out, else the link stays for the rest to be asked for.
+struct LeaseEnd {
+    DownloadTable& downloads;
+    DownloadLease lease;
+    bool complete = false;
+    ~LeaseEnd() { downloads.end(lease, complete); }
+};
+
+std::string_view header_text(const HttpRequest& req, http::field field) {
+    const beast::string_view value = req[field];
+    return {value.data(), value.size()};
+}
+
+}  // namespace
+
 void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTable& downloads,
                     std::function<void(const std::filesystem::path&)> forget_file) {
     const bool keep_alive = req.keep_alive();
     const beast::string_view target = req.target();
-    auto entry = downloads.take(std::string_view(target.data(), target.size()));
-    if (!entry) {
+    auto lease = downloads.begin(std::string_view(target.data(), target.size()));
+    if (!lease) {
         exchange.answer_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found,
-                              "unknown, used or expired download link");
+                              "unknown, finished or expired download link");
         return;
     }
+    auto end = std::make_shared<LeaseEnd>(LeaseEnd{downloads, *lease});
+    const DownloadEntry& entry = *lease->entry;
     const bool head = req.method() == http::verb::head;
-    auto prepare = [&](auto& res) {
-        set_common_headers(res);
-        res.set(http::field::content_type, entry->mime);
-        res.set(http::field::content_disposition, content_disposition(entry->name));
-        res.set(http::field::cache_control, "no-store");
-        res.keep_alive(keep_alive);
-        res.content_length(static_cast<std::uint64_t>(entry->size));
-    };
-    // A slow reader gets a minute plus a second per megabyte.
-    beast::get_lowest_layer(exchange.stream()).expires_after(std::chrono::seconds(60 + entry->size / (1 << 20)));
-    if (entry->bytes) {
-        auto res = std::make_shared<http::response<http::string_body>>(http::status::ok, req.version());
-        if (!head) res->body() = *entry->bytes;
-        prepare(*res);
+    const auto size = static_cast<std::uint64_t>(entry.size);
+    const std::string etag = entry.sha256.empty() ? std::string() : download_etag(entry.sha256);
+    const ResumeRange range =
+        etag.empty() ? ResumeRange{}
+                     : resume_range(header_text(req, http::field::range), header_text(req, http::field::if_range), etag,
+                                    size);
+    if (range.kind == ResumeRange::Kind::unsatisfiable) {
+        auto res = std::make_shared<http::response<http::empty_body>>(http::status::range_not_satisfiable, req.version());
+        set_common_headers(*res);
+        res->set(http::field::content_range, "bytes */" + std::to_string(size));
+        res->keep_alive(keep_alive);
+        res->content_length(0);
         write_response(exchange, std::move(res));
         return;
     }
+    const std::uint64_t offset = range.kind == ResumeRange::Kind::rest ? range.offset : 0;
+    auto prepare = [&](auto& res) {
+        set_common_headers(res);
+        if (range.kind == ResumeRange::Kind::rest) {
+            res.result(http::status::partial_content);
+            res.set(http::field::content_range,
+                    "bytes " + std::to_string(offset) + "-" + std::to_string(size - 1) + "/" + std::to_string(size));
+        }
+        res.set(http::field::content_type, entry.mime);
+        res.set(http::field::content_disposition, content_disposition(entry.name));
+        res.set(http::field::cache_control, "no-store");
+        if (!etag.empty()) {
+            res.set(http::field::etag, etag);
+            res.set(http::field::accept_ranges, "bytes");
+        }
+        res.keep_alive(keep_alive);
+        res.content_length(size - offset);
+    };
+    // A slow reader gets a minute plus a second per megabyte.
+    beast::get_lowest_layer(exchange.stream()).expires_after(std::chrono::seconds(60 + (size - offset) / (1 << 20)));
+    if (entry.bytes) {
+        auto res = std::make_shared<http::response<http::string_body>>(http::status::ok, req.version());
+        if (!head) res->body() = entry.bytes->substr(static_cast<std::size_t>(offset));
+        prepare(*res);
+        auto& r = *res;
+        http::async_write(exchange.stream(), r,
+                          [held = exchange.hold(), res = std::move(res), keep_alive, end, head](beast::error_code ec,
+                                                                                                 std::size_t) {
+                              if (ec) return;
+                              end->complete = !head;
+                              held->written(keep_alive);
+                          });
+        return;
+    }
     VerifiedFileBody::value_type body;
-    if (const auto why = body.open(*entry->file, entry->identity, entry->sha256)) {
+    if (const auto why = body.open(*entry.file, entry.identity, entry.sha256, offset, lease->checkpoints)) {
         // Gone or changed since the grab: what would arrive is not what the
         // content message promised.
         exchange.answer_error(http::status::conflict, keep_alive, protocol::ErrorCode::internal, *why);
@@ -82,7 +137,7 @@ void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTabl
     prepare(*res);
     auto& r = *res;
     http::async_write(exchange.stream(), r,
-                      [held = exchange.hold(), res = std::move(res), keep_alive, file = *entry->file,
+                      [held = exchange.hold(), res = std::move(res), keep_alive, file = *entry.file, end,
                        forget_file = std::move(forget_file)](beast::error_code ec, std::size_t) {
                           if (ec == DownloadCheck::changed) {
                               // Cut short: the phone sees fewer bytes than promised
@@ -92,6 +147,7 @@ void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTabl
                               return;
                           }
                           if (ec) return;
+                          end->complete = true;
                           held->written(keep_alive);
                       });
 }

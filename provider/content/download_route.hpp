@@ -1,7 +1,9 @@
-// GET or HEAD /dl/<link> (docs/PROTOCOL.md, "Downloads"): the link is used up
-// by the request, whatever follows. Bytes the provider made are sent as they
-// are; a file is sent only while it is the one announced (the same identity
-// before the first byte, the same SHA-256 before the last piece:
+// GET or HEAD /dl/<link> (docs/PROTOCOL.md, "Downloads"): the whole file
+// (200), or with Range (and If-Range naming its ETag, "sha256-<hex>") the
+// rest from where a broken download stopped (206); the link ends when a GET
+// of it completes (download_table.hpp). Bytes the provider made are sent as
+// they are; a file is sent only while it is the one announced (the same
+// identity before the first byte, the same SHA-256 before the last piece:
 // verified_file_body.hpp), else the response is cut short.
 #pragma once
 

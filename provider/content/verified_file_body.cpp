@@ -28,14 +28,20 @@ const boost::system::error_category& download_check_category() {
 }
 
 VerifiedFileBody::value_type::value_type(value_type&& other) noexcept
-    : fd_(std::exchange(other.fd_, -1)), size_(other.size_), sha256_(std::move(other.sha256_)) {}
+    : fd_(std::exchange(other.fd_, -1)),
+      size_(other.size_),
+      offset_(other.offset_),
+      sha256_(std::move(other.sha256_)),
+      checkpoints_(std::move(other.checkpoints_)) {}
 
 VerifiedFileBody::value_type& VerifiedFileBody::value_type::operator=(value_type&& other) noexcept {
     if (this != &other) {
         if (fd_ >= 0) ::close(fd_);
         fd_ = std::exchange(other.fd_, -1);
         size_ = other.size_;
+        offset_ = other.offset_;
         sha256_ = std::move(other.sha256_);
+        checkpoints_ = std::move(other.checkpoints_);
     }
     return *this;
 }
@@ -45,7 +51,9 @@ VerifiedFileBody::value_type::~value_type() {
 }
 
 std::optional<std::string> VerifiedFileBody::value_type::open(const std::filesystem::path& file,
-                                                              const FileIdentity& identity, std::string sha256) {
+                                                              const FileIdentity& identity, std::string sha256,
+                                                              std::uint64_t offset,
+                                                              std::shared_ptr<HashCheckpoints> checkpoints) {
     if (fd_ >= 0) ::close(fd_);
     fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd_ < 0) return std::string("the file can no longer be read: ") + std::strerror(errno);
@@ -57,38 +65,66 @@ std::optional<std::string> VerifiedFileBody::value_type::open(const std::filesys
     if (now != identity) return std::string("the file changed since it was offered; grab it again");
     if (sha256.size() != 64) return std::string("the file was offered without its SHA-256");
     size_ = static_cast<std::uint64_t>(identity.size);
+    if (offset > size_) return std::string("the download cannot resume past the file's end");
+    offset_ = offset;
     sha256_ = std::move(sha256);
+    checkpoints_ = checkpoints ? std::move(checkpoints) : std::make_shared<HashCheckpoints>();
     return std::nullopt;
+}
+
+long VerifiedFileBody::writer::read_at(std::uint64_t at, std::size_t size, boost::beast::error_code& ec) {
+    ssize_t n;
+    do {
+        n = ::pread(body_.fd_, buffer_.get(), size, static_cast<off_t>(at));
+    } while (n < 0 && errno == EINTR);
+    if (n < 0) ec = boost::system::error_code(errno, boost::system::system_category());
+    return static_cast<long>(n);
+}
+
+bool VerifiedFileBody::writer::start_hash(boost::beast::error_code& ec) {
+    auto [at, hash] = body_.checkpoints_->nearest(body_.offset_);
+    hash_ = std::move(hash);
+    // At most a checkpoint step of bytes read and not sent.
+    while (at < body_.offset_) {
+        const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(body_.offset_ - at, kReadBytes));
+        const long n = read_at(at, want, ec);
+        if (n <= 0) {
+            if (!ec) ec = DownloadCheck::changed;
+            return false;
+        }
+        hash_->update(buffer_.get(), static_cast<std::size_t>(n));
+        at += static_cast<std::uint64_t>(n);
+    }
+    return true;
 }
 
 boost::optional<std::pair<VerifiedFileBody::writer::const_buffers_type, bool>> VerifiedFileBody::writer::get(
     boost::beast::error_code& ec) {
     ec = {};
-    // An empty file of the same identity is the empty file that was hashed.
-    if (remain_ == 0) return boost::none;
     if (!buffer_) buffer_ = std::make_unique<char[]>(kReadBytes);
-    const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(remain_, kReadBytes));
-    ssize_t n;
-    do {
-        n = ::read(body_.fd_, buffer_.get(), want);
-    } while (n < 0 && errno == EINTR);
-    if (n < 0) {
-        ec = boost::system::error_code(errno, boost::system::system_category());
-        return boost::none;
-    }
+    if (!hash_ && !start_hash(ec)) return boost::none;
+    // An empty file of the same identity is the empty file that was hashed.
+    if (at_ >= body_.size_) return boost::none;
+    // Reads end on multiples of kReadBytes, so the checkpoints' offsets are
+    // reached exactly wherever the transfer began.
+    const auto want = static_cast<std::size_t>(
+        std::min<std::uint64_t>(body_.size_ - at_, kReadBytes - at_ % kReadBytes));
+    const long n = read_at(at_, want, ec);
+    if (n < 0) return boost::none;
     if (n == 0) {
         // Shorter than when it was offered.
         ec = DownloadCheck::changed;
         return boost::none;
     }
-    hash_.update(buffer_.get(), static_cast<std::size_t>(n));
-    remain_ -= static_cast<std::uint64_t>(n);
+    hash_->update(buffer_.get(), static_cast<std::size_t>(n));
+    at_ += static_cast<std::uint64_t>(n);
+    if (at_ % HashCheckpoints::kStep == 0) body_.checkpoints_->save(at_, *hash_);
     // The last piece goes out only when the whole is what was announced.
-    if (remain_ == 0 && hash_.hex() != body_.sha256_) {
+    if (at_ == body_.size_ && hash_->hex() != body_.sha256_) {
         ec = DownloadCheck::changed;
         return boost::none;
     }
-    return {{boost::asio::const_buffer(buffer_.get(), static_cast<std::size_t>(n)), remain_ > 0}};
+    return {{boost::asio::const_buffer(buffer_.get(), static_cast<std::size_t>(n)), at_ < body_.size_}};
 }
 
 }  // namespace umf::provider

@@ -4,7 +4,10 @@
 // before the first byte, and the same SHA-256 over the bytes read, computed
 // as they are read. A file changed in place without a new mtime is caught at
 // the end, and its last piece is never sent: the phone gets a download cut
-// short, never bytes other than the ones announced.
+// short, never bytes other than the ones announced. A resumed download sends
+// from an offset and checks the same way: its hasher starts from the
+// checkpoint at or before the offset (hash_checkpoints.hpp) and reads the
+// bytes from there to the offset without sending them.
 #pragma once
 
 #include <boost/beast/core/error.hpp>
@@ -19,6 +22,7 @@
 
 #include "native/sha256.hpp"
 #include "provider/content/file_facts.hpp"
+#include "provider/content/hash_checkpoints.hpp"
 
 namespace umf::provider {
 
@@ -48,18 +52,23 @@ struct VerifiedFileBody {
         value_type& operator=(value_type&& other) noexcept;
         ~value_type();
 
-        // Opens the file for sending if it is still the one described by
-        // `identity` and hashing to `sha256`; otherwise says why not, in
-        // words for the requester.
+        // Opens the file for sending from `offset` on if it is still the
+        // one described by `identity` and hashing to `sha256`; otherwise
+        // says why not, in words for the requester. `checkpoints` are the
+        // link's (null: none kept).
         std::optional<std::string> open(const std::filesystem::path& file, const FileIdentity& identity,
-                                        std::string sha256);
-        std::uint64_t size() const { return size_; }
+                                        std::string sha256, std::uint64_t offset = 0,
+                                        std::shared_ptr<HashCheckpoints> checkpoints = nullptr);
+        // The bytes sent: from the offset to the end.
+        std::uint64_t size() const { return size_ - offset_; }
 
     private:
         friend class VerifiedFileBody::writer;
         int fd_ = -1;
-        std::uint64_t size_ = 0;
+        std::uint64_t size_ = 0;  // the whole file's
+        std::uint64_t offset_ = 0;
         std::string sha256_;
+        std::shared_ptr<HashCheckpoints> checkpoints_;
     };
 
     class writer {
@@ -67,16 +76,21 @@ struct VerifiedFileBody {
         using const_buffers_type = boost::asio::const_buffer;
 
         template <bool isRequest, class Fields>
-        writer(boost::beast::http::header<isRequest, Fields>&, value_type& body) : body_(body), remain_(body.size_) {}
+        writer(boost::beast::http::header<isRequest, Fields>&, value_type& body) : body_(body), at_(body.offset_) {}
 
         void init(boost::beast::error_code& ec) { ec = {}; }
         boost::optional<std::pair<const_buffers_type, bool>> get(boost::beast::error_code& ec);
 
     private:
         value_type& body_;
-        std::uint64_t remain_;
-        native::Sha256 hash_;
+        std::uint64_t at_;  // the next byte to send
+        std::unique_ptr<native::Sha256> hash_;
         std::unique_ptr<char[]> buffer_;
+
+        // The hasher brought to the offset; false when the file ended first.
+        bool start_hash(boost::beast::error_code& ec);
+        // Reads `size` bytes at `at` into the buffer; 0 at the end, -1 with ec.
+        long read_at(std::uint64_t at, std::size_t size, boost::beast::error_code& ec);
     };
 
     static std::uint64_t size(const value_type& body) { return body.size(); }

@@ -27,6 +27,7 @@
 #include "provider/board/board.hpp"
 #include "provider/content/board_resolver.hpp"
 #include "provider/content/download_table.hpp"
+#include "provider/content/resume_range.hpp"
 #include "provider/net/api_sessions.hpp"
 #include "provider/net/http_framing.hpp"
 #include "provider/put/put_decision.hpp"
@@ -186,7 +187,17 @@ void serve(Provider& p, const http::request<http::string_body>& req) {
     }
     if (req.method() != http::verb::get && req.method() != http::verb::head) return;
     if (target.starts_with(provider::kDownloadPrefix)) {
-        (void)p.service->downloads().take(path);
+        if (auto lease = p.service->downloads().begin(path)) p.service->downloads().end(*lease, true);
+        // The part a resume asks for, against a file of a size the request
+        // picks itself (its length): never past the end.
+        const auto field = [&](http::field f) {
+            const beast::string_view v = req[f];
+            return std::string_view(v.data(), v.size());
+        };
+        const std::uint64_t size = req.body().size();
+        const auto range = provider::resume_range(field(http::field::range), field(http::field::if_range),
+                                                  provider::download_etag("ab"), size);
+        if (range.kind == provider::ResumeRange::Kind::rest && range.offset >= size) __builtin_trap();
         return;
     }
     (void)p.service->site().find(path);

@@ -106,10 +106,11 @@ TEST_F(ProviderContent, AimsPreviewAndGrabsTakeWithOneTimeLinks) {
     EXPECT_GE(content.download->size(), 4u + 22u) << "at least 128 random bits";
     EXPECT_FALSE(content.download->find(report.string()) != std::string::npos) << "no path in the link";
 
-    const auto entry = service->downloads().take(*content.download);
-    ASSERT_TRUE(entry);
-    EXPECT_EQ(entry->file, report);
-    EXPECT_FALSE(service->downloads().take(*content.download)) << "a link works once";
+    const auto lease = service->downloads().begin(*content.download);
+    ASSERT_TRUE(lease);
+    EXPECT_EQ(lease->entry->file, report);
+    service->downloads().end(*lease, true);
+    EXPECT_FALSE(service->downloads().begin(*content.download)) << "a link ends when its download completes";
 
     const auto url = std::get<p::Content>(one(grab_text("g2", 50, 5)));
     EXPECT_EQ(url.kind, p::ContentKind::url);
@@ -320,15 +321,17 @@ TEST(ProviderDownloads, LinksExpireAndTheTableStaysBounded) {
     e.name = "a.txt";
     e.bytes = std::make_shared<const std::string>("abc");
     const std::string late = table.add(e, t0);
-    EXPECT_FALSE(table.take(late, t0 + std::chrono::seconds(61))) << "expired";
+    EXPECT_FALSE(table.begin(late, t0 + std::chrono::seconds(61))) << "expired";
     const std::string fresh = table.add(e, t0);
-    EXPECT_TRUE(table.take(fresh + "?x=1", t0 + std::chrono::seconds(59)));
-    for (const char* bad : {"/dl/", "/dl", "/dl/../x", "/index.html", ""}) EXPECT_FALSE(table.take(bad, t0)) << bad;
+    const auto lease = table.begin(fresh + "?x=1", t0 + std::chrono::seconds(59));
+    ASSERT_TRUE(lease);
+    table.end(*lease, true);
+    for (const char* bad : {"/dl/", "/dl", "/dl/../x", "/index.html", ""}) EXPECT_FALSE(table.begin(bad, t0)) << bad;
     std::vector<std::string> links;
     for (int i = 0; i < 5; ++i) links.push_back(table.add(e, t0 + std::chrono::seconds(i)));
     EXPECT_EQ(table.size(), 3u);
-    EXPECT_FALSE(table.take(links[0], t0 + std::chrono::seconds(5))) << "the oldest made room";
-    EXPECT_TRUE(table.take(links[4], t0 + std::chrono::seconds(5)));
+    EXPECT_FALSE(table.begin(links[0], t0 + std::chrono::seconds(5))) << "the oldest made room";
+    EXPECT_TRUE(table.begin(links[4], t0 + std::chrono::seconds(5)));
 }
 
 // A file too large to hash on the server's thread is answered from the

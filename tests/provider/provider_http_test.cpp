@@ -99,7 +99,7 @@ protected:
     }
 };
 
-TEST_F(ProviderHttp, ADownloadLinkWorksOnceWithTheRightHeaders) {
+TEST_F(ProviderHttp, ADownloadLinkEndsWhenItsDownloadCompletes) {
     const std::string link = grab_link();
     const Response first = curl(link);
     EXPECT_EQ(first.status, 200);
@@ -235,15 +235,49 @@ TEST_F(ProviderHttp, PlainHttpIsToldToUseHttps) {
     EXPECT_EQ(curl("/").status, 200) << "TLS still works";
 }
 
-TEST_F(ProviderHttp, AClientThatLeavesMidDownloadLeavesNothingBehind) {
+// A download cut off keeps its link: the rest is asked for with Range and
+// If-Range naming the ETag, and comes as 206 from where the cut left it;
+// the two parts are the file. Then the link is used up.
+TEST_F(ProviderHttp, ADownloadCutOffResumesWhereItStopped) {
     // 24 MiB read at 1 MiB/s, abandoned after half a second.
-    const std::string link = grab_link();
+    const p::Content offered = grab_content();
+    const std::string link = *offered.download;
     const Response cut = curl(link, "--limit-rate 1M --max-time 0.5");
-    EXPECT_EQ(cut.body.size() < fs::file_size(big), true);
-    EXPECT_TRUE(sessions_drain()) << server->connection_count() << " sessions still open";
-    EXPECT_EQ(curl(link).status, 404) << "the link was used by the first request";
-    EXPECT_EQ(curl("/").status, 200) << "the server serves on";
+    ASSERT_LT(cut.body.size(), fs::file_size(big));
+    const std::string etag = "\"sha256-" + *offered.sha256 + "\"";
+    EXPECT_NE(cut.headers.find("ETag: " + etag), std::string::npos) << cut.headers;
+    EXPECT_NE(cut.headers.find("Accept-Ranges: bytes"), std::string::npos) << cut.headers;
+    EXPECT_TRUE(sessions_drain()) << server->connection_count() << " connections still open";
+
+    const std::size_t have = cut.body.size();
+    const Response rest =
+        curl(link, "-H 'Range: bytes=" + std::to_string(have) + "-' -H 'If-Range: " + etag + "'");
+    EXPECT_EQ(rest.status, 206);
+    EXPECT_NE(rest.headers.find("Content-Range: bytes " + std::to_string(have) + "-" +
+                                std::to_string(fs::file_size(big) - 1) + "/" + std::to_string(fs::file_size(big))),
+              std::string::npos)
+        << rest.headers;
+    EXPECT_TRUE(cut.body + rest.body == read_big()) << "the parts are not the file";
+    EXPECT_EQ(curl(link).status, 404) << "a completed download ends the link";
     EXPECT_EQ(fs::file_size(big), 24u << 20) << "the file is untouched";
+}
+
+// What a resume request may get instead of the rest: the whole file when its
+// If-Range names another version, 416 past the end; a HEAD leaves the link.
+TEST_F(ProviderHttp, ResumeRequestsThatCannotBeMetGetTheWholeOrAReason) {
+    const p::Content offered = grab_content();
+    const std::string link = *offered.download;
+    EXPECT_EQ(curl(link, "-I").status, 200);
+    const Response other = curl(link, "-H 'Range: bytes=100-' -H 'If-Range: \"sha256-0000\"'");
+    EXPECT_EQ(other.status, 200);
+    EXPECT_TRUE(other.body == read_big()) << "another version's resume gets the whole file";
+
+    const p::Content again = grab_content();
+    const Response past = curl(*again.download, "-H 'Range: bytes=" + std::to_string(fs::file_size(big)) + "-'");
+    EXPECT_EQ(past.status, 416);
+    EXPECT_NE(past.headers.find("Content-Range: bytes */" + std::to_string(fs::file_size(big))), std::string::npos)
+        << past.headers;
+    EXPECT_EQ(curl(*again.download).status, 200) << "a request that was not met leaves the link";
 }
 
 // One byte changed after the grab, the size and modification time kept (as

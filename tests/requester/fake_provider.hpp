@@ -41,7 +41,12 @@ struct FakeContent {
     std::optional<std::int64_t> size;     // announced; body.size() unless set
     std::optional<std::string> sha256;    // announced; none unless set
     unsigned status = 200;                // the download's HTTP status
-    std::optional<std::size_t> sent_bytes;  // how much of the body is sent (a cut-off transfer)
+    std::optional<std::size_t> sent_bytes;  // how much of the first answer's body is sent (a cut-off transfer)
+    // A request for the rest (Range: bytes=N-) gets it as 206 when this is
+    // 206, else this status with an error body (404: the link expired; 409:
+    // the file changed, with `resume_reason`).
+    unsigned resume_status = 206;
+    std::string resume_reason = "the file changed since it was offered; grab again";
 };
 
 class FakeProvider {
@@ -76,6 +81,7 @@ public:
     void set_content(FakeContent c) {
         std::lock_guard lock(mutex_);
         content_ = std::move(c);
+        answered_ = 0;
     }
     // HTTP requests read after a completed TLS handshake (the WebSocket
     // upgrade included): none when the client refused the certificate.
@@ -118,7 +124,7 @@ private:
             if (!ec) session(ws);
             return;
         }
-        download(tls, std::string(req.target()));
+        download(tls, std::string(req.target()), std::string(req[boost::beast::http::field::range]));
     }
 
     template <class Ws>
@@ -179,32 +185,41 @@ private:
         }
     }
 
-    void download(Tls& tls, const std::string& target) {
+    void download(Tls& tls, const std::string& target, const std::string& range) {
         namespace http = boost::beast::http;
         FakeContent c;
+        int nth = 0;  // of the answers since the content was set
         {
             std::lock_guard lock(mutex_);
             c = content_;
+            nth = ++answered_;
         }
         ++downloads_;
         boost::system::error_code ec;
-        if (target.rfind("/dl/", 0) != 0 || c.status != 200) {
-            const unsigned status = c.status == 200 ? 404 : c.status;
+        std::size_t from = 0;
+        if (range.rfind("bytes=", 0) == 0 && range.back() == '-') from = std::stoul(range.substr(6));
+        const unsigned status = target.rfind("/dl/", 0) != 0 ? 404 : from > 0 ? c.resume_status : c.status;
+        if (status != 200 && status != 206) {
             http::response<http::string_body> res(static_cast<http::status>(status), 11);
             res.set(http::field::content_type, "application/json");
             res.body() = protocol::encode_error_body(protocol::Error{
                 std::nullopt, status == 404 ? protocol::ErrorCode::not_found : protocol::ErrorCode::internal,
-                "unknown, used or expired download link"});
+                status == 404 ? "unknown, finished or expired download link"
+                              : status == 409 ? c.resume_reason : "the provider failed"});
             res.prepare_payload();
             http::write(tls, res, ec);
             return;
         }
-        // Content-Length is the whole body's even when less is sent, as when
-        // a transfer breaks off.
-        std::string head = "HTTP/1.1 200 OK\r\nContent-Type: application/pdf\r\nContent-Length: " +
-                           std::to_string(c.body.size()) +
-                           "\r\nContent-Disposition: attachment\r\nConnection: close\r\n\r\n";
-        head += c.body.substr(0, c.sent_bytes.value_or(c.body.size()));
+        // Content-Length is the whole answer's even when less is sent, as
+        // when a transfer breaks off.
+        const std::string rest = c.body.substr(std::min(from, c.body.size()));
+        std::string head = status == 206 ? "HTTP/1.1 206 Partial Content\r\nContent-Range: bytes " + std::to_string(from) +
+                                               "-" + std::to_string(c.body.size() - 1) + "/" +
+                                               std::to_string(c.body.size()) + "\r\n"
+                                         : "HTTP/1.1 200 OK\r\n";
+        head += "Content-Type: application/pdf\r\nContent-Length: " + std::to_string(rest.size()) +
+                "\r\nETag: \"sha256-fake\"\r\nContent-Disposition: attachment\r\nConnection: close\r\n\r\n";
+        head += nth == 1 ? rest.substr(0, c.sent_bytes.value_or(rest.size())) : rest;
         boost::asio::write(tls, boost::asio::buffer(head), ec);
         tls.shutdown(ec);
     }
@@ -219,6 +234,7 @@ private:
     std::mutex mutex_;
     std::vector<std::thread> connections_;
     FakeContent content_;
+    int answered_ = 0;
     std::atomic<int> requests_{0}, hellos_{0}, grabs_{0}, downloads_{0}, aims_{0}, seekings_{0};
 };
 

@@ -360,6 +360,29 @@ TEST_F(RequesterGrab, MissingOutputDirectoryIsCreated) {
     EXPECT_EQ(files_in(out), (std::vector<std::string>{"screen.png"}));
 }
 
+// A download cut off after half its bytes is asked again for the rest (Range
+// from 50000, If-Range with the ETag), says so on stderr, and arrives whole
+// and checked.
+TEST_F(RequesterGrab, ACutDownloadResumesAndArrivesWhole) {
+    umf::test::FakeProvider fake(identity_, token_);
+    umf::test::FakeContent c;
+    c.body = std::string(60000, 'a') + std::string(40000, 'b');
+    c.sha256 = sha256_hex(c.body);
+    c.sent_bytes = 50000;
+    fake.set_content(c);
+    const fs::path out = dir_ / "resumed";
+    fs::create_directories(out);
+    const Result r = grab(url(fake.port(), fake.fingerprint(), token_),
+                          "--image " + shared("photo.png") + " --out " + out.string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(read_file(out / "report.pdf"), c.body);
+    EXPECT_EQ(r.line["sha256"], *c.sha256);
+    EXPECT_EQ(fake.downloads(), 2) << "one request for the whole, one for the rest";
+    EXPECT_NE(r.err.find("the connection was lost at 0.1 MB of 0.1 MB"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("resuming in 250 ms"), std::string::npos) << r.err;
+    EXPECT_EQ(files_in(out), (std::vector<std::string>{"report.pdf"})) << "no partial file is left";
+}
+
 TEST_F(RequesterGrab, BadTransfersLeaveNothingBehind) {
     umf::test::FakeProvider fake(identity_, token_);
     struct Case {
@@ -369,19 +392,24 @@ TEST_F(RequesterGrab, BadTransfersLeaveNothingBehind) {
         int exit;
         const char* says = "";  // in the line's message
     };
-    umf::test::FakeContent wrong_sha, cut_off, wrong_size, expired, failed;
+    umf::test::FakeContent wrong_sha, gone_at_resume, changed_at_resume, wrong_size, expired, failed;
     wrong_sha.sha256 = sha256_hex("something else");
-    cut_off.body = std::string(100000, 'y');
-    cut_off.sent_bytes = 50000;
+    gone_at_resume.body = changed_at_resume.body = std::string(100000, 'y');
+    gone_at_resume.sent_bytes = changed_at_resume.sent_bytes = 50000;
+    gone_at_resume.resume_status = 404;
+    changed_at_resume.resume_status = 409;
     wrong_size.size = static_cast<std::int64_t>(wrong_size.body.size()) + 1;
     expired.status = 404;
     failed.status = 500;
     const Case cases[] = {{"wrong sha256", wrong_sha, "download", 4},
-                          {"cut off", cut_off, "download", 4, "SHA-256 could not be checked and nothing was kept"},
-                          {"size differs from Content-Length", wrong_size, "download", 4},
+                          {"cut off, the link gone when resuming", gone_at_resume, "not_found", 5,
+                           "after 50000 of 100000 bytes and its link was gone when the rest was asked for"},
                           // The provider's reason, from its error body.
-                          {"expired link", expired, "not_found", 5, "unknown, used or expired download link"},
-                          {"server error", failed, "internal", 4}};
+                          {"cut off, the file changed when resuming", changed_at_resume, "internal", 4,
+                           "the file changed since it was offered"},
+                          {"size differs from Content-Length", wrong_size, "download", 4},
+                          {"expired link", expired, "not_found", 5, "unknown, finished or expired download link"},
+                          {"server error", failed, "internal", 4, "the provider failed"}};
     for (const auto& c : cases) {
         fake.set_content(c.content);
         const fs::path out = dir_ / "out";

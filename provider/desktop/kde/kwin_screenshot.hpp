@@ -18,7 +18,6 @@
 #include <QDBusConnection>
 #include <QVariantMap>
 #include <chrono>
-#include <string>
 
 #include "provider/desktop/desktop.hpp"
 

@@ -1,0 +1,171 @@
+// Resuming downloads on the provider's side, piece by piece: which part a
+// Range asks for (content/resume_range.hpp), how long a link lives
+// (content/download_table.hpp), and a file sent from an offset still checked
+// whole through the hash checkpoints (content/verified_file_body.hpp). The
+// HTTPS side with curl is tests/provider/provider_http_test.cpp.
+#ifdef UMF_PROVIDER_TESTS
+
+#include <gtest/gtest.h>
+
+#include <boost/beast/http/message.hpp>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "provider/content/download_table.hpp"
+#include "provider/content/file_facts.hpp"
+#include "provider/content/resume_range.hpp"
+#include "provider/content/verified_file_body.hpp"
+#include "tests/support/temp_dir.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace umf::provider;
+using Kind = ResumeRange::Kind;
+
+TEST(ResumeRange, TheRestFromAnOffsetAndNothingElse) {
+    const std::string etag = download_etag("ab12");
+    EXPECT_EQ(etag, "\"sha256-ab12\"");
+    struct Case {
+        const char* range;
+        const char* if_range;
+        Kind kind;
+        std::uint64_t offset;
+    };
+    const Case cases[] = {
+        {"", "", Kind::whole, 0},
+        {"bytes=100-", "", Kind::rest, 100},
+        {"bytes=100-", "\"sha256-ab12\"", Kind::rest, 100},
+        {" bytes=0-", "", Kind::rest, 0},
+        {"bytes=100-999", "", Kind::rest, 100},   // to the end, spelled out
+        {"bytes=100-5000", "", Kind::rest, 100},  // past the end is the end
+        {"bytes=-300", "", Kind::rest, 700},
+        {"bytes=-5000", "", Kind::rest, 0},
+        {"bytes=100-", "\"sha256-ffff\"", Kind::whole, 0},                  // another version
+        {"bytes=100-", "Sat, 28 Nov 2026 10:00:00 GMT", Kind::whole, 0},  // a date: not trusted
+        {"bytes=100-200", "", Kind::whole, 0},                             // ends before the file does
+        {"bytes=0-10,20-", "", Kind::whole, 0},
+        {"bytes=abc-", "", Kind::whole, 0},
+        {"bytes=-0", "", Kind::whole, 0},
+        {"bytes=+5-", "", Kind::whole, 0},
+        {"items=100-", "", Kind::whole, 0},
+        {"bytes=99999999999999999999999-", "", Kind::whole, 0},
+        {"bytes=1000-", "", Kind::unsatisfiable, 0},
+        {"bytes=5000-", "", Kind::unsatisfiable, 0},
+    };
+    for (const auto& c : cases) {
+        const ResumeRange r = resume_range(c.range, c.if_range, etag, 1000);
+        EXPECT_EQ(r.kind, c.kind) << c.range << " / " << c.if_range;
+        if (r.kind == Kind::rest) {
+            EXPECT_EQ(r.offset, c.offset) << c.range;
+        }
+    }
+    EXPECT_EQ(resume_range("bytes=0-", "", etag, 0).kind, Kind::whole) << "an empty file is sent whole";
+}
+
+TEST(DownloadTable, ALinkLivesUntilADownloadOfItCompletes) {
+    using namespace std::chrono_literals;
+    DownloadTable table(60s);
+    const auto t0 = DownloadTable::Clock::time_point{} + 1000s;
+    DownloadEntry entry;
+    entry.name = "a.bin";
+    const std::string link = table.add(entry, t0);
+    EXPECT_FALSE(table.begin("/dl/unknown", t0));
+    EXPECT_FALSE(table.begin("/up/" + link.substr(4), t0));
+
+    auto first = table.begin(link + "?x=1", t0);
+    ASSERT_TRUE(first);
+    EXPECT_EQ(first->entry->name, "a.bin");
+    // A transfer that runs longer than the lifetime keeps its link.
+    table.add(DownloadEntry{}, t0 + 120s);  // sweeps expired links
+    EXPECT_EQ(table.size(), 2u);
+    table.end(*first, false, t0 + 120s);  // broken: the rest may be asked for
+    auto second = table.begin(link, t0 + 170s);
+    ASSERT_TRUE(second) << "a broken download's link lives on from its end";
+    EXPECT_EQ(second->checkpoints, first->checkpoints) << "transfers of a link share its checkpoints";
+    table.end(*second, true, t0 + 171s);
+    EXPECT_FALSE(table.begin(link, t0 + 172s)) << "a completed download ends the link";
+
+    const std::string idle = table.add(entry, t0);
+    EXPECT_FALSE(table.begin(idle, t0 + 61s)) << "a link nobody used expires";
+}
+
+class ResumedFile : public ::testing::Test {
+protected:
+    umf::test::TempDir dir;
+    fs::path file;
+    std::string bytes;
+    std::string sha256;
+    FileIdentity identity;
+
+    // Past two checkpoint steps, so a resume starts from a checkpoint.
+    void SetUp() override {
+        file = dir.path / "big.bin";
+        bytes.resize(2 * HashCheckpoints::kStep + 300000);
+        for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>((i * 131) >> 7);
+        std::ofstream(file, std::ios::binary) << bytes;
+        FileFactsCache cache;
+        const FileFacts facts = cache.facts(file);
+        sha256 = facts.sha256;
+        identity = facts.identity;
+    }
+    // Sends from `offset` until `stop` bytes have gone out; what was sent,
+    // and the error that ended it.
+    std::pair<std::string, boost::beast::error_code> send(std::uint64_t offset, std::shared_ptr<HashCheckpoints> points,
+                                                          std::uint64_t stop = ~0ull) {
+        VerifiedFileBody::value_type body;
+        EXPECT_FALSE(body.open(file, identity, sha256, offset, points));
+        EXPECT_EQ(body.size(), bytes.size() - offset);
+        boost::beast::http::response_header<> header;
+        VerifiedFileBody::writer writer(header, body);
+        boost::beast::error_code ec;
+        writer.init(ec);
+        std::string sent;
+        while (sent.size() < stop) {
+            auto piece = writer.get(ec);
+            if (ec || !piece) break;
+            sent.append(static_cast<const char*>(piece->first.data()), piece->first.size());
+            if (!piece->second) break;
+        }
+        return {sent, ec};
+    }
+};
+
+TEST_F(ResumedFile, TheRestIsSentAndTheWholeChecked) {
+    auto points = std::make_shared<HashCheckpoints>();
+    const std::uint64_t cut = HashCheckpoints::kStep + 12345 * 7;
+    const auto [head, ec1] = send(0, points, cut);
+    ASSERT_FALSE(ec1) << ec1.message();
+    ASSERT_GE(head.size(), cut);
+    EXPECT_EQ(points->nearest(cut).first, HashCheckpoints::kStep) << "the first step's state was saved";
+    const auto [rest, ec2] = send(cut, points);
+    EXPECT_FALSE(ec2) << ec2.message();
+    EXPECT_TRUE(bytes.substr(0, cut) + rest == bytes);
+    // Without checkpoints the resumed transfer hashes from the start.
+    const auto [again, ec3] = send(cut + 1, nullptr);
+    EXPECT_FALSE(ec3) << ec3.message();
+    EXPECT_TRUE(again == bytes.substr(cut + 1));
+}
+
+// A byte changed before the offset, the identity kept (the modification
+// time restored): the resumed transfer never sends its last piece.
+TEST_F(ResumedFile, AByteChangedBeforeTheOffsetCutsTheRest) {
+    auto points = std::make_shared<HashCheckpoints>();
+    const std::uint64_t cut = HashCheckpoints::kStep + 500000;
+    (void)send(0, points, cut);
+    const auto mtime = fs::last_write_time(file);
+    {
+        std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+        f.seekp(static_cast<std::streamoff>(HashCheckpoints::kStep + 100));
+        f.put('\x55' ^ bytes[HashCheckpoints::kStep + 100]);
+    }
+    fs::last_write_time(file, mtime);
+    const auto [rest, ec] = send(cut, points);
+    EXPECT_EQ(ec, DownloadCheck::changed);
+    EXPECT_LT(rest.size(), bytes.size() - cut);
+}
+
+}  // namespace
+
+#endif
