@@ -5,8 +5,8 @@ port it prints first, on a line of its own), relays every connection to
 TARGET_PORT, and when CUT_AT bytes have gone from the target to clients in
 all, closes the connection that carried them, client and target side, with
 a reset. It counts the bytes carried each way and writes them to COUNT_FILE
-("down UP\\n") each time a connection ends, so a test reads how much a
-transfer cost.
+("DOWN UP\\n") as they pass (every MiB at most), so a test reads how much a
+transfer cost once its client has the bytes.
 
 usage: cutting_relay.py TARGET_PORT CUT_AT COUNT_FILE
 """
@@ -60,6 +60,7 @@ def pump(src, dst, direction, pair):
                 carried[direction] += n
                 if direction == "down" and not cut_done and carried["down"] >= cut_at:
                     cut_done = cut = True
+                write_counts()
             if cut:
                 for s in pair:
                     reset(s)

@@ -40,7 +40,6 @@ relay_url=${url/:$port\//:$relay_port/}
 
 status=0
 started=$(date +%s.%N)
-[ -n "${DIRECT-}" ] && relay_url=$url
 XDG_CONFIG_HOME="$work/phone" "$bin/umf-requester" grab --url "$relay_url" --image "$work/screen.png" \
   --out "$work/out" >"$work/grab.json" 2>"$work/grab.log" || status=$?
 echo "grab took $(echo "$(date +%s.%N) - $started" | bc) s"

@@ -18,7 +18,7 @@ import { describeItem, sharedItem, showAskingCountdown, showPutChooser, showPutD
          upload, wirePutChoices } from './put_view.js';
 import { createNearby } from './nearby.js';
 import { moveToName } from './screen_name.js';
-import { $, ERRORS, describeKind, hideSheets, hint, paused, setState, showError } from './sheets.js';
+import { $, ERRORS, describeKind, formatSize, hideSheets, hint, paused, setState, showError } from './sheets.js';
 import { connect } from './transport.js';
 import { forPeople, registerServiceWorker, wireTrust } from './trust.js';
 
@@ -313,8 +313,19 @@ function onStill(r) {
 async function receive(content) {
   setState('grabbing', `Receiving ${content.name}…`);
   try {
+    const started = performance.now();
+    let resumedAt = null;
     grabbed = await download(content, (part) => {
-      $('status').textContent = `Receiving ${content.name}… ${Math.floor(100 * part)} %`;
+      // The rate over the whole transfer so far, pauses included.
+      const seconds = (performance.now() - started) / 1000;
+      const rate = seconds > 0.5 ? `, ${formatSize(part * content.size / seconds)}/s` : '';
+      const resumed = resumedAt === null ? '' : ` (resumed at ${resumedAt})`;
+      $('status').textContent = `Receiving ${content.name}… ${Math.floor(100 * part)} %${rate}${resumed}`;
+    }, (received, total, why) => {
+      resumedAt = formatSize(received);
+      (debug.downloadResumes ??= []).push({ received, why });
+      $('status').textContent =
+        `Connection lost at ${formatSize(received)} of ${formatSize(total)}, resuming…`;
     });
     drive({ event: 'downloaded', ok: true });
   } catch (e) {

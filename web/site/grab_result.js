@@ -8,38 +8,103 @@ import { Sha256 } from './sha256.js';
 
 let objectUrl = null;
 
-// The file of a grab's content: {blob, verified}. Throws with a reason for people.
-export async function download(content, onProgress) {
-  const response = await fetch(content.download, { cache: 'no-store' });
-  if (!response.ok) {
-    // The provider says why in its error envelope (docs/PROTOCOL.md, "Errors over HTTP").
-    const answer = await response.json().catch(() => null);
-    const error = answer?.messages?.length === 1 && answer.messages[0]?.type === 'error' ? answer.messages[0] : null;
-    throw new Error(error?.message || `the download answered ${response.status}`);
-  }
+// How a broken download is asked again for the rest (docs/PROTOCOL.md,
+// "Resuming a download"): soon, then less often, until nothing new has
+// arrived for GIVE_UP_MS.
+const FIRST_RETRY_MS = 250;
+const LONGEST_RETRY_MS = 4000;
+const GIVE_UP_MS = 30000;
+
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
+// The provider's reason from its error envelope (docs/PROTOCOL.md, "Errors over HTTP").
+async function refusal(response) {
+  const answer = await response.json().catch(() => null);
+  const error = answer?.messages?.length === 1 && answer.messages[0]?.type === 'error' ? answer.messages[0] : null;
+  return error?.message || `the download answered ${response.status}`;
+}
+
+// The file of a grab's content: {blob, verified}. A connection that breaks
+// is asked again for the rest (Range from the bytes held, If-Range with the
+// ETag); onResume(received, total, why) hears of each time. Throws with a
+// reason for people.
+export async function download(content, onProgress, onResume) {
   const total = content.size;
-  const reader = response.body.getReader();
-  const chunks = [];
+  let chunks = [];
   let received = 0;
+  let etag = '';
   // Without crypto.subtle (a plain http page) the bytes are hashed as they come.
-  const ownHash = content.sha256 && !crypto.subtle ? new Sha256() : null;
-  const cut = () => new Error(`the transfer was cut after ${received} of ${total} bytes, so its SHA-256 could not ` +
-                              'be checked and nothing was kept (a file changed on the screen since the grab is cut so)');
-  for (;;) {
-    let part;
-    try {
-      part = await reader.read();
-    } catch {
-      throw cut();
+  const newHash = () => (content.sha256 && !crypto.subtle ? new Sha256() : null);
+  let ownHash = newHash();
+
+  // One request, for the whole file or the rest of it: null when the file
+  // is complete, else why the connection broke; throws when the answer ends it.
+  async function attempt() {
+    const headers = {};
+    if (received > 0) {
+      headers.Range = `bytes=${received}-`;
+      if (etag) headers['If-Range'] = etag;
     }
-    const { value, done } = part;
-    if (done) break;
-    chunks.push(value);
-    ownHash?.update(value);
-    received += value.length;
-    if (total > 0) onProgress?.(received / total);
+    let response;
+    try {
+      response = await fetch(content.download, { cache: 'no-store', headers });
+    } catch {
+      return 'the connection failed';
+    }
+    if (response.status === 206) {
+      const range = response.headers.get('Content-Range');
+      if (received === 0 || range !== `bytes ${received}-${total - 1}/${total}`)
+        throw new Error(`the screen resumed the download at another place (${range}) than the ${received} bytes held`);
+    } else if (response.ok) {
+      if (received > 0) {  // the whole file again
+        chunks = [];
+        received = 0;
+        ownHash = newHash();
+      }
+      etag = response.headers.get('ETag') || '';
+    } else {
+      const why = await refusal(response);
+      if (response.status === 404 && received > 0)
+        throw new Error(`the transfer was cut after ${received} of ${total} bytes and its link was gone when the ` +
+                        `rest was asked for (${why}); nothing was kept`);
+      throw new Error(why);
+    }
+    const reader = response.body.getReader();
+    for (;;) {
+      let part;
+      try {
+        part = await reader.read();
+      } catch {
+        return 'the connection was lost';
+      }
+      const { value, done } = part;
+      if (done) break;
+      chunks.push(value);
+      ownHash?.update(value);
+      received += value.length;
+      if (total > 0) onProgress?.(received / total);
+    }
+    return received === total ? null : 'the transfer ended early';
   }
-  if (received !== total) throw cut();
+
+  let furthest = 0;
+  let lastNewBytes = Date.now();
+  let wait = FIRST_RETRY_MS;
+  for (;;) {
+    const why = await attempt();
+    if (why === null) break;
+    if (received > furthest) {
+      furthest = received;
+      lastNewBytes = Date.now();
+      wait = FIRST_RETRY_MS;
+    }
+    if (Date.now() + wait - lastNewBytes > GIVE_UP_MS)
+      throw new Error(`the transfer was cut after ${received} of ${total} bytes (${why}) and brought nothing more ` +
+                      'for 30 s of asking again, so its SHA-256 could not be checked and nothing was kept');
+    onResume?.(received, total, why);
+    await sleep(wait);
+    wait = Math.min(wait * 2, LONGEST_RETRY_MS);
+  }
   const blob = new Blob(chunks, { type: content.mime });
   let verified = null;
   if (content.sha256) {
