@@ -1,5 +1,6 @@
 #include "requester/grab_command.hpp"
 
+#include <chrono>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "requester/download_dir.hpp"
 #include "requester/grab_failure.hpp"
 #include "requester/open_url.hpp"
+#include "requester/transfer_text.hpp"
 #include "shared/protocol/messages.hpp"
 
 namespace umf::requester {
@@ -89,9 +91,11 @@ private:
     void download(const p::Content& c) {
         const std::filesystem::path dir = o_.out ? std::filesystem::path(*o_.out) : default_download_dir();
         log("downloading " + *c.name + " (" + std::to_string(*c.size) + " bytes) to " + dir.string());
+        const auto started = std::chrono::steady_clock::now();
         saved_ = download_file(session_.connection().url(), {*c.download, *c.name, *c.size, c.sha256}, dir, {},
                                [this](const std::string& line) { log(line); });
-        log("saved " + saved_->path.string());
+        log("saved " + saved_->path.string() + " (" +
+            transfer_rate(static_cast<std::uint64_t>(saved_->size), std::chrono::steady_clock::now() - started) + ")");
     }
 
     Json report(const requester_core::Outcome& outcome, const p::FieldPoint& at) {

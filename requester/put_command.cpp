@@ -10,6 +10,7 @@
 #include "requester/device_name.hpp"
 #include "requester/file_digest.hpp"
 #include "requester/grab_failure.hpp"
+#include "requester/transfer_text.hpp"
 #include "requester/upload.hpp"
 #include "shared/protocol/media_types.hpp"
 #include "shared/protocol/messages.hpp"
@@ -77,12 +78,6 @@ bool starts_with_scheme(const std::string& text) {
     std::string head = text.substr(0, 8);
     std::transform(head.begin(), head.end(), head.begin(), [](unsigned char c) { return std::tolower(c); });
     return head.rfind("http://", 0) == 0 || head.rfind("https://", 0) == 0;
-}
-
-std::string megabytes(std::int64_t bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f MB", static_cast<double>(bytes) / 1e6);
-    return text;
 }
 
 // Why a put ended: the provider's error codes in words, with their exit code.
@@ -171,7 +166,7 @@ private:
 
     p::PutStatus upload(const std::string& link) {
         if (!file_) throw GrabFailure("protocol", "the provider asked for an upload of a link", kConnection);
-        log("accepted; sending " + megabytes(file_->digest.size));
+        log("accepted; sending " + megabytes(static_cast<std::uint64_t>(file_->digest.size)));
         auto last = std::chrono::steady_clock::now();
         auto shown = last;
         const auto progress = [&](std::int64_t sent, std::int64_t size) {
@@ -182,9 +177,13 @@ private:
             }
             if (sent < size && now - last < std::chrono::seconds(1)) return;
             last = now;
-            log("sent " + megabytes(sent) + " of " + megabytes(size));
+            log("sent " + megabytes(static_cast<std::uint64_t>(sent)) + " of " + megabytes(static_cast<std::uint64_t>(size)));
         };
-        return upload_file(session_.connection().url(), {link, file_->path, file_->digest.size}, progress);
+        const auto started = std::chrono::steady_clock::now();
+        auto status = upload_file(session_.connection().url(), {link, file_->path, file_->digest.size}, progress);
+        log("sent " + transfer_rate(static_cast<std::uint64_t>(file_->digest.size),
+                                    std::chrono::steady_clock::now() - started));
+        return status;
     }
 
     Json report(const requester_core::Outcome& outcome, const p::FieldPoint& at) {
