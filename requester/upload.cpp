@@ -13,6 +13,7 @@
 #include <cerrno>
 #include <cstring>
 #include <optional>
+#include <thread>
 
 #include "requester/cli.hpp"
 #include "requester/grab_failure.hpp"
@@ -48,6 +49,12 @@ public:
     ReadOnlyFile(const ReadOnlyFile&) = delete;
     ReadOnlyFile& operator=(const ReadOnlyFile&) = delete;
 
+    // Reading goes on from byte `offset`.
+    void seek(std::int64_t offset) {
+        if (::lseek(fd_, offset, SEEK_SET) != offset)
+            throw input_failure("cannot read " + path_.string() + " from byte " + std::to_string(offset) + ": " +
+                                std::strerror(errno));
+    }
     // Up to `size` bytes; fewer only at the end of the file.
     std::size_t read(char* data, std::size_t size) {
         std::size_t got = 0;
@@ -80,6 +87,10 @@ std::optional<http::response<http::string_body>> read_answer(net::io_context& io
     return parser.release();
 }
 
+// How a broken upload is tried again: soon, then less often, until nothing
+// new has arrived at the provider for the idle timeout.
+constexpr std::chrono::milliseconds kFirstRetry{250}, kLongestRetry{4000};
+
 p::PutStatus interpret(const http::response<http::string_body>& answer) {
     const auto parsed = p::parse_message(answer.body(), p::kRequesterLimits);
     const auto* m = std::get_if<p::Message>(&parsed);
@@ -101,20 +112,63 @@ p::PutStatus interpret(const http::response<http::string_body>& answer) {
     throw GrabFailure(e ? p::to_string(e->code) : "upload", "the upload failed: " + why, kConnection);
 }
 
-}  // namespace
+// One request of an upload: its answer, or why the connection broke.
+struct Sent {
+    std::optional<p::PutStatus> done;
+    std::string why;
+};
 
-p::PutStatus upload_file(const protocol::PairingUrl& provider, const UploadRequest& request, const UploadProgress& progress,
-                         const NetTimeouts& timeouts) {
-    if (request.size < 0) throw input_failure("a negative size cannot be uploaded");
-    ReadOnlyFile file(request.file);
-    PinnedExchange exchange(provider, timeouts);
-    net::io_context& io = exchange.io;
-    TlsStream& stream = exchange.stream;
+// HEAD: how many bytes the provider holds; nullopt when it cannot be asked
+// now. Throws GrabFailure when the link is gone.
+std::optional<std::int64_t> held_bytes(const p::PairingUrl& provider, const UploadRequest& request,
+                                       const NetTimeouts& timeouts) {
+    std::optional<PinnedExchange> exchange;
+    try {
+        exchange.emplace(provider, timeouts);
+    } catch (const GrabFailure& f) {
+        if (f.code == "certificate") throw;
+        return std::nullopt;
+    }
+    http::request<http::empty_body> req(http::verb::head, request.path, 11);
+    PinnedExchange::set_headers(req, provider);
+    auto ec = run_step(exchange->io, exchange->stream, timeouts.reply, [&](auto h) {
+        http::async_write(exchange->stream, req, h);
+    });
+    if (ec) return std::nullopt;
+    beast::flat_buffer buffer;
+    http::response_parser<http::empty_body> parser;
+    parser.skip(true);  // a HEAD's answer has no body
+    ec = run_step(exchange->io, exchange->stream, timeouts.reply,
+                  [&](auto h) { http::async_read_header(exchange->stream, buffer, parser, h); });
+    if (ec) return std::nullopt;
+    const unsigned status = parser.get().result_int();
+    if (status == 404)
+        throw GrabFailure("not_found", "the upload broke off and its link was gone when the rest was to be sent; put again",
+                          kNothing);
+    const std::string text(parser.get()["Upload-Offset"]);
+    if (status != 200 || text.empty()) return std::nullopt;
+    return std::stoll(text);
+}
 
+// Sends the file from byte `from` (Upload-Offset) to its end and reads the
+// answer. Throws GrabFailure for an answer that ends the put.
+Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, ReadOnlyFile& file, std::int64_t from,
+               const UploadProgress& progress, const NetTimeouts& timeouts) {
+    std::optional<PinnedExchange> exchange;
+    try {
+        exchange.emplace(provider, timeouts);
+    } catch (const GrabFailure& f) {
+        if (f.code == "certificate") throw;
+        return {std::nullopt, f.what()};
+    }
+    net::io_context& io = exchange->io;
+    TlsStream& stream = exchange->stream;
+    file.seek(from);
     http::request<http::buffer_body> req(http::verb::put, request.path, 11);
     PinnedExchange::set_headers(req, provider);
     req.set(http::field::content_type, "application/octet-stream");
-    req.content_length(static_cast<std::uint64_t>(request.size));
+    req.set("Upload-Offset", std::to_string(from));
+    req.content_length(static_cast<std::uint64_t>(request.size - from));
     req.body().data = nullptr;
     req.body().more = true;
     http::request_serializer<http::buffer_body> serializer(req);
@@ -122,7 +176,7 @@ p::PutStatus upload_file(const protocol::PairingUrl& provider, const UploadReque
     const auto idle = timeouts.download_idle;
     auto ec = run_step(io, stream, idle, [&](auto h) { http::async_write_header(stream, serializer, h); });
     std::array<char, kPieceBytes> piece{};
-    std::int64_t sent = 0;
+    std::int64_t sent = from;
     while (!ec) {
         const auto want = static_cast<std::size_t>(
             std::min<std::int64_t>(static_cast<std::int64_t>(piece.size()), request.size - sent));
@@ -144,21 +198,59 @@ p::PutStatus upload_file(const protocol::PairingUrl& provider, const UploadReque
     }
 
     beast::error_code read_ec;
-    // A provider that refuses early (no room, a used link) answers and
-    // closes while the bytes still flow: its answer says more than the
-    // broken write.
+    // A provider that refuses early (no room, a used link, another offset)
+    // answers and closes while the bytes still flow: its answer says more
+    // than the broken write.
     auto answer = read_answer(io, stream, ec ? kLateAnswerWait : idle + std::chrono::seconds(30), read_ec);
     beast::error_code ignored;
     beast::get_lowest_layer(stream).socket().close(ignored);
-    if (answer) return interpret(*answer);
-    if (ec == beast::error::timeout)
-        throw upload_failure("the upload stalled: the provider took nothing for " + seconds(idle));
-    if (ec)
-        throw upload_failure("the upload broke off after " + std::to_string(sent) + " of " +
-                             std::to_string(request.size) + " bytes: " + ec.message());
-    if (read_ec == beast::error::timeout)
-        throw upload_failure("the provider did not answer the upload");
-    throw upload_failure("cannot read the provider's answer to the upload: " + read_ec.message());
+    if (answer && answer->result() == http::status::conflict) return {std::nullopt, "the screen holds other bytes"};
+    if (answer) return {interpret(*answer), {}};
+    if (ec == beast::error::timeout) return {std::nullopt, "the provider took nothing for " + seconds(idle)};
+    if (ec) return {std::nullopt, ec.message()};
+    if (read_ec == beast::error::timeout) return {std::nullopt, "the provider did not answer the upload"};
+    return {std::nullopt, "cannot read the provider's answer: " + read_ec.message()};
+}
+
+}  // namespace
+
+p::PutStatus upload_file(const protocol::PairingUrl& provider, const UploadRequest& request, const UploadProgress& progress,
+                         const NetTimeouts& timeouts, const std::function<void(const std::string&)>& notice) {
+    if (request.size < 0) throw input_failure("a negative size cannot be uploaded");
+    ReadOnlyFile file(request.file);
+    // A cut connection goes on from what the provider holds (docs/PROTOCOL.md,
+    // "Resuming an upload") while that grows now and then.
+    std::int64_t from = 0, furthest = 0;
+    auto last_new_bytes = Clock::now();
+    auto wait = kFirstRetry;
+    for (int resumes = 0;; ++resumes) {
+        Sent sent = send_from(provider, request, file, from, progress, timeouts);
+        if (sent.done) return *sent.done;
+        for (;;) {
+            std::this_thread::sleep_for(wait);
+            wait = std::min(wait * 2, kLongestRetry);
+            const auto held = held_bytes(provider, request, timeouts);
+            if (held && *held > furthest) {
+                furthest = *held;
+                last_new_bytes = Clock::now();
+                wait = kFirstRetry;
+            }
+            if (Clock::now() - last_new_bytes > timeouts.download_idle)
+                throw upload_failure("the upload broke off after " + std::to_string(furthest) + " of " +
+                                     std::to_string(request.size) + " bytes (" + sent.why +
+                                     ") and could not go on for " + seconds(timeouts.download_idle) + " (" +
+                                     std::to_string(resumes + 1) + " tries)");
+            if (!held) continue;
+            from = *held;
+            break;
+        }
+        if (notice) {
+            char line[160];
+            std::snprintf(line, sizeof line, "the connection was lost at %.1f MB of %.1f MB (%s); going on from there",
+                          static_cast<double>(from) / 1e6, static_cast<double>(request.size) / 1e6, sent.why.c_str());
+            notice(line);
+        }
+    }
 }
 
 }  // namespace umf::requester

@@ -1,7 +1,9 @@
-// Sending a put's file over its one-time HTTPS link (docs/PROTOCOL.md,
+// Sending a put's file over its HTTPS upload link (docs/PROTOCOL.md,
 // "Upload"), pinned like the session: `PUT /up/...` with Content-Length,
 // the bytes streamed from the file in pieces (never all in memory), and the
-// provider's answer, the put_status "done", read back.
+// provider's answer, the put_status "done", read back. A connection that
+// breaks goes on from what the provider holds (HEAD, then PUT with
+// Upload-Offset), with backoff, while that grows.
 #pragma once
 
 #include <cstdint>
@@ -26,10 +28,12 @@ using UploadProgress = std::function<void(std::int64_t sent, std::int64_t size)>
 
 // Returns the provider's put_status (status done). Throws GrabFailure:
 // "input" (exit 3) when the file cannot be read or changed its size,
-// "connection"/"certificate" for the network, "upload" when the transfer
-// broke off or stalled, and the provider's code for an answer it explains
-// ("interrupted", "too_large", "not_found", "bad_request").
+// "certificate" for another certificate, "upload" when the transfer broke
+// off and nothing more reached the provider for timeouts.download_idle,
+// and the provider's code for an answer it explains ("interrupted",
+// "too_large", "not_found", "bad_request"). `notice` hears of each resume.
 protocol::PutStatus upload_file(const protocol::PairingUrl& provider, const UploadRequest& request,
-                                const UploadProgress& progress = {}, const NetTimeouts& timeouts = {});
+                                const UploadProgress& progress = {}, const NetTimeouts& timeouts = {},
+                                const std::function<void(const std::string&)>& notice = {});
 
 }  // namespace umf::requester

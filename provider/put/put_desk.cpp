@@ -305,7 +305,20 @@ p::Message PutDesk::act(const Pending& pending, const PutReply& reply, Via via) 
     return p::PutStatus{pending.id, p::PutState::upload, link, std::nullopt, std::nullopt};
 }
 
-std::optional<UploadEntry> PutDesk::take_upload(std::string_view target) { return uploads_.take(target); }
+std::optional<UploadLease> PutDesk::begin_upload(std::string_view target) { return uploads_.begin(target); }
+
+std::shared_ptr<UploadSink> PutDesk::keep_upload_sink(const UploadLease& lease, std::shared_ptr<UploadSink> sink) {
+    return uploads_.keep_sink(lease, std::move(sink));
+}
+
+void PutDesk::end_upload(const UploadLease& lease, UploadEnd how) {
+    uploads_.end(lease, how);
+    if (how != UploadEnd::broken) return;
+    // The watch tells the session if nobody goes on with it in time.
+    std::lock_guard lock(mutex_);
+    start_watch_locked();
+    wake_.notify_all();
+}
 
 p::Message PutDesk::upload_done(const UploadEntry& entry, const std::string& stored_name) {
     p::PutStatus done{entry.id, p::PutState::done, std::nullopt, p::PutOutcome::saved, stored_name};
@@ -331,7 +344,7 @@ void PutDesk::start_watch_locked() {
 void PutDesk::watch_deadlines() {
     std::unique_lock lock(mutex_);
     while (!stopping_) {
-        std::optional<Clock::time_point> next;
+        std::optional<Clock::time_point> next = uploads_.next_abandon();
         for (const auto& [id, pending] : pending_)
             if (!pending.in_ask && (!next || pending.deadline < *next)) next = pending.deadline;
         if (next)
@@ -349,8 +362,14 @@ void PutDesk::watch_deadlines() {
                 ++it;
             }
         }
-        if (expired.empty()) continue;
+        const auto abandoned = uploads_.take_abandoned(now);
+        if (expired.empty() && abandoned.empty()) continue;
         lock.unlock();
+        for (const AbandonedUpload& a : abandoned)
+            upload_failed(a.entry, p::ErrorCode::interrupted,
+                          "the upload broke off after " + std::to_string(a.received) + " of " +
+                              std::to_string(a.entry.size) + " bytes and was not resumed within " +
+                              seconds_text(uploads_.ttl()));
         for (const Pending& pending : expired) {
             decider_->withdraw(pending.offer.id);
             report(pending.offer, pending.session, PutStage::timed_out,

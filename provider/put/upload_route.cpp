@@ -3,6 +3,7 @@
 #include <boost/beast/core/string.hpp>
 #include <boost/beast/http/buffer_body.hpp>
 #include <boost/beast/http/read.hpp>
+#include <charconv>
 #include <chrono>
 #include <exception>
 #include <limits>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "provider/common/encode_reply.hpp"
+#include "provider/net/http_response_headers.hpp"
 #include "provider/put/upload_sink.hpp"
 
 namespace umf::provider {
@@ -24,13 +26,13 @@ namespace {
 // An upload's body goes to its file in chunks of this size.
 constexpr std::size_t kUploadChunkBytes = 64 * 1024;
 
-// One upload under way: its parser (the body in chunks), the accepted put and
-// the file the bytes go to. Its pending handlers own it, and it holds the
-// connection.
+// One request of an upload under way: its parser (the body in chunks), the
+// link's lease and the sink it claimed. Its pending handlers own it, and it
+// holds the connection.
 class Upload : public std::enable_shared_from_this<Upload> {
 public:
-    Upload(std::shared_ptr<HttpExchange> exchange, PutDesk& puts, UploadEntry entry)
-        : exchange_(std::move(exchange)), puts_(puts), entry_(std::move(entry)) {}
+    Upload(std::shared_ptr<HttpExchange> exchange, PutDesk& puts, UploadLease lease)
+        : exchange_(std::move(exchange)), puts_(puts), lease_(std::move(lease)) {}
     ~Upload();
 
     void start(http::request_parser<http::empty_body>&& header);
@@ -39,44 +41,87 @@ private:
     void read();
     void on_read(beast::error_code ec, std::size_t);
     void finish();
-    // The upload failed: its file removed, the put's session told; answered
-    // while the connection is there (`answer`), else the connection dropped.
+    // The connection broke (or a newer request took over): the bytes so far
+    // wait with the link for the rest.
+    void broke_off();
+    // The upload failed for good: its file removed, the put's session told;
+    // answered while the connection is there (`answer`), else dropped.
     void fail(protocol::ErrorCode code, const std::string& message, bool answer);
+    const UploadEntry& entry() const { return lease_.entry; }
 
     std::shared_ptr<HttpExchange> exchange_;
     PutDesk& puts_;
-    std::optional<UploadEntry> entry_;  // until the put's session is told how it ended
+    UploadLease lease_;
+    bool ended_ = false;  // the lease given back
+    std::uint64_t claim_ = 0;
     std::optional<http::request_parser<http::buffer_body>> parser_;
-    std::unique_ptr<UploadSink> sink_;
     std::vector<char> chunk_;
 };
 
 Upload::~Upload() {
-    if (!entry_) return;
-    // Torn down mid-upload without a handler to hear it (the server stopping).
-    sink_.reset();
-    puts_.upload_failed(*entry_, protocol::ErrorCode::interrupted,
-                        "the upload was cut off: the provider closed the connection");
+    // Torn down mid-upload without a handler to hear it (the server
+    // stopping): the bytes wait with the link like a broken connection's.
+    if (!ended_) puts_.end_upload(lease_, UploadEnd::broken);
+}
+
+// The request's Upload-Offset: where its body starts in the file (0 when
+// absent); nullopt when it is not a number.
+std::optional<std::int64_t> upload_offset(const http::request_parser<http::empty_body>& header) {
+    const beast::string_view text = header.get()["Upload-Offset"];
+    if (text.empty()) return 0;
+    std::int64_t value = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || end != text.data() + text.size() || value < 0) return std::nullopt;
+    return value;
 }
 
 void Upload::start(http::request_parser<http::empty_body>&& header) {
-    const std::int64_t size = entry_->size;
-    try {
-        sink_ = std::make_unique<UploadSink>(entry_->folder, size, entry_->sha256);
-    } catch (const UploadError& e) {
-        fail(e.code(), e.what(), true);
+    const std::int64_t size = entry().size;
+    // A request that cannot be right fails the put (it is no broken connection).
+    const auto offset = upload_offset(header);
+    const auto length = header.content_length();
+    if (!offset || *offset > size || !length || header.chunked() ||
+        *length != static_cast<std::uint64_t>(size - *offset)) {
+        const std::int64_t from = offset && *offset <= size ? *offset : 0;
+        const std::string why = "an upload from byte " + std::to_string(from) + " needs a Content-Length of " +
+                                std::to_string(size - from);
+        ended_ = true;
+        if (lease_.sink) lease_.sink->discard();
+        puts_.end_upload(lease_, UploadEnd::failed);
+        puts_.upload_failed(entry(), protocol::ErrorCode::interrupted, why);
+        exchange_->answer_error(length && !header.chunked() ? http::status::bad_request : http::status::length_required,
+                                false, protocol::ErrorCode::bad_request, why);
         return;
-    } catch (const std::exception& e) {
-        fail(protocol::ErrorCode::internal, e.what(), true);
+    }
+    if (!lease_.sink) {
+        try {
+            lease_.sink = puts_.keep_upload_sink(lease_, std::make_shared<UploadSink>(entry().folder, size, entry().sha256));
+        } catch (const UploadError& e) {
+            fail(e.code(), e.what(), true);
+            return;
+        } catch (const std::exception& e) {
+            fail(protocol::ErrorCode::internal, e.what(), true);
+            return;
+        }
+    }
+    const auto claim = lease_.sink->claim();
+    claim_ = claim.claim;
+    if (*offset != claim.received) {
+        // The requester asks again (HEAD) and sends from there.
+        ended_ = true;
+        puts_.end_upload(lease_, UploadEnd::broken);
+        exchange_->answer_error(http::status::conflict, false, protocol::ErrorCode::interrupted,
+                                "the upload holds " + std::to_string(claim.received) + " bytes; send from there");
         return;
     }
     const bool expect_continue = beast::iequals(header.get()[http::field::expect], "100-continue");
     parser_.emplace(std::move(header));
-    parser_->body_limit(static_cast<std::uint64_t>(size));
+    parser_->body_limit(static_cast<std::uint64_t>(size - claim.received));
     exchange_->buffer().max_size(std::numeric_limits<std::size_t>::max());
     chunk_.resize(kUploadChunkBytes);
     // A slow sender gets a minute plus a second per megabyte, as downloads.
-    beast::get_lowest_layer(exchange_->stream()).expires_after(std::chrono::seconds(60 + size / (1 << 20)));
+    beast::get_lowest_layer(exchange_->stream())
+        .expires_after(std::chrono::seconds(60 + (size - claim.received) / (1 << 20)));
     if (!expect_continue) {
         read();
         return;
@@ -86,8 +131,7 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
     http::async_write(exchange_->stream(), r,
                       [self = shared_from_this(), res = std::move(res)](beast::error_code ec, std::size_t) {
                           if (ec) {
-                              self->fail(protocol::ErrorCode::interrupted, "the upload broke off: " + ec.message(),
-                                         false);
+                              self->broke_off();
                               return;
                           }
                           self->read();
@@ -107,57 +151,64 @@ void Upload::read() {
 }
 
 void Upload::on_read(beast::error_code ec, std::size_t) {
-    if (!parser_ || !sink_) return;
+    if (!parser_ || ended_) return;
     if (ec == http::error::need_buffer) ec = {};
     const std::size_t got = chunk_.size() - parser_->get().body().size;
     if (got > 0) {
         try {
-            sink_->write(chunk_.data(), got);
+            lease_.sink->write(chunk_.data(), got, claim_);
         } catch (const UploadError& e) {
+            if (lease_.sink->superseded(claim_)) {
+                broke_off();
+                return;
+            }
             fail(e.code(), e.what(), !ec);
             return;
         }
     }
-    if (ec) {
-        fail(protocol::ErrorCode::interrupted,
-             "the upload broke off after " + std::to_string(sink_->received()) + " of " +
-                 std::to_string(entry_->size) + " bytes: " + ec.message(),
-             false);
-        return;
-    }
-    if (exchange_->stopping()) {
-        fail(protocol::ErrorCode::interrupted, "the provider is stopping", false);
+    if (ec || exchange_->stopping()) {
+        broke_off();
         return;
     }
     read();
 }
 
+void Upload::broke_off() {
+    parser_.reset();
+    chunk_ = {};
+    if (!ended_) {
+        ended_ = true;
+        puts_.end_upload(lease_, UploadEnd::broken);
+    }
+    exchange_->drop();
+}
+
 void Upload::finish() {
     std::string stored;
     try {
-        stored = sink_->store(entry_->name);
+        stored = lease_.sink->store(entry().name, claim_);
     } catch (const UploadError& e) {
         fail(e.code(), e.what(), true);
         return;
     }
-    sink_.reset();
     const bool keep_alive = parser_->get().keep_alive();
-    const UploadEntry entry = std::move(*entry_);
-    entry_.reset();
     parser_.reset();
     chunk_ = {};
-    const protocol::Message done = puts_.upload_done(entry, stored);
+    ended_ = true;
+    puts_.end_upload(lease_, UploadEnd::stored);
+    const protocol::Message done = puts_.upload_done(entry(), stored);
     exchange_->restart_timeout();
     exchange_->answer_json(200, keep_alive && !exchange_->stopping(), encode_reply(done));
 }
 
 void Upload::fail(protocol::ErrorCode code, const std::string& message, bool answer) {
-    sink_.reset();  // the temporary file goes with it
+    if (lease_.sink) lease_.sink->discard();  // the temporary file goes
     parser_.reset();
     chunk_ = {};
-    if (!entry_) return;
-    const protocol::Error error = puts_.upload_failed(*entry_, code, message);
-    entry_.reset();
+    if (ended_) return;
+    ended_ = true;
+    puts_.end_upload(lease_, UploadEnd::failed);
+    const protocol::Error error = puts_.upload_failed(entry(), code, message);
     if (!answer) {
         exchange_->drop();
         return;
@@ -168,39 +219,47 @@ void Upload::fail(protocol::ErrorCode code, const std::string& message, bool ans
     exchange_->answer_error(status, false, error);
 }
 
+// HEAD /up/...: how much of the upload the provider holds.
+void answer_received(HttpExchange& exchange, std::int64_t received, std::int64_t size) {
+    auto res = std::make_shared<http::response<http::empty_body>>(http::status::ok, 11);
+    set_common_headers(*res);
+    res->set("Upload-Offset", std::to_string(received));
+    res->set("Upload-Length", std::to_string(size));
+    res->set(http::field::cache_control, "no-store");
+    res->keep_alive(false);
+    write_response(exchange, std::move(res));
+}
+
 }  // namespace
 
 void serve_upload(HttpExchange& exchange, http::request_parser<http::empty_body>&& header, PutDesk& puts) {
     const auto& req = header.get();
     const beast::string_view target = req.target();
+    const std::string_view link(target.data(), target.size());
+    if (req.method() == http::verb::head) {
+        auto lease = puts.begin_upload(link);
+        if (!lease) {
+            exchange.answer_error(http::status::not_found, false, protocol::ErrorCode::not_found,
+                                  "unknown, finished or expired upload link");
+            return;
+        }
+        const std::int64_t received = lease->sink ? lease->sink->received() : 0;
+        puts.end_upload(*lease, UploadEnd::broken);  // only asked: the link waits on
+        answer_received(exchange, received, lease->entry.size);
+        return;
+    }
     if (req.method() != http::verb::put) {
         exchange.answer_error(http::status::method_not_allowed, false, protocol::ErrorCode::bad_request,
-                              "an upload is a PUT", "PUT");
+                              "an upload is a PUT (or a HEAD asking how much arrived)", "PUT, HEAD");
         return;
     }
-    // The link is used up by this request, whatever follows.
-    auto entry = puts.take_upload(std::string_view(target.data(), target.size()));
-    if (!entry) {
+    auto lease = puts.begin_upload(link);
+    if (!lease) {
         exchange.answer_error(http::status::not_found, false, protocol::ErrorCode::not_found,
-                              "unknown, used or expired upload link");
+                              "unknown, finished or expired upload link");
         return;
     }
-    const std::int64_t size = entry->size;
-    const auto length = header.content_length();
-    if (!length || header.chunked()) {
-        const std::string why = "an upload needs a Content-Length of " + std::to_string(size);
-        puts.upload_failed(*entry, protocol::ErrorCode::interrupted, why);
-        exchange.answer_error(http::status::length_required, false, protocol::ErrorCode::bad_request, why);
-        return;
-    }
-    if (*length != static_cast<std::uint64_t>(size)) {
-        const std::string why = "the upload's Content-Length is " + std::to_string(*length) + ", the put's size " +
-                                std::to_string(size);
-        puts.upload_failed(*entry, protocol::ErrorCode::interrupted, why);
-        exchange.answer_error(http::status::bad_request, false, protocol::ErrorCode::bad_request, why);
-        return;
-    }
-    std::make_shared<Upload>(exchange.hold(), puts, std::move(*entry))->start(std::move(header));
+    std::make_shared<Upload>(exchange.hold(), puts, std::move(*lease))->start(std::move(header));
 }
 
 }  // namespace umf::provider

@@ -1,10 +1,12 @@
-// PUT /up/<link> (docs/PROTOCOL.md, "Upload"): the link is used up by the
-// request, whatever follows. The body must be as long as the accepted put
-// says (Content-Length, not chunked); it streams to an UploadSink in 64 KiB
-// pieces and is answered with the put's `done`. A failed upload removes its
-// file and tells the put's session; an answer is sent while the connection is
-// there, and the connection then ends. An upload torn down unfinished (the
-// server stopping) tells the put's session as well.
+// PUT /up/<link> (docs/PROTOCOL.md, "Upload"): the body is the put's file
+// from byte Upload-Offset (absent: 0), which must be what the provider holds
+// (else 409: the requester asks again), to its end (Content-Length, not
+// chunked); it streams to the link's UploadSink in 64 KiB pieces and is
+// answered with the put's `done`. HEAD /up/<link> says how much is held
+// (Upload-Offset, Upload-Length). A connection that breaks leaves the bytes
+// with the link for the rest (upload_table.hpp); a failed upload (no room,
+// another hash) removes its file and tells the put's session, answered while
+// the connection is there.
 #pragma once
 
 #include <boost/beast/http/empty_body.hpp>

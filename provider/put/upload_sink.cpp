@@ -74,16 +74,38 @@ UploadSink::UploadSink(const fs::path& folder, std::int64_t size, std::string sh
     temp_ = tmpl;
 }
 
-UploadSink::~UploadSink() { discard(); }
+UploadSink::~UploadSink() { discard_locked(); }
 
 void UploadSink::discard() {
+    std::lock_guard lock(mutex_);
+    discard_locked();
+}
+
+UploadSink::Claim UploadSink::claim() {
+    std::lock_guard lock(mutex_);
+    return {++claim_, received_};
+}
+
+bool UploadSink::superseded(std::uint64_t claim) const {
+    std::lock_guard lock(mutex_);
+    return claim != claim_;
+}
+
+std::int64_t UploadSink::received() const {
+    std::lock_guard lock(mutex_);
+    return received_;
+}
+
+void UploadSink::discard_locked() {
     if (fd_ >= 0) ::close(fd_);
     fd_ = -1;
     if (!done_ && !temp_.empty()) ::unlink(temp_.c_str());
     done_ = true;
 }
 
-void UploadSink::write(const void* data, std::size_t size) {
+void UploadSink::write(const void* data, std::size_t size, std::uint64_t claim) {
+    std::lock_guard lock(mutex_);
+    if (claim != claim_) throw UploadError(ErrorCode::interrupted, "a newer request goes on with the upload");
     if (done_) throw UploadError(ErrorCode::internal, "the upload is over");
     if (static_cast<std::int64_t>(size) > size_ - received_)
         throw UploadError(ErrorCode::interrupted, "more bytes than the put's size");
@@ -100,11 +122,13 @@ void UploadSink::write(const void* data, std::size_t size) {
     received_ += static_cast<std::int64_t>(size);
 }
 
-std::string UploadSink::store(const std::string& name) {
+std::string UploadSink::store(const std::string& name, std::uint64_t claim) {
+    std::lock_guard lock(mutex_);
+    if (claim != claim_) throw UploadError(ErrorCode::interrupted, "a newer request goes on with the upload");
     if (done_) throw UploadError(ErrorCode::internal, "the upload is over");
     struct Discard {
         UploadSink* sink;
-        ~Discard() { sink->discard(); }
+        ~Discard() { sink->discard_locked(); }
     } discard_on_exit{this};
     if (received_ != size_)
         throw UploadError(ErrorCode::interrupted, "the upload ended after " + std::to_string(received_) + " of " +

@@ -3,13 +3,18 @@
 // 0600), hashed as the bytes come; only when all of them arrived and match
 // the put's SHA-256 is it linked under its name, never over an existing
 // file ("report (1).pdf" when "report.pdf" exists). Anything else removes
-// it. Free of sockets: the connection feeds it.
+// it. Free of sockets: the connection feeds it. An upload that broke off
+// keeps its sink (the bytes so far and their hash state) for a later request
+// to go on from received(); each request claims the sink first, and a newer
+// claim supersedes an older request that is still writing (a connection the
+// provider has not yet seen die). Thread-safe.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -49,14 +54,24 @@ public:
     UploadSink(const UploadSink&) = delete;
     UploadSink& operator=(const UploadSink&) = delete;
 
-    // More bytes. Throws UploadError: interrupted beyond `size`, internal
-    // when the disk refuses them.
-    void write(const void* data, std::size_t size);
-    std::int64_t received() const { return received_; }
+    // A request takes the sink over: its claim, and the bytes held then.
+    struct Claim {
+        std::uint64_t claim = 0;
+        std::int64_t received = 0;
+    };
+    Claim claim();
+    // More bytes from the request holding `claim` (0: a sink nobody has
+    // claimed, written by whoever made it). Throws UploadError:
+    // interrupted beyond `size` or when a newer claim took over (superseded()
+    // says which), internal when the disk refuses them.
+    void write(const void* data, std::size_t size, std::uint64_t claim = 0);
+    bool superseded(std::uint64_t claim) const;
+    std::int64_t received() const;
+    std::int64_t size() const { return size_; }
     // Every byte arrived and matches: stored under `name` or a numbered one,
     // returned. Throws UploadError interrupted (too few bytes, another hash)
     // or internal; the temporary file is gone either way.
-    std::string store(const std::string& name);
+    std::string store(const std::string& name, std::uint64_t claim = 0);
     // Removes the temporary file (the destructor does the same).
     void discard();
     const std::filesystem::path& temp_path() const { return temp_; }
@@ -71,6 +86,10 @@ private:
     std::string sha256_;
     std::unique_ptr<Hash> hash_;
     bool done_ = false;
+    std::uint64_t claim_ = 0;
+    mutable std::mutex mutex_;
+
+    void discard_locked();
 };
 
 }  // namespace umf::provider

@@ -214,7 +214,8 @@ bool one_request(Provider& p, Wire& wire) {
     const beast::string_view target = header.get().target();
     if (target.starts_with(provider::kUploadPrefix)) {
         // The link is used up whatever follows; no input can name a live one.
-        (void)p.service->puts().take_upload(std::string_view(target.data(), target.size()));
+        if (auto lease = p.service->puts().begin_upload(std::string_view(target.data(), target.size())))
+            p.service->puts().end_upload(*lease, provider::UploadEnd::failed);
         return false;
     }
     if (header.get().method() == http::verb::post && target.substr(0, target.find('?')) == "/share") return false;

@@ -126,13 +126,14 @@ protected:
     }
     // The upload as the session does it: the link's entry, the bytes, done.
     std::string upload(const std::string& link, const std::string& bytes) {
-        auto entry = service->puts().take_upload(link);
-        EXPECT_TRUE(entry);
-        if (!entry) return {};
-        UploadSink sink(entry->folder, entry->size, entry->sha256);
+        auto lease = service->puts().begin_upload(link);
+        EXPECT_TRUE(lease);
+        if (!lease) return {};
+        UploadSink sink(lease->entry.folder, lease->entry.size, lease->entry.sha256);
         sink.write(bytes.data(), bytes.size());
-        const std::string stored = sink.store(entry->name);
-        service->puts().upload_done(*entry, stored);
+        const std::string stored = sink.store(lease->entry.name);
+        service->puts().end_upload(*lease, UploadEnd::stored);
+        service->puts().upload_done(lease->entry, stored);
         return stored;
     }
     std::vector<std::string> console_lines() const {
@@ -230,9 +231,10 @@ TEST_F(PutActivityTest, RefusalsTimeoutsDeparturesAndFailuresAreTold) {
     decider->answer(decider->offers(3).at(2).id, {PutAnswer::save, false});
     const auto answer = push(2);
     ASSERT_TRUE(answer);
-    const auto entry = service->puts().take_upload(link_of(*answer));
-    ASSERT_TRUE(entry);
-    service->puts().upload_failed(*entry, p::ErrorCode::interrupted, "the upload broke off after 1 of 3 bytes");
+    const auto lease = service->puts().begin_upload(link_of(*answer));
+    ASSERT_TRUE(lease);
+    service->puts().end_upload(*lease, UploadEnd::failed);
+    service->puts().upload_failed(lease->entry, p::ErrorCode::interrupted, "the upload broke off after 1 of 3 bytes");
     // Asked, then the requester leaves.
     put(state, url_put("gone"));
     decider->offers(4);
@@ -284,9 +286,9 @@ TEST_F(PutActivityTest, OpenWithAlwaysOpensThatDevicesFilesFromThenOn) {
     // Not asked again, and opened again.
     const auto second = put(state, file_put("two", "2", "b.pdf"));
     EXPECT_EQ(decider->offers(0).size(), 1u);
-    const auto entry = service->puts().take_upload(link_of(second));
-    ASSERT_TRUE(entry);
-    EXPECT_TRUE(entry->open);
+    const auto lease = service->puts().begin_upload(link_of(second));
+    ASSERT_TRUE(lease);
+    EXPECT_TRUE(lease->entry.open);
     const auto steps = recorder->steps();
     ASSERT_FALSE(steps.empty());
     EXPECT_EQ(steps.back().stage, PutStage::accepted);
@@ -309,9 +311,9 @@ TEST_F(PutActivityTest, SaveWithAlwaysSavesAndAUrlsAlwaysKeepsTheFilesChoice) {
     decider->answer(decider->offers(1).at(0).id, {PutAnswer::save, true});
     ASSERT_TRUE(push(0));
     const auto saved = put(saver, file_put("two", "2"));
-    const auto saved_entry = service->puts().take_upload(link_of(saved));
-    ASSERT_TRUE(saved_entry);
-    EXPECT_FALSE(saved_entry->open);
+    const auto saved_lease = service->puts().begin_upload(link_of(saved));
+    ASSERT_TRUE(saved_lease);
+    EXPECT_FALSE(saved_lease->entry.open);
 
     // Pixel 7 opens its files; a URL accepted with "always" later keeps that.
     service->puts().trusted().add("Pixel 7", PutAnswer::open);

@@ -25,6 +25,7 @@
 #include <boost/beast/websocket/ssl.hpp>
 #include <future>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <random>
 
 #include "provider/content/file_facts.hpp"
@@ -183,6 +184,7 @@ protected:
     TlsIdentity identity;
     std::shared_ptr<Service> service;
     std::unique_ptr<Server> server;
+    std::chrono::milliseconds upload_ttl{60'000};
 
     static void SetUpTestSuite() {
         if (run_command("curl --version >/dev/null 2>&1").exit_code != 0) GTEST_SKIP() << "curl is not installed";
@@ -199,6 +201,7 @@ protected:
         config.puts.folder = folder;
         config.puts.answer_timeout = timeout;
         config.puts.max_bytes = max_bytes;
+        config.puts.upload_ttl = upload_ttl;
         config.puts.trusted_devices = dir.path / "cfg" / "trusted-devices.json";
         service = std::make_shared<Service>(std::move(config), kToken);
         server = make_server(service, identity);
@@ -236,9 +239,33 @@ protected:
                                    "'");
         return {std::atoi(r.out.c_str()), umf::test::file_text(body)};
     }
-    std::string request_head(const std::string& path, std::size_t length) {
+    std::string request_head(const std::string& path, std::size_t length, std::optional<std::size_t> offset = {}) {
         return "PUT " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/octet-stream\r\n" +
+               (offset ? "Upload-Offset: " + std::to_string(*offset) + "\r\n" : std::string()) +
                "Content-Length: " + std::to_string(length) + "\r\n\r\n";
+    }
+    // HEAD: the Upload-Offset the provider holds; -1 without one.
+    long held(const std::string& path) {
+        const auto r = run_command("curl -s -k -I --max-time 10 'https://127.0.0.1:" + std::to_string(server->port()) +
+                                   path + "' | tr -d '\\r' | sed -n 's/^[Uu]pload-[Oo]ffset: //p'");
+        return r.out.empty() ? -1 : std::atol(r.out.c_str());
+    }
+    // Sends the first `n` bytes and drops the connection; the bytes the
+    // provider holds once it has seen the connection end.
+    long cut_after(const std::string& path, const std::string& bytes, std::size_t n) {
+        {
+            RawTls raw(server->port(), identity.fingerprint);
+            raw.write(request_head(path, bytes.size()) + bytes.substr(0, n));
+            std::this_thread::sleep_for(std::chrono::milliseconds(200));
+            raw.drop();
+        }
+        long now = held(path), before = -2;
+        for (int i = 0; i < 50 && now != before; ++i) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(100));
+            before = now;
+            now = held(path);
+        }
+        return now;
     }
 };
 
@@ -354,26 +381,54 @@ TEST_F(PutServer, BytesThatDoNotMatchAreInterruptedAndNothingIsLeft) {
     EXPECT_TRUE(folder_names(folder).empty()) << "no file, no hidden temporary file";
 }
 
-TEST_F(PutServer, AnUploadCutHalfWayIsInterruptedAndNothingIsLeft) {
+// A connection cut half way leaves the bytes that arrived with the link:
+// HEAD says how many, a PUT from another offset is refused (409) and leaves
+// the link, and the rest from there completes the put.
+TEST_F(PutServer, AnUploadCutHalfWayResumesFromWhatArrived) {
     auto r = requester();
-    const std::string bytes = random_bytes(2'000'000, 4);
+    std::string bytes(400000, '\0');
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 31 + (i >> 9));
     const std::string path = accepted_upload(*r, bytes, "p9");
+    const long have = cut_after(path, bytes, bytes.size() / 2);
+    ASSERT_GT(have, 0) << "the provider kept nothing of the first half";
+    ASSERT_LE(have, static_cast<long>(bytes.size() / 2));
+    EXPECT_EQ(folder_names(folder).size(), 1u) << "the bytes so far wait in the temporary file";
     {
         RawTls raw(server->port(), identity.fingerprint);
-        raw.write(request_head(path, bytes.size()) + bytes.substr(0, bytes.size() / 2));
-        // Give the provider time to write what came, so the cut is mid-file.
-        for (int i = 0; i < 200; ++i) {
-            bool temp = false;
-            for (const auto& name : folder_names(folder)) temp |= name.rfind(".umf-put-", 0) == 0;
-            if (temp) break;
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        }
-        raw.drop();
+        raw.write(request_head(path, bytes.size() - have - 1, have + 1) + bytes.substr(have + 1));
+        EXPECT_EQ(raw.read_status(), 409);
     }
+    EXPECT_EQ(held(path), have) << "a wrong offset leaves the link as it was";
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(path, bytes.size() - have, have) + bytes.substr(have));
+        EXPECT_EQ(raw.read_status(), 200);
+    }
+    const p::Message m = r->read();
+    const auto* done = std::get_if<p::PutStatus>(&m);
+    ASSERT_NE(done, nullptr) << p::type_name(m);
+    EXPECT_EQ(done->status, p::PutState::done);
+    EXPECT_EQ(folder_names(folder), std::vector<std::string>{"report.pdf"});
+    EXPECT_TRUE(umf::test::file_text(folder / "report.pdf") == bytes) << "the parts are not the file";
+    EXPECT_EQ(held(path), -1) << "a stored upload ends the link";
+}
+
+// Nobody sends the rest within the link's lifetime: the put is interrupted
+// for its session, and nothing is left in the folder.
+TEST_F(PutServer, AnUploadNotResumedInTimeIsInterruptedAndNothingIsLeft) {
+    upload_ttl = std::chrono::milliseconds(800);
+    start();
+    auto r = requester();
+    const std::string bytes(200000, 'q');
+    const std::string path = accepted_upload(*r, bytes, "p9");
+    EXPECT_GT(cut_after(path, bytes, bytes.size() / 2), 0);
     const p::Message m = r->read();
     EXPECT_EQ(code_of(m), p::ErrorCode::interrupted);
     EXPECT_EQ(std::get<p::Error>(m).id, p::RequestId{std::string("p9")});
+    EXPECT_NE(std::get<p::Error>(m).message.find("was not resumed within"), std::string::npos)
+        << std::get<p::Error>(m).message;
     EXPECT_TRUE(folder_names(folder).empty());
+    EXPECT_EQ(curl_upload(path, bytes).status, 404);
 }
 
 TEST_F(PutServer, AWrongOrMissingLengthIsRefusedAndUsesTheLink) {

@@ -201,14 +201,16 @@ TEST_F(PutService, AnAcceptedFileGetsASingleUseUploadLink) {
     ASSERT_TRUE(s.upload);
     EXPECT_EQ(s.upload->rfind("/up/", 0), 0u);
     EXPECT_EQ(s.upload->size(), 4u + 22u);
-    auto entry = service->puts().take_upload(*s.upload);
-    ASSERT_TRUE(entry);
-    EXPECT_EQ(entry->size, 5);
-    EXPECT_EQ(entry->sha256, sha256_hex("hello"));
-    EXPECT_TRUE(entry->open);
-    EXPECT_EQ(entry->folder, folder);
-    EXPECT_EQ(entry->session, state.id);
-    EXPECT_FALSE(service->puts().take_upload(*s.upload)) << "single use";
+    auto lease = service->puts().begin_upload(*s.upload);
+    ASSERT_TRUE(lease);
+    const UploadEntry& entry = lease->entry;
+    EXPECT_EQ(entry.size, 5);
+    EXPECT_EQ(entry.sha256, sha256_hex("hello"));
+    EXPECT_TRUE(entry.open);
+    EXPECT_EQ(entry.folder, folder);
+    EXPECT_EQ(entry.session, state.id);
+    service->puts().end_upload(*lease, UploadEnd::stored);
+    EXPECT_FALSE(service->puts().begin_upload(*s.upload)) << "a stored upload ends the link";
 }
 
 TEST_F(PutService, ADeciderThatAnswersAtOnceIsTheReplyItself) {
@@ -349,22 +351,63 @@ TEST_F(PutService, ASessionThatLeavesWithdrawsItsOffers) {
     EXPECT_EQ(push_count(), 0u);
 }
 
-TEST(PutUploadTable, LinksAreRandomSingleUseAndExpire) {
-    UploadTable table(std::chrono::milliseconds(100), 2);
+TEST(PutUploadTable, ALinkLastsUntilItsUploadIsStoredOrAbandoned) {
+    using namespace std::chrono_literals;
+    UploadTable table(100ms, 2);
     const auto now = UploadTable::Clock::now();
     UploadEntry e;
     e.name = "a";
     const std::string a = table.add(e, now), b = table.add(e, now);
     EXPECT_NE(a, b);
-    EXPECT_TRUE(table.take(a + "?x=1", now));
-    EXPECT_FALSE(table.take(a, now));
-    EXPECT_FALSE(table.take("/dl/" + b.substr(4), now));
-    EXPECT_FALSE(table.take(b, now + std::chrono::milliseconds(100))) << "expired";
-    const std::string c = table.add(e, now), d = table.add(e, now + std::chrono::milliseconds(1)),
-                      f = table.add(e, now + std::chrono::milliseconds(2));
-    EXPECT_FALSE(table.take(c, now)) << "the oldest made room";
-    EXPECT_TRUE(table.take(d, now));
-    EXPECT_TRUE(table.take(f, now));
+    auto lease = table.begin(a + "?x=1", now);
+    ASSERT_TRUE(lease);
+    table.end(*lease, UploadEnd::stored, now);
+    EXPECT_FALSE(table.begin(a, now)) << "stored: the link ended";
+    EXPECT_FALSE(table.begin("/dl/" + b.substr(4), now));
+    EXPECT_FALSE(table.begin(b, now + 100ms)) << "a link nobody used expires";
+    const std::string c = table.add(e, now), d = table.add(e, now + 1ms), f = table.add(e, now + 2ms);
+    EXPECT_FALSE(table.begin(c, now)) << "the oldest made room";
+    EXPECT_TRUE(table.begin(d, now));
+    EXPECT_TRUE(table.begin(f, now));
+}
+
+// A broken upload keeps its sink with the link; nobody going on with it,
+// it is abandoned and handed out once, for its session to be told.
+TEST(PutUploadTable, ABrokenUploadWaitsForTheRestThenIsAbandoned) {
+    using namespace std::chrono_literals;
+    umf::test::TempDir dir;
+    UploadTable table(100ms, 4);
+    const auto now = UploadTable::Clock::now();
+    UploadEntry e;
+    e.name = "a.bin";
+    e.size = 10;
+    e.sha256 = sha256_hex("0123456789");
+    e.folder = dir.path;
+    const std::string link = table.add(e, now);
+    auto first = table.begin(link, now);
+    ASSERT_TRUE(first);
+    EXPECT_FALSE(first->sink);
+    auto sink = table.keep_sink(*first, std::make_shared<UploadSink>(e.folder, e.size, e.sha256));
+    const auto claim = sink->claim();
+    sink->write("01234", 5, claim.claim);
+    table.end(*first, UploadEnd::broken, now + 50ms);
+    EXPECT_FALSE(table.next_abandon() < now + 150ms) << "the lifetime counts from the break";
+
+    auto second = table.begin(link, now + 140ms);
+    ASSERT_TRUE(second) << "the rest may come within the lifetime";
+    ASSERT_EQ(second->sink, sink);
+    const auto again = sink->claim();
+    EXPECT_EQ(again.received, 5);
+    EXPECT_THROW(sink->write("x", 1, claim.claim), UploadError) << "the older request was superseded";
+    EXPECT_TRUE(sink->superseded(claim.claim));
+    table.end(*second, UploadEnd::broken, now + 150ms);
+    EXPECT_TRUE(table.take_abandoned(now + 200ms).empty());
+    const auto abandoned = table.take_abandoned(now + 260ms);
+    ASSERT_EQ(abandoned.size(), 1u);
+    EXPECT_EQ(abandoned[0].received, 5);
+    EXPECT_EQ(abandoned[0].entry.name, "a.bin");
+    EXPECT_FALSE(table.begin(link, now + 260ms));
+    EXPECT_TRUE(table.take_abandoned(now + 300ms).empty());
 }
 
 TEST(PutUploadSink, StoresOnlyWhatMatchesAndNeverOverwrites) {

@@ -3,12 +3,12 @@
 the screen turns off or its owner walks away. It listens on 127.0.0.1 (the
 port it prints first, on a line of its own), relays every connection to
 TARGET_PORT, and when CUT_AT bytes have gone from the target to clients in
-all, closes the connection that carried them, client and target side, with
-a reset. It counts the bytes carried each way and writes them to COUNT_FILE
+all (DIRECTION down, the default; up: from clients to the target), closes
+the connection that carried them, client and target side, with a reset. It counts the bytes carried each way and writes them to COUNT_FILE
 ("DOWN UP\\n") as they pass (every MiB at most), so a test reads how much a
 transfer cost once its client has the bytes.
 
-usage: cutting_relay.py TARGET_PORT CUT_AT COUNT_FILE
+usage: cutting_relay.py TARGET_PORT CUT_AT COUNT_FILE [down|up]
 """
 import os
 import socket
@@ -17,6 +17,7 @@ import sys
 import threading
 
 target_port, cut_at, count_file = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
+cut_direction = sys.argv[4] if len(sys.argv) > 4 else "down"
 lock = threading.Lock()
 carried = {"down": 0, "up": 0}
 cut_done = False
@@ -47,8 +48,8 @@ def pump(src, dst, direction, pair):
         while True:
             want = 1 << 20
             with lock:
-                if direction == "down" and not cut_done:
-                    want = max(1, min(want, cut_at - carried["down"]))
+                if direction == cut_direction and not cut_done:
+                    want = max(1, min(want, cut_at - carried[direction]))
             n = os.splice(src.fileno(), pipe_w, want)
             if n == 0:
                 break
@@ -58,7 +59,7 @@ def pump(src, dst, direction, pair):
             cut = False
             with lock:
                 carried[direction] += n
-                if direction == "down" and not cut_done and carried["down"] >= cut_at:
+                if direction == cut_direction and not cut_done and carried[direction] >= cut_at:
                     cut_done = cut = True
                 write_counts()
             if cut:

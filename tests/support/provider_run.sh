@@ -1,6 +1,7 @@
 # Sourced by the shell tests that run a provider (tests/trust, discovery,
-# install): start_provider LOG ARGS... starts $bin/umf-provider headless in
-# the background (stop_provider ends it) and waits for its pairing URL; sets
+# install, transfers): start_provider LOG ARGS... starts $bin/umf-provider headless in
+# the background (--puts never unless $puts says otherwise; stop_provider
+# ends it) and waits for its pairing URL; sets
 # $provider_pid, $url, $port and $origin.
 provider_pid=
 stop_provider() {
@@ -15,7 +16,7 @@ start_provider() {
   shift
   # The log exists before the provider starts, so a first read finds it.
   : >"$log"
-  "$bin/umf-provider" --headless --port 0 --no-qr --puts never "$@" >>"$log" 2>&1 &
+  "$bin/umf-provider" --headless --port 0 --no-qr --puts "${puts:-never}" "$@" >>"$log" 2>&1 &
   provider_pid=$!
   url=
   for _ in $(seq 200); do
