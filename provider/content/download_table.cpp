@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "provider/common/one_time_links.hpp"
+#include "provider/common/link_key.hpp"
 
 namespace umf::provider {
 

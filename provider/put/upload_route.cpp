@@ -3,6 +3,8 @@
 #include <boost/beast/core/string.hpp>
 #include <boost/beast/http/buffer_body.hpp>
 #include <boost/beast/http/read.hpp>
+#include <boost/beast/http/string_body.hpp>
+#include <boost/beast/http/write.hpp>
 #include <charconv>
 #include <chrono>
 #include <exception>
@@ -15,6 +17,7 @@
 #include "provider/common/encode_reply.hpp"
 #include "provider/net/http_response_headers.hpp"
 #include "provider/put/upload_sink.hpp"
+#include "shared/protocol/http_error_body.hpp"
 
 namespace umf::provider {
 
@@ -41,6 +44,7 @@ private:
     void read();
     void on_read(beast::error_code ec, std::size_t);
     void finish();
+    void refuse_offset(std::int64_t held);
     // The connection broke (or a newer request took over): the bytes so far
     // wait with the link for the rest.
     void broke_off();
@@ -107,11 +111,9 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
     const auto claim = lease_.sink->claim();
     claim_ = claim.claim;
     if (*offset != claim.received) {
-        // The requester asks again (HEAD) and sends from there.
         ended_ = true;
         puts_.end_upload(lease_, UploadEnd::broken);
-        exchange_->answer_error(http::status::conflict, false, protocol::ErrorCode::interrupted,
-                                "the upload holds " + std::to_string(claim.received) + " bytes; send from there");
+        refuse_offset(claim.received);
         return;
     }
     const bool expect_continue = beast::iequals(header.get()[http::field::expect], "100-continue");
@@ -135,6 +137,27 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
                               return;
                           }
                           self->read();
+                      });
+}
+
+// The requester sends from another byte than the provider holds: it asks
+// again (HEAD) and sends from there. The connection ends as soon as the
+// answer is out, without reading on: the body is of no use, and a browser
+// may be sending the whole file again.
+void Upload::refuse_offset(std::int64_t held) {
+    auto res = std::make_shared<http::response<http::string_body>>(http::status::conflict, 11);
+    set_common_headers(*res);
+    res->set(http::field::content_type, "application/json");
+    res->set("Upload-Offset", std::to_string(held));
+    res->body() = protocol::encode_error_body(protocol::Error{
+        std::nullopt, protocol::ErrorCode::interrupted,
+        "the upload holds " + std::to_string(held) + " bytes; send from there"});
+    res->keep_alive(false);
+    res->prepare_payload();
+    auto& r = *res;
+    http::async_write(exchange_->stream(), r,
+                      [held_exchange = exchange_, res = std::move(res)](beast::error_code, std::size_t) {
+                          held_exchange->drop();
                       });
 }
 

@@ -1,6 +1,6 @@
 #include "provider/put/upload_table.hpp"
 
-#include "provider/common/one_time_links.hpp"
+#include "provider/common/link_key.hpp"
 
 namespace umf::provider {
 

@@ -89,7 +89,7 @@ TEST_F(ProviderContent, FieldPointsMapToScreenPixels) {
     EXPECT_FALSE(service->screen_point({1.0, 36.5}));
 }
 
-TEST_F(ProviderContent, AimsPreviewAndGrabsTakeWithOneTimeLinks) {
+TEST_F(ProviderContent, AimsPreviewAndGrabsTakeWithDownloadLinks) {
     const auto target = std::get<p::Target>(one(aim_text(1, 10, 10)));
     EXPECT_EQ(target.kind, p::ContentKind::file);
     EXPECT_EQ(target.title, "Report");

@@ -395,7 +395,9 @@ TEST_F(PutServer, AnUploadCutHalfWayResumesFromWhatArrived) {
     EXPECT_EQ(folder_names(folder).size(), 1u) << "the bytes so far wait in the temporary file";
     {
         RawTls raw(server->port(), identity.fingerprint);
-        raw.write(request_head(path, bytes.size() - have - 1, have + 1) + bytes.substr(have + 1));
+        // The header alone: the provider answers it and closes without
+        // reading a body it has no use for.
+        raw.write(request_head(path, bytes.size() - have - 1, have + 1));
         EXPECT_EQ(raw.read_status(), 409);
     }
     EXPECT_EQ(held(path), have) << "a wrong offset leaves the link as it was";

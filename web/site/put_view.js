@@ -176,20 +176,84 @@ export function showPutDone(status, item, debug) {
     showPutStatus('done', 'Saved on the screen', `Saved as ${status.name}.`, { outcome: 'saved', name: status.name, debug });
 }
 
+// How a broken upload goes on (docs/PROTOCOL.md, "Resuming an upload"):
+// soon, then less often, until nothing more has reached the screen for
+// GIVE_UP_MS.
+const FIRST_RETRY_MS = 250;
+const LONGEST_RETRY_MS = 4000;
+const GIVE_UP_MS = 30000;
+
+// How many bytes the screen holds (HEAD): a number, 'gone' for an ended
+// link, or null when it cannot be asked now.
+async function heldBytes(path) {
+  try {
+    const response = await fetch(path, { method: 'HEAD', cache: 'no-store' });
+    if (response.status === 404) return 'gone';
+    const held = Number(response.headers.get('Upload-Offset'));
+    return response.ok && Number.isInteger(held) ? held : null;
+  } catch {
+    return null;
+  }
+}
+
 // The bytes go with XMLHttpRequest, the one browser API that reports an
-// upload's progress; the browser sets Content-Length from the Blob. `answered`
-// gets the HTTP status (0: the connection broke) and the body.
+// upload's progress; the browser sets Content-Length from the Blob. A
+// connection that breaks goes on from what the screen holds (HEAD, then
+// PUT with Upload-Offset). `answered` gets the HTTP status (0: the
+// connection broke and could not go on) and the body. Returns what stops it
+// (abort()).
 export function upload(path, item, answered, debug) {
-  const xhr = new XMLHttpRequest();
+  let xhr = null;
+  let stopped = false;
+  let furthest = 0;
+  let lastNewBytes = Date.now();
+  let wait = FIRST_RETRY_MS;
   showPutStatus('upload', `Sending ${item.name}…`, `0 of ${formatSize(item.size)}`, { progress: 0, debug });
-  xhr.upload.onprogress = (e) => {
-    const total = e.lengthComputable ? e.total : item.size;
-    $('put-progress').value = total > 0 ? e.loaded / total : 1;
-    $('put-status-text').textContent = `${formatSize(e.loaded)} of ${formatSize(total)}`;
+
+  const send = (from) => {
+    xhr = new XMLHttpRequest();
+    xhr.upload.onprogress = (e) => {
+      const sent = from + e.loaded;
+      $('put-progress').value = item.size > 0 ? sent / item.size : 1;
+      $('put-status-text').textContent = `${formatSize(sent)} of ${formatSize(item.size)}` +
+        (from > 0 ? ` (resumed at ${formatSize(from)})` : '');
+    };
+    xhr.onload = () => (xhr.status === 409 ? resume() : answered(xhr.status, xhr.responseText));
+    xhr.onerror = () => resume();
+    xhr.open('PUT', path);
+    xhr.setRequestHeader('Upload-Offset', String(from));
+    xhr.send(from > 0 ? item.blob.slice(from) : item.blob);
   };
-  xhr.onload = () => answered(xhr.status, xhr.responseText);
-  xhr.onerror = () => answered(0, '');
-  xhr.open('PUT', path);
-  xhr.send(item.blob);
-  return xhr;
+
+  const resume = async () => {
+    for (;;) {
+      if (stopped) return;
+      await new Promise((resolve) => setTimeout(resolve, wait));
+      wait = Math.min(wait * 2, LONGEST_RETRY_MS);
+      if (stopped) return;
+      const held = await heldBytes(path);
+      if (held === 'gone') {
+        answered(404, '');
+        return;
+      }
+      if (held !== null && held > furthest) {
+        furthest = held;
+        lastNewBytes = Date.now();
+        wait = FIRST_RETRY_MS;
+      }
+      if (Date.now() - lastNewBytes > GIVE_UP_MS) {
+        answered(0, '');
+        return;
+      }
+      if (held === null) continue;
+      (debug.putResumes ??= []).push(held);
+      $('put-status-text').textContent =
+        `Connection lost at ${formatSize(held)} of ${formatSize(item.size)}, resuming…`;
+      send(held);
+      return;
+    }
+  };
+
+  send(0);
+  return { abort() { stopped = true; xhr?.abort(); } };
 }

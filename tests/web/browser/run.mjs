@@ -9,7 +9,7 @@
 // --fixtures  where web.browser.video_* wrote tile0.y4m, tile1.y4m, tile2.png
 // --modules   the node_modules that web.browser.npm_install filled
 // --tile      kiosk_lock: the demo board's tile (0..5) its video films
-// Scenarios: camera_file, camera_url_http, photo, wrong_token, unreachable,
+// Scenarios: camera_file, cut_download and cut_put (transfer_scenario.mjs), camera_url_http, photo, wrong_token, unreachable,
 // camera_denied, no_camera, websocket_blocked, detection_failing, insecure_photo,
 // unpaired, put_file, put_url_http, put_refused, put_carry, put_note, share_target,
 // another_screen, trusted_root (trust_scenario.mjs), kiosk_lock, name_follows (name_scenario.mjs) and
@@ -25,6 +25,7 @@ import os from 'node:os';
 import path from 'node:path';
 import { nameFollows } from './name_scenario.mjs';
 import { nearbyScreen } from './nearby_scenario.mjs';
+import { cutDownload, cutPut } from './transfer_scenario.mjs';
 import { trustedRoot } from './trust_scenario.mjs';
 
 const SKIP = 77;
@@ -75,7 +76,7 @@ try {
 } catch (e) {
   skip(`playwright-core is not installed in ${opts.modules} (the test web.browser.npm_install installs it): ${e.message}`);
 }
-const SCENARIOS = ['camera_file', 'slow_download', 'cut_download', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
+const SCENARIOS = ['camera_file', 'slow_download', 'cut_download', 'cut_put', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
                    'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
                    'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'put_chooser_holds', 'share_target',
                    'trusted_root', 'kiosk_lock', 'name_follows', 'nearby_screen', 'another_screen'];
@@ -595,58 +596,6 @@ const scenarios = {
     await checkFileResult(page, expected);
     const grabs = provider.output().split('\n').filter((l) => l.includes(`took "${expected.title}"`)).length;
     check(grabs === 1, `the provider saw one grab (${grabs})`);
-  },
-
-  // (a'') The file tile's file 200 MB, and the page reaching the provider
-  // through a relay that cuts the download's connection when half has
-  // passed (tests/support/cutting_relay.py): the page asks for the rest,
-  // says "Connection lost at ..., resuming", and the file arrives whole and
-  // checked, having cost at most 1.25 times its size.
-  async cut_download() {
-    const size = 200 * 1000 * 1000;
-    const boardDir = path.join(work, 'board');
-    fs.mkdirSync(boardDir);
-    for (const f of fs.readdirSync(path.dirname(boardFile)))
-      fs.copyFileSync(path.join(path.dirname(boardFile), f), path.join(boardDir, f));
-    const expected = item(0);
-    expected.path = path.join(boardDir, expected.file);
-    fs.writeFileSync(expected.path, crypto.randomBytes(size));
-    expected.size = size;
-    expected.sha256 = crypto.createHash('sha256').update(fs.readFileSync(expected.path)).digest('hex');
-    const provider = await startProvider({ board: path.join(boardDir, path.basename(boardFile)) });
-    const counts = path.join(work, 'relay-counts');
-    const relayScript = path.join(path.dirname(new URL(import.meta.url).pathname), '..', '..', 'support', 'cutting_relay.py');
-    const relay = spawn('python3', [relayScript, String(provider.port), String(size / 2), counts],
-                        { stdio: ['ignore', 'pipe', 'inherit'] });
-    cleanups.push(async () => { relay.kill('SIGTERM'); });
-    const relayPort = await new Promise((resolve) => {
-      let out = '';
-      relay.stdout.on('data', (d) => {
-        out += d;
-        if (out.includes('\n')) resolve(Number(out.trim()));
-      });
-      relay.on('exit', () => resolve(null));
-    });
-    if (!relayPort) throw new Failure('the relay did not start');
-    const pairing = new URL(provider.pairing);
-    pairing.port = String(relayPort);
-    const browser = await launch({ video: fixture('tile0.y4m') });
-    const page = await openPage(browser, pageUrl(pairing.toString(), { autograb: '1' }));
-    const statuses = [];
-    await page.exposeFunction('__umfStatus', (text) => statuses.push(text));
-    await page.evaluate(() => new MutationObserver(() => window.__umfStatus(document.getElementById('status').textContent))
-      .observe(document.getElementById('status'), { childList: true, characterData: true, subtree: true }));
-    await waitForState(page, ['result'], 120000);
-    const resumes = await page.evaluate(() => window.umfDebug.downloadResumes ?? []);
-    log(`resumes: ${JSON.stringify(resumes)}`);
-    check(resumes.length >= 1, 'the download was cut and the page resumed it');
-    check(statuses.some((t) => /^Connection lost at [\d.]+ MB of 190\.7 MB, resuming…$/.test(t)),
-          `the page said where the connection was lost (${statuses.filter((t) => t.startsWith('Conn')).join(' | ')})`);
-    await checkFileResult(page, expected);
-    await sleep(300);
-    const [down] = fs.readFileSync(counts, 'utf8').trim().split(' ').map(Number);
-    log(`the relay carried ${down} bytes to the page for a file of ${size}`);
-    check(down <= size * 1.25, `at most 1.25 times the file was carried (${(down / size).toFixed(3)})`);
   },
 
   // (b) The film of a URL tile over the HTTPS transport.
@@ -1175,6 +1124,14 @@ scenarios.trusted_root = () => trustedRoot({
   opts, chromium, work, cleanups, log, check, sleep, Failure, Skip, fixture, testFile, putDir, startProvider, pageUrl,
   openPage, waitForState, waitForPutResult, checkPutFolder, readShareTarget, shareFile,
 });
+
+// A 200 MB download and put through a relay that cuts the connection at half.
+const transferHelpers = () => ({
+  opts, work, cleanups, log, check, sleep, Failure, fixture, item, testFile, putDir, startProvider, pageUrl, launch,
+  openPage, waitForState, checkFileResult, openPutChooser, waitForPutResult, checkPutFolder,
+});
+scenarios.cut_download = () => cutDownload(transferHelpers());
+scenarios.cut_put = () => cutPut(transferHelpers());
 
 // The page follows the screen's .local name to a new address.
 scenarios.name_follows = () => nameFollows({

@@ -1,4 +1,4 @@
-#include "provider/common/one_time_links.hpp"
+#include "provider/common/link_key.hpp"
 
 #include <openssl/rand.h>
 
