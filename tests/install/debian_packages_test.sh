@@ -62,7 +62,10 @@ for p in umf-provider umf-requester umf-field umf-browser-host; do
   page=$(man -w "$p") || { echo "FAIL: man finds no page for $p"; exit 1; }
   [ "$page" = "/usr/share/man/man1/$p.1.gz" ] || { echo "FAIL: man $p is $page"; exit 1; }
 done
-MANWIDTH=100 man umf-provider 2>/dev/null | grep -q 'umf-provider pair \[--port P\]' ||
+# Read whole before grep: grep -q stops reading at its match, and man,
+# killed by the broken pipe, would fail the line under pipefail.
+manual=$(MANWIDTH=100 man umf-provider 2>/dev/null)
+grep -q 'umf-provider pair \[--port P\]' <<<"$manual" ||
   { echo "FAIL: man umf-provider does not show the help's usage"; exit 1; }
 desktop-file-validate /usr/share/applications/umf-provider.desktop ||
   { echo "FAIL: the menu entry does not validate"; exit 1; }
@@ -84,7 +87,8 @@ bin=/usr/bin
 start_provider "$work/provider.log" --config-dir "$work/cfg"
 grep -q "^web client: /usr/share/umf/web " "$work/provider.log" ||
   { echo "FAIL: the installed provider did not take /usr/share/umf/web:"; cat "$work/provider.log"; exit 1; }
-curl -sk "$origin/" | grep -q 'app.js' || { echo "FAIL: /usr/bin/umf-provider served another page"; exit 1; }
+page=$(curl -sk "$origin/")
+grep -q 'app.js' <<<"$page" || { echo "FAIL: /usr/bin/umf-provider served another page"; exit 1; }
 stop_provider
 
 # 4. The user unit, under a user systemd of its own (tests/install/user_unit.sh).
