@@ -92,14 +92,22 @@ sleep 3  # the board's file hashed in the background
 now() { date +%s.%N; }
 echo "transfer of $size_mb MiB over loopback TLS 1.3 on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'))"
 printf '%-34s %8s %9s %12s\n' "what" "seconds" "MB/s" "server CPU s/GB"
-for run in $(seq "$runs"); do
-  # Download: curl from nginx (no check) ...
+# One curl transfer with nginx: WHAT, the file that must arrive equal to the
+# original, then curl's own arguments. Prints its line of the table.
+with_nginx() {
+  local what=$1 arrived=$2 c0 c1 t0 t1 secs
+  shift 2
   c0=$(cpu_seconds "$nginx_worker"); t0=$(now)
-  curl -sSfk --tlsv1.3 -o "$work/got/nginx.bin" "https://127.0.0.1:$nginx_port/big.bin"
+  curl -sSfk --tlsv1.3 "$@"
   t1=$(now); c1=$(cpu_seconds "$nginx_worker")
   secs=$(echo "$t1 - $t0" | bc)
-  printf '%-34s %8.2f %9.1f %12.3f\n' "download: curl <- nginx (run $run)" "$secs" "$(rate "$secs")" "$(per_gb "$c0" "$c1")"
-  cmp -s "$work/board/big.bin" "$work/got/nginx.bin" || { echo "the nginx download arrived changed"; exit 1; }
+  printf '%-34s %8.2f %9.1f %12.3f\n' "$what" "$secs" "$(rate "$secs")" "$(per_gb "$c0" "$c1")"
+  cmp -s "$work/board/big.bin" "$arrived" || { echo "$what: the file arrived changed"; exit 1; }
+}
+for run in $(seq "$runs"); do
+  # Download: curl from nginx (no check) ...
+  with_nginx "download: curl <- nginx (run $run)" "$work/got/nginx.bin" \
+    -o "$work/got/nginx.bin" "https://127.0.0.1:$nginx_port/big.bin"
   rm -f "$work/got/nginx.bin"
   # ... and umf-requester grab from umf-provider (SHA-256 on both ends).
   c0=$(cpu_seconds "$provider_pid")
@@ -111,12 +119,8 @@ for run in $(seq "$runs"); do
   cmp -s "$work/board/big.bin" "$work/got/big.bin" || { echo "the grab arrived changed"; exit 1; }
   rm -f "$work/got/"*
   # Put: curl PUT to nginx ...
-  c0=$(cpu_seconds "$nginx_worker"); t0=$(now)
-  curl -sSfk --tlsv1.3 -T "$work/board/big.bin" "https://127.0.0.1:$nginx_port/up/big.bin" -o /dev/null
-  t1=$(now); c1=$(cpu_seconds "$nginx_worker")
-  secs=$(echo "$t1 - $t0" | bc)
-  printf '%-34s %8.2f %9.1f %12.3f\n' "put: curl -> nginx (run $run)" "$secs" "$(rate "$secs")" "$(per_gb "$c0" "$c1")"
-  cmp -s "$work/board/big.bin" "$work/www/up/big.bin" || { echo "the nginx upload arrived changed"; exit 1; }
+  with_nginx "put: curl -> nginx (run $run)" "$work/www/up/big.bin" \
+    -T "$work/board/big.bin" "https://127.0.0.1:$nginx_port/up/big.bin" -o /dev/null
   rm -f "$work/www/up/big.bin"
   # ... and umf-requester put to umf-provider.
   c0=$(cpu_seconds "$provider_pid")
