@@ -14,11 +14,11 @@
 #include <cstring>
 #include <memory>
 #include <optional>
-#include <thread>
 
 #include "native/sha256.hpp"
 #include "requester/cli.hpp"
 #include "requester/grab_failure.hpp"
+#include "requester/resume_pacing.hpp"
 #include "requester/transfer_text.hpp"
 #include "shared/io/store_file.hpp"
 #include "shared/protocol/http_error_body.hpp"
@@ -32,7 +32,6 @@ namespace fs = std::filesystem;
 namespace net = boost::asio;
 namespace beast = boost::beast;
 namespace http = beast::http;
-using Clock = std::chrono::steady_clock;
 
 // What one read of the body takes at most.
 constexpr std::size_t kPieceBytes = 64 << 10;
@@ -109,10 +108,6 @@ std::string store_without_overwriting(const fs::path& temp, const fs::path& dir,
 }
 
 namespace {
-
-// How a broken download is tried again: soon, then less often, until
-// nothing new has arrived for the idle timeout.
-constexpr std::chrono::milliseconds kFirstRetry{250}, kLongestRetry{4000};
 
 // "bytes FIRST-LAST/SIZE" naming exactly the rest from `from`.
 bool names_the_rest(beast::string_view content_range, std::uint64_t from, std::uint64_t size) {
@@ -272,27 +267,20 @@ SavedFile download_file(const protocol::PairingUrl& provider, const DownloadRequ
     Transfer transfer(provider, request, timeouts, file);
     // A cut connection is asked again for the rest (docs/PROTOCOL.md,
     // "Resuming a download") while it still brings new bytes now and then.
-    std::uint64_t furthest = 0;
-    auto last_new_bytes = Clock::now();
-    auto wait = kFirstRetry;
+    ResumePacing pacing(timeouts.download_idle);
     for (int resumes = 0;; ++resumes) {
         std::string why;
         if (transfer.attempt(why)) break;
-        if (transfer.received > furthest) {
-            furthest = transfer.received;
-            last_new_bytes = Clock::now();
-            wait = kFirstRetry;
-        }
-        if (Clock::now() + wait - last_new_bytes > timeouts.download_idle)
+        pacing.reached(transfer.received);
+        if (pacing.given_up())
             throw download_failure("the download broke off after " + std::to_string(transfer.received) + " of " +
                                    std::to_string(request.size) + " bytes (" + why + ") and brought nothing more for " +
                                    seconds(timeouts.download_idle) + " of asking again (" + std::to_string(resumes + 1) +
                                    " times), so its SHA-256 could not be checked and nothing was kept");
         if (progress)
             progress("the connection was lost at " + megabytes(transfer.received) + " of " + megabytes(transfer.expected()) +
-                     " (" + why + "); resuming in " + std::to_string(wait.count()) + " ms");
-        std::this_thread::sleep_for(wait);
-        wait = std::min(wait * 2, kLongestRetry);
+                     " (" + why + "); resuming in " + std::to_string(pacing.next_wait().count()) + " ms");
+        pacing.wait();
     }
 
     const std::string digest = transfer.sha->hex();

@@ -13,10 +13,11 @@
 #include <cerrno>
 #include <cstring>
 #include <optional>
-#include <thread>
 
 #include "requester/cli.hpp"
 #include "requester/grab_failure.hpp"
+#include "requester/resume_pacing.hpp"
+#include "requester/transfer_text.hpp"
 #include "shared/protocol/http_error_body.hpp"
 
 namespace umf::requester {
@@ -28,7 +29,6 @@ namespace net = boost::asio;
 namespace beast = boost::beast;
 namespace http = beast::http;
 namespace p = protocol;
-using Clock = std::chrono::steady_clock;
 
 constexpr std::size_t kPieceBytes = 64 * 1024;
 // The answer is one short JSON message.
@@ -86,10 +86,6 @@ std::optional<http::response<http::string_body>> read_answer(net::io_context& io
     if (ec) return std::nullopt;
     return parser.release();
 }
-
-// How a broken upload is tried again: soon, then less often, until nothing
-// new has arrived at the provider for the idle timeout.
-constexpr std::chrono::milliseconds kFirstRetry{250}, kLongestRetry{4000};
 
 p::PutStatus interpret(const http::response<http::string_body>& answer) {
     const auto parsed = p::parse_message(answer.body(), p::kRequesterLimits);
@@ -220,36 +216,27 @@ p::PutStatus upload_file(const protocol::PairingUrl& provider, const UploadReque
     ReadOnlyFile file(request.file);
     // A cut connection goes on from what the provider holds (docs/PROTOCOL.md,
     // "Resuming an upload") while that grows now and then.
-    std::int64_t from = 0, furthest = 0;
-    auto last_new_bytes = Clock::now();
-    auto wait = kFirstRetry;
+    std::int64_t from = 0;
+    ResumePacing pacing(timeouts.download_idle);
     for (int resumes = 0;; ++resumes) {
         Sent sent = send_from(provider, request, file, from, progress, timeouts);
         if (sent.done) return *sent.done;
-        for (;;) {
-            std::this_thread::sleep_for(wait);
-            wait = std::min(wait * 2, kLongestRetry);
-            const auto held = held_bytes(provider, request, timeouts);
-            if (held && *held > furthest) {
-                furthest = *held;
-                last_new_bytes = Clock::now();
-                wait = kFirstRetry;
-            }
-            if (Clock::now() - last_new_bytes > timeouts.download_idle)
-                throw upload_failure("the upload broke off after " + std::to_string(furthest) + " of " +
+        // What the provider holds now, asked until it answers.
+        std::optional<std::int64_t> held;
+        while (!held) {
+            pacing.wait();
+            held = held_bytes(provider, request, timeouts);
+            if (held) pacing.reached(static_cast<std::uint64_t>(*held));
+            if (pacing.given_up())
+                throw upload_failure("the upload broke off after " + std::to_string(pacing.furthest()) + " of " +
                                      std::to_string(request.size) + " bytes (" + sent.why +
                                      ") and could not go on for " + seconds(timeouts.download_idle) + " (" +
                                      std::to_string(resumes + 1) + " tries)");
-            if (!held) continue;
-            from = *held;
-            break;
         }
-        if (notice) {
-            char line[160];
-            std::snprintf(line, sizeof line, "the connection was lost at %.1f MB of %.1f MB (%s); going on from there",
-                          static_cast<double>(from) / 1e6, static_cast<double>(request.size) / 1e6, sent.why.c_str());
-            notice(line);
-        }
+        from = *held;
+        if (notice)
+            notice("the connection was lost at " + megabytes(static_cast<std::uint64_t>(from)) + " of " +
+                   megabytes(static_cast<std::uint64_t>(request.size)) + " (" + sent.why + "); going on from there");
     }
 }
 

@@ -49,11 +49,13 @@ std::string place(const std::optional<fs::path>& dir) { return dir ? dir->string
 
 }  // namespace
 
-fs::path program_dir() {
+fs::path program_path() {
     std::error_code ec;
     const auto self = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? fs::path() : self.parent_path();
+    return ec ? fs::path() : self;
 }
+
+fs::path program_dir() { return program_path().parent_path(); }
 
 fs::path installed_share_dir() {
     const fs::path bin = program_dir();

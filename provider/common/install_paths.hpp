@@ -9,7 +9,9 @@
 
 namespace umf::provider {
 
-// The folder of the running program; empty when the system does not say.
+// The running program's file, and its folder; empty when the system does
+// not say.
+std::filesystem::path program_path();
 std::filesystem::path program_dir();
 
 // PREFIX/share/umf for a program in PREFIX/bin; empty when the program does

@@ -2,9 +2,9 @@
 
 #include <boost/beast/http/empty_body.hpp>
 #include <boost/beast/http/string_body.hpp>
-#include <memory>
 #include <cctype>
 #include <chrono>
+#include <memory>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -36,10 +36,6 @@ std::string content_disposition(const std::string& name) {
     }
     return "attachment; filename=\"" + ascii + "\"; filename*=UTF-8''" + encoded;
 }
-
-}  // namespace
-
-namespace {
 
 // Ends a transfer's lease when the last holder lets go: complete when the
 // whole body went out, else the link stays for the rest to be asked for.

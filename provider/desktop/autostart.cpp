@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "provider/common/install_paths.hpp"
 #include "provider/desktop/desktop_entry.hpp"
 #include "shared/io/atomic_file.hpp"
 
@@ -41,14 +42,17 @@ void set_autostart(const fs::path& entry, bool on, const fs::path& executable) {
     umf::write_file_atomically(entry.string(), provider_desktop_entry(executable.string()));
 }
 
+void set_autostart_for_this_program(const fs::path& entry, bool on) {
+    const fs::path self = program_path();
+    if (self.empty()) throw std::runtime_error("cannot tell where this program is");
+    set_autostart(entry, on, self);
+}
+
 int run_autostart(std::optional<bool> on, std::ostream& out, std::ostream& err) {
     const fs::path entry = autostart_entry_path();
     if (on) {
         try {
-            std::error_code ec;
-            const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-            if (ec) throw std::runtime_error("cannot tell where this program is: " + ec.message());
-            set_autostart(entry, *on, self);
+            set_autostart_for_this_program(entry, *on);
         } catch (const std::exception& e) {
             err << "umf-provider: " << e.what() << "\n";
             return 3;

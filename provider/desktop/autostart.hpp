@@ -23,6 +23,9 @@ bool autostart_enabled(const std::filesystem::path& entry);
 // when missing). Off: removes the entry. Throws std::runtime_error naming
 // the file when it cannot be written or removed.
 void set_autostart(const std::filesystem::path& entry, bool on, const std::filesystem::path& executable);
+// The same for the running program; throws std::runtime_error also when it
+// cannot tell where it is.
+void set_autostart_for_this_program(const std::filesystem::path& entry, bool on);
 
 // `umf-provider autostart [on|off]`: switches it for this program (nothing:
 // leaves it) and says whether the provider starts at login. 0 on success, 3

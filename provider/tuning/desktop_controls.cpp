@@ -4,7 +4,6 @@
 #include <QPixmap>
 #include <iostream>
 #include <stdexcept>
-#include <system_error>
 
 #include "provider/desktop/autostart.hpp"
 #include "provider/service/pairing_qr.hpp"
@@ -76,11 +75,8 @@ void DesktopControls::show_tuning() {
 }
 
 void DesktopControls::start_at_login(const std::filesystem::path& entry, bool on) {
-    std::error_code ec;
-    const auto self = std::filesystem::read_symlink("/proc/self/exe", ec);
     try {
-        if (ec) throw std::runtime_error("cannot tell where this program is: " + ec.message());
-        set_autostart(entry, on, self);
+        set_autostart_for_this_program(entry, on);
         std::cerr << "umf-provider: " << (on ? "starts at login (" + entry.string() + ")" : "no longer starts at login")
                   << "\n";
     } catch (const std::exception& e) {

@@ -4,18 +4,10 @@
 import { carry } from './carry.js';
 import { remember } from './history.js';
 import { $, describeKind, formatSize, hideSheets, setState } from './sheets.js';
+import { ResumePacing } from './resume_pacing.js';
 import { Sha256 } from './sha256.js';
 
 let objectUrl = null;
-
-// How a broken download is asked again for the rest (docs/PROTOCOL.md,
-// "Resuming a download"): soon, then less often, until nothing new has
-// arrived for GIVE_UP_MS.
-const FIRST_RETRY_MS = 250;
-const LONGEST_RETRY_MS = 4000;
-const GIVE_UP_MS = 30000;
-
-const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
 
 // The provider's reason from its error envelope (docs/PROTOCOL.md, "Errors over HTTP").
 async function refusal(response) {
@@ -87,23 +79,16 @@ export async function download(content, onProgress, onResume) {
     return received === total ? null : 'the transfer ended early';
   }
 
-  let furthest = 0;
-  let lastNewBytes = Date.now();
-  let wait = FIRST_RETRY_MS;
+  const pacing = new ResumePacing();
   for (;;) {
     const why = await attempt();
     if (why === null) break;
-    if (received > furthest) {
-      furthest = received;
-      lastNewBytes = Date.now();
-      wait = FIRST_RETRY_MS;
-    }
-    if (Date.now() + wait - lastNewBytes > GIVE_UP_MS)
+    pacing.reached(received);
+    if (pacing.givenUp())
       throw new Error(`the transfer was cut after ${received} of ${total} bytes (${why}) and brought nothing more ` +
                       'for 30 s of asking again, so its SHA-256 could not be checked and nothing was kept');
     onResume?.(received, total, why);
-    await sleep(wait);
-    wait = Math.min(wait * 2, LONGEST_RETRY_MS);
+    await pacing.wait();
   }
   const blob = new Blob(chunks, { type: content.mime });
   let verified = null;

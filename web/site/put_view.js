@@ -3,6 +3,7 @@
 // when a put goes, and what its answers mean, is the requester core's
 // (pointer.js); this shows it and moves the bytes it asks for.
 import { getCarried, listCarried, noteFile, removeCarried } from './carry.js';
+import { ResumePacing } from './resume_pacing.js';
 import { $, PUT_ERRORS, formatSize, hideSheets, setState } from './sheets.js';
 import { Sha256 } from './sha256.js';
 
@@ -176,13 +177,6 @@ export function showPutDone(status, item, debug) {
     showPutStatus('done', 'Saved on the screen', `Saved as ${status.name}.`, { outcome: 'saved', name: status.name, debug });
 }
 
-// How a broken upload goes on (docs/PROTOCOL.md, "Resuming an upload"):
-// soon, then less often, until nothing more has reached the screen for
-// GIVE_UP_MS.
-const FIRST_RETRY_MS = 250;
-const LONGEST_RETRY_MS = 4000;
-const GIVE_UP_MS = 30000;
-
 // How many bytes the screen holds (HEAD): a number, 'gone' for an ended
 // link, or null when it cannot be asked now.
 async function heldBytes(path) {
@@ -205,9 +199,7 @@ async function heldBytes(path) {
 export function upload(path, item, answered, debug) {
   let xhr = null;
   let stopped = false;
-  let furthest = 0;
-  let lastNewBytes = Date.now();
-  let wait = FIRST_RETRY_MS;
+  const pacing = new ResumePacing();
   showPutStatus('upload', `Sending ${item.name}…`, `0 of ${formatSize(item.size)}`, { progress: 0, debug });
 
   const send = (from) => {
@@ -228,20 +220,15 @@ export function upload(path, item, answered, debug) {
   const resume = async () => {
     for (;;) {
       if (stopped) return;
-      await new Promise((resolve) => setTimeout(resolve, wait));
-      wait = Math.min(wait * 2, LONGEST_RETRY_MS);
+      await pacing.wait();
       if (stopped) return;
       const held = await heldBytes(path);
       if (held === 'gone') {
         answered(404, '');
         return;
       }
-      if (held !== null && held > furthest) {
-        furthest = held;
-        lastNewBytes = Date.now();
-        wait = FIRST_RETRY_MS;
-      }
-      if (Date.now() - lastNewBytes > GIVE_UP_MS) {
+      if (held !== null) pacing.reached(held);
+      if (pacing.givenUp()) {
         answered(0, '');
         return;
       }

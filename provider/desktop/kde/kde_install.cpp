@@ -4,6 +4,7 @@
 #include <ostream>
 #include <system_error>
 
+#include "provider/common/install_paths.hpp"
 #include "provider/desktop/desktop_entry.hpp"
 #include "shared/io/atomic_file.hpp"
 
@@ -29,10 +30,9 @@ int install_kde_desktop_entry(const fs::path& executable, const fs::path& applic
 }
 
 int run_kde_install(std::ostream& out, std::ostream& err) {
-    std::error_code ec;
-    const fs::path self = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) {
-        err << "umf-provider: cannot tell where this program is: " << ec.message() << "\n";
+    const fs::path self = program_path();
+    if (self.empty()) {
+        err << "umf-provider: cannot tell where this program is\n";
         return 3;
     }
     fs::path data;
