@@ -20,10 +20,11 @@ ip addr add 10.78.0.1/24 dev umf0
 work=$(mktemp -d /tmp/umf-avahi-XXXXXX)
 source "$(dirname "$0")/../support/provider_run.sh"
 cleanup() {
-  stop_provider
+  local rc=$?
+  stop_provider || rc=1
   stop_avahi "$work"
-  wait 2>/dev/null || true
   rm -rf "$work"
+  exit $rc
 }
 trap cleanup EXIT
 # The requester's own configuration: the screens it keeps are this test's.

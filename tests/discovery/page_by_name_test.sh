@@ -17,16 +17,22 @@ source "$here/../support/avahi_namespace.sh"
 [ "${UMF_IN_NETNS:-}" = 1 ] || own_namespaces "avahi-daemon dbus-daemon nsenter certutil getent" "$0" "$@"
 source "$here/../support/provider_run.sh"
 work=$(mktemp -d /tmp/umf-page-name-XXXXXX)
-phone= b_pid=
+phone= phone_net= b_pid=
 cleanup() {
-  stop_provider
-  [ -n "$b_pid" ] && kill "$b_pid" 2>/dev/null
+  local rc=$? pid
+  stop_provider || rc=1
+  [ -z "$b_pid" ] || end_process "$b_pid" "umf-provider b" || rc=1
   stop_avahi "$work/screen"
   stop_avahi "$work/phone"
-  [ -n "$phone" ] && kill "$phone" 2>/dev/null
-  wait 2>/dev/null || true
-  # Chromium's helpers may outlive it by a moment: a second try, never a failure.
+  # Whatever still runs in the phone's namespaces (the sleeper, a Chromium
+  # helper that outlived the runner) ends here, so nothing holds the test.
+  if [ -n "$phone_net" ]; then
+    for pid in $(ls /proc | grep -E '^[0-9]+$'); do
+      [ "$(readlink "/proc/$pid/ns/net" 2>/dev/null)" = "$phone_net" ] && kill -9 "$pid" 2>/dev/null
+    done
+  fi
   rm -rf "$work" 2>/dev/null || { sleep 1; rm -rf "$work"; } || true
+  exit $rc
 }
 trap cleanup EXIT
 mdns_nsswitch "$work/nsswitch.conf" ||
@@ -39,6 +45,8 @@ for _ in $(seq 50); do
   [ "$(readlink /proc/$phone/ns/net)" != "$(readlink /proc/$$/ns/net)" ] && break
   sleep 0.1
 done
+phone_net=$(readlink /proc/$phone/ns/net)
+[ "$phone_net" != "$(readlink /proc/$$/ns/net)" ] || { phone_net=; echo "FAIL: the phone's namespaces were not made"; exit 1; }
 in_phone() { nsenter -t "$phone" -n -m -u "$@"; }
 
 hostname umf-screen-test

@@ -15,9 +15,11 @@ source "$(dirname "$0")/../support/provider_run.sh"
 packages=(umf-provider umf-requester umf-field)
 installed=
 cleanup() {
-  stop_provider
+  local rc=$?
+  stop_provider || rc=1
   if [ -n "$installed" ]; then apt-get purge -y -qq "${packages[@]}" >/dev/null 2>&1 || true; fi
   rm -rf "$work"
+  exit $rc
 }
 trap cleanup EXIT
 skip() { echo "SKIP: $*"; exit 77; }

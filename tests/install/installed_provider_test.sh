@@ -8,7 +8,7 @@ set -euo pipefail
 build=$1
 prefix=$(mktemp -d /tmp/umf-install-XXXXXX)
 source "$(dirname "$0")/../support/provider_run.sh"
-trap 'stop_provider; rm -rf "$prefix"' EXIT
+trap 'rc=$?; stop_provider || rc=1; rm -rf "$prefix"; exit $rc' EXIT
 
 cmake --install "$build" --prefix "$prefix" >/dev/null
 for f in bin/umf-provider bin/umf-requester bin/umf-browser-host share/umf/web/index.html share/umf/web/app.js \

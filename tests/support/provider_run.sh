@@ -1,15 +1,31 @@
 # Sourced by the shell tests that run a provider (tests/trust, discovery,
 # install, transfers): start_provider LOG ARGS... starts $bin/umf-provider headless in
 # the background (--puts never unless $puts says otherwise; stop_provider
-# ends it) and waits for its pairing URL; sets
+# ends it, end_process PID NAME any other) and waits for its pairing URL; sets
 # $provider_pid, $url, $port and $origin.
 provider_pid=
+# end_process PID NAME: SIGTERM, and the process gone within 15 s; where it
+# is not, its threads' stacks (gdb) and SIGKILL, and status 1: a program that
+# does not end on SIGTERM is a fault of its own, not something to wait out.
+end_process() {
+  local pid=$1 name=$2
+  kill "$pid" 2>/dev/null || return 0
+  for _ in $(seq 150); do
+    kill -0 "$pid" 2>/dev/null || { wait "$pid" 2>/dev/null; return 0; }
+    sleep 0.1
+  done
+  echo "FAIL: $name (pid $pid) did not exit within 15 s of SIGTERM; its threads:"
+  command -v gdb >/dev/null &&
+    timeout 60 gdb -p "$pid" -batch -ex 'thread apply all bt' 2>/dev/null | grep -E '^(Thread|#)' | head -120
+  kill -9 "$pid" 2>/dev/null
+  wait "$pid" 2>/dev/null
+  return 1
+}
+# Fails (status 1) where the provider did not end on SIGTERM.
 stop_provider() {
-  if [ -n "$provider_pid" ]; then
-    kill "$provider_pid" 2>/dev/null || true
-    wait "$provider_pid" 2>/dev/null || true
-    provider_pid=
-  fi
+  local pid=$provider_pid
+  provider_pid=
+  [ -z "$pid" ] || end_process "$pid" umf-provider
 }
 start_provider() {
   local log=$1

@@ -21,9 +21,11 @@ bin=$build/bin
 source "$here/../support/provider_run.sh"
 relay_pid=
 cleanup() {
-  stop_provider
+  local rc=$?
+  stop_provider || rc=1
   [ -n "$relay_pid" ] && kill "$relay_pid" 2>/dev/null
   rm -rf "$work"
+  exit $rc
 }
 trap cleanup EXIT
 case $mode in grab | put) ;; *) echo "usage: resume_test.sh BUILD_DIR grab|put [SIZE_MB]"; exit 2 ;; esac

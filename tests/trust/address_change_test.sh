@@ -17,7 +17,7 @@ fi
 ip link set lo up
 work=$(mktemp -d /tmp/umf-address-XXXXXX)
 source "$(dirname "$0")/../support/provider_run.sh"
-trap 'stop_provider; rm -rf "$work"' EXIT
+trap 'rc=$?; stop_provider || rc=1; rm -rf "$work"; exit $rc' EXIT
 
 # One link over the whole screen, and the screen as shown, for a grab.
 one_link_board "Address change" https://example.org/after-the-move

@@ -9,7 +9,7 @@ set -euo pipefail
 bin=$1/bin
 work=$(mktemp -d /tmp/umf-root-XXXXXX)
 source "$(dirname "$0")/../support/provider_run.sh"
-trap 'stop_provider; rm -rf "$work"' EXIT
+trap 'rc=$?; stop_provider || rc=1; rm -rf "$work"; exit $rc' EXIT
 
 start_provider "$work/provider.log" --config-dir "$work/cfg"
 "$bin/umf-provider" trust export "$work/root.pem" --config-dir "$work/cfg" 2>/dev/null

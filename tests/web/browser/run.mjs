@@ -168,6 +168,17 @@ function providerCommand(provider, args) {
   });
 }
 
+// A cleanup (closing Chromium, stopping a provider) given MS to finish: a
+// hung one is reported and left to the caller's process cleanup, so the
+// runner still ends.
+async function bounded(cleanup, ms) {
+  let timer;
+  const late = new Promise(resolve => { timer = setTimeout(() => resolve('late'), ms); });
+  const outcome = await Promise.race([Promise.resolve().then(cleanup).then(() => 'done', e => `failed: ${e.message}`), late]);
+  clearTimeout(timer);
+  if (outcome !== 'done') log(`a cleanup ${outcome === 'late' ? `did not finish within ${ms} ms` : outcome}: ${cleanup}`);
+}
+
 // The pairing URL with test options in the query, before the fragment.
 function pageUrl(pairing, query) {
   const u = new URL(pairing);
@@ -1205,7 +1216,7 @@ for (const signal of ['SIGTERM', 'SIGINT', 'SIGHUP']) {
   process.on(signal, async () => {
     console.log(`FAIL ${opts.scenario}: ${signal} (timed out?)`);
     await diagnose().catch(() => {});
-    for (const c of cleanups.reverse()) await c().catch(() => {});
+    for (const c of cleanups.reverse()) await bounded(c, 15000);
     if (!opts.keep) fs.rmSync(work, { recursive: true, force: true });
     process.exit(1);
   });
@@ -1225,7 +1236,7 @@ try {
     await diagnose();
   }
 } finally {
-  for (const c of cleanups.reverse()) await c();
+  for (const c of cleanups.reverse()) await bounded(c, 15000);
   if (!opts.keep) fs.rmSync(work, { recursive: true, force: true });
   else log(`kept ${work}`);
 }
