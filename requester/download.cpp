@@ -14,10 +14,13 @@
 #include <cstring>
 #include <memory>
 #include <optional>
+#include <sstream>
 
 #include "native/sha256.hpp"
+#include "requester/blocking_tls.hpp"
 #include "requester/cli.hpp"
 #include "requester/grab_failure.hpp"
+#include "requester/hashing_writer.hpp"
 #include "requester/resume_pacing.hpp"
 #include "requester/transfer_text.hpp"
 #include "shared/io/store_file.hpp"
@@ -33,8 +36,11 @@ namespace net = boost::asio;
 namespace beast = boost::beast;
 namespace http = beast::http;
 
-// What one read of the body takes at most.
-constexpr std::size_t kPieceBytes = 64 << 10;
+// The piece of the body hashed and written at once.
+constexpr std::size_t kPieceBytes = 1 << 20;
+
+// Files this large are written past the page cache (hashing_writer.hpp).
+constexpr std::int64_t kDirectFromBytes = std::int64_t{64} << 20;
 
 // Error bodies are a short JSON message; anything longer is cut off.
 constexpr std::size_t kMaxErrorBodyBytes = 64 * 1024;
@@ -61,15 +67,7 @@ public:
     TempFile(const TempFile&) = delete;
     TempFile& operator=(const TempFile&) = delete;
 
-    void write(const char* data, std::size_t size) {
-        while (size > 0) {
-            const ssize_t n = ::write(fd_, data, size);
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) throw output_failure("cannot write " + path_.string() + ": " + errno_text());
-            data += n;
-            size -= static_cast<std::size_t>(n);
-        }
-    }
+    int fd() const { return fd_; }
     // Flushed to disk and given the permissions of a file the user saved:
     // 0600 only kept strangers out while it was incomplete.
     void finish() {
@@ -80,11 +78,6 @@ public:
             throw output_failure("cannot finish " + path_.string() + ": " + errno_text());
         }
         fd_ = -1;
-    }
-    // Empty again, for a download that starts over.
-    void truncate() {
-        if (::ftruncate(fd_, 0) != 0 || ::lseek(fd_, 0, SEEK_SET) != 0)
-            throw output_failure("cannot empty " + path_.string() + ": " + errno_text());
     }
     void keep() { kept_ = true; }
     const fs::path& path() const { return path_; }
@@ -116,16 +109,21 @@ bool names_the_rest(beast::string_view content_range, std::uint64_t from, std::u
 }
 
 // The state of one download across its attempts: the bytes kept so far,
-// hashed as they came, and the validator the rest is asked for with.
+// hashed and written as they came, and the validator the rest is asked for
+// with.
 struct Transfer {
     Transfer(const protocol::PairingUrl& url, const DownloadRequest& what, const NetTimeouts& limits, TempFile& into)
-        : provider(url), request(what), timeouts(limits), file(into) {}
+        : provider(url),
+          request(what),
+          timeouts(limits),
+          file(into),
+          writer(into.fd(), kPieceBytes, what.size >= kDirectFromBytes) {}
 
     const protocol::PairingUrl& provider;
     const DownloadRequest& request;
     const NetTimeouts& timeouts;
     TempFile& file;
-    std::unique_ptr<native::Sha256> sha = std::make_unique<native::Sha256>();
+    HashingWriter writer;
     std::uint64_t received = 0;
     std::string etag;
 
@@ -133,9 +131,24 @@ struct Transfer {
 
     // Starts again from the first byte (the provider sent the whole file).
     void restart() {
-        file.truncate();
-        sha = std::make_unique<native::Sha256>();
+        finish_writing();
+        writer.restart();
         received = 0;
+    }
+    // Everything received is hashed and on its way to disk.
+    void finish_writing() {
+        try {
+            writer.drain();
+        } catch (const std::runtime_error& e) {
+            throw output_failure(std::string(e.what()) + " (" + file.path().string() + ")");
+        }
+    }
+    HashingWriter::Piece next_piece() {
+        try {
+            return writer.next();
+        } catch (const std::runtime_error& e) {
+            throw output_failure(std::string(e.what()) + " (" + file.path().string() + ")");
+        }
     }
 
     // One request, for the whole file or the rest of it. True when the
@@ -161,38 +174,57 @@ void Transfer::refused(unsigned status, const std::string& error_body) const {
     throw GrabFailure(e ? protocol::to_string(e->code) : "download", "the download failed: " + why, kConnection);
 }
 
+// The response's header, read from `tls` into `head`; the bytes read past it
+// (the body's first) stay at the end of `head` from `used` on. False with
+// `why` when the connection broke first.
+bool read_header(BlockingTls& tls, http::response_parser<http::empty_body>& parser, std::string& head,
+                 std::size_t& used, std::string& why) {
+    char piece[16 * 1024];
+    for (;;) {
+        beast::error_code ec;
+        used += parser.put(net::buffer(head.data() + used, head.size() - used), ec);
+        if (parser.is_header_done()) return true;
+        if (ec && ec != http::error::need_more) {
+            why = "cannot read the answer: " + ec.message();
+            return false;
+        }
+        const long n = tls.read_some(piece, sizeof piece);
+        if (n <= 0) {
+            why = n == 0 ? "the provider closed the connection before answering" : "cannot read the answer: " + tls.error();
+            return false;
+        }
+        head.append(piece, static_cast<std::size_t>(n));
+    }
+}
+
 bool Transfer::attempt(std::string& why) {
-    std::optional<PinnedExchange> exchange;
+    std::optional<BlockingTls> tls;
     try {
-        exchange.emplace(provider, timeouts);
+        tls.emplace(provider, timeouts, timeouts.download_idle);
     } catch (const GrabFailure& f) {
         if (f.code == "certificate") throw;
         why = f.what();
         return false;
     }
-    net::io_context& io = exchange->io;
-    TlsStream& stream = exchange->stream;
     http::request<http::empty_body> req(http::verb::get, request.path, 11);
     PinnedExchange::set_headers(req, provider);
     if (received > 0) {
         req.set(http::field::range, "bytes=" + std::to_string(received) + "-");
         if (!etag.empty()) req.set(http::field::if_range, etag);
     }
-    auto ec = run_step(io, stream, timeouts.download_idle, [&](auto h) { http::async_write(stream, req, h); });
-    if (ec) {
-        why = "cannot request " + request.path + ": " + ec.message();
+    std::ostringstream out;
+    out << req;
+    const std::string head_out = out.str();
+    if (!tls->write_all(head_out.data(), head_out.size())) {
+        why = "cannot request " + request.path + ": " + tls->error();
         return false;
     }
-    beast::flat_buffer buffer;
-    http::response_parser<http::buffer_body> parser;
-    parser.body_limit(std::max<std::uint64_t>(expected() - received, kMaxErrorBodyBytes));
-    ec = run_step(io, stream, timeouts.download_idle, [&](auto h) { http::async_read_header(stream, buffer, parser, h); });
-    if (ec == beast::error::timeout) {
-        why = "the provider sent no answer within " + seconds(timeouts.download_idle);
-        return false;
-    }
-    if (ec) {
-        why = "cannot read the answer: " + ec.message();
+    http::response_parser<http::empty_body> parser;
+    parser.skip(true);  // the body is read here, not by the parser
+    std::string head;
+    std::size_t used = 0;
+    if (!read_header(*tls, parser, head, used, why)) {
+        if (tls->timed_out()) why = "the provider sent no answer within " + seconds(timeouts.download_idle);
         return false;
     }
     const unsigned status = parser.get().result_int();
@@ -205,48 +237,56 @@ bool Transfer::attempt(std::string& why) {
         if (received > 0) restart();  // the file as a whole, again
         etag = std::string(parser.get()[http::field::etag]);
     }
+    const auto length = parser.content_length();
     if (body) {
-        const auto length = parser.content_length();
         if (!length)
             throw download_failure("the provider's download has no Content-Length; it must announce the size");
         if (*length != expected() - received)
             throw download_failure("the provider announced " + std::to_string(request.size) +
                                    " bytes but the download has " + std::to_string(received + *length));
     }
-    // Large pieces: fewer writes and fewer turns of the I/O loop per GiB.
-    std::vector<char> chunk(kPieceBytes);
-    std::string error_body;
-    while (!parser.is_done()) {
-        parser.get().body().data = chunk.data();
-        parser.get().body().size = chunk.size();
-        ec = run_step(io, stream, timeouts.download_idle, [&](auto h) { http::async_read(stream, buffer, parser, h); });
-        if (ec == http::error::need_buffer) ec = {};
-        const std::size_t n = chunk.size() - parser.get().body().size;
-        if (body) {
-            file.write(chunk.data(), n);
-            sha->update(chunk.data(), n);
-            received += n;
-        } else if (error_body.size() < kMaxErrorBodyBytes) {
-            error_body.append(chunk.data(), std::min(n, kMaxErrorBodyBytes - error_body.size()));
+    // The body: what came with the header, then large reads straight into
+    // the piece that is hashed and written.
+    std::uint64_t left = body ? *length : std::min<std::uint64_t>(length.value_or(kMaxErrorBodyBytes), kMaxErrorBodyBytes);
+    const std::size_t early = static_cast<std::size_t>(std::min<std::uint64_t>(head.size() - used, left));
+    if (!body) {
+        std::string error_body = head.substr(used, early);
+        char piece[16 * 1024];
+        for (left -= early; left > 0;) {
+            const long n = tls->read_some(piece, static_cast<std::size_t>(std::min<std::uint64_t>(sizeof piece, left)));
+            if (n <= 0) break;  // an error body ends with its length or with the connection
+            error_body.append(piece, static_cast<std::size_t>(n));
+            left -= static_cast<std::uint64_t>(n);
         }
-        if (ec == http::error::body_limit)
-            throw download_failure("the download is longer than the announced " + std::to_string(request.size) +
-                                   " bytes");
-        if (ec == beast::error::timeout) {
-            why = "nothing arrived for " + seconds(timeouts.download_idle);
-            return false;
-        }
-        if (ec) {
-            why = ec.message();
-            return false;
-        }
+        refused(status, error_body);
     }
-    beast::error_code ignored;
-    beast::get_lowest_layer(stream).socket().close(ignored);
-    if (!body) refused(status, error_body);
-    if (received != expected())
-        throw download_failure("the download ended after " + std::to_string(received) + " of " +
-                               std::to_string(request.size) + " bytes");
+    // Each piece is filled from the network and handed to the writer; a
+    // piece cut short by the connection is kept, and the rest asked for.
+    const char* carried = head.data() + used;
+    std::size_t carried_left = early;
+    while (left > 0) {
+        const HashingWriter::Piece piece = next_piece();
+        std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(piece.capacity, left));
+        // After a cut, a short first piece brings the file back to where
+        // whole pieces can be written directly.
+        if (const std::size_t off = received % HashingWriter::kDirectAlign; off != 0)
+            want = std::min(want, HashingWriter::kDirectAlign - off);
+        const std::size_t from_head = std::min(carried_left, want);
+        std::memcpy(piece.data, carried, from_head);
+        carried += from_head;
+        carried_left -= from_head;
+        std::size_t filled = from_head;
+        long n = 1;
+        while (filled < want && (n = tls->read_some(piece.data + filled, want - filled)) > 0)
+            filled += static_cast<std::size_t>(n);
+        writer.submit(piece, filled);
+        received += filled;
+        left -= filled;
+        if (n > 0) continue;
+        why = tls->timed_out() ? "nothing arrived for " + seconds(timeouts.download_idle)
+                               : n == 0 ? std::string("the provider closed the connection") : tls->error();
+        return false;
+    }
     return true;
 }
 
@@ -283,7 +323,8 @@ SavedFile download_file(const protocol::PairingUrl& provider, const DownloadRequ
         pacing.wait();
     }
 
-    const std::string digest = transfer.sha->hex();
+    transfer.finish_writing();
+    const std::string digest = transfer.writer.hex();
     if (request.sha256 && *request.sha256 != digest)
         throw download_failure("the downloaded file's SHA-256 is " + digest + ", the provider announced " +
                                *request.sha256 + "; it was not kept");

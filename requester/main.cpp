@@ -1,5 +1,6 @@
 // umf-requester: the webcam client's command line. A small dispatcher: each
 // command lives in its own file with its own usage text.
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -126,6 +127,10 @@ int main(int argc, char** argv) {
     // Our own messages say what went wrong; OpenCV's backend chatter
     // ("[ WARN:0@...] global cap_gstreamer ...") only confuses.
     cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
+    // Large transfers write to the socket with blocking calls (blocking_tls.hpp):
+    // a provider that goes away mid-write is an EPIPE to report, not a signal
+    // that ends the program.
+    std::signal(SIGPIPE, SIG_IGN);
     const std::string cmd = argv[1];
     try {
         if (cmd == "help" || cmd == "--help" || cmd == "-h") {

@@ -24,13 +24,7 @@ namespace ssl = boost::asio::ssl;
 namespace beast = boost::beast;
 using Clock = std::chrono::steady_clock;
 
-// What the verify callback saw, for a message that tells a wrong pin from a
-// network failure.
-struct PinCheck {
-    std::string expected;
-    std::string seen;  // the leaf's fingerprint when it did not match
-    bool mismatch = false;
-};
+}  // namespace
 
 GrabFailure connection_failure(const std::string& message) { return {"connection", message, kConnection}; }
 
@@ -43,9 +37,6 @@ GrabFailure certificate_failure(const protocol::PairingUrl& url, const std::stri
                 "on the network is in between",
             kConnection};
 }
-
-}  // namespace
-
 
 ssl::context make_pinned_client_context() {
     ssl::context ctx(ssl::context::tls_client);
@@ -110,43 +101,55 @@ std::string connect_to(net::io_context& io, TlsStream& stream, const std::string
 
 }  // namespace
 
-void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::PairingUrl& url, const NetTimeouts& timeouts) {
+ReachedHost connect_tcp(net::io_context& io, TlsStream& stream, const protocol::PairingUrl& url,
+                        const NetTimeouts& timeouts) {
     // The URL's address first (where the screen was when paired), then the
     // screen's .local name, which follows it to a new address. The pin, not
     // the name or the address, decides whom the token goes to.
-    std::string host = url.host;
-    bool host_is_ip = url.host_is_ip;
     const std::string failed = connect_to(io, stream, url.host, url.port, url.authority(), timeouts);
-    if (!failed.empty()) {
-        if (url.name.empty()) throw connection_failure(failed);
-        beast::get_lowest_layer(stream).close();
-        const std::string again = connect_to(io, stream, url.name, url.port, url.name + ":" + std::to_string(url.port), timeouts);
-        if (!again.empty()) throw connection_failure(failed + "; " + again);
-        host = url.name;
-        host_is_ip = false;
-    }
+    if (failed.empty()) return {url.host, url.host_is_ip};
+    if (url.name.empty()) throw connection_failure(failed);
+    beast::get_lowest_layer(stream).close();
+    const std::string again = connect_to(io, stream, url.name, url.port, url.name + ":" + std::to_string(url.port), timeouts);
+    if (!again.empty()) throw connection_failure(failed + "; " + again);
+    return {url.name, false};
+}
+
+bool pin_verdict(X509_STORE_CTX* store, PinCheck& pin) {
+    // The pin decides at the leaf, from the chain the provider sent; OpenSSL's
+    // own verdict on the rest (a root no store knows: "untrusted") is ignored.
+    if (X509_STORE_CTX_get_error_depth(store) != 0) return true;
+    X509* leaf = X509_STORE_CTX_get_current_cert(store);
+    if (native::chain_satisfies_pin(leaf, X509_STORE_CTX_get0_untrusted(store), pin.expected)) return true;
+    pin.mismatch = true;
+    pin.seen = native::certificate_fingerprint(leaf);
+    return false;
+}
+
+void check_pinned_peer(SSL* ssl, const protocol::PairingUrl& url) {
+    // The callback must have passed the leaf; checked again on the session's
+    // own chain so no path through OpenSSL skips the pin.
+    X509* peer = SSL_get1_peer_certificate(ssl);
+    const bool pinned = native::chain_satisfies_pin(peer, SSL_get_peer_cert_chain(ssl), url.fingerprint);
+    const std::string fp = native::certificate_fingerprint(peer);
+    X509_free(peer);
+    if (!pinned) throw certificate_failure(url, fp);
+}
+
+void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::PairingUrl& url, const NetTimeouts& timeouts) {
+    const ReachedHost reached = connect_tcp(io, stream, url, timeouts);
     auto& tcp = beast::get_lowest_layer(stream);
     beast::error_code ec;
     bool done = false;
 
     // SNI only for names: RFC 6066 leaves addresses out.
-    if (!host_is_ip && !SSL_set_tlsext_host_name(stream.native_handle(), host.c_str()))
-        throw connection_failure("cannot set the TLS server name " + host);
+    if (!reached.is_ip && !SSL_set_tlsext_host_name(stream.native_handle(), reached.host.c_str()))
+        throw connection_failure("cannot set the TLS server name " + reached.host);
 
     auto pin = std::make_shared<PinCheck>();
     pin->expected = url.fingerprint;
     stream.set_verify_mode(ssl::verify_peer);
-    stream.set_verify_callback([pin](bool, ssl::verify_context& vc) {
-        X509_STORE_CTX* store = vc.native_handle();
-        // The pin decides at the leaf, from the chain the provider sent; OpenSSL's
-        // own verdict on the rest (a root no store knows: "untrusted") is ignored.
-        if (X509_STORE_CTX_get_error_depth(store) != 0) return true;
-        X509* leaf = X509_STORE_CTX_get_current_cert(store);
-        if (native::chain_satisfies_pin(leaf, X509_STORE_CTX_get0_untrusted(store), pin->expected)) return true;
-        pin->mismatch = true;
-        pin->seen = native::certificate_fingerprint(leaf);
-        return false;
-    });
+    stream.set_verify_callback([pin](bool, ssl::verify_context& vc) { return pin_verdict(vc.native_handle(), *pin); });
 
     done = false;
     tcp.expires_after(timeouts.handshake);
@@ -162,15 +165,11 @@ void connect_pinned(net::io_context& io, TlsStream& stream, const protocol::Pair
                                  std::to_string(timeouts.handshake.count() / 1000) + " s");
     if (ec) throw connection_failure("the TLS handshake with " + url.authority() + " failed: " + ec.message());
 
-    // The callback must have passed the leaf; checked again on the session's
-    // own chain so no path through OpenSSL skips the pin.
-    X509* peer = SSL_get1_peer_certificate(stream.native_handle());
-    const bool pinned = native::chain_satisfies_pin(peer, SSL_get_peer_cert_chain(stream.native_handle()), url.fingerprint);
-    const std::string fp = native::certificate_fingerprint(peer);
-    X509_free(peer);
-    if (!pinned) {
+    try {
+        check_pinned_peer(stream.native_handle(), url);
+    } catch (const GrabFailure&) {
         tcp.close();
-        throw certificate_failure(url, fp);
+        throw;
     }
     tcp.expires_never();
 }

@@ -16,7 +16,11 @@
 #include <functional>
 #include <string>
 
+#include "requester/grab_failure.hpp"
 #include "shared/protocol/pairing_url.hpp"
+
+struct x509_store_ctx_st;
+struct ssl_st;
 
 namespace umf::requester {
 
@@ -59,6 +63,38 @@ boost::beast::error_code run_step(boost::asio::io_context& io, TlsStream& stream
         return boost::beast::error::timeout;
     return ec;
 }
+
+// What the verify callback saw, for a message that tells a wrong pin from a
+// network failure.
+struct PinCheck {
+    std::string expected;  // the pairing URL's fingerprint
+    std::string seen;      // the leaf's fingerprint when it did not match
+    bool mismatch = false;
+};
+
+// The verify callback's answer for one certificate of the provider's chain:
+// the pin decides at the leaf; the rest passes. Records a mismatch in `pin`.
+bool pin_verdict(x509_store_ctx_st* store, PinCheck& pin);
+
+// After a handshake: throws GrabFailure "certificate" unless the session's
+// own chain satisfies the URL's pin, so no path through OpenSSL skips it.
+void check_pinned_peer(ssl_st* ssl, const protocol::PairingUrl& url);
+
+// GrabFailure "connection" and "certificate" (seen: the fingerprint shown).
+GrabFailure connection_failure(const std::string& message);
+GrabFailure certificate_failure(const protocol::PairingUrl& url, const std::string& seen);
+
+// Where connect_tcp reached the provider: the URL's address, or the
+// screen's .local name when the address did not answer.
+struct ReachedHost {
+    std::string host;
+    bool is_ip = false;
+};
+
+// Connects the stream's socket to the URL's address (timeouts.connect),
+// else to its .local name. Throws GrabFailure "connection".
+ReachedHost connect_tcp(boost::asio::io_context& io, TlsStream& stream, const protocol::PairingUrl& url,
+                        const NetTimeouts& timeouts);
 
 // Resolves the URL's host and connects to it (timeouts.connect), else to the
 // URL's .local name, and completes the TLS handshake (timeouts.handshake)

@@ -47,6 +47,9 @@ struct FakeContent {
     // the file changed, with `resume_reason`).
     unsigned resume_status = 206;
     std::string resume_reason = "the file changed since it was offered; grab again";
+    // Shown from the grab's answer on: the download's connection meets
+    // another certificate than the session's.
+    std::optional<provider::TlsIdentity> download_identity;
 };
 
 class FakeProvider {
@@ -170,6 +173,7 @@ private:
                     c.size = content_.size.value_or(static_cast<std::int64_t>(content_.body.size()));
                     c.sha256 = content_.sha256;
                     c.download = "/dl/link" + std::to_string(grabs_.load());
+                    if (content_.download_identity) current_.replace(*content_.download_identity);
                 }
                 reply = c;
             }

@@ -383,6 +383,25 @@ TEST_F(RequesterGrab, ACutDownloadResumesAndArrivesWhole) {
     EXPECT_EQ(files_in(out), (std::vector<std::string>{"report.pdf"})) << "no partial file is left";
 }
 
+// The download's own connection is pinned like the session's: a provider
+// that shows another certificate there gets no request and keeps nothing.
+TEST_F(RequesterGrab, ADownloadFromAnotherCertificateIsRefused) {
+    umf::test::FakeProvider fake(identity_, token_);
+    umf::test::FakeContent c;
+    c.body = std::string(100000, 'z');
+    c.download_identity = create_tls_identity();
+    fake.set_content(c);
+    const fs::path out = dir_ / "other-certificate";
+    fs::create_directories(out);
+    const Result r = grab(url(fake.port(), fake.fingerprint(), token_),
+                          "--image " + shared("photo.png") + " --out " + out.string());
+    EXPECT_EQ(r.code, 4) << r.err;
+    EXPECT_EQ(code_of(r), "certificate") << r.line.dump();
+    fake.join_connections();
+    EXPECT_EQ(fake.downloads(), 0) << "the download's request was never sent";
+    EXPECT_TRUE(files_in(out).empty());
+}
+
 TEST_F(RequesterGrab, BadTransfersLeaveNothingBehind) {
     umf::test::FakeProvider fake(identity_, token_);
     struct Case {
