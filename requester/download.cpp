@@ -5,7 +5,6 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <vector>
 #include <boost/asio/ssl.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
@@ -16,7 +15,6 @@
 #include <optional>
 #include <sstream>
 
-#include "native/sha256.hpp"
 #include "requester/blocking_tls.hpp"
 #include "requester/cli.hpp"
 #include "requester/grab_failure.hpp"
