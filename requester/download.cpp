@@ -206,6 +206,8 @@ bool Transfer::attempt(std::string& why) {
     }
     http::request<http::empty_body> req(http::verb::get, request.path, 11);
     PinnedExchange::set_headers(req, provider);
+    // The link is bound to the session's pairing token (docs/PROTOCOL.md, "Downloads").
+    req.set(http::field::authorization, "Bearer " + provider.token);
     if (received > 0) {
         req.set(http::field::range, "bytes=" + std::to_string(received) + "-");
         if (!etag.empty()) req.set(http::field::if_range, etag);

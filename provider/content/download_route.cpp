@@ -1,5 +1,6 @@
 #include "provider/content/download_route.hpp"
 
+#include <boost/beast/core/string.hpp>
 #include <boost/beast/http/empty_body.hpp>
 #include <boost/beast/http/string_body.hpp>
 #include <cctype>
@@ -9,6 +10,7 @@
 #include <tuple>
 #include <utility>
 
+#include "provider/common/secret_compare.hpp"
 #include "provider/content/resume_range.hpp"
 #include "provider/content/verified_file_body.hpp"
 #include "provider/net/http_response_headers.hpp"
@@ -51,6 +53,19 @@ std::string_view header_text(const HttpRequest& req, http::field field) {
     return {value.data(), value.size()};
 }
 
+// The token of "Authorization: Bearer TOKEN" (the scheme in any case);
+// empty when there is none.
+std::string_view bearer_token(const HttpRequest& req) {
+    std::string_view value = header_text(req, http::field::authorization);
+    constexpr std::string_view kScheme = "bearer ";
+    if (value.size() <= kScheme.size() ||
+        !beast::iequals(beast::string_view(value.data(), kScheme.size()), beast::string_view(kScheme.data(), kScheme.size())))
+        return {};
+    value.remove_prefix(kScheme.size());
+    while (!value.empty() && value.front() == ' ') value.remove_prefix(1);
+    return value;
+}
+
 }  // namespace
 
 void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTable& downloads,
@@ -65,6 +80,14 @@ void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTabl
     }
     auto end = std::make_shared<LeaseEnd>(LeaseEnd{downloads, *lease});
     const DownloadEntry& entry = *lease->entry;
+    // Nothing of the link's file for a request without the grabbing
+    // session's token; the link stays for its owner.
+    if (!entry.token.empty() && !tokens_equal(bearer_token(req), entry.token)) {
+        exchange.answer_error(http::status::unauthorized, keep_alive, protocol::ErrorCode::unauthorized,
+                              "a download link is used with the pairing token of the session that grabbed it "
+                              "(Authorization: Bearer TOKEN)");
+        return;
+    }
     const bool head = req.method() == http::verb::head;
     const auto size = static_cast<std::uint64_t>(entry.size);
     const std::string etag = entry.sha256.empty() ? std::string() : download_etag(entry.sha256);

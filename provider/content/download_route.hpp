@@ -1,4 +1,5 @@
-// GET or HEAD /dl/<link> (docs/PROTOCOL.md, "Downloads"): the whole file
+// GET or HEAD /dl/<link> (docs/PROTOCOL.md, "Downloads"), with the
+// grabbing session's pairing token as a bearer token (401 without): the whole file
 // (200), or with Range (and If-Range naming its ETag, "sha256-<hex>") the
 // rest from where a broken download stopped (206); the link ends when a GET
 // of it completes (download_table.hpp). Bytes the provider made are sent as

@@ -36,6 +36,10 @@ struct DownloadEntry {
     std::optional<std::filesystem::path> file;
     FileIdentity identity;
     std::shared_ptr<const std::string> bytes;
+    // The pairing token of the session that grabbed it: a download presents
+    // it ("Authorization: Bearer TOKEN"), so a link that leaked is of no use
+    // without it. Empty: nothing asked (a provider in public mode).
+    std::string token;
 };
 
 // What one transfer of a link holds: the entry, and the file's hash states

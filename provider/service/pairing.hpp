@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "provider/common/base64url.hpp"
+#include "provider/common/secret_compare.hpp"
 
 namespace umf::provider {
 
@@ -16,10 +17,6 @@ inline constexpr std::size_t kTokenRandomBytes = 24;  // 192 bits, 32 base64url 
 
 // kTokenRandomBytes from the operating system's generator, base64url.
 std::string make_token();
-
-// True when a and b are equal, in time independent of where they differ
-// (both are hashed first, so their lengths do not show either).
-bool tokens_equal(std::string_view a, std::string_view b);
 
 // The token kept in `dir`: made and saved (0600) when missing, empty or
 // malformed, or when `rotate` is set. Throws ConfigError.

@@ -38,7 +38,7 @@ p::Error unreadable(const p::Grab& grab, const Resolved& resolved) {
 // The content message for what a grab resolved, a file's download link
 // registered; `facts` is the resolved file's (null for a URL or bytes).
 p::Message content_for(const p::Grab& grab, const Resolved& resolved, const FileFacts* facts, DownloadTable& downloads,
-                       std::int64_t max_download_bytes) {
+                       std::int64_t max_download_bytes, const std::string& token) {
     p::Content c;
     c.id = grab.id;
     c.kind = resolved.kind;
@@ -74,6 +74,7 @@ p::Message content_for(const p::Grab& grab, const Resolved& resolved, const File
             c.mime = entry.mime;
             c.size = entry.size;
             c.sha256 = entry.sha256;
+            entry.token = token;
             c.download = downloads.add(std::move(entry));
             break;
         }
@@ -82,9 +83,10 @@ p::Message content_for(const p::Grab& grab, const Resolved& resolved, const File
 }
 
 // content_for, and the activity listener told of what was grabbed.
-p::Message answer_grab(std::uint64_t session, const p::Grab& grab, const Resolved& resolved, const FileFacts* facts,
-                       DownloadTable& downloads, std::int64_t max_download_bytes, ActivityListener* activity) {
-    p::Message reply = content_for(grab, resolved, facts, downloads, max_download_bytes);
+p::Message answer_grab(std::uint64_t session, const std::string& token, const p::Grab& grab, const Resolved& resolved,
+                       const FileFacts* facts, DownloadTable& downloads, std::int64_t max_download_bytes,
+                       ActivityListener* activity) {
+    p::Message reply = content_for(grab, resolved, facts, downloads, max_download_bytes, token);
     if (const auto* c = std::get_if<p::Content>(&reply); c && activity)
         activity->grabbed({session, c->kind, c->title, c->name.value_or(""), c->size.value_or(0)});
     return reply;
@@ -290,6 +292,7 @@ Replies Service::hello(SessionState& state, const p::Hello& hello, SteadyTime no
     }
     state.welcomed = true;
     state.id = next_session_++;
+    state.token = config_.public_mode ? std::string() : hello.token;
     state.aims = aim_bucket(config_.limits);
     state.grabs = grab_bucket(config_.limits);
     out.close = false;
@@ -347,7 +350,9 @@ std::optional<p::Message> Service::grab(SessionState& state, const p::Grab& grab
         return p::Error{grab.id, p::ErrorCode::internal, e.what()};
     }
     const bool file = resolved.file && resolved.kind != p::ContentKind::none && resolved.kind != p::ContentKind::url;
-    if (!file) return answer_grab(state.id, grab, resolved, nullptr, *downloads_, config_.max_download_bytes, activity_.get());
+    if (!file)
+        return answer_grab(state.id, state.token, grab, resolved, nullptr, *downloads_, config_.max_download_bytes,
+                           activity_.get());
     std::optional<FileFacts> facts;
     try {
         if (!state.outbox) {
@@ -356,12 +361,13 @@ std::optional<p::Message> Service::grab(SessionState& state, const p::Grab& grab
             // A large file is answered once hashed, from the hashing thread:
             // nothing of this Service but what the answer needs is held.
             facts = facts_->facts_or_later(
-                *resolved.file, [outbox = state.outbox, session = state.id, grab, resolved, downloads = downloads_,
+                *resolved.file, [outbox = state.outbox, session = state.id, token = state.token, grab, resolved,
+                                 downloads = downloads_,
                                  limit = config_.max_download_bytes,
                                  activity = activity_](const std::variant<FileFacts, std::string>& result) {
                     const auto* known = std::get_if<FileFacts>(&result);
-                    const p::Message reply = known ? answer_grab(session, grab, resolved, known, *downloads, limit,
-                                                                 activity.get())
+                    const p::Message reply = known ? answer_grab(session, token, grab, resolved, known, *downloads,
+                                                                 limit, activity.get())
                                                    : unreadable(grab, resolved);
                     outbox(session, p::try_encode(reply).value_or(p::encode(p::Error{
                                         grab.id, p::ErrorCode::internal, "cannot encode the reply"})));
@@ -371,7 +377,8 @@ std::optional<p::Message> Service::grab(SessionState& state, const p::Grab& grab
         return unreadable(grab, resolved);
     }
     if (!facts) return std::nullopt;
-    return answer_grab(state.id, grab, resolved, &*facts, *downloads_, config_.max_download_bytes, activity_.get());
+    return answer_grab(state.id, state.token, grab, resolved, &*facts, *downloads_, config_.max_download_bytes,
+                       activity_.get());
 }
 
 p::Message Service::put(SessionState& state, const p::Put& put, SteadyTime now) const {

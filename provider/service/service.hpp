@@ -90,6 +90,9 @@ struct SessionState {
     std::uint64_t screens_generation = 0;       // the ScreenMap its welcome described
     std::string client;  // the hello's, for the screen's put prompt
     std::string device;  // the hello's `device`, empty when none
+    // The pairing token its hello proved: its download links ask for it
+    // (docs/PROTOCOL.md, "Downloads"). Empty in public mode.
+    std::string token;
     // Where the provider's own messages for this session go (a put's answer
     // comes later, on any thread): set by the connection before the hello,
     // called with the session's id and an encoded message; must not block.

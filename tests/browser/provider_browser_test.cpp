@@ -88,7 +88,9 @@ TEST_P(ProviderAndBrowser, TheProviderGivesAPhoneWhatTheBrowserShows) {
     EXPECT_EQ(content["name"], "chart.png");
     EXPECT_EQ(content["size"], tiny_png().size());
     const std::string downloaded =
-        run({"curl", "-sk", "--max-time", "20", base + content["download"].get<std::string>()}, env, 30s);
+        run({"curl", "-sk", "--max-time", "20", "-H", "Authorization: Bearer " + token,
+             base + content["download"].get<std::string>()},
+            env, 30s);
     EXPECT_EQ(downloaded, tiny_png());
     provider.reset();
 }

@@ -109,6 +109,7 @@ TEST_F(ProviderContent, AimsPreviewAndGrabsTakeWithDownloadLinks) {
     const auto lease = service->downloads().begin(*content.download);
     ASSERT_TRUE(lease);
     EXPECT_EQ(lease->entry->file, report);
+    EXPECT_EQ(lease->entry->token, kToken) << "the link is bound to the session's token";
     service->downloads().end(*lease, true);
     EXPECT_FALSE(service->downloads().begin(*content.download)) << "a link ends when its download completes";
 

@@ -211,7 +211,7 @@ TEST_F(ProviderHttpApi, HelloAimGrabAndTheDownload) {
     const auto content = std::get<p::Content>(replies[2].messages()[0]);
     EXPECT_EQ(content.id, p::RequestId{std::string("g1")});
     ASSERT_TRUE(content.download);
-    const Response download = call({"GET", *content.download, ""});
+    const Response download = call({"GET", *content.download, ""}, "-H 'Authorization: Bearer " + std::string(kToken) + "'");
     EXPECT_EQ(download.status, 200);
     EXPECT_EQ(download.raw, "the report\n");
 

@@ -92,6 +92,10 @@ protected:
         out.headers.assign(std::istreambuf_iterator<char>(h), {});
         return out;
     }
+    // A download link's request, with the grabbing session's token.
+    Response download(const std::string& link, const std::string& options = "") {
+        return curl(link, "-H 'Authorization: Bearer " + std::string(kToken) + "' " + options);
+    }
     bool sessions_drain() {
         for (int i = 0; i < 200 && server->connection_count() > 0; ++i)
             std::this_thread::sleep_for(std::chrono::milliseconds(25));
@@ -99,9 +103,29 @@ protected:
     }
 };
 
+// A link is of no use without the pairing token of the session that
+// grabbed it: 401 with the reason, no byte of the file, and the link stays
+// for its owner.
+TEST_F(ProviderHttp, ADownloadLinkAsksForTheGrabbingSessionsToken) {
+    const std::string link = grab_link();
+    for (const std::string& options : std::vector<std::string>
+         {std::string(), std::string("-H 'Authorization: Bearer wrong-token-0123456789abcdef'"),
+          "-H 'Authorization: Basic " + std::string(kToken) + "'", std::string("-H 'Authorization: Bearer'")}) {
+        const Response refused = curl(link, options);
+        EXPECT_EQ(refused.status, 401) << options;
+        const auto error = p::parse_error_body(refused.body);
+        ASSERT_TRUE(error) << refused.body;
+        EXPECT_EQ(error->code, p::ErrorCode::unauthorized);
+        EXPECT_NE(refused.body.find("Authorization: Bearer"), std::string::npos) << refused.body;
+    }
+    const Response owner = curl(link, "-H 'authorization: bearer " + std::string(kToken) + "'");
+    EXPECT_EQ(owner.status, 200) << "the scheme is case-insensitive, and the link outlived the refusals";
+    EXPECT_EQ(owner.body.size(), fs::file_size(big));
+}
+
 TEST_F(ProviderHttp, ADownloadLinkEndsWhenItsDownloadCompletes) {
     const std::string link = grab_link();
-    const Response first = curl(link);
+    const Response first = download(link);
     EXPECT_EQ(first.status, 200);
     EXPECT_EQ(first.body.size(), fs::file_size(big));
     std::ifstream in(big, std::ios::binary);
@@ -113,7 +137,7 @@ TEST_F(ProviderHttp, ADownloadLinkEndsWhenItsDownloadCompletes) {
     EXPECT_NE(first.headers.find("Content-Type: application/octet-stream"), std::string::npos);
     EXPECT_NE(first.headers.find("Cache-Control: no-store"), std::string::npos);
 
-    const Response second = curl(link);
+    const Response second = download(link);
     EXPECT_EQ(second.status, 404);
     const auto error = p::parse_error_body(second.body);
     ASSERT_TRUE(error) << second.body;
@@ -242,7 +266,7 @@ TEST_F(ProviderHttp, ADownloadCutOffResumesWhereItStopped) {
     // 24 MiB read at 1 MiB/s, abandoned after half a second.
     const p::Content offered = grab_content();
     const std::string link = *offered.download;
-    const Response cut = curl(link, "--limit-rate 1M --max-time 0.5");
+    const Response cut = download(link, "--limit-rate 1M --max-time 0.5");
     ASSERT_LT(cut.body.size(), fs::file_size(big));
     const std::string etag = "\"sha256-" + *offered.sha256 + "\"";
     EXPECT_NE(cut.headers.find("ETag: " + etag), std::string::npos) << cut.headers;
@@ -251,14 +275,14 @@ TEST_F(ProviderHttp, ADownloadCutOffResumesWhereItStopped) {
 
     const std::size_t have = cut.body.size();
     const Response rest =
-        curl(link, "-H 'Range: bytes=" + std::to_string(have) + "-' -H 'If-Range: " + etag + "'");
+        download(link, "-H 'Range: bytes=" + std::to_string(have) + "-' -H 'If-Range: " + etag + "'");
     EXPECT_EQ(rest.status, 206);
     EXPECT_NE(rest.headers.find("Content-Range: bytes " + std::to_string(have) + "-" +
                                 std::to_string(fs::file_size(big) - 1) + "/" + std::to_string(fs::file_size(big))),
               std::string::npos)
         << rest.headers;
     EXPECT_TRUE(cut.body + rest.body == read_big()) << "the parts are not the file";
-    EXPECT_EQ(curl(link).status, 404) << "a completed download ends the link";
+    EXPECT_EQ(download(link).status, 404) << "a completed download ends the link";
     EXPECT_EQ(fs::file_size(big), 24u << 20) << "the file is untouched";
 }
 
@@ -267,17 +291,17 @@ TEST_F(ProviderHttp, ADownloadCutOffResumesWhereItStopped) {
 TEST_F(ProviderHttp, ResumeRequestsThatCannotBeMetGetTheWholeOrAReason) {
     const p::Content offered = grab_content();
     const std::string link = *offered.download;
-    EXPECT_EQ(curl(link, "-I").status, 200);
-    const Response other = curl(link, "-H 'Range: bytes=100-' -H 'If-Range: \"sha256-0000\"'");
+    EXPECT_EQ(download(link, "-I").status, 200);
+    const Response other = download(link, "-H 'Range: bytes=100-' -H 'If-Range: \"sha256-0000\"'");
     EXPECT_EQ(other.status, 200);
     EXPECT_TRUE(other.body == read_big()) << "another version's resume gets the whole file";
 
     const p::Content again = grab_content();
-    const Response past = curl(*again.download, "-H 'Range: bytes=" + std::to_string(fs::file_size(big)) + "-'");
+    const Response past = download(*again.download, "-H 'Range: bytes=" + std::to_string(fs::file_size(big)) + "-'");
     EXPECT_EQ(past.status, 416);
     EXPECT_NE(past.headers.find("Content-Range: bytes */" + std::to_string(fs::file_size(big))), std::string::npos)
         << past.headers;
-    EXPECT_EQ(curl(*again.download).status, 200) << "a request that was not met leaves the link";
+    EXPECT_EQ(download(*again.download).status, 200) << "a request that was not met leaves the link";
 }
 
 // One byte changed after the grab, the size and modification time kept (as
@@ -294,7 +318,7 @@ TEST_F(ProviderHttp, AFileChangedInPlaceAfterTheGrabIsCutNotSent) {
     }
     fs::last_write_time(big, mtime);
     const std::string changed = read_big();
-    const Response cut = curl(*offered.download);
+    const Response cut = download(*offered.download);
     EXPECT_LT(cut.body.size(), changed.size()) << "the changed file went out whole";
     EXPECT_TRUE(sessions_drain());
 
@@ -304,7 +328,7 @@ TEST_F(ProviderHttp, AFileChangedInPlaceAfterTheGrabIsCutNotSent) {
     const std::string now = sha.hex();
     EXPECT_NE(*offered.sha256, now);
     EXPECT_EQ(*again.sha256, now) << "the next grab hashed the file again";
-    const Response whole = curl(*again.download);
+    const Response whole = download(*again.download);
     EXPECT_EQ(whole.status, 200);
     EXPECT_TRUE(whole.body == changed) << "the file as it is now, whole";
 }
@@ -317,7 +341,7 @@ TEST_F(ProviderHttp, AFileRewrittenAfterTheGrabIsRefusedWithItsReason) {
     const fs::path next = dir.path / "next.bin";
     std::ofstream(next, std::ios::binary) << bytes;
     fs::rename(next, big);
-    const Response r = curl(*offered.download);
+    const Response r = download(*offered.download);
     EXPECT_EQ(r.status, 409);
     const auto error = p::parse_error_body(r.body);
     ASSERT_TRUE(error) << r.body;

@@ -127,7 +127,8 @@ private:
             if (!ec) session(ws);
             return;
         }
-        download(tls, std::string(req.target()), std::string(req[boost::beast::http::field::range]));
+        download(tls, std::string(req.target()), std::string(req[boost::beast::http::field::range]),
+                 std::string(req[boost::beast::http::field::authorization]));
     }
 
     template <class Ws>
@@ -189,7 +190,8 @@ private:
         }
     }
 
-    void download(Tls& tls, const std::string& target, const std::string& range) {
+    // As the real one, a link is only for the session's token (401 without it).
+    void download(Tls& tls, const std::string& target, const std::string& range, const std::string& authorization) {
         namespace http = boost::beast::http;
         FakeContent c;
         int nth = 0;  // of the answers since the content was set
@@ -202,14 +204,22 @@ private:
         boost::system::error_code ec;
         std::size_t from = 0;
         if (range.rfind("bytes=", 0) == 0 && range.back() == '-') from = std::stoul(range.substr(6));
-        const unsigned status = target.rfind("/dl/", 0) != 0 ? 404 : from > 0 ? c.resume_status : c.status;
+        const unsigned status = target.rfind("/dl/", 0) != 0           ? 404
+                                : authorization != "Bearer " + token_ ? 401
+                                : from > 0                              ? c.resume_status
+                                                                        : c.status;
         if (status != 200 && status != 206) {
             http::response<http::string_body> res(static_cast<http::status>(status), 11);
             res.set(http::field::content_type, "application/json");
             res.body() = protocol::encode_error_body(protocol::Error{
-                std::nullopt, status == 404 ? protocol::ErrorCode::not_found : protocol::ErrorCode::internal,
-                status == 404 ? "unknown, finished or expired download link"
-                              : status == 409 ? c.resume_reason : "the provider failed"});
+                std::nullopt,
+                status == 404   ? protocol::ErrorCode::not_found
+                : status == 401 ? protocol::ErrorCode::unauthorized
+                                : protocol::ErrorCode::internal,
+                status == 404   ? "unknown, finished or expired download link"
+                : status == 401 ? "a download link is used with the session's pairing token"
+                : status == 409 ? c.resume_reason
+                                : "the provider failed"});
             res.prepare_payload();
             http::write(tls, res, ec);
             return;

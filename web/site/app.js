@@ -315,7 +315,7 @@ async function receive(content) {
   try {
     const started = performance.now();
     let resumedAt = null;
-    grabbed = await download(content, (part) => {
+    grabbed = await download(content, pairing.token, (part) => {
       // The rate over the whole transfer so far, pauses included.
       const seconds = (performance.now() - started) / 1000;
       const rate = seconds > 0.5 ? `, ${formatSize(part * content.size / seconds)}/s` : '';

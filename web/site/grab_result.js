@@ -16,11 +16,12 @@ async function refusal(response) {
   return error?.message || `the download answered ${response.status}`;
 }
 
-// The file of a grab's content: {blob, verified}. A connection that breaks
-// is asked again for the rest (Range from the bytes held, If-Range with the
-// ETag); onResume(received, total, why) hears of each time. Throws with a
-// reason for people.
-export async function download(content, onProgress, onResume) {
+// The file of a grab's content: {blob, verified}, asked for with the
+// pairing token the session proved (the link is bound to it). A connection
+// that breaks is asked again for the rest (Range from the bytes held,
+// If-Range with the ETag); onResume(received, total, why) hears of each
+// time. Throws with a reason for people.
+export async function download(content, token, onProgress, onResume) {
   const total = content.size;
   let chunks = [];
   let received = 0;
@@ -32,7 +33,7 @@ export async function download(content, onProgress, onResume) {
   // One request, for the whole file or the rest of it: null when the file
   // is complete, else why the connection broke; throws when the answer ends it.
   async function attempt() {
-    const headers = {};
+    const headers = token ? { Authorization: `Bearer ${token}` } : {};
     if (received > 0) {
       headers.Range = `bytes=${received}-`;
       if (etag) headers['If-Range'] = etag;
