@@ -82,6 +82,8 @@ BlockingTls::BlockingTls(const protocol::PairingUrl& url, const NetTimeouts& tim
 
 BlockingTls::~BlockingTls() = default;
 
+void BlockingTls::set_idle(std::chrono::milliseconds idle) { set_socket_timeouts(fd_.get(), idle); }
+
 void BlockingTls::SslFree::operator()(ssl_st* ssl) const { SSL_free(ssl); }
 
 BlockingTls::Socket::~Socket() { reset(-1); }

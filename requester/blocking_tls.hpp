@@ -12,6 +12,9 @@
 #include <memory>
 #include <string>
 
+#include <boost/asio/buffer.hpp>
+#include <boost/beast/http/error.hpp>
+
 #include "requester/pinned_tls.hpp"
 #include "shared/protocol/pairing_url.hpp"
 
@@ -36,6 +39,8 @@ public:
 
     const std::string& error() const { return error_; }
     bool timed_out() const { return timed_out_; }
+    // The limit for each read and write from now on.
+    void set_idle(std::chrono::milliseconds idle);
 
 private:
     // Records why a call that returned `result` failed; false.
@@ -62,5 +67,30 @@ private:
     std::string error_;
     bool timed_out_ = false;
 };
+
+// Feeds `parser` with what arrives on `tls` until `enough(parser)` (the
+// header, or the whole message); what was read past the parser's last
+// byte stays in `carried` from `used` on. False with `why` when the
+// connection broke or ended first, or the parser refused the bytes.
+template <class Parser, class Enough>
+bool read_message(BlockingTls& tls, Parser& parser, Enough enough, std::string& carried, std::size_t& used,
+                  std::string& why) {
+    char piece[16 * 1024];
+    for (;;) {
+        boost::beast::error_code ec;
+        if (used < carried.size()) used += parser.put(boost::asio::buffer(carried.data() + used, carried.size() - used), ec);
+        if (enough(parser)) return true;
+        if (ec && ec != boost::beast::http::error::need_more) {
+            why = "cannot read the answer: " + ec.message();
+            return false;
+        }
+        const long n = tls.read_some(piece, sizeof piece);
+        if (n <= 0) {
+            why = n == 0 ? "the provider closed the connection before it answered" : "cannot read the answer: " + tls.error();
+            return false;
+        }
+        carried.append(piece, static_cast<std::size_t>(n));
+    }
+}
 
 }  // namespace umf::requester

@@ -172,29 +172,6 @@ void Transfer::refused(unsigned status, const std::string& error_body) const {
     throw GrabFailure(e ? protocol::to_string(e->code) : "download", "the download failed: " + why, kConnection);
 }
 
-// The response's header, read from `tls` into `head`; the bytes read past it
-// (the body's first) stay at the end of `head` from `used` on. False with
-// `why` when the connection broke first.
-bool read_header(BlockingTls& tls, http::response_parser<http::empty_body>& parser, std::string& head,
-                 std::size_t& used, std::string& why) {
-    char piece[16 * 1024];
-    for (;;) {
-        beast::error_code ec;
-        used += parser.put(net::buffer(head.data() + used, head.size() - used), ec);
-        if (parser.is_header_done()) return true;
-        if (ec && ec != http::error::need_more) {
-            why = "cannot read the answer: " + ec.message();
-            return false;
-        }
-        const long n = tls.read_some(piece, sizeof piece);
-        if (n <= 0) {
-            why = n == 0 ? "the provider closed the connection before answering" : "cannot read the answer: " + tls.error();
-            return false;
-        }
-        head.append(piece, static_cast<std::size_t>(n));
-    }
-}
-
 bool Transfer::attempt(std::string& why) {
     std::optional<BlockingTls> tls;
     try {
@@ -223,7 +200,7 @@ bool Transfer::attempt(std::string& why) {
     parser.skip(true);  // the body is read here, not by the parser
     std::string head;
     std::size_t used = 0;
-    if (!read_header(*tls, parser, head, used, why)) {
+    if (!read_message(*tls, parser, [](const auto& p) { return p.is_header_done(); }, head, used, why)) {
         if (tls->timed_out()) why = "the provider sent no answer within " + seconds(timeouts.download_idle);
         return false;
     }

@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <array>
 #include <boost/asio/ssl.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
@@ -13,7 +12,10 @@
 #include <cerrno>
 #include <cstring>
 #include <optional>
+#include <sstream>
+#include <vector>
 
+#include "requester/blocking_tls.hpp"
 #include "requester/cli.hpp"
 #include "requester/grab_failure.hpp"
 #include "requester/resume_pacing.hpp"
@@ -30,7 +32,8 @@ namespace beast = boost::beast;
 namespace http = beast::http;
 namespace p = protocol;
 
-constexpr std::size_t kPieceBytes = 64 * 1024;
+// Read from the file and written to the connection at once.
+constexpr std::size_t kPieceBytes = 1 << 20;
 // The answer is one short JSON message.
 constexpr std::size_t kMaxAnswerBytes = 64 * 1024;
 // After a write failed, how long the provider may take to say why.
@@ -74,18 +77,6 @@ private:
 };
 
 std::string seconds(std::chrono::milliseconds ms) { return std::to_string(ms.count() / 1000) + " s"; }
-
-// The provider's answer: 200 with the put_status done, or an error it explains.
-std::optional<http::response<http::string_body>> read_answer(net::io_context& io, TlsStream& stream,
-                                                             std::chrono::milliseconds timeout,
-                                                             beast::error_code& ec) {
-    beast::flat_buffer buffer;
-    http::response_parser<http::string_body> parser;
-    parser.body_limit(kMaxAnswerBytes);
-    ec = run_step(io, stream, timeout, [&](auto h) { http::async_read(stream, buffer, parser, h); });
-    if (ec) return std::nullopt;
-    return parser.release();
-}
 
 p::PutStatus interpret(const http::response<http::string_body>& answer) {
     const auto parsed = p::parse_message(answer.body(), p::kRequesterLimits);
@@ -146,34 +137,44 @@ std::optional<std::int64_t> held_bytes(const p::PairingUrl& provider, const Uplo
     return std::stoll(text);
 }
 
+// The provider's answer to the upload on `tls`: nullopt when none came
+// (why says why).
+std::optional<http::response<http::string_body>> read_answer(BlockingTls& tls, std::string& why) {
+    http::response_parser<http::string_body> parser;
+    parser.body_limit(kMaxAnswerBytes);
+    parser.eager(true);
+    std::string carried;
+    std::size_t used = 0;
+    if (!read_message(tls, parser, [](const auto& p) { return p.is_done(); }, carried, used, why)) return std::nullopt;
+    return parser.release();
+}
+
 // Sends the file from byte `from` (Upload-Offset) to its end and reads the
-// answer. Throws GrabFailure for an answer that ends the put.
+// answer, with blocking TLS (blocking_tls.hpp): each piece goes out as a
+// run of records, so the provider finds many in its socket at once. Throws
+// GrabFailure for an answer that ends the put.
 Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, ReadOnlyFile& file, std::int64_t from,
                const UploadProgress& progress, const NetTimeouts& timeouts) {
-    std::optional<PinnedExchange> exchange;
+    const auto idle = timeouts.download_idle;
+    std::optional<BlockingTls> tls;
     try {
-        exchange.emplace(provider, timeouts);
+        tls.emplace(provider, timeouts, idle);
     } catch (const GrabFailure& f) {
         if (f.code == "certificate") throw;
         return {std::nullopt, f.what()};
     }
-    net::io_context& io = exchange->io;
-    TlsStream& stream = exchange->stream;
     file.seek(from);
-    http::request<http::buffer_body> req(http::verb::put, request.path, 11);
+    http::request<http::empty_body> req(http::verb::put, request.path, 11);
     PinnedExchange::set_headers(req, provider);
     req.set(http::field::content_type, "application/octet-stream");
     req.set("Upload-Offset", std::to_string(from));
-    req.content_length(static_cast<std::uint64_t>(request.size - from));
-    req.body().data = nullptr;
-    req.body().more = true;
-    http::request_serializer<http::buffer_body> serializer(req);
-
-    const auto idle = timeouts.download_idle;
-    auto ec = run_step(io, stream, idle, [&](auto h) { http::async_write_header(stream, serializer, h); });
-    std::array<char, kPieceBytes> piece{};
+    req.set(http::field::content_length, std::to_string(request.size - from));
+    std::ostringstream head;
+    head << req;
+    bool written = tls->write_all(head.str().data(), head.str().size());
+    std::vector<char> piece(kPieceBytes);
     std::int64_t sent = from;
-    while (!ec) {
+    while (written && sent < request.size) {
         const auto want = static_cast<std::size_t>(
             std::min<std::int64_t>(static_cast<std::int64_t>(piece.size()), request.size - sent));
         const std::size_t n = file.read(piece.data(), want);
@@ -181,31 +182,25 @@ Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, Read
             throw input_failure(request.file.string() + " became shorter while it was being sent (" +
                                 std::to_string(sent + static_cast<std::int64_t>(n)) + " of " +
                                 std::to_string(request.size) + " bytes); put it again");
-        const bool last = sent + static_cast<std::int64_t>(n) >= request.size;
-        req.body().data = n ? piece.data() : nullptr;
-        req.body().size = n;
-        req.body().more = !last;
-        ec = run_step(io, stream, idle, [&](auto h) { http::async_write(stream, serializer, h); });
-        if (ec == http::error::need_buffer) ec = {};
-        if (ec) break;
+        written = tls->write_all(piece.data(), n);
+        if (!written) break;
         sent += static_cast<std::int64_t>(n);
         if (progress) progress(sent, request.size);
-        if (last) break;
     }
-
-    beast::error_code read_ec;
+    const bool write_timed_out = !written && tls->timed_out();
+    const std::string write_error = written ? std::string() : tls->error();
     // A provider that refuses early (no room, a used link, another offset)
     // answers and closes while the bytes still flow: its answer says more
     // than the broken write.
-    auto answer = read_answer(io, stream, ec ? kLateAnswerWait : idle + std::chrono::seconds(30), read_ec);
-    beast::error_code ignored;
-    beast::get_lowest_layer(stream).socket().close(ignored);
+    tls->set_idle(written ? idle + std::chrono::seconds(30) : kLateAnswerWait);
+    std::string read_why;
+    const auto answer = read_answer(*tls, read_why);
     if (answer && answer->result() == http::status::conflict) return {std::nullopt, "the screen holds other bytes"};
     if (answer) return {interpret(*answer), {}};
-    if (ec == beast::error::timeout) return {std::nullopt, "the provider took nothing for " + seconds(idle)};
-    if (ec) return {std::nullopt, ec.message()};
-    if (read_ec == beast::error::timeout) return {std::nullopt, "the provider did not answer the upload"};
-    return {std::nullopt, "cannot read the provider's answer: " + read_ec.message()};
+    if (write_timed_out) return {std::nullopt, "the provider took nothing for " + seconds(idle)};
+    if (!written) return {std::nullopt, write_error};
+    if (tls->timed_out()) return {std::nullopt, "the provider did not answer the upload"};
+    return {std::nullopt, read_why};
 }
 
 }  // namespace
