@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "provider/common/secret_compare.hpp"
+#include "provider/content/direct_file_send.hpp"
 #include "provider/content/resume_range.hpp"
 #include "provider/content/verified_file_body.hpp"
 #include "provider/net/http_response_headers.hpp"
@@ -47,6 +48,9 @@ struct LeaseEnd {
     bool complete = false;
     ~LeaseEnd() { downloads.end(lease, complete); }
 };
+
+// File bodies from this size on are sent by send_file_direct.
+constexpr std::uint64_t kDirectSendBytes = 1 << 20;
 
 std::string_view header_text(const HttpRequest& req, http::field field) {
     const beast::string_view value = req[field];
@@ -149,6 +153,29 @@ void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTabl
         auto res = std::make_shared<http::response<http::empty_body>>(http::status::ok, req.version());
         prepare(*res);
         write_response(exchange, std::move(res));
+        return;
+    }
+    if (size - offset >= kDirectSendBytes) {
+        // A large body goes out past the stream's per-record machinery
+        // (direct_file_send.hpp); the connection ends with it.
+        auto res = std::make_shared<http::response<http::empty_body>>(http::status::ok, req.version());
+        prepare(*res);
+        res->keep_alive(false);
+        auto& r = *res;
+        const auto idle = std::chrono::seconds(60);
+        http::async_write(exchange.stream(), r,
+                          [held = exchange.hold(), res = std::move(res), body = std::make_shared<VerifiedFileBody::value_type>(
+                                                                             std::move(body)),
+                           file = *entry.file, end, forget_file = std::move(forget_file), idle](beast::error_code ec,
+                                                                                                std::size_t) mutable {
+                              if (ec) return;
+                              send_file_direct(held, std::move(*body), idle,
+                                               [file, end, forget_file](beast::error_code sent) {
+                                                   // A cut body: the next grab hashes the file again.
+                                                   if (sent == DownloadCheck::changed) forget_file(file);
+                                                   end->complete = !sent;
+                                               });
+                          });
         return;
     }
     auto res = std::make_shared<http::response<VerifiedFileBody>>(
