@@ -18,7 +18,7 @@ constexpr std::uint64_t kWritebackBytes = 8 << 20;
 }  // namespace
 
 HashingWriter::HashingWriter(int fd, std::size_t piece_bytes, bool direct, std::size_t pieces)
-    : fd_(fd), piece_bytes_(piece_bytes), direct_wanted_(direct) {
+    : fd_(fd), direct_wanted_(direct) {
     const std::size_t rounded = (piece_bytes + kDirectAlign - 1) / kDirectAlign * kDirectAlign;
     for (std::size_t i = 0; i < pieces; ++i) {
         buffers_.emplace_back(static_cast<char*>(std::aligned_alloc(kDirectAlign, rounded)));

@@ -75,7 +75,6 @@ private:
     bool set_direct(bool on);
 
     int fd_;
-    std::size_t piece_bytes_;
     bool direct_wanted_;
     bool direct_now_ = false;
     std::vector<std::unique_ptr<char, Free>> buffers_;
