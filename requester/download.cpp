@@ -17,8 +17,8 @@
 
 #include "requester/blocking_tls.hpp"
 #include "requester/cli.hpp"
+#include "native/hashing_writer.hpp"
 #include "requester/grab_failure.hpp"
-#include "requester/hashing_writer.hpp"
 #include "requester/resume_pacing.hpp"
 #include "requester/transfer_text.hpp"
 #include "shared/io/store_file.hpp"
@@ -121,7 +121,7 @@ struct Transfer {
     const DownloadRequest& request;
     const NetTimeouts& timeouts;
     TempFile& file;
-    HashingWriter writer;
+    native::HashingWriter writer;
     std::uint64_t received = 0;
     std::string etag;
 
@@ -141,7 +141,7 @@ struct Transfer {
             throw output_failure(std::string(e.what()) + " (" + file.path().string() + ")");
         }
     }
-    HashingWriter::Piece next_piece() {
+    native::HashingWriter::Piece next_piece() {
         try {
             return writer.next();
         } catch (const std::runtime_error& e) {
@@ -242,12 +242,12 @@ bool Transfer::attempt(std::string& why) {
     const char* carried = head.data() + used;
     std::size_t carried_left = early;
     while (left > 0) {
-        const HashingWriter::Piece piece = next_piece();
+        const native::HashingWriter::Piece piece = next_piece();
         std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(piece.capacity, left));
         // After a cut, a short first piece brings the file back to where
         // whole pieces can be written directly.
-        if (const std::size_t off = received % HashingWriter::kDirectAlign; off != 0)
-            want = std::min(want, HashingWriter::kDirectAlign - off);
+        if (const std::size_t off = received % native::HashingWriter::kDirectAlign; off != 0)
+            want = std::min(want, native::HashingWriter::kDirectAlign - off);
         const std::size_t from_head = std::min(carried_left, want);
         std::memcpy(piece.data, carried, from_head);
         carried += from_head;

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <optional>
 #include <sstream>
+#include <variant>
 #include <vector>
 
 #include "requester/blocking_tls.hpp"
@@ -138,14 +139,32 @@ std::optional<std::int64_t> held_bytes(const p::PairingUrl& provider, const Uplo
 }
 
 // The provider's answer to the upload on `tls`: nullopt when none came
-// (why says why).
-std::optional<http::response<http::string_body>> read_answer(BlockingTls& tls, std::string& why) {
+// (why says why). `carried` from `used` on: bytes read past the answer
+// before it.
+std::optional<http::response<http::string_body>> read_answer(BlockingTls& tls, std::string& carried, std::size_t& used,
+                                                             std::string& why) {
     http::response_parser<http::string_body> parser;
     parser.body_limit(kMaxAnswerBytes);
     parser.eager(true);
-    std::string carried;
-    std::size_t used = 0;
     if (!read_message(tls, parser, [](const auto& p) { return p.is_done(); }, carried, used, why)) return std::nullopt;
+    return parser.release();
+}
+
+// What the provider says to the header before the body: nullopt for
+// "100 Continue" (send the body), else its answer (a refusal: another
+// offset, a used link, no room). Sent reports why the connection broke.
+std::variant<std::monostate, http::response<http::string_body>, Sent> answer_to_header(BlockingTls& tls,
+                                                                                       std::string& carried,
+                                                                                       std::size_t& used) {
+    http::response_parser<http::string_body> parser;
+    parser.body_limit(kMaxAnswerBytes);
+    parser.eager(true);
+    std::string why;
+    if (!read_message(tls, parser, [](const auto& p) { return p.is_header_done(); }, carried, used, why))
+        return Sent{std::nullopt, tls.timed_out() ? "the provider did not answer the upload's header" : why};
+    if (parser.get().result() == http::status::continue_) return std::monostate{};
+    if (!parser.is_done() && !read_message(tls, parser, [](const auto& p) { return p.is_done(); }, carried, used, why))
+        return Sent{std::nullopt, why};
     return parser.release();
 }
 
@@ -169,9 +188,21 @@ Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, Read
     req.set(http::field::content_type, "application/octet-stream");
     req.set("Upload-Offset", std::to_string(from));
     req.set(http::field::content_length, std::to_string(request.size - from));
+    // The body only once the provider agrees: a refusal costs no bytes, and
+    // it reads the body straight from the socket (direct_body_receive.hpp).
+    req.set(http::field::expect, "100-continue");
     std::ostringstream head;
     head << req;
-    bool written = tls->write_all(head.str().data(), head.str().size());
+    if (!tls->write_all(head.str().data(), head.str().size())) return {std::nullopt, tls->error()};
+    std::string carried;
+    std::size_t used = 0;
+    auto early = answer_to_header(*tls, carried, used);
+    if (auto* broke = std::get_if<Sent>(&early)) return std::move(*broke);
+    if (auto* refusal = std::get_if<http::response<http::string_body>>(&early)) {
+        if (refusal->result() == http::status::conflict) return {std::nullopt, "the screen holds other bytes"};
+        return {interpret(*refusal), {}};
+    }
+    bool written = true;
     std::vector<char> piece(kPieceBytes);
     std::int64_t sent = from;
     while (written && sent < request.size) {
@@ -194,7 +225,7 @@ Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, Read
     // than the broken write.
     tls->set_idle(written ? idle + std::chrono::seconds(30) : kLateAnswerWait);
     std::string read_why;
-    const auto answer = read_answer(*tls, read_why);
+    const auto answer = read_answer(*tls, carried, used, read_why);
     if (answer && answer->result() == http::status::conflict) return {std::nullopt, "the screen holds other bytes"};
     if (answer) return {interpret(*answer), {}};
     if (write_timed_out) return {std::nullopt, "the provider took nothing for " + seconds(idle)};

@@ -16,6 +16,7 @@
 
 #include "provider/common/encode_reply.hpp"
 #include "provider/net/http_response_headers.hpp"
+#include "provider/put/direct_body_receive.hpp"
 #include "provider/put/upload_sink.hpp"
 #include "shared/protocol/http_error_body.hpp"
 
@@ -28,6 +29,8 @@ namespace {
 
 // An upload's body goes to its file in chunks of this size.
 constexpr std::size_t kUploadChunkBytes = 64 * 1024;
+// A body at least this large, sent after "100 Continue", is read past the stream.
+constexpr std::uint64_t kDirectReceiveBytes = 1 << 20;
 
 // One request of an upload under way: its parser (the body in chunks), the
 // link's lease and the sink it claimed. Its pending handlers own it, and it
@@ -43,6 +46,10 @@ public:
 private:
     void read();
     void on_read(beast::error_code ec, std::size_t);
+    // The rest of the body, `left` bytes, past the stream (direct_body_receive.hpp).
+    void read_direct(std::uint64_t left);
+    // Bytes of the body for the sink; false when the upload ended with them.
+    bool take(const char* data, std::size_t size);
     void finish();
     void refuse_offset(std::int64_t held);
     // The connection broke (or a newer request took over): the bytes so far
@@ -57,6 +64,7 @@ private:
     PutDesk& puts_;
     UploadLease lease_;
     bool ended_ = false;  // the lease given back
+    bool direct_ = false;  // the body came past the stream: the connection ends after the answer
     std::uint64_t claim_ = 0;
     std::optional<http::request_parser<http::buffer_body>> parser_;
     std::vector<char> chunk_;
@@ -130,14 +138,51 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
     }
     auto res = std::make_shared<http::response<http::empty_body>>(http::status::continue_, 11);
     auto& r = *res;
+    const std::uint64_t left = static_cast<std::uint64_t>(size - claim.received);
     http::async_write(exchange_->stream(), r,
-                      [self = shared_from_this(), res = std::move(res)](beast::error_code ec, std::size_t) {
+                      [self = shared_from_this(), res = std::move(res), left](beast::error_code ec, std::size_t) {
                           if (ec) {
                               self->broke_off();
                               return;
                           }
+                          // The client waited for this answer: nothing of the body
+                          // is in the stream yet, so a large one can go past it.
+                          if (left >= kDirectReceiveBytes && direct_receive_possible(*self->exchange_)) {
+                              self->read_direct(left);
+                              return;
+                          }
                           self->read();
                       });
+}
+
+void Upload::read_direct(std::uint64_t left) {
+    direct_ = true;
+    receive_body_direct(
+        exchange_, left, std::chrono::seconds(60),
+        [self = shared_from_this()](const char* data, std::size_t size) { return self->take(data, size); },
+        [self = shared_from_this()](beast::error_code ec) {
+            if (self->ended_ || !self->parser_) return;
+            if (ec) {
+                self->broke_off();
+                return;
+            }
+            self->finish();
+        });
+}
+
+bool Upload::take(const char* data, std::size_t size) {
+    if (ended_ || !parser_) return false;
+    try {
+        lease_.sink->write(data, size, claim_);
+        return true;
+    } catch (const UploadError& e) {
+        if (lease_.sink->superseded(claim_)) {
+            broke_off();
+            return false;
+        }
+        fail(e.code(), e.what(), true);
+        return false;
+    }
 }
 
 // The requester sends from another byte than the provider holds: it asks
@@ -214,7 +259,7 @@ void Upload::finish() {
         fail(e.code(), e.what(), true);
         return;
     }
-    const bool keep_alive = parser_->get().keep_alive();
+    const bool keep_alive = parser_->get().keep_alive() && !direct_;
     parser_.reset();
     chunk_ = {};
     ended_ = true;

@@ -7,11 +7,11 @@
 #include <sys/statvfs.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 
-#include "native/sha256.hpp"
 #include "shared/io/store_file.hpp"
 
 namespace umf::provider {
@@ -57,10 +57,16 @@ std::optional<std::uintmax_t> free_bytes(const fs::path& dir) {
     return static_cast<std::uintmax_t>(st.f_bavail) * st.f_frsize;
 }
 
-struct UploadSink::Hash : native::Sha256 {};
+namespace {
+
+// Pieces handed to the writer; uploads from kDirectFromBytes go past the page cache.
+constexpr std::size_t kPieceBytes = 1 << 20;
+constexpr std::int64_t kDirectFromBytes = std::int64_t{64} << 20;
+
+}  // namespace
 
 UploadSink::UploadSink(const fs::path& folder, std::int64_t size, std::string sha256)
-    : folder_(folder), size_(size), sha256_(std::move(sha256)), hash_(std::make_unique<Hash>()) {
+    : folder_(folder), size_(size), sha256_(std::move(sha256)) {
     std::error_code ec;
     fs::create_directories(folder_, ec);
     const auto room = free_bytes(folder_);
@@ -72,6 +78,7 @@ UploadSink::UploadSink(const fs::path& folder, std::int64_t size, std::string sh
     fd_ = ::mkostemp(tmpl.data(), O_CLOEXEC);  // O_EXCL, 0600
     if (fd_ < 0) throw UploadError(ErrorCode::internal, "cannot create a file in " + folder_.string() + ": " + errno_text());
     temp_ = tmpl;
+    writer_ = std::make_unique<native::HashingWriter>(fd_, kPieceBytes, size_ >= kDirectFromBytes, 2);
 }
 
 UploadSink::~UploadSink() { discard_locked(); }
@@ -97,6 +104,7 @@ std::int64_t UploadSink::received() const {
 }
 
 void UploadSink::discard_locked() {
+    writer_.reset();  // before the file it writes to is closed
     if (fd_ >= 0) ::close(fd_);
     fd_ = -1;
     if (!done_ && !temp_.empty()) ::unlink(temp_.c_str());
@@ -109,17 +117,37 @@ void UploadSink::write(const void* data, std::size_t size, std::uint64_t claim) 
     if (done_) throw UploadError(ErrorCode::internal, "the upload is over");
     if (static_cast<std::int64_t>(size) > size_ - received_)
         throw UploadError(ErrorCode::interrupted, "more bytes than the put's size");
-    hash_->update(data, size);
     const char* p = static_cast<const char*>(data);
     std::size_t left = size;
-    while (left > 0) {
-        const ssize_t n = ::write(fd_, p, left);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) throw UploadError(ErrorCode::internal, "cannot write the upload: " + errno_text());
-        p += n;
-        left -= static_cast<std::size_t>(n);
+    try {
+        while (left > 0) {
+            if (!piece_.data) piece_ = writer_->next();
+            const std::size_t n = std::min(left, piece_.capacity - piece_filled_);
+            std::memcpy(piece_.data + piece_filled_, p, n);
+            piece_filled_ += n;
+            p += n;
+            left -= n;
+            if (piece_filled_ == piece_.capacity) {
+                writer_->submit(piece_, piece_filled_);
+                piece_ = {};
+                piece_filled_ = 0;
+            }
+        }
+    } catch (const std::runtime_error& e) {
+        throw UploadError(ErrorCode::internal, std::string("cannot write the upload: ") + e.what());
     }
     received_ += static_cast<std::int64_t>(size);
+}
+
+void UploadSink::flush_locked() {
+    try {
+        if (piece_.data && piece_filled_ > 0) writer_->submit(piece_, piece_filled_);
+        piece_ = {};
+        piece_filled_ = 0;
+        writer_->drain();
+    } catch (const std::runtime_error& e) {
+        throw UploadError(ErrorCode::internal, std::string("cannot write the upload: ") + e.what());
+    }
 }
 
 std::string UploadSink::store(const std::string& name, std::uint64_t claim) {
@@ -133,7 +161,8 @@ std::string UploadSink::store(const std::string& name, std::uint64_t claim) {
     if (received_ != size_)
         throw UploadError(ErrorCode::interrupted, "the upload ended after " + std::to_string(received_) + " of " +
                                                       std::to_string(size_) + " bytes");
-    const std::string digest = hash_->hex();
+    flush_locked();
+    const std::string digest = writer_->hex();
     if (digest != sha256_)
         throw UploadError(ErrorCode::interrupted,
                           "the bytes' SHA-256 is " + digest + ", not the put's " + sha256_ + "; nothing was kept");

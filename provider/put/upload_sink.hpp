@@ -20,6 +20,7 @@
 #include <string>
 #include <string_view>
 
+#include "native/hashing_writer.hpp"
 #include "shared/protocol/error_codes.hpp"
 
 namespace umf::provider {
@@ -77,19 +78,25 @@ public:
     const std::filesystem::path& temp_path() const { return temp_; }
 
 private:
-    struct Hash;
     std::filesystem::path folder_;
     std::filesystem::path temp_;
     int fd_ = -1;
     std::int64_t size_ = 0;
     std::int64_t received_ = 0;
     std::string sha256_;
-    std::unique_ptr<Hash> hash_;
+    // Hashes and writes the bytes on a thread of its own, large files past
+    // the page cache (native/hashing_writer.hpp); the piece being filled.
+    std::unique_ptr<native::HashingWriter> writer_;
+    native::HashingWriter::Piece piece_;
+    std::size_t piece_filled_ = 0;
     bool done_ = false;
     std::uint64_t claim_ = 0;
     mutable std::mutex mutex_;
 
     void discard_locked();
+    // The filled part of the piece to the writer; then waits until all is
+    // written. Throws UploadError internal when the disk refused it.
+    void flush_locked();
 };
 
 }  // namespace umf::provider

@@ -1,4 +1,4 @@
-#include "requester/hashing_writer.hpp"
+#include "native/hashing_writer.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -8,7 +8,7 @@
 #include <new>
 #include <stdexcept>
 
-namespace umf::requester {
+namespace umf::native {
 
 namespace {
 
@@ -134,4 +134,4 @@ void HashingWriter::run() {
     }
 }
 
-}  // namespace umf::requester
+}  // namespace umf::native

@@ -1,6 +1,7 @@
-// The pieces of a download hashed and written on a thread of their own, so
-// the thread that reads the network only decrypts: on two cores the two
-// halves of the work run side by side. A few pieces are in flight at most
+// The pieces of a large transfer hashed and written on a thread of their
+// own (the requester's downloads, the provider's uploads), so the thread
+// that reads the network only decrypts: on two cores the two halves of the
+// work run side by side. A few pieces are in flight at most
 // (memory stays flat whatever the file's size).
 //
 // A large file is written with O_DIRECT where the file system takes it:
@@ -27,7 +28,7 @@
 
 #include "native/sha256.hpp"
 
-namespace umf::requester {
+namespace umf::native {
 
 class HashingWriter {
 public:
@@ -92,4 +93,4 @@ private:
     std::thread thread_;
 };
 
-}  // namespace umf::requester
+}  // namespace umf::native
