@@ -141,6 +141,11 @@ private:
 
 }  // namespace
 
+// Asio's stream can also hold ciphertext it read from the socket but could
+// not yet put into its BIO pair (17 KiB): that happens only when the pair was
+// filled up, and a read completes after TLS took one record (16 KiB and a
+// little) from it, so the pair still holds some then. An empty pair means
+// nothing waits in the stream either.
 bool direct_receive_possible(HttpExchange& exchange) {
     SSL* ssl = exchange.stream().native_handle();
     return exchange.buffer().size() == 0 && SSL_pending(ssl) == 0 && BIO_ctrl_pending(SSL_get_rbio(ssl)) == 0;

@@ -173,6 +173,7 @@ std::string random_bytes(std::size_t n, unsigned seed) {
 struct Response {
     int status = 0;
     std::string body;
+    std::string headers;  // curl_upload's
 };
 
 class PutServer : public ::testing::Test {
@@ -230,14 +231,16 @@ protected:
         EXPECT_TRUE(s && s->id == p::RequestId{id});
         return s && s->upload ? *s->upload : "";
     }
-    Response curl_upload(const std::string& path, const std::string& bytes) {
-        const fs::path source = dir.path / "upload.bin", body = dir.path / "answer.json";
+    // `options`: more of curl's ("-H 'Expect: 100-continue'", or "-H 'Expect:'" for none).
+    Response curl_upload(const std::string& path, const std::string& bytes, const std::string& options = "") {
+        const fs::path source = dir.path / "upload.bin", body = dir.path / "answer.json",
+                       headers = dir.path / "answer.headers";
         std::ofstream(source, std::ios::binary) << bytes;
         fs::remove(body);
-        const auto r = run_command("curl -s -k --max-time 20 -T '" + source.string() + "' -o '" + body.string() +
-                                   "' -w '%{http_code}' 'https://127.0.0.1:" + std::to_string(server->port()) + path +
-                                   "'");
-        return {std::atoi(r.out.c_str()), umf::test::file_text(body)};
+        const auto r = run_command("curl -s -k --max-time 20 " + options + " -T '" + source.string() + "' -o '" +
+                                   body.string() + "' -D '" + headers.string() + "' -w '%{http_code}' 'https://127.0.0.1:" +
+                                   std::to_string(server->port()) + path + "'");
+        return {std::atoi(r.out.c_str()), umf::test::file_text(body), umf::test::file_text(headers)};
     }
     std::string request_head(const std::string& path, std::size_t length, std::optional<std::size_t> offset = {}) {
         return "PUT " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/octet-stream\r\n" +
@@ -322,6 +325,26 @@ TEST_F(PutServer, AnAcceptedFileIsUploadedAndSavedAndNeverOverwrites) {
     // The link was used.
     EXPECT_EQ(curl_upload(path, bytes).status, 404);
     EXPECT_TRUE(xdg.opened(1, std::chrono::milliseconds(100)).empty()) << "save opens nothing";
+}
+
+// A large body is read past the TLS stream when the client waited for
+// "100 Continue", through the stream when it sent the body with the header:
+// either way every byte arrives and the answer comes.
+TEST_F(PutServer, ALargeBodyArrivesWithAndWithoutWaitingFor100Continue) {
+    auto r = requester();
+    int n = 0;
+    for (const std::string options : {"-H 'Expect: 100-continue' --expect100-timeout 20", "-H 'Expect:'"}) {
+        const std::string bytes = random_bytes(5 * 1024 * 1024 + 3, 10 + n);
+        const std::string name = "big-" + std::to_string(n) + ".bin";
+        const Response answer =
+            curl_upload(accepted_upload(*r, bytes, "q" + std::to_string(n), PutAnswer::save, name), bytes, options);
+        EXPECT_EQ(answer.status, 200) << options << ": " << answer.body;
+        EXPECT_EQ(std::get<p::PutStatus>(r->read()).name, name) << options;
+        EXPECT_TRUE(umf::test::file_text(folder / name) == bytes) << options;
+        // Read past the stream, the connection cannot go on after the answer.
+        EXPECT_EQ(answer.headers.find("Connection: close") != std::string::npos, n == 0) << answer.headers;
+        ++n;
+    }
 }
 
 TEST_F(PutServer, AnOpenAnswerSavesThenOpensTheFile) {
