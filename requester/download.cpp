@@ -15,9 +15,9 @@
 #include <optional>
 #include <sstream>
 
+#include "native/hashing_writer.hpp"
 #include "requester/blocking_tls.hpp"
 #include "requester/cli.hpp"
-#include "native/hashing_writer.hpp"
 #include "requester/grab_failure.hpp"
 #include "requester/resume_pacing.hpp"
 #include "requester/transfer_text.hpp"

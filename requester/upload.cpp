@@ -13,7 +13,6 @@
 #include <cstring>
 #include <optional>
 #include <sstream>
-#include <variant>
 #include <vector>
 
 #include "requester/blocking_tls.hpp"
@@ -150,22 +149,11 @@ std::optional<http::response<http::string_body>> read_answer(BlockingTls& tls, s
     return parser.release();
 }
 
-// What the provider says to the header before the body: nullopt for
-// "100 Continue" (send the body), else its answer (a refusal: another
-// offset, a used link, no room). Sent reports why the connection broke.
-std::variant<std::monostate, http::response<http::string_body>, Sent> answer_to_header(BlockingTls& tls,
-                                                                                       std::string& carried,
-                                                                                       std::size_t& used) {
-    http::response_parser<http::string_body> parser;
-    parser.body_limit(kMaxAnswerBytes);
-    parser.eager(true);
-    std::string why;
-    if (!read_message(tls, parser, [](const auto& p) { return p.is_header_done(); }, carried, used, why))
-        return Sent{std::nullopt, tls.timed_out() ? "the provider did not answer the upload's header" : why};
-    if (parser.get().result() == http::status::continue_) return std::monostate{};
-    if (!parser.is_done() && !read_message(tls, parser, [](const auto& p) { return p.is_done(); }, carried, used, why))
-        return Sent{std::nullopt, why};
-    return parser.release();
+// A final answer as the outcome of one request: another offset is worth
+// asking again (HEAD), anything else ends the put (interpret).
+Sent answered(const http::response<http::string_body>& answer) {
+    if (answer.result() == http::status::conflict) return {std::nullopt, "the screen holds other bytes"};
+    return {interpret(answer), {}};
 }
 
 // Sends the file from byte `from` (Upload-Offset) to its end and reads the
@@ -191,21 +179,20 @@ Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, Read
     // The body only once the provider agrees: a refusal costs no bytes, and
     // it reads the body straight from the socket (direct_body_receive.hpp).
     req.set(http::field::expect, "100-continue");
-    std::ostringstream head;
-    head << req;
-    if (!tls->write_all(head.str().data(), head.str().size())) return {std::nullopt, tls->error()};
-    std::string carried;
+    std::ostringstream head_out;
+    head_out << req;
+    const std::string head = head_out.str();
+    if (!tls->write_all(head.data(), head.size())) return {std::nullopt, tls->error()};
+    // "100 Continue" (a 1xx has no body), or a refusal before any byte of it.
+    std::string carried, read_why;
     std::size_t used = 0;
-    auto early = answer_to_header(*tls, carried, used);
-    if (auto* broke = std::get_if<Sent>(&early)) return std::move(*broke);
-    if (auto* refusal = std::get_if<http::response<http::string_body>>(&early)) {
-        if (refusal->result() == http::status::conflict) return {std::nullopt, "the screen holds other bytes"};
-        return {interpret(*refusal), {}};
-    }
+    const auto first = read_answer(*tls, carried, used, read_why);
+    if (!first) return {std::nullopt, tls->timed_out() ? "the provider did not answer the upload's header" : read_why};
+    if (first->result() != http::status::continue_) return answered(*first);
     bool written = true;
     std::vector<char> piece(kPieceBytes);
     std::int64_t sent = from;
-    while (written && sent < request.size) {
+    while (sent < request.size) {
         const auto want = static_cast<std::size_t>(
             std::min<std::int64_t>(static_cast<std::int64_t>(piece.size()), request.size - sent));
         const std::size_t n = file.read(piece.data(), want);
@@ -224,10 +211,8 @@ Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, Read
     // answers and closes while the bytes still flow: its answer says more
     // than the broken write.
     tls->set_idle(written ? idle + std::chrono::seconds(30) : kLateAnswerWait);
-    std::string read_why;
     const auto answer = read_answer(*tls, carried, used, read_why);
-    if (answer && answer->result() == http::status::conflict) return {std::nullopt, "the screen holds other bytes"};
-    if (answer) return {interpret(*answer), {}};
+    if (answer) return answered(*answer);
     if (write_timed_out) return {std::nullopt, "the provider took nothing for " + seconds(idle)};
     if (!written) return {std::nullopt, write_error};
     if (tls->timed_out()) return {std::nullopt, "the provider did not answer the upload"};

@@ -48,8 +48,9 @@ private:
     void on_read(beast::error_code ec, std::size_t);
     // The rest of the body, `left` bytes, past the stream (direct_body_receive.hpp).
     void read_direct(std::uint64_t left);
-    // Bytes of the body for the sink; false when the upload ended with them.
-    bool take(const char* data, std::size_t size);
+    // Bytes of the body for the sink; false when the upload ended with them
+    // (failed: answered with the reason when `answer`, else dropped).
+    bool take(const char* data, std::size_t size, bool answer = true);
     void finish();
     void refuse_offset(std::int64_t held);
     // The connection broke (or a newer request took over): the bytes so far
@@ -170,7 +171,7 @@ void Upload::read_direct(std::uint64_t left) {
         });
 }
 
-bool Upload::take(const char* data, std::size_t size) {
+bool Upload::take(const char* data, std::size_t size, bool answer) {
     if (ended_ || !parser_) return false;
     try {
         lease_.sink->write(data, size, claim_);
@@ -180,7 +181,7 @@ bool Upload::take(const char* data, std::size_t size) {
             broke_off();
             return false;
         }
-        fail(e.code(), e.what(), true);
+        fail(e.code(), e.what(), answer);
         return false;
     }
 }
@@ -222,18 +223,7 @@ void Upload::on_read(beast::error_code ec, std::size_t) {
     if (!parser_ || ended_) return;
     if (ec == http::error::need_buffer) ec = {};
     const std::size_t got = chunk_.size() - parser_->get().body().size;
-    if (got > 0) {
-        try {
-            lease_.sink->write(chunk_.data(), got, claim_);
-        } catch (const UploadError& e) {
-            if (lease_.sink->superseded(claim_)) {
-                broke_off();
-                return;
-            }
-            fail(e.code(), e.what(), !ec);
-            return;
-        }
-    }
+    if (got > 0 && !take(chunk_.data(), got, !ec)) return;
     if (ec || exchange_->stopping()) {
         broke_off();
         return;
