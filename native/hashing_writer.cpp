@@ -23,9 +23,11 @@ HashingWriter::HashingWriter(int fd, std::size_t piece_bytes, bool direct, std::
     for (std::size_t i = 0; i < pieces; ++i) {
         buffers_.emplace_back(static_cast<char*>(std::aligned_alloc(kDirectAlign, rounded)));
         if (!buffers_.back()) throw std::bad_alloc();
-        free_.push_back({buffers_.back().get(), piece_bytes});
+        free_.push_back({buffers_.back().get(), piece_bytes, i});
     }
-    thread_ = std::thread([this] { run(); });
+    holders_.assign(pieces, 0);
+    hashing_.thread = std::thread([this] { run(hashing_, &HashingWriter::hash_piece); });
+    writing_.thread = std::thread([this] { run(writing_, &HashingWriter::write_piece); });
 }
 
 bool HashingWriter::set_direct(bool on) {
@@ -36,7 +38,7 @@ bool HashingWriter::set_direct(bool on) {
     return true;
 }
 
-std::string HashingWriter::write_piece(const char* data, std::size_t size) {
+std::string HashingWriter::write_at_end(const char* data, std::size_t size) {
     const bool aligned = written_ % kDirectAlign == 0 && size % kDirectAlign == 0 &&
                          reinterpret_cast<std::uintptr_t>(data) % kDirectAlign == 0;
     if (direct_wanted_ && !set_direct(aligned)) direct_wanted_ = false;  // not on this file system
@@ -70,7 +72,8 @@ HashingWriter::~HashingWriter() {
         stopping_ = true;
     }
     changed_.notify_all();
-    thread_.join();
+    hashing_.thread.join();
+    writing_.thread.join();
 }
 
 void HashingWriter::rethrow_failure() const {
@@ -89,14 +92,19 @@ HashingWriter::Piece HashingWriter::next() {
 void HashingWriter::submit(Piece piece, std::size_t size) {
     {
         std::lock_guard lock(mutex_);
-        queued_.emplace_back(piece, size);
+        holders_[piece.slot] = 2;
+        hashing_.queued.emplace_back(piece, size);
+        writing_.queued.emplace_back(piece, size);
     }
     changed_.notify_all();
 }
 
 void HashingWriter::drain() {
     std::unique_lock lock(mutex_);
-    changed_.wait(lock, [this] { return (queued_.empty() && !busy_) || !failure_.empty(); });
+    changed_.wait(lock, [this] {
+        const auto idle = [](const Lane& lane) { return lane.queued.empty() && !lane.busy; };
+        return (idle(hashing_) && idle(writing_)) || !failure_.empty();
+    });
     rethrow_failure();
 }
 
@@ -113,23 +121,30 @@ std::string HashingWriter::hex() {
     return sha_->hex();
 }
 
-void HashingWriter::run() {
+void HashingWriter::hash_piece(const char* data, std::size_t size) { sha_->update(data, size); }
+
+void HashingWriter::write_piece(const char* data, std::size_t size) {
+    const std::string error = write_at_end(data, size);
+    if (error.empty()) return;
+    std::lock_guard lock(mutex_);
+    if (failure_.empty()) failure_ = "cannot write the file: " + error;
+}
+
+void HashingWriter::run(Lane& lane, void (HashingWriter::*work)(const char*, std::size_t)) {
     std::unique_lock lock(mutex_);
     for (;;) {
-        changed_.wait(lock, [this] { return stopping_ || !queued_.empty(); });
-        if (queued_.empty()) return;  // stopping, nothing left
-        auto [piece, size] = queued_.front();
-        queued_.pop_front();
-        busy_ = true;
-        // After a failed write nothing more is written; the pieces only come back.
+        changed_.wait(lock, [&] { return stopping_ || !lane.queued.empty(); });
+        if (lane.queued.empty()) return;  // stopping, nothing left
+        auto [piece, size] = lane.queued.front();
+        lane.queued.pop_front();
+        lane.busy = true;
+        // After a failed write nothing more is hashed or written; the pieces only come back.
         if (!failure_.empty()) size = 0;
         lock.unlock();
-        if (size > 0) sha_->update(piece.data, size);
-        const std::string error = size > 0 ? write_piece(piece.data, size) : std::string();
+        if (size > 0) (this->*work)(piece.data, size);
         lock.lock();
-        busy_ = false;
-        free_.push_back(piece);
-        if (!error.empty() && failure_.empty()) failure_ = "cannot write the file: " + error;
+        lane.busy = false;
+        if (--holders_[piece.slot] == 0) free_.push_back(piece);
         changed_.notify_all();
     }
 }

@@ -1,14 +1,17 @@
 #include "provider/content/direct_file_send.hpp"
 
 #include <openssl/bio.h>
-#include <openssl/buffer.h>
 #include <openssl/ssl.h>
 #include <sys/socket.h>
 
+#include <algorithm>
+#include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
-#include <boost/beast/http/empty_body.hpp>
-#include <boost/beast/http/message.hpp>
 #include <cerrno>
+#include <cstring>
+#include <new>
+
+#include "provider/content/verified_file_reader.hpp"
 
 namespace umf::provider {
 
@@ -20,13 +23,68 @@ namespace http = beast::http;
 // Ciphertext gathered before it goes to the socket.
 constexpr std::size_t kSendBytes = 256 * 1024;
 
+// Where OpenSSL writes the records: a growing buffer the sender empties
+// into the socket. (A memory BIO clears its whole buffer each time it is
+// emptied: a megabyte of memset per megabyte sent.)
+struct Ciphertext {
+    std::unique_ptr<char[]> data;
+    std::size_t capacity = 0;
+    std::size_t size = 0;
+    std::size_t sent = 0;
+
+    void append(const char* bytes, std::size_t n) {
+        if (size + n > capacity) {
+            const std::size_t grown = std::max(size + n, capacity * 2);
+            auto bigger = std::make_unique_for_overwrite<char[]>(grown);
+            std::memcpy(bigger.get(), data.get(), size);
+            data = std::move(bigger);
+            capacity = grown;
+        }
+        std::memcpy(data.get() + size, bytes, n);
+        size += n;
+    }
+    std::size_t waiting() const { return size - sent; }
+};
+
+int ciphertext_write(BIO* bio, const char* bytes, int n) {
+    if (n <= 0) return 0;
+    static_cast<Ciphertext*>(BIO_get_data(bio))->append(bytes, static_cast<std::size_t>(n));
+    return n;
+}
+
+long ciphertext_ctrl(BIO*, int cmd, long, void*) { return cmd == BIO_CTRL_FLUSH ? 1 : 0; }
+
+int ciphertext_create(BIO* bio) {
+    BIO_set_data(bio, new (std::nothrow) Ciphertext);
+    BIO_set_init(bio, BIO_get_data(bio) != nullptr);
+    return BIO_get_data(bio) != nullptr;
+}
+
+int ciphertext_destroy(BIO* bio) {
+    delete static_cast<Ciphertext*>(BIO_get_data(bio));
+    BIO_set_data(bio, nullptr);
+    return 1;
+}
+
+const BIO_METHOD* ciphertext_method() {
+    static BIO_METHOD* const method = [] {
+        BIO_METHOD* m = BIO_meth_new(BIO_get_new_index() | BIO_TYPE_SOURCE_SINK, "umf ciphertext");
+        if (m && (BIO_meth_set_write(m, ciphertext_write) != 1 || BIO_meth_set_ctrl(m, ciphertext_ctrl) != 1 ||
+                  BIO_meth_set_create(m, ciphertext_create) != 1 || BIO_meth_set_destroy(m, ciphertext_destroy) != 1)) {
+            BIO_meth_free(m);
+            m = nullptr;
+        }
+        return m;
+    }();
+    return method;
+}
+
 class DirectSend : public std::enable_shared_from_this<DirectSend> {
 public:
     DirectSend(std::shared_ptr<HttpExchange> exchange, VerifiedFileBody::value_type body, std::chrono::seconds idle,
                std::function<void(beast::error_code)> done)
         : exchange_(std::move(exchange)),
           body_(std::move(body)),
-          writer_(header_, body_),
           idle_(idle),
           timer_(beast::get_lowest_layer(exchange_->stream()).socket().get_executor()),
           done_(std::move(done)) {}
@@ -34,12 +92,26 @@ public:
     void start() {
         SSL* ssl = exchange_->stream().native_handle();
         // The stream's BIO pair stays for reading; what SSL writes goes to a
-        // memory BIO this sender empties into the socket.
-        BIO* out = BIO_new(BIO_s_mem());
+        // buffer this sender empties into the socket.
+        const BIO_METHOD* method = ciphertext_method();
+        BIO* out = method ? BIO_new(method) : nullptr;
         if (!out) return finish(beast::error_code(ENOMEM, boost::system::generic_category()));
         SSL_set_bio(ssl, SSL_get_rbio(ssl), out);
-        out_ = out;
+        out_ = static_cast<Ciphertext*>(BIO_get_data(out));
+        // A piece at a time into records, and their buffer kept: the stream's
+        // modes suit a socket that may take part of a write, not a buffer.
+        SSL_clear_mode(ssl, SSL_MODE_ENABLE_PARTIAL_WRITE | SSL_MODE_RELEASE_BUFFERS);
         beast::get_lowest_layer(exchange_->stream()).expires_never();
+        reader_ = std::make_unique<VerifiedFileReader>(
+            body_, [weak = weak_from_this(), executor = timer_.get_executor()] {
+                // On the reader's thread: only the news goes to the strand.
+                boost::asio::post(executor, [weak] {
+                    if (auto self = weak.lock()) {
+                        self->kept_while_reading_.reset();
+                        self->pump();
+                    }
+                });
+            });
         arm_timer();
         pump();
     }
@@ -53,40 +125,41 @@ private:
         });
     }
 
-    // Moves bytes until the socket is full (then waits for it) or all is
-    // sent: plaintext into records in memory, records out to the socket a
-    // quarter of a megabyte at a time, the next piece of the file when both
-    // are done with.
+    // Moves bytes until the socket is full (then waits for it), the next
+    // piece is not read yet (the reader calls back), or all is sent:
+    // a piece of plaintext into records, records out to the socket a
+    // quarter of a megabyte at a time, the next piece when both are done
+    // with.
     void pump() {
         SSL* ssl = exchange_->stream().native_handle();
         for (;;) {
             if (ended_) return;
             if (exchange_->stopping()) return finish(boost::asio::error::operation_aborted);
-            if (plain_size_ > 0) {
+            if (piece_.size > 0) {
                 std::size_t n = 0;  // into memory: it never waits
-                if (SSL_write_ex(ssl, plain_, plain_size_, &n) != 1)
+                if (SSL_write_ex(ssl, piece_.data, piece_.size, &n) != 1)
                     return finish(beast::error_code(EPROTO, boost::system::generic_category()));
-                plain_ += n;
-                plain_size_ -= n;
+                piece_.data += n;
+                piece_.size -= n;
+                if (piece_.size == 0) reader_->release();
                 continue;
             }
-            const std::size_t waiting = ciphertext_waiting();
-            if (waiting > 0 && (waiting >= kSendBytes || read_all_ || sent_ > 0)) {
+            const std::size_t waiting = out_->waiting();
+            if (waiting > 0 && (waiting >= kSendBytes || read_all_ || out_->sent > 0)) {
                 if (!send_some()) return;
                 continue;
             }
             if (!read_all_) {
                 beast::error_code ec;
-                const auto piece = writer_.get(ec);
-                if (ec) return finish(ec);
-                if (!piece) {
-                    read_all_ = true;
-                    continue;
+                switch (reader_->take(piece_, ec)) {
+                case VerifiedFileReader::Next::piece: continue;
+                case VerifiedFileReader::Next::waiting:
+                    // Nothing else holds this sender until the reader calls back.
+                    kept_while_reading_ = shared_from_this();
+                    return;
+                case VerifiedFileReader::Next::end: read_all_ = true; continue;
+                case VerifiedFileReader::Next::failed: return finish(ec);
                 }
-                plain_ = static_cast<const char*>(piece->first.data());
-                plain_size_ = piece->first.size();
-                read_all_ = !piece->second;
-                continue;
             }
             if (!closing_) {
                 // close_notify, so the peer tells the end from a cut.
@@ -98,26 +171,15 @@ private:
         }
     }
 
-    std::size_t ciphertext_waiting() const {
-        BUF_MEM* buffered = nullptr;
-        BIO_get_mem_ptr(out_, &buffered);
-        return buffered ? buffered->length - sent_ : 0;
-    }
-
-    // One send of what the memory BIO holds; false when the socket is full
-    // (a wait for it is armed) or the connection failed (finished).
+    // One send of the records waiting; false when the socket is full (a
+    // wait for it is armed) or the connection failed (finished).
     bool send_some() {
         auto& socket = beast::get_lowest_layer(exchange_->stream()).socket();
-        BUF_MEM* buffered = nullptr;
-        BIO_get_mem_ptr(out_, &buffered);
-        const ssize_t n = ::send(socket.native_handle(), buffered->data + sent_, buffered->length - sent_,
+        const ssize_t n = ::send(socket.native_handle(), out_->data.get() + out_->sent, out_->waiting(),
                                  MSG_NOSIGNAL | MSG_DONTWAIT);
         if (n > 0) {
-            sent_ += static_cast<std::size_t>(n);
-            if (sent_ == buffered->length) {
-                (void)BIO_reset(out_);
-                sent_ = 0;
-            }
+            out_->sent += static_cast<std::size_t>(n);
+            if (out_->waiting() == 0) out_->size = out_->sent = 0;
             arm_timer();
             return true;
         }
@@ -137,21 +199,21 @@ private:
         if (ended_) return;
         ended_ = true;
         timer_.cancel();
+        reader_.reset();  // its thread stops now, not when the last handler lets go
+        kept_while_reading_.reset();  // the caller holds this sender still
         exchange_->drop();
         done_(ec);
     }
 
     std::shared_ptr<HttpExchange> exchange_;
-    http::response_header<> header_;
     VerifiedFileBody::value_type body_;
-    VerifiedFileBody::writer writer_;
+    std::unique_ptr<VerifiedFileReader> reader_;  // reads body_
+    std::shared_ptr<DirectSend> kept_while_reading_;  // this, while waiting for the reader
     std::chrono::seconds idle_;
     boost::asio::steady_timer timer_;
     std::function<void(beast::error_code)> done_;
-    BIO* out_ = nullptr;  // owned by the SSL object
-    std::size_t sent_ = 0;  // of the memory BIO's bytes
-    const char* plain_ = nullptr;
-    std::size_t plain_size_ = 0;
+    Ciphertext* out_ = nullptr;  // the write BIO's, owned by the SSL object
+    VerifiedFileReader::Piece piece_;  // taken, not yet all encrypted
     bool read_all_ = false;
     bool closing_ = false;
     bool ended_ = false;

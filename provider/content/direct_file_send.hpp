@@ -3,11 +3,11 @@
 // 16 KiB record costs a composed operation, a copy through a BIO pair and a
 // socket write of its own; here OpenSSL writes the records into a memory
 // buffer and the socket takes a quarter of a megabyte per send, waiting on
-// the reactor only when the socket is full. The file is still read and
-// checked piece by piece as VerifiedFileBody does (same identity, same
-// SHA-256 before the last piece). The stream's TLS state is the stream's no
-// more afterwards: the connection ends with the body (the response says
-// "Connection: close").
+// the reactor only when the socket is full. The file is read and hashed on
+// a thread beside it (verified_file_reader.hpp), with VerifiedFileBody's
+// checks (same identity, same SHA-256 before the last piece). The stream's
+// TLS state is the stream's no more afterwards: the connection ends with
+// the body (the response says "Connection: close").
 #pragma once
 
 #include <boost/beast/core/error.hpp>

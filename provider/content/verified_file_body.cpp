@@ -72,28 +72,41 @@ std::optional<std::string> VerifiedFileBody::value_type::open(const std::filesys
     return std::nullopt;
 }
 
-long VerifiedFileBody::writer::read_at(std::uint64_t at, std::size_t size, boost::beast::error_code& ec) {
+long VerifiedFileBody::value_type::read_at(std::uint64_t at, char* into, std::size_t size,
+                                           boost::beast::error_code& ec) const {
     ssize_t n;
     do {
-        n = ::pread(body_.fd_, buffer_.get(), size, static_cast<off_t>(at));
+        n = ::pread(fd_, into, size, static_cast<off_t>(at));
     } while (n < 0 && errno == EINTR);
     if (n < 0) ec = boost::system::error_code(errno, boost::system::system_category());
     return static_cast<long>(n);
 }
 
-bool VerifiedFileBody::writer::start_hash(boost::beast::error_code& ec) {
-    auto [at, hash] = body_.checkpoints_->nearest(body_.offset_);
-    hash_ = std::move(hash);
+std::unique_ptr<native::Sha256> VerifiedFileBody::value_type::hasher_at_offset(char* buffer, std::size_t buffer_size,
+                                                                              boost::beast::error_code& ec) const {
+    auto [at, hash] = checkpoints_->nearest(offset_);
     // At most a checkpoint step of bytes read and not sent.
-    while (at < body_.offset_) {
-        const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(body_.offset_ - at, kReadBytes));
-        const long n = read_at(at, want, ec);
+    while (at < offset_) {
+        const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(offset_ - at, buffer_size));
+        const long n = read_at(at, buffer, want, ec);
         if (n <= 0) {
             if (!ec) ec = DownloadCheck::changed;
-            return false;
+            return nullptr;
         }
-        hash_->update(buffer_.get(), static_cast<std::size_t>(n));
+        hash->update(buffer, static_cast<std::size_t>(n));
         at += static_cast<std::uint64_t>(n);
+    }
+    return std::move(hash);
+}
+
+bool VerifiedFileBody::value_type::hash_piece(native::Sha256& hash, const char* data, std::size_t n,
+                                              std::uint64_t end, boost::beast::error_code& ec) const {
+    hash.update(data, n);
+    if (end % HashCheckpoints::kStep == 0) checkpoints_->save(end, hash);
+    // The last piece goes out only when the whole is what was announced.
+    if (end == size_ && hash.hex() != sha256_) {
+        ec = DownloadCheck::changed;
+        return false;
     }
     return true;
 }
@@ -101,30 +114,24 @@ bool VerifiedFileBody::writer::start_hash(boost::beast::error_code& ec) {
 boost::optional<std::pair<VerifiedFileBody::writer::const_buffers_type, bool>> VerifiedFileBody::writer::get(
     boost::beast::error_code& ec) {
     ec = {};
-    if (!buffer_) buffer_ = std::make_unique<char[]>(kReadBytes);
-    if (!hash_ && !start_hash(ec)) return boost::none;
+    if (!buffer_) buffer_ = std::make_unique_for_overwrite<char[]>(kReadBytes);
+    if (!hash_ && !(hash_ = body_.hasher_at_offset(buffer_.get(), kReadBytes, ec))) return boost::none;
     // An empty file of the same identity is the empty file that was hashed.
-    if (at_ >= body_.size_) return boost::none;
+    if (at_ >= body_.file_size()) return boost::none;
     // Reads end on multiples of kReadBytes, so the checkpoints' offsets are
     // reached exactly wherever the transfer began.
     const auto want = static_cast<std::size_t>(
-        std::min<std::uint64_t>(body_.size_ - at_, kReadBytes - at_ % kReadBytes));
-    const long n = read_at(at_, want, ec);
+        std::min<std::uint64_t>(body_.file_size() - at_, kReadBytes - at_ % kReadBytes));
+    const long n = body_.read_at(at_, buffer_.get(), want, ec);
     if (n < 0) return boost::none;
     if (n == 0) {
         // Shorter than when it was offered.
         ec = DownloadCheck::changed;
         return boost::none;
     }
-    hash_->update(buffer_.get(), static_cast<std::size_t>(n));
     at_ += static_cast<std::uint64_t>(n);
-    if (at_ % HashCheckpoints::kStep == 0) body_.checkpoints_->save(at_, *hash_);
-    // The last piece goes out only when the whole is what was announced.
-    if (at_ == body_.size_ && hash_->hex() != body_.sha256_) {
-        ec = DownloadCheck::changed;
-        return boost::none;
-    }
-    return {{boost::asio::const_buffer(buffer_.get(), static_cast<std::size_t>(n)), at_ < body_.size_}};
+    if (!body_.hash_piece(*hash_, buffer_.get(), static_cast<std::size_t>(n), at_, ec)) return boost::none;
+    return {{boost::asio::const_buffer(buffer_.get(), static_cast<std::size_t>(n)), at_ < body_.file_size()}};
 }
 
 }  // namespace umf::provider

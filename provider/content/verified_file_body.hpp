@@ -61,9 +61,27 @@ struct VerifiedFileBody {
                                         std::shared_ptr<HashCheckpoints> checkpoints = nullptr);
         // The bytes sent: from the offset to the end.
         std::uint64_t size() const { return size_ - offset_; }
+        // The first byte sent, and the whole file's size.
+        std::uint64_t offset() const { return offset_; }
+        std::uint64_t file_size() const { return size_; }
+
+        // The checks, for whoever reads the file (the writer below,
+        // verified_file_reader.hpp). Reads up to `size` bytes at `at`:
+        // how many, 0 at the end, -1 with `ec`.
+        long read_at(std::uint64_t at, char* into, std::size_t size, boost::beast::error_code& ec) const;
+        // A hasher that has taken the bytes before the offset, read from the
+        // nearest checkpoint on into `buffer`; null with `ec` when the file
+        // ended first.
+        std::unique_ptr<native::Sha256> hasher_at_offset(char* buffer, std::size_t buffer_size,
+                                                         boost::beast::error_code& ec) const;
+        // Hashes the piece of `n` bytes that ends at byte `end` (saving a
+        // checkpoint there when one is due); false, with
+        // DownloadCheck::changed, when it ends the file and the whole is not
+        // the announced SHA-256.
+        bool hash_piece(native::Sha256& hash, const char* data, std::size_t n, std::uint64_t end,
+                        boost::beast::error_code& ec) const;
 
     private:
-        friend class VerifiedFileBody::writer;
         int fd_ = -1;
         std::uint64_t size_ = 0;  // the whole file's
         std::uint64_t offset_ = 0;
@@ -76,7 +94,7 @@ struct VerifiedFileBody {
         using const_buffers_type = boost::asio::const_buffer;
 
         template <bool isRequest, class Fields>
-        writer(boost::beast::http::header<isRequest, Fields>&, value_type& body) : body_(body), at_(body.offset_) {}
+        writer(boost::beast::http::header<isRequest, Fields>&, value_type& body) : body_(body), at_(body.offset()) {}
 
         void init(boost::beast::error_code& ec) { ec = {}; }
         boost::optional<std::pair<const_buffers_type, bool>> get(boost::beast::error_code& ec);
@@ -86,11 +104,6 @@ struct VerifiedFileBody {
         std::uint64_t at_;  // the next byte to send
         std::unique_ptr<native::Sha256> hash_;
         std::unique_ptr<char[]> buffer_;
-
-        // The hasher brought to the offset; false when the file ended first.
-        bool start_hash(boost::beast::error_code& ec);
-        // Reads `size` bytes at `at` into the buffer; 0 at the end, -1 with ec.
-        long read_at(std::uint64_t at, std::size_t size, boost::beast::error_code& ec);
     };
 
     static std::uint64_t size(const value_type& body) { return body.size(); }

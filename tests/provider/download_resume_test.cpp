@@ -1,21 +1,25 @@
 // Resuming downloads on the provider's side, piece by piece: which part a
 // Range asks for (content/resume_range.hpp), how long a link lives
 // (content/download_table.hpp), and a file sent from an offset still checked
-// whole through the hash checkpoints (content/verified_file_body.hpp). The
+// whole through the hash checkpoints (content/verified_file_body.hpp, and
+// content/verified_file_reader.hpp for large bodies). The
 // HTTPS side with curl is tests/provider/provider_http_test.cpp.
 #ifdef UMF_PROVIDER_TESTS
 
 #include <gtest/gtest.h>
 
 #include <boost/beast/http/message.hpp>
+#include <condition_variable>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <string>
 
 #include "provider/content/download_table.hpp"
 #include "provider/content/file_facts.hpp"
 #include "provider/content/resume_range.hpp"
 #include "provider/content/verified_file_body.hpp"
+#include "provider/content/verified_file_reader.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace {
@@ -130,6 +134,36 @@ protected:
         }
         return {sent, ec};
     }
+    // The same through a VerifiedFileReader, as a large body is sent.
+    std::pair<std::string, boost::beast::error_code> read(std::uint64_t offset, std::shared_ptr<HashCheckpoints> points,
+                                                          std::uint64_t stop = ~0ull) {
+        VerifiedFileBody::value_type body;
+        EXPECT_FALSE(body.open(file, identity, sha256, offset, points));
+        std::mutex mutex;
+        std::condition_variable woken;
+        bool ready = false;
+        VerifiedFileReader reader(body, [&] {
+            std::lock_guard lock(mutex);
+            ready = true;
+            woken.notify_all();
+        });
+        std::string sent;
+        boost::beast::error_code ec;
+        while (sent.size() < stop) {
+            VerifiedFileReader::Piece piece;
+            const auto next = reader.take(piece, ec);
+            if (next == VerifiedFileReader::Next::waiting) {
+                std::unique_lock lock(mutex);
+                woken.wait(lock, [&] { return ready; });
+                ready = false;
+                continue;
+            }
+            if (next != VerifiedFileReader::Next::piece) break;
+            sent.append(piece.data, piece.size);
+            reader.release();
+        }
+        return {sent, ec};
+    }
 };
 
 TEST_F(ResumedFile, TheRestIsSentAndTheWholeChecked) {
@@ -164,6 +198,38 @@ TEST_F(ResumedFile, AByteChangedBeforeTheOffsetCutsTheRest) {
     const auto [rest, ec] = send(cut, points);
     EXPECT_EQ(ec, DownloadCheck::changed);
     EXPECT_LT(rest.size(), bytes.size() - cut);
+}
+
+// The reader of large bodies: the same checks, a resume from a checkpoint,
+// a reader dropped half-way, and a changed byte that holds back the end.
+TEST_F(ResumedFile, TheReaderSendsTheRestAndChecksTheWhole) {
+    auto points = std::make_shared<HashCheckpoints>();
+    const std::uint64_t cut = HashCheckpoints::kStep + 12345 * 7;
+    const auto [head, ec1] = read(0, points, cut);  // the reader stops with pieces still ahead
+    ASSERT_FALSE(ec1) << ec1.message();
+    ASSERT_GE(head.size(), cut);
+    EXPECT_TRUE(head == bytes.substr(0, head.size()));
+    EXPECT_EQ(points->nearest(cut).first, HashCheckpoints::kStep);
+    const auto [rest, ec2] = read(cut, points);
+    EXPECT_FALSE(ec2) << ec2.message();
+    EXPECT_TRUE(bytes.substr(0, cut) + rest == bytes);
+    const auto [again, ec3] = read(cut + 1, nullptr);
+    EXPECT_FALSE(ec3) << ec3.message();
+    EXPECT_TRUE(again == bytes.substr(cut + 1));
+}
+
+TEST_F(ResumedFile, TheReaderHoldsBackTheEndOfAChangedFile) {
+    const auto mtime = fs::last_write_time(file);
+    {
+        std::fstream f(file, std::ios::binary | std::ios::in | std::ios::out);
+        f.seekp(static_cast<std::streamoff>(bytes.size() - 1000));
+        f.put('\x55' ^ bytes[bytes.size() - 1000]);
+    }
+    fs::last_write_time(file, mtime);
+    const auto [sent, ec] = read(0, nullptr);
+    EXPECT_EQ(ec, DownloadCheck::changed);
+    EXPECT_LT(sent.size(), bytes.size());
+    EXPECT_TRUE(sent == bytes.substr(0, sent.size()));
 }
 
 }  // namespace

@@ -1,0 +1,117 @@
+#include "provider/content/verified_file_reader.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <new>
+
+namespace umf::provider {
+
+namespace {
+
+// A piece is read, hashed and encrypted whole; checkpoints (every
+// HashCheckpoints::kStep bytes) fall on piece boundaries.
+constexpr std::size_t kPieceBytes = 1 << 20;
+// Pieces in flight: memory stays at a few megabytes whatever the file's size.
+constexpr std::size_t kPieces = 4;
+static_assert(HashCheckpoints::kStep % kPieceBytes == 0);
+
+}  // namespace
+
+void VerifiedFileReader::Free::operator()(char* p) const { std::free(p); }
+
+VerifiedFileReader::VerifiedFileReader(const VerifiedFileBody::value_type& body, std::function<void()> ready)
+    : body_(body), ready_(std::move(ready)) {
+    // One more than in flight: the hasher's scratch for reaching a resumed download's offset.
+    for (std::size_t i = 0; i < kPieces + 1; ++i) {
+        buffers_.emplace_back(static_cast<char*>(std::malloc(kPieceBytes)));
+        if (!buffers_.back()) throw std::bad_alloc();
+        if (i < kPieces) free_.push_back(buffers_.back().get());
+    }
+    thread_ = std::thread([this] { run(); });
+}
+
+VerifiedFileReader::~VerifiedFileReader() {
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+    }
+    freed_.notify_all();
+    thread_.join();
+}
+
+VerifiedFileReader::Next VerifiedFileReader::take(Piece& piece, boost::beast::error_code& ec) {
+    std::lock_guard lock(mutex_);
+    if (!ready_pieces_.empty()) {
+        piece = ready_pieces_.front();
+        ready_pieces_.pop_front();
+        taken_ = piece.data;
+        return Next::piece;
+    }
+    if (failure_) {
+        ec = failure_;
+        return Next::failed;
+    }
+    if (read_all_) return Next::end;
+    taker_waits_ = true;
+    return Next::waiting;
+}
+
+void VerifiedFileReader::release() {
+    {
+        std::lock_guard lock(mutex_);
+        if (!taken_) return;
+        free_.push_back(const_cast<char*>(taken_));
+        taken_ = nullptr;
+    }
+    freed_.notify_all();
+}
+
+char* VerifiedFileReader::free_buffer() {
+    std::unique_lock lock(mutex_);
+    freed_.wait(lock, [this] { return stopping_ || !free_.empty(); });
+    if (stopping_) return nullptr;
+    char* buffer = free_.back();
+    free_.pop_back();
+    return buffer;
+}
+
+void VerifiedFileReader::publish(const Piece* piece, boost::beast::error_code ec, bool end) {
+    bool wake = false;
+    {
+        std::lock_guard lock(mutex_);
+        if (piece) ready_pieces_.push_back(*piece);
+        if (ec) failure_ = ec;
+        if (end) read_all_ = true;
+        wake = std::exchange(taker_waits_, false);
+    }
+    if (wake) ready_();
+}
+
+void VerifiedFileReader::run() { read_all(buffers_.back().get()); }
+
+void VerifiedFileReader::read_all(char* scratch) {
+    boost::beast::error_code ec;
+    auto hash = body_.hasher_at_offset(scratch, kPieceBytes, ec);
+    if (!hash) return publish(nullptr, ec, false);
+    std::uint64_t at = body_.offset();
+    const std::uint64_t size = body_.file_size();
+    if (at >= size) return publish(nullptr, {}, true);
+    while (at < size) {
+        char* buffer = free_buffer();
+        if (!buffer) return;
+        // Pieces end on multiples of kPieceBytes, so the checkpoints'
+        // offsets are reached exactly wherever the transfer began.
+        const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(size - at, kPieceBytes - at % kPieceBytes));
+        const long n = body_.read_at(at, buffer, want, ec);
+        if (n <= 0) {
+            // None: shorter than when it was offered.
+            return publish(nullptr, n < 0 ? ec : boost::beast::error_code(DownloadCheck::changed), false);
+        }
+        at += static_cast<std::uint64_t>(n);
+        if (!body_.hash_piece(*hash, buffer, static_cast<std::size_t>(n), at, ec)) return publish(nullptr, ec, false);
+        const Piece piece{buffer, static_cast<std::size_t>(n)};
+        publish(&piece, {}, at == size);
+    }
+}
+
+}  // namespace umf::provider
