@@ -7,7 +7,8 @@
 # the wall time and MB/s of the transfer, and the server's CPU seconds per
 # GB (its process's user + system time over the transfer). The umf figures
 # are the requester's own ("saved ... in T s", "sent ... in T s"): the
-# transfer, not the aiming before it.
+# transfer, not the aiming before it. At the end, the median of the runs
+# for each and umf's ratio against nginx (above 1: umf is faster).
 # usage: scripts/bench-transfer.sh [BUILD] [SIZE_MB] [RUNS]
 set -euo pipefail
 build=${1:-build/release}
@@ -92,6 +93,9 @@ sleep 3  # the board's file hashed in the background
 now() { date +%s.%N; }
 echo "transfer of $size_mb MiB over loopback TLS 1.3 on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'))"
 printf '%-34s %8s %9s %12s\n' "what" "seconds" "MB/s" "server CPU s/GB"
+# The seconds of each run, by what was measured: "nginx-download" etc.
+declare -A times
+median() { tr ' ' '\n' <<<"$1" | grep . | sort -n | awk '{ v[NR] = $1 } END { print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 # One curl transfer with nginx: WHAT, the file that must arrive equal to the
 # original, then curl's own arguments. Prints its line of the table.
 with_nginx() {
@@ -102,6 +106,7 @@ with_nginx() {
   t1=$(now); c1=$(cpu_seconds "$nginx_worker")
   secs=$(echo "$t1 - $t0" | bc)
   printf '%-34s %8.2f %9.1f %12.3f\n' "$what" "$secs" "$(rate "$secs")" "$(per_gb "$c0" "$c1")"
+  times[nginx-${what%%:*}]+=" $secs"
   cmp -s "$work/board/big.bin" "$arrived" || { echo "$what: the file arrived changed"; exit 1; }
 }
 for run in $(seq "$runs"); do
@@ -116,6 +121,7 @@ for run in $(seq "$runs"); do
   c1=$(cpu_seconds "$provider_pid")
   secs=$(sed -n 's/.*saved .* in \([0-9.]*\) s, .*/\1/p' "$work/grab.log")
   printf '%-34s %8.2f %9.1f %12.3f\n' "download: umf grab (run $run)" "$secs" "$(rate "$secs")" "$(per_gb "$c0" "$c1")"
+  times[umf-download]+=" $secs"
   cmp -s "$work/board/big.bin" "$work/got/big.bin" || { echo "the grab arrived changed"; exit 1; }
   rm -f "$work/got/"*
   # Put: curl PUT to nginx ...
@@ -129,6 +135,13 @@ for run in $(seq "$runs"); do
   c1=$(cpu_seconds "$provider_pid")
   secs=$(sed -n 's/.*sent [0-9.]* MB in \([0-9.]*\) s, .*/\1/p' "$work/put.log")
   printf '%-34s %8.2f %9.1f %12.3f\n' "put: umf put (run $run)" "$secs" "$(rate "$secs")" "$(per_gb "$c0" "$c1")"
+  times[umf-put]+=" $secs"
   cmp -s "$work/board/big.bin" "$work/received/big.bin" || { echo "the put arrived changed"; ls "$work/received"; exit 1; }
   rm -f "$work/received/"*
+done
+for what in download put; do
+  n=$(median "${times[nginx-$what]}")
+  u=$(median "${times[umf-$what]}")
+  printf '%-8s median of %d runs: nginx %.1f MB/s, umf %.1f MB/s, ratio %.2f\n' "$what" "$runs" "$(rate "$n")" \
+    "$(rate "$u")" "$(echo "scale=4; $n / $u" | bc)"
 done
