@@ -121,6 +121,11 @@ std::string HashingWriter::hex() {
     return sha_->hex();
 }
 
+std::unique_ptr<native::Sha256> HashingWriter::hash_so_far() const {
+    std::lock_guard lock(mutex_);
+    return sha_->copy();
+}
+
 void HashingWriter::hash_piece(const char* data, std::size_t size) { sha_->update(data, size); }
 
 void HashingWriter::write_piece(const char* data, std::size_t size) {

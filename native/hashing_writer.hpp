@@ -65,6 +65,9 @@ public:
     void restart();
     // After drain(): the SHA-256 of everything written (the hasher is used up).
     std::string hex();
+    // After drain(): a hasher in the state of everything written so far,
+    // to go on from apart from this writer's.
+    std::unique_ptr<native::Sha256> hash_so_far() const;
 
 private:
     struct Free {

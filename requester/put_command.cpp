@@ -180,7 +180,8 @@ private:
             log("sent " + megabytes(static_cast<std::uint64_t>(sent)) + " of " + megabytes(static_cast<std::uint64_t>(size)));
         };
         const auto started = std::chrono::steady_clock::now();
-        auto status = upload_file(session_.connection().url(), {link, file_->path, file_->digest.size}, progress, {},
+        auto status = upload_file(session_.connection().url(),
+                                  {link, file_->path, file_->digest.size, file_->digest.checkpoints}, progress, {},
                                   [this](const std::string& line) { log(line); });
         log("sent " + transfer_rate(static_cast<std::uint64_t>(file_->digest.size),
                                     std::chrono::steady_clock::now() - started));

@@ -91,6 +91,7 @@ p::PutStatus interpret(const http::response<http::string_body>& answer) {
     const auto error = p::parse_error_body(answer.body());
     const p::Error* e = error ? &*error : nullptr;
     const std::string why = e ? e->message : "HTTP status " + std::to_string(status);
+    if (status == 412) throw input_failure("the upload stopped: " + why);
     if (status == 404)
         throw GrabFailure("not_found", "the upload link is unknown, used or expired (" + why + "); put again",
                           kNothing);
@@ -156,6 +157,21 @@ Sent answered(const http::response<http::string_body>& answer) {
     return {interpret(answer), {}};
 }
 
+// The SHA-256 of the file's first `size` bytes: the state kept at or
+// before it, and the bytes from there read again.
+std::string prefix_sha256(ReadOnlyFile& file, const native::HashCheckpoints& checkpoints, std::int64_t size) {
+    auto [at, hash] = checkpoints.nearest(static_cast<std::uint64_t>(size));
+    std::vector<char> piece(kPieceBytes);
+    file.seek(static_cast<std::int64_t>(at));
+    for (auto left = static_cast<std::uint64_t>(size) - at; left > 0;) {
+        const std::size_t n = file.read(piece.data(), static_cast<std::size_t>(std::min<std::uint64_t>(left, piece.size())));
+        if (n == 0) throw input_failure("the file became shorter than the " + std::to_string(size) + " bytes already sent; put it again");
+        hash->update(piece.data(), n);
+        left -= n;
+    }
+    return hash->hex();
+}
+
 // Sends the file from byte `from` (Upload-Offset) to its end and reads the
 // answer, with blocking TLS (blocking_tls.hpp): each piece goes out as a
 // run of records, so the provider finds many in its socket at once. Throws
@@ -170,11 +186,13 @@ Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, Read
         if (f.code == "certificate") throw;
         return {std::nullopt, f.what()};
     }
-    file.seek(from);
     http::request<http::empty_body> req(http::verb::put, request.path, 11);
     PinnedExchange::set_headers(req, provider);
     req.set(http::field::content_type, "application/octet-stream");
     req.set("Upload-Offset", std::to_string(from));
+    // The provider checks the bytes it holds before taking more (docs/PROTOCOL.md, "Resuming an upload").
+    if (from > 0 && request.checkpoints) req.set("Upload-Prefix-SHA256", prefix_sha256(file, *request.checkpoints, from));
+    file.seek(from);
     req.set(http::field::content_length, std::to_string(request.size - from));
     // The body only once the provider agrees: a refusal costs no bytes, and
     // it reads the body straight from the socket (direct_body_receive.hpp).

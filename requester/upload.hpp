@@ -9,8 +9,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
 
+#include "native/hash_checkpoints.hpp"
 #include "requester/pinned_tls.hpp"
 #include "shared/protocol/messages.hpp"
 #include "shared/protocol/pairing_url.hpp"
@@ -21,6 +23,10 @@ struct UploadRequest {
     std::string path;                 // the put_status's "upload": "/up/..."
     std::filesystem::path file;       // read from the start, `size` bytes
     std::int64_t size = 0;            // as announced in the put
+    // The states of the hash the put announced (file_digest.hpp); with them
+    // a resumed request says the SHA-256 of the bytes the provider should
+    // hold (Upload-Prefix-SHA256), and a file changed since is refused then.
+    std::shared_ptr<const native::HashCheckpoints> checkpoints;
 };
 
 // Called now and then while bytes go out: sent so far, of size.
@@ -28,7 +34,9 @@ using UploadProgress = std::function<void(std::int64_t sent, std::int64_t size)>
 
 // Returns the provider's put_status (status done). Throws GrabFailure:
 // "input" (exit 3) when the file cannot be read or changed its size,
-// "certificate" for another certificate, "upload" when the transfer broke
+// "certificate" for another certificate, "input" also when a resumed
+// request found the provider's bytes other than the file's start (it
+// changed while it was sent), "upload" when the transfer broke
 // off and nothing more reached the provider for timeouts.download_idle,
 // and the provider's code for an answer it explains ("interrupted",
 // "too_large", "not_found", "bad_request"). `notice` hears of each resume.

@@ -24,7 +24,7 @@ std::string DownloadTable::add(DownloadEntry entry, Clock::time_point now) {
         slots_.erase(first);
     }
     slots_.emplace(key, Slot{std::make_shared<const DownloadEntry>(std::move(entry)),
-                             std::make_shared<HashCheckpoints>(), now + ttl_, 0});
+                             std::make_shared<native::HashCheckpoints>(), now + ttl_, 0});
     return kDownloadPrefix + key;
 }
 

@@ -19,7 +19,7 @@
 #include <string_view>
 
 #include "provider/content/file_facts.hpp"
-#include "provider/content/hash_checkpoints.hpp"
+#include "native/hash_checkpoints.hpp"
 
 namespace umf::provider {
 
@@ -48,7 +48,7 @@ struct DownloadEntry {
 struct DownloadLease {
     std::string key;
     std::shared_ptr<const DownloadEntry> entry;
-    std::shared_ptr<HashCheckpoints> checkpoints;
+    std::shared_ptr<native::HashCheckpoints> checkpoints;
 };
 
 class DownloadTable {
@@ -76,7 +76,7 @@ public:
 private:
     struct Slot {
         std::shared_ptr<const DownloadEntry> entry;
-        std::shared_ptr<HashCheckpoints> checkpoints;
+        std::shared_ptr<native::HashCheckpoints> checkpoints;
         Clock::time_point expires;
         int transfers = 0;  // running now
     };

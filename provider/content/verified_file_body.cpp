@@ -53,7 +53,7 @@ VerifiedFileBody::value_type::~value_type() {
 std::optional<std::string> VerifiedFileBody::value_type::open(const std::filesystem::path& file,
                                                               const FileIdentity& identity, std::string sha256,
                                                               std::uint64_t offset,
-                                                              std::shared_ptr<HashCheckpoints> checkpoints) {
+                                                              std::shared_ptr<native::HashCheckpoints> checkpoints) {
     if (fd_ >= 0) ::close(fd_);
     fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd_ < 0) return std::string("the file can no longer be read: ") + std::strerror(errno);
@@ -68,7 +68,7 @@ std::optional<std::string> VerifiedFileBody::value_type::open(const std::filesys
     if (offset > size_) return std::string("the download cannot resume past the file's end");
     offset_ = offset;
     sha256_ = std::move(sha256);
-    checkpoints_ = checkpoints ? std::move(checkpoints) : std::make_shared<HashCheckpoints>();
+    checkpoints_ = checkpoints ? std::move(checkpoints) : std::make_shared<native::HashCheckpoints>();
     return std::nullopt;
 }
 
@@ -102,7 +102,7 @@ std::unique_ptr<native::Sha256> VerifiedFileBody::value_type::hasher_at_offset(c
 bool VerifiedFileBody::value_type::hash_piece(native::Sha256& hash, const char* data, std::size_t n,
                                               std::uint64_t end, boost::beast::error_code& ec) const {
     hash.update(data, n);
-    if (end % HashCheckpoints::kStep == 0) checkpoints_->save(end, hash);
+    if (end % native::HashCheckpoints::kStep == 0) checkpoints_->save(end, hash);
     // The last piece goes out only when the whole is what was announced.
     if (end == size_ && hash.hex() != sha256_) {
         ec = DownloadCheck::changed;

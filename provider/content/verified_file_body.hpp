@@ -6,7 +6,7 @@
 // the end, and its last piece is never sent: the phone gets a download cut
 // short, never bytes other than the ones announced. A resumed download sends
 // from an offset and checks the same way: its hasher starts from the
-// checkpoint at or before the offset (hash_checkpoints.hpp) and reads the
+// checkpoint at or before the offset (native/hash_checkpoints.hpp) and reads the
 // bytes from there to the offset without sending them.
 #pragma once
 
@@ -22,7 +22,7 @@
 
 #include "native/sha256.hpp"
 #include "provider/content/file_facts.hpp"
-#include "provider/content/hash_checkpoints.hpp"
+#include "native/hash_checkpoints.hpp"
 
 namespace umf::provider {
 
@@ -58,7 +58,7 @@ struct VerifiedFileBody {
         // link's (null: none kept).
         std::optional<std::string> open(const std::filesystem::path& file, const FileIdentity& identity,
                                         std::string sha256, std::uint64_t offset = 0,
-                                        std::shared_ptr<HashCheckpoints> checkpoints = nullptr);
+                                        std::shared_ptr<native::HashCheckpoints> checkpoints = nullptr);
         // The bytes sent: from the offset to the end.
         std::uint64_t size() const { return size_ - offset_; }
         // The first byte sent, and the whole file's size.
@@ -86,7 +86,7 @@ struct VerifiedFileBody {
         std::uint64_t size_ = 0;  // the whole file's
         std::uint64_t offset_ = 0;
         std::string sha256_;
-        std::shared_ptr<HashCheckpoints> checkpoints_;
+        std::shared_ptr<native::HashCheckpoints> checkpoints_;
     };
 
     class writer {

@@ -9,11 +9,11 @@ namespace umf::provider {
 namespace {
 
 // A piece is read, hashed and encrypted whole; checkpoints (every
-// HashCheckpoints::kStep bytes) fall on piece boundaries.
+// native::HashCheckpoints::kStep bytes) fall on piece boundaries.
 constexpr std::size_t kPieceBytes = 1 << 20;
 // Pieces in flight: memory stays at a few megabytes whatever the file's size.
 constexpr std::size_t kPieces = 4;
-static_assert(HashCheckpoints::kStep % kPieceBytes == 0);
+static_assert(native::HashCheckpoints::kStep % kPieceBytes == 0);
 
 }  // namespace
 

@@ -1,10 +1,12 @@
 #include "provider/put/upload_route.hpp"
 
+#include <algorithm>
 #include <boost/beast/core/string.hpp>
 #include <boost/beast/http/buffer_body.hpp>
 #include <boost/beast/http/read.hpp>
 #include <boost/beast/http/string_body.hpp>
 #include <boost/beast/http/write.hpp>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <exception>
@@ -57,8 +59,13 @@ private:
     // wait with the link for the rest.
     void broke_off();
     // The upload failed for good: its file removed, the put's session told;
-    // answered while the connection is there (`answer`), else dropped.
-    void fail(protocol::ErrorCode code, const std::string& message, bool answer);
+    // answered while the connection is there (`answer`), else dropped. The
+    // answer's status follows the code unless `status` is given.
+    void fail(protocol::ErrorCode code, const std::string& message, bool answer,
+              std::optional<http::status> status = std::nullopt);
+    // A resumed request's Upload-Prefix-SHA256, when it has one, against the
+    // bytes held; false when the upload failed on it.
+    bool prefix_matches(const http::request_parser<http::empty_body>& header, std::int64_t held);
     const UploadEntry& entry() const { return lease_.entry; }
 
     std::shared_ptr<HttpExchange> exchange_;
@@ -125,6 +132,7 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
         refuse_offset(claim.received);
         return;
     }
+    if (!prefix_matches(header, claim.received)) return;
     const bool expect_continue = beast::iequals(header.get()[http::field::expect], "100-continue");
     parser_.emplace(std::move(header));
     parser_->body_limit(static_cast<std::uint64_t>(size - claim.received));
@@ -154,6 +162,31 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
                           }
                           self->read();
                       });
+}
+
+bool Upload::prefix_matches(const http::request_parser<http::empty_body>& header, std::int64_t held) {
+    const beast::string_view expected = header.get()["Upload-Prefix-SHA256"];
+    if (expected.empty()) return true;
+    if (expected.size() != 64 ||
+        !std::all_of(expected.begin(), expected.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); })) {
+        fail(protocol::ErrorCode::bad_request, "Upload-Prefix-SHA256 is not 64 hexadecimal digits", true);
+        return false;
+    }
+    std::string digest;
+    try {
+        digest = lease_.sink->received_sha256();
+    } catch (const UploadError& e) {
+        fail(e.code(), e.what(), true);
+        return false;
+    }
+    if (beast::iequals(digest, expected)) return true;
+    // The bytes held were read from the file earlier: the file changed since
+    // (or they are not its bytes), and the rest could only fail at the end.
+    fail(protocol::ErrorCode::interrupted,
+         "the " + std::to_string(held) + " bytes the screen holds are not the start of this file (it changed while "
+         "it was being sent); nothing was kept, put it again",
+         true, http::status::precondition_failed);
+    return false;
 }
 
 void Upload::read_direct(std::uint64_t left) {
@@ -259,7 +292,8 @@ void Upload::finish() {
     exchange_->answer_json(200, keep_alive && !exchange_->stopping(), encode_reply(done));
 }
 
-void Upload::fail(protocol::ErrorCode code, const std::string& message, bool answer) {
+void Upload::fail(protocol::ErrorCode code, const std::string& message, bool answer,
+                  std::optional<http::status> status) {
     if (lease_.sink) lease_.sink->discard();  // the temporary file goes
     parser_.reset();
     chunk_ = {};
@@ -271,10 +305,11 @@ void Upload::fail(protocol::ErrorCode code, const std::string& message, bool ans
         exchange_->drop();
         return;
     }
-    const auto status = code == protocol::ErrorCode::too_large  ? http::status::payload_too_large
-                        : code == protocol::ErrorCode::internal ? http::status::internal_server_error
-                                                                : http::status::bad_request;
-    exchange_->answer_error(status, false, error);
+    if (!status)
+        status = code == protocol::ErrorCode::too_large  ? http::status::payload_too_large
+                 : code == protocol::ErrorCode::internal ? http::status::internal_server_error
+                                                         : http::status::bad_request;
+    exchange_->answer_error(*status, false, error);
 }
 
 // HEAD /up/...: how much of the upload the provider holds.

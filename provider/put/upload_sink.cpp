@@ -103,6 +103,20 @@ std::int64_t UploadSink::received() const {
     return received_;
 }
 
+std::string UploadSink::received_sha256() {
+    std::lock_guard lock(mutex_);
+    if (done_) throw UploadError(ErrorCode::internal, "the upload is over");
+    try {
+        // The pieces handed over, then the one being filled.
+        writer_->drain();
+        auto hash = writer_->hash_so_far();
+        if (piece_.data) hash->update(piece_.data, piece_filled_);
+        return hash->hex();
+    } catch (const std::runtime_error& e) {
+        throw UploadError(ErrorCode::internal, std::string("cannot write the upload: ") + e.what());
+    }
+}
+
 void UploadSink::discard_locked() {
     writer_.reset();  // before the file it writes to is closed
     if (fd_ >= 0) ::close(fd_);

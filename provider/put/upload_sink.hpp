@@ -68,6 +68,10 @@ public:
     void write(const void* data, std::size_t size, std::uint64_t claim = 0);
     bool superseded(std::uint64_t claim) const;
     std::int64_t received() const;
+    // The SHA-256 of the bytes received so far (a resumed request's
+    // Upload-Prefix-SHA256 is checked against it). Throws UploadError
+    // internal when the disk refused them.
+    std::string received_sha256();
     std::int64_t size() const { return size_; }
     // Every byte arrived and matches: stored under `name` or a numbered one,
     // returned. Throws UploadError interrupted (too few bytes, another hash)

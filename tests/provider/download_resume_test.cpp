@@ -26,6 +26,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace umf::provider;
+using umf::native::HashCheckpoints;
 using Kind = ResumeRange::Kind;
 
 TEST(ResumeRange, TheRestFromAnOffsetAndNothingElse) {

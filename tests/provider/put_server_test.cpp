@@ -23,11 +23,13 @@
 #include <boost/beast/ssl.hpp>
 #include <boost/beast/websocket.hpp>
 #include <boost/beast/websocket/ssl.hpp>
+#include <cctype>
 #include <future>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <random>
 
+#include "native/sha256.hpp"
 #include "provider/content/file_facts.hpp"
 #include "provider/service/service.hpp"
 #include "provider/service/service_server.hpp"
@@ -242,9 +244,10 @@ protected:
                                    std::to_string(server->port()) + path + "'");
         return {std::atoi(r.out.c_str()), umf::test::file_text(body), umf::test::file_text(headers)};
     }
-    std::string request_head(const std::string& path, std::size_t length, std::optional<std::size_t> offset = {}) {
+    std::string request_head(const std::string& path, std::size_t length, std::optional<std::size_t> offset = {},
+                             const std::string& more_headers = {}) {
         return "PUT " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/octet-stream\r\n" +
-               (offset ? "Upload-Offset: " + std::to_string(*offset) + "\r\n" : std::string()) +
+               (offset ? "Upload-Offset: " + std::to_string(*offset) + "\r\n" : std::string()) + more_headers +
                "Content-Length: " + std::to_string(length) + "\r\n\r\n";
     }
     // HEAD: the Upload-Offset the provider holds; -1 without one.
@@ -436,6 +439,66 @@ TEST_F(PutServer, AnUploadCutHalfWayResumesFromWhatArrived) {
     EXPECT_EQ(folder_names(folder), std::vector<std::string>{"report.pdf"});
     EXPECT_TRUE(umf::test::file_text(folder / "report.pdf") == bytes) << "the parts are not the file";
     EXPECT_EQ(held(path), -1) << "a stored upload ends the link";
+}
+
+std::string sha256_of(const std::string& bytes) {
+    umf::native::Sha256 sha;
+    sha.update(bytes.data(), bytes.size());
+    return sha.hex();
+}
+
+// A resumed request may say the SHA-256 of the bytes it expects the
+// provider to hold: the right one (in capitals, too) goes on; a request
+// whose file changed under the bytes already sent ends the put at once
+// (412, the reason, nothing kept) rather than after the rest.
+TEST_F(PutServer, AResumeWhoseFileChangedUnderTheBytesHeldEndsThePutAtOnce) {
+    auto r = requester();
+    std::string bytes(300000, '\0');
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 7 + (i >> 11));
+    const std::string path = accepted_upload(*r, bytes, "p12");
+    const long have = cut_after(path, bytes, bytes.size() / 2);
+    ASSERT_GT(have, 0);
+    const auto prefix = [&](std::string digest) {
+        return "Upload-Prefix-SHA256: " + digest + "\r\n";
+    };
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(path, bytes.size() - have, have, prefix("12345")));
+        EXPECT_EQ(raw.read_status(), 400) << "not a SHA-256";
+    }
+    EXPECT_EQ(code_of(r->read()), p::ErrorCode::bad_request);
+    EXPECT_EQ(held(path), -1) << "a malformed request ends the put";
+
+    const std::string third = accepted_upload(*r, bytes, "p14");
+    const long part = cut_after(third, bytes, bytes.size() / 2);
+    ASSERT_GT(part, 0);
+    std::string changed = bytes;
+    changed[static_cast<std::size_t>(part) / 2] ^= 0x20;
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(third, bytes.size() - part, part, prefix(sha256_of(changed.substr(0, static_cast<std::size_t>(part))))));
+        EXPECT_EQ(raw.read_status(), 412);
+    }
+    const p::Message m = r->read();
+    EXPECT_EQ(code_of(m), p::ErrorCode::interrupted);
+    EXPECT_NE(std::get<p::Error>(m).message.find("not the start of this file"), std::string::npos)
+        << std::get<p::Error>(m).message;
+    EXPECT_EQ(held(third), -1) << "the link ends";
+    EXPECT_TRUE(folder_names(folder).empty()) << "nothing kept";
+
+    const std::string fourth = accepted_upload(*r, bytes, "p15");
+    const long got = cut_after(fourth, bytes, bytes.size() / 2);
+    ASSERT_GT(got, 0);
+    std::string upper = sha256_of(bytes.substr(0, static_cast<std::size_t>(got)));
+    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(fourth, bytes.size() - got, got, prefix(upper)) + bytes.substr(got));
+        EXPECT_EQ(raw.read_status(), 200);
+    }
+    const p::Message done = r->read();
+    ASSERT_NE(std::get_if<p::PutStatus>(&done), nullptr) << p::type_name(done);
+    EXPECT_TRUE(umf::test::file_text(folder / "report.pdf") == bytes);
 }
 
 // Nobody sends the rest within the link's lifetime: the put is interrupted

@@ -6,9 +6,11 @@ TARGET_PORT, and when CUT_AT bytes have gone from the target to clients in
 all (DIRECTION down, the default; up: from clients to the target), closes
 the connection that carried them, client and target side, with a reset. It counts the bytes carried each way and writes them to COUNT_FILE
 ("DOWN UP\\n") as they pass (every MiB at most), so a test reads how much a
-transfer cost once its client has the bytes.
+transfer cost once its client has the bytes. Given CHANGE_FILE and
+CHANGE_AT, it also changes that byte of that file at the moment of the cut
+(the size kept), as a user who edits a file while it is being sent.
 
-usage: cutting_relay.py TARGET_PORT CUT_AT COUNT_FILE [down|up]
+usage: cutting_relay.py TARGET_PORT CUT_AT COUNT_FILE [down|up [CHANGE_FILE CHANGE_AT]]
 """
 import os
 import socket
@@ -18,6 +20,7 @@ import threading
 
 target_port, cut_at, count_file = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
 cut_direction = sys.argv[4] if len(sys.argv) > 4 else "down"
+change_file, change_at = (sys.argv[5], int(sys.argv[6])) if len(sys.argv) > 6 else (None, 0)
 lock = threading.Lock()
 carried = {"down": 0, "up": 0}
 cut_done = False
@@ -37,6 +40,14 @@ def reset(sock):
         sock.shutdown(socket.SHUT_RDWR)
     except OSError:
         pass
+
+
+def change_byte():
+    with open(change_file, "r+b") as f:
+        f.seek(change_at)
+        byte = f.read(1)
+        f.seek(change_at)
+        f.write(bytes([byte[0] ^ 0x5A]))
 
 
 def pump(src, dst, direction, pair):
@@ -63,6 +74,8 @@ def pump(src, dst, direction, pair):
                     cut_done = cut = True
                 write_counts()
             if cut:
+                if change_file:
+                    change_byte()
                 for s in pair:
                     reset(s)
                 return

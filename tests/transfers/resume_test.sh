@@ -10,7 +10,12 @@
 #         and the screen must end with the whole file.
 # Either way the SHA-256 is checked, the requester says it resumed, and at
 # most 1.25 times the file crossed the relay.
-# usage: resume_test.sh BUILD_DIR grab|put [SIZE_MB]
+#   put_changed: a put whose file changes (a byte before the cut) at the
+#         moment of the cut: the resumed request says the SHA-256 of the
+#         bytes the screen should hold, the screen refuses it (412), and the
+#         put ends there with the reason (exit 3): nothing kept, the rest
+#         never sent.
+# usage: resume_test.sh BUILD_DIR grab|put|put_changed [SIZE_MB]
 set -euo pipefail
 build=$(cd "$1" && pwd)
 mode=$2
@@ -28,7 +33,7 @@ cleanup() {
   exit $rc
 }
 trap cleanup EXIT
-case $mode in grab | put) ;; *) echo "usage: resume_test.sh BUILD_DIR grab|put [SIZE_MB]"; exit 2 ;; esac
+case $mode in grab | put | put_changed) ;; *) echo "usage: resume_test.sh BUILD_DIR grab|put|put_changed [SIZE_MB]"; exit 2 ;; esac
 
 size=$((size_mb << 20))
 mkdir -p "$work/board" "$work/out" "$work/received"
@@ -42,8 +47,11 @@ start_provider "$work/provider.log" --bind 127.0.0.1 --config-dir "$work/cfg" --
   --put-dir "$work/received" --put-max-mb $((size_mb * 2))
 
 direction=down
-[ "$mode" = put ] && direction=up
-python3 "$here/../support/cutting_relay.py" "$port" "$((size / 2))" "$work/counts" "$direction" >"$work/relay.port" &
+change=()
+[ "$mode" != grab ] && direction=up
+[ "$mode" = put_changed ] && change=("$work/board/big.bin" 1000)
+python3 "$here/../support/cutting_relay.py" "$port" "$((size / 2))" "$work/counts" "$direction" "${change[@]}" \
+  >"$work/relay.port" &
 relay_pid=$!
 for _ in $(seq 50); do [ -s "$work/relay.port" ] && break; sleep 0.1; done
 relay_port=$(head -1 "$work/relay.port")
@@ -59,6 +67,16 @@ else
     --image "$work/screen.png" >"$work/requester.json" 2>"$work/requester.log" || status=$?
 fi
 grep -E 'saved .* in |sent [0-9.]+ MB in ' "$work/requester.log" || true
+if [ "$mode" = put_changed ]; then
+  [ "$status" -eq 3 ] || { echo "FAIL: exit $status, not 3:"; cat "$work/requester.json"; tail -20 "$work/requester.log"; exit 1; }
+  grep -q 'not the start of this file' "$work/requester.json" ||
+    { echo "FAIL: the reason is not given:"; cat "$work/requester.json"; exit 1; }
+  [ -z "$(ls -A "$work/received")" ] || { echo "FAIL: something was kept:"; ls -A "$work/received"; exit 1; }
+  read -r down up <"$work/counts"
+  [ "$up" -lt $(( size * 3 / 4 )) ] || { echo "FAIL: $up bytes went up after the file changed"; exit 1; }
+  echo "ok: the changed file was refused at the resume, after $up of $size bytes: $(grep -o '"message":"[^"]*"' "$work/requester.json")"
+  exit 0
+fi
 [ "$status" -eq 0 ] ||
   { echo "FAIL: $mode exit $status:"; cat "$work/requester.json"; tail -20 "$work/requester.log"; exit 1; }
 grep -q 'the connection was lost at ' "$work/requester.log" ||

@@ -1,0 +1,39 @@
+// SHA-256 states of a file at every kStep bytes, saved while it is hashed,
+// so the hash of its first N bytes costs at most kStep bytes of reading.
+// The provider saves them while a download hashes the file as it sends it:
+// a resumed download (HTTP Range from offset N) starts its hasher from the
+// last state at or before N, and still checks the whole file against the
+// announced SHA-256 before sending the last piece, without reading the
+// whole file again. The requester saves them while it hashes a file to put:
+// a resumed upload tells the provider the SHA-256 of the bytes it should
+// hold. Thread-safe: transfers of one link share it.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <utility>
+
+#include "native/sha256.hpp"
+
+namespace umf::native {
+
+class HashCheckpoints {
+public:
+    static constexpr std::uint64_t kStep = 64ull << 20;
+
+    // The hasher's state after the file's first `offset` bytes (a multiple
+    // of kStep; others are not kept).
+    void save(std::uint64_t offset, const Sha256& state);
+
+    // The latest saved state at or before `offset`, copied, and where it
+    // is; (0, a new hasher) when there is none.
+    std::pair<std::uint64_t, std::unique_ptr<Sha256>> nearest(std::uint64_t offset) const;
+
+private:
+    mutable std::mutex mutex_;
+    std::map<std::uint64_t, std::unique_ptr<Sha256>> states_;
+};
+
+}  // namespace umf::native
