@@ -115,7 +115,7 @@ struct Transfer {
           request(what),
           timeouts(limits),
           file(into),
-          writer(into.fd(), kPieceBytes, what.size >= kDirectFromBytes) {}
+          writer(into.fd(), kPieceBytes, what.size >= kDirectFromBytes, 16) {}
 
     const protocol::PairingUrl& provider;
     const DownloadRequest& request;

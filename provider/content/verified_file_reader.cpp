@@ -12,7 +12,7 @@ namespace {
 // native::HashCheckpoints::kStep bytes) fall on piece boundaries.
 constexpr std::size_t kPieceBytes = 1 << 20;
 // Pieces in flight: memory stays at a few megabytes whatever the file's size.
-constexpr std::size_t kPieces = 4;
+constexpr std::size_t kPieces = 8;
 static_assert(native::HashCheckpoints::kStep % kPieceBytes == 0);
 
 }  // namespace

@@ -78,7 +78,7 @@ UploadSink::UploadSink(const fs::path& folder, std::int64_t size, std::string sh
     fd_ = ::mkostemp(tmpl.data(), O_CLOEXEC);  // O_EXCL, 0600
     if (fd_ < 0) throw UploadError(ErrorCode::internal, "cannot create a file in " + folder_.string() + ": " + errno_text());
     temp_ = tmpl;
-    writer_ = std::make_unique<native::HashingWriter>(fd_, kPieceBytes, size_ >= kDirectFromBytes, 4);
+    writer_ = std::make_unique<native::HashingWriter>(fd_, kPieceBytes, size_ >= kDirectFromBytes, 8);
 }
 
 UploadSink::~UploadSink() { discard_locked(); }
