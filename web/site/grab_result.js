@@ -9,6 +9,16 @@ import { Sha256 } from './sha256.js';
 
 let objectUrl = null;
 
+// Up to this size the whole file is hashed at the end by crypto.subtle
+// (fast, native, but it takes the file as one buffer); above it, and on
+// pages without crypto.subtle, the page's own SHA-256 hashes the bytes as
+// they come, so memory does not grow with the file.
+const WHOLE_DIGEST_MAX = 128 * 1024 * 1024;
+// The bytes received are handed to a Blob in steps of this size, so the
+// page does not hold them as its own buffers: the browser decides where a
+// large Blob lives (Chromium pages it to disk).
+const BLOB_STEP = 32 * 1024 * 1024;
+
 // The provider's reason from its error envelope (docs/PROTOCOL.md, "Errors over HTTP").
 async function refusal(response) {
   const answer = await response.json().catch(() => null);
@@ -23,11 +33,12 @@ async function refusal(response) {
 // time. Throws with a reason for people.
 export async function download(content, token, onProgress, onResume) {
   const total = content.size;
-  let chunks = [];
+  let parts = [];    // Blobs of BLOB_STEP bytes
+  let chunks = [];   // the bytes since the last of them
+  let pending = 0;
   let received = 0;
   let etag = '';
-  // Without crypto.subtle (a plain http page) the bytes are hashed as they come.
-  const newHash = () => (content.sha256 && !crypto.subtle ? new Sha256() : null);
+  const newHash = () => (content.sha256 && (!crypto.subtle || total > WHOLE_DIGEST_MAX) ? new Sha256() : null);
   let ownHash = newHash();
 
   // One request, for the whole file or the rest of it: null when the file
@@ -50,7 +61,9 @@ export async function download(content, token, onProgress, onResume) {
         throw new Error(`the screen resumed the download at another place (${range}) than the ${received} bytes held`);
     } else if (response.ok) {
       if (received > 0) {  // the whole file again
+        parts = [];
         chunks = [];
+        pending = 0;
         received = 0;
         ownHash = newHash();
       }
@@ -75,6 +88,12 @@ export async function download(content, token, onProgress, onResume) {
       chunks.push(value);
       ownHash?.update(value);
       received += value.length;
+      pending += value.length;
+      if (pending >= BLOB_STEP) {
+        parts.push(new Blob(chunks));
+        chunks = [];
+        pending = 0;
+      }
       if (total > 0) onProgress?.(received / total);
     }
     return received === total ? null : 'the transfer ended early';
@@ -91,7 +110,7 @@ export async function download(content, token, onProgress, onResume) {
     onResume?.(received, total, why);
     await pacing.wait();
   }
-  const blob = new Blob(chunks, { type: content.mime });
+  const blob = new Blob([...parts, ...chunks], { type: content.mime });
   let verified = null;
   if (content.sha256) {
     let hex;
