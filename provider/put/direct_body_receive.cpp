@@ -1,6 +1,7 @@
 #include "provider/put/direct_body_receive.hpp"
 
 #include <openssl/bio.h>
+#include <openssl/err.h>
 #include <openssl/ssl.h>
 #include <sys/socket.h>
 
@@ -14,8 +15,8 @@ namespace {
 
 namespace beast = boost::beast;
 
-// One recv takes at most this much ciphertext.
-constexpr std::size_t kReceiveBytes = 256 * 1024;
+// OpenSSL reads this much ciphertext from the socket at once when it can.
+constexpr int kReadAheadBytes = 256 * 1024;
 // The body goes to the route in pieces of this size.
 constexpr std::size_t kPieceBytes = 1 << 20;
 
@@ -29,30 +30,45 @@ public:
           timer_(beast::get_lowest_layer(exchange_->stream()).socket().get_executor()),
           take_(std::move(take)),
           done_(std::move(done)),
-          received_(kReceiveBytes),
           piece_(kPieceBytes) {}
 
     ~DirectReceive() { give_back(); }
 
     void start() {
         SSL* ssl = exchange_->stream().native_handle();
-        in_ = BIO_new(BIO_s_mem());
-        if (!in_) return finish(beast::error_code(ENOMEM, boost::system::generic_category()));
+        // OpenSSL reads the socket itself, many records a call, into its
+        // own buffer (kept while the body comes, not released each time
+        // it empties); the socket is non-blocking, so an empty one is
+        // SSL_ERROR_WANT_READ.
+        auto& socket = beast::get_lowest_layer(exchange_->stream()).socket();
+        BIO* in = BIO_new_socket(socket.native_handle(), BIO_NOCLOSE);
+        if (!in) return finish(beast::error_code(ENOMEM, boost::system::generic_category()));
         // The stream's BIO is kept (one reference of ours) to be put back.
         stream_bio_ = SSL_get_rbio(ssl);
         BIO_up_ref(stream_bio_);
-        SSL_set0_rbio(ssl, in_);
+        SSL_set0_rbio(ssl, in);
+        modes_ = SSL_get_mode(ssl);
+        SSL_clear_mode(ssl, SSL_MODE_RELEASE_BUFFERS);
+        SSL_set_default_read_buffer_len(ssl, kReadAheadBytes);
+        SSL_set_read_ahead(ssl, 1);
         beast::get_lowest_layer(exchange_->stream()).expires_never();
         arm_timer();
         pump();
     }
 
 private:
+    // The idle limit: the body ends with a timeout when `idle_` passes
+    // without a byte of it; the timer is set again only when it rings
+    // (a record at a time would cost a timer each).
     void arm_timer() {
+        left_when_armed_ = left_;
         timer_.expires_after(idle_);
         timer_.async_wait([weak = weak_from_this()](beast::error_code ec) {
             if (ec) return;
-            if (auto self = weak.lock()) self->finish(beast::error::timeout);
+            auto self = weak.lock();
+            if (!self) return;
+            if (self->left_ != self->left_when_armed_) return self->arm_timer();
+            self->finish(beast::error::timeout);
         });
     }
 
@@ -71,50 +87,41 @@ private:
             if (left_ == 0) return finish({});
             const std::size_t want = static_cast<std::size_t>(std::min<std::uint64_t>(piece_.size() - filled_, left_));
             std::size_t n = 0;
-            if (SSL_read_ex(ssl, piece_.data() + filled_, want, &n) == 1) {
+            errno = 0;
+            const int r = SSL_read_ex(ssl, piece_.data() + filled_, want, &n);
+            if (r == 1) {
                 filled_ += n;
                 left_ -= n;
                 continue;
             }
-            const int why = SSL_get_error(ssl, 0);
-            if (why == SSL_ERROR_ZERO_RETURN) return finish(boost::asio::error::eof);
-            if (why != SSL_ERROR_WANT_READ) return finish(beast::error_code(EPROTO, boost::system::generic_category()));
-            if (!receive_some()) return;
+            const int why = SSL_get_error(ssl, r);
+            if (why == SSL_ERROR_WANT_READ) return wait_for_bytes();
+            if (why == SSL_ERROR_SYSCALL && errno == EINTR) continue;
+            ERR_clear_error();
+            // The peer closed (with or without close_notify) or sent what is not TLS.
+            return finish(why == SSL_ERROR_ZERO_RETURN || (why == SSL_ERROR_SYSCALL && errno == 0)
+                              ? beast::error_code(boost::asio::error::eof)
+                              : beast::error_code(EPROTO, boost::system::generic_category()));
         }
     }
 
-    // One recv into the memory BIO; false when the socket is empty (a wait
-    // is armed) or the connection ended (finished).
-    bool receive_some() {
+    // The socket is empty: pump again once it is readable.
+    void wait_for_bytes() {
         auto& socket = beast::get_lowest_layer(exchange_->stream()).socket();
-        const ssize_t n = ::recv(socket.native_handle(), received_.data(), received_.size(), MSG_DONTWAIT);
-        if (n > 0) {
-            if (BIO_write(in_, received_.data(), static_cast<int>(n)) != n) {
-                finish(beast::error_code(ENOMEM, boost::system::generic_category()));
-                return false;
-            }
-            arm_timer();
-            return true;
-        }
-        if (n < 0 && errno == EINTR) return true;
-        if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) {
-            socket.async_wait(boost::asio::socket_base::wait_read, [self = shared_from_this()](beast::error_code ec) {
-                if (ec) return self->finish(ec);
-                self->pump();
-            });
-            return false;
-        }
-        finish(n == 0 ? beast::error_code(boost::asio::error::eof)
-                      : beast::error_code(errno, boost::system::system_category()));
-        return false;
+        socket.async_wait(boost::asio::socket_base::wait_read, [self = shared_from_this()](beast::error_code ec) {
+            if (ec) return self->finish(ec);
+            self->pump();
+        });
     }
 
-    // The stream reads through its own BIO again.
+    // The stream reads through its own BIO again, as it did.
     void give_back() {
         if (!stream_bio_) return;
-        SSL_set0_rbio(exchange_->stream().native_handle(), stream_bio_);  // our reference goes to it
+        SSL* ssl = exchange_->stream().native_handle();
+        SSL_set0_rbio(ssl, stream_bio_);  // our reference goes to it; the socket BIO is freed
+        SSL_set_read_ahead(ssl, 0);
+        SSL_set_mode(ssl, modes_);
         stream_bio_ = nullptr;
-        in_ = nullptr;
     }
 
     void finish(beast::error_code ec) {
@@ -127,15 +134,15 @@ private:
 
     std::shared_ptr<HttpExchange> exchange_;
     std::uint64_t left_;
+    std::uint64_t left_when_armed_ = 0;
     std::chrono::seconds idle_;
     boost::asio::steady_timer timer_;
     std::function<bool(const char*, std::size_t)> take_;
     std::function<void(beast::error_code)> done_;
-    std::vector<char> received_;
     std::vector<char> piece_;
     std::size_t filled_ = 0;
-    BIO* in_ = nullptr;           // owned by the SSL object while reading
     BIO* stream_bio_ = nullptr;   // the stream's, one reference held while reading
+    long modes_ = 0;              // the SSL object's modes before
     bool ended_ = false;
 };
 

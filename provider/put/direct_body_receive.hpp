@@ -1,8 +1,9 @@
 // The body of a large upload read past the TLS stream's per-record
 // machinery, the way content/direct_file_send.hpp sends a large download:
-// the socket gives up to 256 KiB per recv into a memory BIO, OpenSSL
-// decrypts the records from there into pieces of 1 MiB, and the reactor is
-// asked only when the socket is empty. Through the stream every 16 KiB
+// OpenSSL reads up to 256 KiB of records from the socket per call (a
+// socket BIO in place of the stream's, read-ahead on) and decrypts them
+// into pieces of 1 MiB, and the reactor is asked only when the socket is
+// empty. Through the stream every 16 KiB
 // record took a composed operation of its own, and the provider's one thread
 // spent four seconds of CPU per GB receiving.
 //
