@@ -13,6 +13,8 @@
 #include <cerrno>
 #include <cstring>
 
+#include "native/record_buffer.hpp"
+
 namespace umf::requester {
 
 namespace {
@@ -77,6 +79,12 @@ BlockingTls::BlockingTls(const protocol::PairingUrl& url, const NetTimeouts& tim
                                              : "failed: " + error_));
     }
     check_pinned_peer(ssl, url);
+    // From here the records OpenSSL writes wait in memory and go to the
+    // socket together (native/record_buffer.hpp); the socket BIO stays for reading.
+    BIO* out = native::new_record_buffer_bio();
+    if (!out) throw connection_failure("cannot start TLS");
+    SSL_set0_wbio(ssl, out);
+    out_ = &native::record_buffer_of(out);
     set_socket_timeouts(fd_.get(), idle);
 }
 
@@ -117,6 +125,8 @@ long BlockingTls::read_some(char* data, std::size_t size) {
     std::size_t n = 0;
     errno = 0;
     const int r = SSL_read_ex(ssl_.get(), data, size, &n);
+    // Reading can make TLS answer (a key update): that goes out at once.
+    if (out_->waiting() > 0 && !send_records()) return -1;
     if (r == 1) return static_cast<long>(n);
     if (SSL_get_error(ssl_.get(), r) == SSL_ERROR_ZERO_RETURN) return 0;
     failed(r);
@@ -127,10 +137,25 @@ bool BlockingTls::write_all(const char* data, std::size_t size) {
     while (size > 0) {
         std::size_t n = 0;
         errno = 0;
-        const int r = SSL_write_ex(ssl_.get(), data, size, &n);
+        const int r = SSL_write_ex(ssl_.get(), data, size, &n);  // into memory: it does not wait
         if (r != 1) return failed(r);
         data += n;
         size -= n;
+    }
+    return send_records();
+}
+
+bool BlockingTls::send_records() {
+    while (out_->waiting() > 0) {
+        const ssize_t n = ::send(fd_.get(), out_->data.get() + out_->sent, out_->waiting(), MSG_NOSIGNAL);
+        if (n > 0) {
+            out_->took(static_cast<std::size_t>(n));
+            continue;
+        }
+        if (n < 0 && errno == EINTR) continue;
+        timed_out_ = n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK);
+        error_ = timed_out_ ? "nothing was taken in time" : n < 0 ? std::strerror(errno) : "the connection was closed";
+        return false;
     }
     return true;
 }

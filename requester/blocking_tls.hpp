@@ -2,7 +2,8 @@
 // bulk of a large transfer. An asynchronous read costs a turn of the event
 // loop, a timer and an executor copy for every 16 KiB record; here OpenSSL
 // reads ahead from the socket many records at a time and each call moves as
-// many bytes as the caller asks. The socket's own receive and send timeouts
+// many bytes as the caller asks, and a write's records go to the socket in
+// one send rather than a system call each. The socket's own receive and send timeouts
 // are the idle limit. Connected and pinned as connect_pinned does (the same
 // address-then-name order, the same pin check at the leaf and after).
 #pragma once
@@ -15,6 +16,7 @@
 #include <boost/asio/buffer.hpp>
 #include <boost/beast/http/error.hpp>
 
+#include "native/record_buffer.hpp"
 #include "requester/pinned_tls.hpp"
 #include "shared/protocol/pairing_url.hpp"
 
@@ -45,6 +47,8 @@ public:
 private:
     // Records why a call that returned `result` failed; false.
     bool failed(int result);
+    // The records OpenSSL has written, to the socket; false as failed().
+    bool send_records();
 
     struct SslFree {
         void operator()(ssl_st* ssl) const;
@@ -64,6 +68,7 @@ private:
     // Declared before ssl_: the SSL object goes first, then the socket.
     Socket fd_;
     std::unique_ptr<ssl_st, SslFree> ssl_;
+    native::RecordBuffer* out_ = nullptr;  // the write BIO's, owned by ssl_
     std::string error_;
     bool timed_out_ = false;
 };

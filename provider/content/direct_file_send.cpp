@@ -4,13 +4,11 @@
 #include <openssl/ssl.h>
 #include <sys/socket.h>
 
-#include <algorithm>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <cerrno>
-#include <cstring>
-#include <new>
 
+#include "native/record_buffer.hpp"
 #include "provider/content/verified_file_reader.hpp"
 
 namespace umf::provider {
@@ -22,62 +20,6 @@ namespace http = beast::http;
 
 // Ciphertext gathered before it goes to the socket.
 constexpr std::size_t kSendBytes = 256 * 1024;
-
-// Where OpenSSL writes the records: a growing buffer the sender empties
-// into the socket. (A memory BIO clears its whole buffer each time it is
-// emptied: a megabyte of memset per megabyte sent.)
-struct Ciphertext {
-    std::unique_ptr<char[]> data;
-    std::size_t capacity = 0;
-    std::size_t size = 0;
-    std::size_t sent = 0;
-
-    void append(const char* bytes, std::size_t n) {
-        if (size + n > capacity) {
-            const std::size_t grown = std::max(size + n, capacity * 2);
-            auto bigger = std::make_unique_for_overwrite<char[]>(grown);
-            std::memcpy(bigger.get(), data.get(), size);
-            data = std::move(bigger);
-            capacity = grown;
-        }
-        std::memcpy(data.get() + size, bytes, n);
-        size += n;
-    }
-    std::size_t waiting() const { return size - sent; }
-};
-
-int ciphertext_write(BIO* bio, const char* bytes, int n) {
-    if (n <= 0) return 0;
-    static_cast<Ciphertext*>(BIO_get_data(bio))->append(bytes, static_cast<std::size_t>(n));
-    return n;
-}
-
-long ciphertext_ctrl(BIO*, int cmd, long, void*) { return cmd == BIO_CTRL_FLUSH ? 1 : 0; }
-
-int ciphertext_create(BIO* bio) {
-    BIO_set_data(bio, new (std::nothrow) Ciphertext);
-    BIO_set_init(bio, BIO_get_data(bio) != nullptr);
-    return BIO_get_data(bio) != nullptr;
-}
-
-int ciphertext_destroy(BIO* bio) {
-    delete static_cast<Ciphertext*>(BIO_get_data(bio));
-    BIO_set_data(bio, nullptr);
-    return 1;
-}
-
-const BIO_METHOD* ciphertext_method() {
-    static BIO_METHOD* const method = [] {
-        BIO_METHOD* m = BIO_meth_new(BIO_get_new_index() | BIO_TYPE_SOURCE_SINK, "umf ciphertext");
-        if (m && (BIO_meth_set_write(m, ciphertext_write) != 1 || BIO_meth_set_ctrl(m, ciphertext_ctrl) != 1 ||
-                  BIO_meth_set_create(m, ciphertext_create) != 1 || BIO_meth_set_destroy(m, ciphertext_destroy) != 1)) {
-            BIO_meth_free(m);
-            m = nullptr;
-        }
-        return m;
-    }();
-    return method;
-}
 
 class DirectSend : public std::enable_shared_from_this<DirectSend> {
 public:
@@ -92,12 +34,11 @@ public:
     void start() {
         SSL* ssl = exchange_->stream().native_handle();
         // The stream's BIO pair stays for reading; what SSL writes goes to a
-        // buffer this sender empties into the socket.
-        const BIO_METHOD* method = ciphertext_method();
-        BIO* out = method ? BIO_new(method) : nullptr;
+        // buffer this sender empties into the socket (native/record_buffer.hpp).
+        BIO* out = native::new_record_buffer_bio();
         if (!out) return finish(beast::error_code(ENOMEM, boost::system::generic_category()));
         SSL_set_bio(ssl, SSL_get_rbio(ssl), out);
-        out_ = static_cast<Ciphertext*>(BIO_get_data(out));
+        out_ = &native::record_buffer_of(out);
         // A piece at a time into records, and their buffer kept: the stream's
         // modes suit a socket that may take part of a write, not a buffer.
         SSL_clear_mode(ssl, SSL_MODE_ENABLE_PARTIAL_WRITE | SSL_MODE_RELEASE_BUFFERS);
@@ -178,8 +119,7 @@ private:
         const ssize_t n = ::send(socket.native_handle(), out_->data.get() + out_->sent, out_->waiting(),
                                  MSG_NOSIGNAL | MSG_DONTWAIT);
         if (n > 0) {
-            out_->sent += static_cast<std::size_t>(n);
-            if (out_->waiting() == 0) out_->size = out_->sent = 0;
+            out_->took(static_cast<std::size_t>(n));
             arm_timer();
             return true;
         }
@@ -212,7 +152,7 @@ private:
     std::chrono::seconds idle_;
     boost::asio::steady_timer timer_;
     std::function<void(beast::error_code)> done_;
-    Ciphertext* out_ = nullptr;  // the write BIO's, owned by the SSL object
+    native::RecordBuffer* out_ = nullptr;  // the write BIO's, owned by the SSL object
     VerifiedFileReader::Piece piece_;  // taken, not yet all encrypted
     bool read_all_ = false;
     bool closing_ = false;
