@@ -78,7 +78,11 @@ UploadSink::UploadSink(const fs::path& folder, std::int64_t size, std::string sh
     fd_ = ::mkostemp(tmpl.data(), O_CLOEXEC);  // O_EXCL, 0600
     if (fd_ < 0) throw UploadError(ErrorCode::internal, "cannot create a file in " + folder_.string() + ": " + errno_text());
     temp_ = tmpl;
-    writer_ = std::make_unique<native::HashingWriter>(fd_, kPieceBytes, size_ >= kDirectFromBytes, 8);
+    // A small upload gets pieces of its own size and two of them; a large
+    // one eight of 1 MiB, queued between the connection and the disk.
+    const auto piece_bytes = static_cast<std::size_t>(std::clamp<std::int64_t>(size_, 4096, kPieceBytes));
+    const std::size_t pieces = size_ > 4 * static_cast<std::int64_t>(kPieceBytes) ? 8 : 2;
+    writer_ = std::make_unique<native::HashingWriter>(fd_, piece_bytes, size_ >= kDirectFromBytes, pieces);
 }
 
 UploadSink::~UploadSink() { discard_locked(); }
