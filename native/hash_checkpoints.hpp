@@ -9,7 +9,9 @@
 // hold. Thread-safe: transfers of one link share it.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -30,6 +32,14 @@ public:
     // The latest saved state at or before `offset`, copied, and where it
     // is; (0, a new hasher) when there is none.
     std::pair<std::uint64_t, std::unique_ptr<Sha256>> nearest(std::uint64_t offset) const;
+
+    // A hasher that has taken the file's first `offset` bytes: the nearest
+    // state, then the bytes from there, asked of `read(at, into, size)`
+    // (how many it read; 0 or less when the file ends or fails there) into
+    // `buffer`. Null when `read` gave none before `offset`.
+    using Read = std::function<long(std::uint64_t at, char* into, std::size_t size)>;
+    std::unique_ptr<Sha256> hasher_at(std::uint64_t offset, const Read& read, char* buffer,
+                                      std::size_t buffer_size) const;
 
 private:
     mutable std::mutex mutex_;

@@ -160,15 +160,14 @@ Sent answered(const http::response<http::string_body>& answer) {
 // The SHA-256 of the file's first `size` bytes: the state kept at or
 // before it, and the bytes from there read again.
 std::string prefix_sha256(ReadOnlyFile& file, const native::HashCheckpoints& checkpoints, std::int64_t size) {
-    auto [at, hash] = checkpoints.nearest(static_cast<std::uint64_t>(size));
     std::vector<char> piece(kPieceBytes);
-    file.seek(static_cast<std::int64_t>(at));
-    for (auto left = static_cast<std::uint64_t>(size) - at; left > 0;) {
-        const std::size_t n = file.read(piece.data(), static_cast<std::size_t>(std::min<std::uint64_t>(left, piece.size())));
-        if (n == 0) throw input_failure("the file became shorter than the " + std::to_string(size) + " bytes already sent; put it again");
-        hash->update(piece.data(), n);
-        left -= n;
-    }
+    const auto read = [&](std::uint64_t at, char* into, std::size_t n) {
+        file.seek(static_cast<std::int64_t>(at));
+        return static_cast<long>(file.read(into, n));
+    };
+    auto hash = checkpoints.hasher_at(static_cast<std::uint64_t>(size), read, piece.data(), piece.size());
+    if (!hash)
+        throw input_failure("the file became shorter than the " + std::to_string(size) + " bytes already sent; put it again");
     return hash->hex();
 }
 

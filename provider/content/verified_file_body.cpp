@@ -84,19 +84,12 @@ long VerifiedFileBody::value_type::read_at(std::uint64_t at, char* into, std::si
 
 std::unique_ptr<native::Sha256> VerifiedFileBody::value_type::hasher_at_offset(char* buffer, std::size_t buffer_size,
                                                                               boost::beast::error_code& ec) const {
-    auto [at, hash] = checkpoints_->nearest(offset_);
     // At most a checkpoint step of bytes read and not sent.
-    while (at < offset_) {
-        const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(offset_ - at, buffer_size));
-        const long n = read_at(at, buffer, want, ec);
-        if (n <= 0) {
-            if (!ec) ec = DownloadCheck::changed;
-            return nullptr;
-        }
-        hash->update(buffer, static_cast<std::size_t>(n));
-        at += static_cast<std::uint64_t>(n);
-    }
-    return std::move(hash);
+    auto hash = checkpoints_->hasher_at(
+        offset_, [&](std::uint64_t at, char* into, std::size_t size) { return read_at(at, into, size, ec); }, buffer,
+        buffer_size);
+    if (!hash && !ec) ec = DownloadCheck::changed;
+    return hash;
 }
 
 bool VerifiedFileBody::value_type::hash_piece(native::Sha256& hash, const char* data, std::size_t n,

@@ -21,11 +21,10 @@ void VerifiedFileReader::Free::operator()(char* p) const { std::free(p); }
 
 VerifiedFileReader::VerifiedFileReader(const VerifiedFileBody::value_type& body, std::function<void()> ready)
     : body_(body), ready_(std::move(ready)) {
-    // One more than in flight: the hasher's scratch for reaching a resumed download's offset.
-    for (std::size_t i = 0; i < kPieces + 1; ++i) {
+    for (std::size_t i = 0; i < kPieces; ++i) {
         buffers_.emplace_back(static_cast<char*>(std::malloc(kPieceBytes)));
         if (!buffers_.back()) throw std::bad_alloc();
-        if (i < kPieces) free_.push_back(buffers_.back().get());
+        free_.push_back(buffers_.back().get());
     }
     thread_ = std::thread([this] { run(); });
 }
@@ -87,7 +86,9 @@ void VerifiedFileReader::publish(const Piece* piece, boost::beast::error_code ec
     if (wake) ready_();
 }
 
-void VerifiedFileReader::run() { read_all(buffers_.back().get()); }
+// Every buffer is free until the first piece is out: one of them reaches
+// a resumed download's offset.
+void VerifiedFileReader::run() { read_all(buffers_.front().get()); }
 
 void VerifiedFileReader::read_all(char* scratch) {
     boost::beast::error_code ec;

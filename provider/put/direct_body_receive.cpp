@@ -120,6 +120,7 @@ private:
         SSL* ssl = exchange_->stream().native_handle();
         SSL_set0_rbio(ssl, stream_bio_);  // our reference goes to it; the socket BIO is freed
         SSL_set_read_ahead(ssl, 0);
+        SSL_set_default_read_buffer_len(ssl, 0);  // OpenSSL's own size again
         SSL_set_mode(ssl, modes_);
         stream_bio_ = nullptr;
     }
