@@ -40,13 +40,13 @@ std::string content_disposition(const std::string& name) {
     return "attachment; filename=\"" + ascii + "\"; filename*=UTF-8''" + encoded;
 }
 
-// Ends a transfer's lease when the last holder lets go: complete when the
+// Ends a transfer's checkout when the last holder lets go: complete when the
 // whole body went out, else the link stays for the rest to be asked for.
-struct LeaseEnd {
+struct CheckoutEnd {
     DownloadTable& downloads;
-    DownloadLease lease;
+    DownloadCheckout checkout;
     bool complete = false;
-    ~LeaseEnd() { downloads.end(lease, complete); }
+    ~CheckoutEnd() { downloads.end(checkout, complete); }
 };
 
 // File bodies from this size on are sent by send_file_direct.
@@ -76,14 +76,14 @@ void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTabl
                     std::function<void(const std::filesystem::path&)> forget_file) {
     const bool keep_alive = req.keep_alive();
     const beast::string_view target = req.target();
-    auto lease = downloads.begin(std::string_view(target.data(), target.size()));
-    if (!lease) {
+    auto checkout = downloads.begin(std::string_view(target.data(), target.size()));
+    if (!checkout) {
         exchange.answer_error(http::status::not_found, keep_alive, protocol::ErrorCode::not_found,
                               "unknown, finished or expired download link");
         return;
     }
-    auto end = std::make_shared<LeaseEnd>(LeaseEnd{downloads, *lease});
-    const DownloadEntry& entry = *lease->entry;
+    auto end = std::make_shared<CheckoutEnd>(CheckoutEnd{downloads, *checkout});
+    const DownloadEntry& entry = *checkout->entry;
     // Nothing of the link's file for a request without the grabbing
     // session's token; the link stays for its owner.
     if (!entry.token.empty() && !tokens_equal(bearer_token(req), entry.token)) {
@@ -143,7 +143,8 @@ void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTabl
         return;
     }
     VerifiedFileBody::value_type body;
-    if (const auto why = body.open(*entry.file, entry.identity, entry.sha256, offset, lease->checkpoints)) {
+    if (const auto why = body.open(*entry.file, entry.identity, entry.sha256, offset, checkout->checkpoints,
+                                   entry.leased_ctime_ns)) {
         // Gone or changed since the grab: what would arrive is not what the
         // content message promised.
         exchange.answer_error(http::status::conflict, keep_alive, protocol::ErrorCode::internal, *why);

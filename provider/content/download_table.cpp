@@ -28,7 +28,7 @@ std::string DownloadTable::add(DownloadEntry entry, Clock::time_point now) {
     return kDownloadPrefix + key;
 }
 
-std::optional<DownloadLease> DownloadTable::begin(std::string_view target, Clock::time_point now) {
+std::optional<DownloadCheckout> DownloadTable::begin(std::string_view target, Clock::time_point now) {
     target = target.substr(0, target.find('?'));
     const std::string_view prefix = kDownloadPrefix;
     if (target.substr(0, prefix.size()) != prefix) return std::nullopt;
@@ -41,12 +41,12 @@ std::optional<DownloadLease> DownloadTable::begin(std::string_view target, Clock
         return std::nullopt;
     }
     ++it->second.transfers;
-    return DownloadLease{std::string(key), it->second.entry, it->second.checkpoints};
+    return DownloadCheckout{std::string(key), it->second.entry, it->second.checkpoints};
 }
 
-void DownloadTable::end(const DownloadLease& lease, bool complete, Clock::time_point now) {
+void DownloadTable::end(const DownloadCheckout& checkout, bool complete, Clock::time_point now) {
     std::lock_guard lock(mutex_);
-    auto it = slots_.find(lease.key);
+    auto it = slots_.find(checkout.key);
     if (it == slots_.end()) return;
     it->second.transfers = std::max(0, it->second.transfers - 1);
     if (complete) {

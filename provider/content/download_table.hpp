@@ -35,6 +35,7 @@ struct DownloadEntry {
     // bytes it made.
     std::optional<std::filesystem::path> file;
     FileIdentity identity;
+    std::int64_t leased_ctime_ns = 0;  // FileFacts's
     std::shared_ptr<const std::string> bytes;
     // The pairing token of the session that grabbed it: a download presents
     // it ("Authorization: Bearer TOKEN"), so a link that leaked is of no use
@@ -45,7 +46,7 @@ struct DownloadEntry {
 // What one transfer of a link holds: the entry, and the file's hash states
 // that earlier transfers of it saved, so a resumed one checks the whole file
 // without reading it all again.
-struct DownloadLease {
+struct DownloadCheckout {
     std::string key;
     std::shared_ptr<const DownloadEntry> entry;
     std::shared_ptr<native::HashCheckpoints> checkpoints;
@@ -65,10 +66,10 @@ public:
     // A transfer of the link a request names (a query is ignored) begins:
     // nullopt when the link is unknown, completed or expired. The entry
     // does not expire while a transfer of it runs.
-    std::optional<DownloadLease> begin(std::string_view target, Clock::time_point now = Clock::now());
+    std::optional<DownloadCheckout> begin(std::string_view target, Clock::time_point now = Clock::now());
     // The transfer ended: a complete one ends the link, a broken one leaves
     // it for the table's lifetime from now, for the rest to be asked for.
-    void end(const DownloadLease& lease, bool complete, Clock::time_point now = Clock::now());
+    void end(const DownloadCheckout& checkout, bool complete, Clock::time_point now = Clock::now());
 
     std::size_t size() const;
     std::chrono::milliseconds ttl() const { return ttl_; }

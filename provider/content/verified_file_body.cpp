@@ -32,7 +32,8 @@ VerifiedFileBody::value_type::value_type(value_type&& other) noexcept
       size_(other.size_),
       offset_(other.offset_),
       sha256_(std::move(other.sha256_)),
-      checkpoints_(std::move(other.checkpoints_)) {}
+      checkpoints_(std::move(other.checkpoints_)),
+      leased_ctime_ns_(other.leased_ctime_ns_) {}
 
 VerifiedFileBody::value_type& VerifiedFileBody::value_type::operator=(value_type&& other) noexcept {
     if (this != &other) {
@@ -42,6 +43,7 @@ VerifiedFileBody::value_type& VerifiedFileBody::value_type::operator=(value_type
         offset_ = other.offset_;
         sha256_ = std::move(other.sha256_);
         checkpoints_ = std::move(other.checkpoints_);
+        leased_ctime_ns_ = other.leased_ctime_ns_;
     }
     return *this;
 }
@@ -53,7 +55,8 @@ VerifiedFileBody::value_type::~value_type() {
 std::optional<std::string> VerifiedFileBody::value_type::open(const std::filesystem::path& file,
                                                               const FileIdentity& identity, std::string sha256,
                                                               std::uint64_t offset,
-                                                              std::shared_ptr<native::HashCheckpoints> checkpoints) {
+                                                              std::shared_ptr<native::HashCheckpoints> checkpoints,
+                                                              std::int64_t leased_ctime_ns) {
     if (fd_ >= 0) ::close(fd_);
     fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
     if (fd_ < 0) return std::string("the file can no longer be read: ") + std::strerror(errno);
@@ -69,6 +72,7 @@ std::optional<std::string> VerifiedFileBody::value_type::open(const std::filesys
     offset_ = offset;
     sha256_ = std::move(sha256);
     checkpoints_ = checkpoints ? std::move(checkpoints) : std::make_shared<native::HashCheckpoints>();
+    leased_ctime_ns_ = leased_ctime_ns;
     return std::nullopt;
 }
 
@@ -82,14 +86,25 @@ long VerifiedFileBody::value_type::read_at(std::uint64_t at, char* into, std::si
     return static_cast<long>(n);
 }
 
-std::unique_ptr<native::Sha256> VerifiedFileBody::value_type::hasher_at_offset(char* buffer, std::size_t buffer_size,
-                                                                              boost::beast::error_code& ec) const {
-    // At most a checkpoint step of bytes read and not sent.
+std::unique_ptr<native::Sha256> VerifiedFileBody::value_type::hasher_at(std::uint64_t at, char* buffer,
+                                                                       std::size_t buffer_size,
+                                                                       boost::beast::error_code& ec) const {
     auto hash = checkpoints_->hasher_at(
-        offset_, [&](std::uint64_t at, char* into, std::size_t size) { return read_at(at, into, size, ec); }, buffer,
+        at, [&](std::uint64_t at, char* into, std::size_t size) { return read_at(at, into, size, ec); }, buffer,
         buffer_size);
     if (!hash && !ec) ec = DownloadCheck::changed;
     return hash;
+}
+
+ReadLease VerifiedFileBody::value_type::unchanged_under_lease() const {
+    if (leased_ctime_ns_ == 0 || fd_ < 0) return {};
+    ReadLease lease(fd_);
+    struct stat st {};
+    // Taken first, the lease covers every change after the ctime read here.
+    if (!lease.held() || ::fstat(fd_, &st) != 0 ||
+        std::int64_t{st.st_ctim.tv_sec} * 1000000000 + st.st_ctim.tv_nsec != leased_ctime_ns_)
+        return {};
+    return lease;
 }
 
 bool VerifiedFileBody::value_type::hash_piece(native::Sha256& hash, const char* data, std::size_t n,
@@ -108,7 +123,8 @@ boost::optional<std::pair<VerifiedFileBody::writer::const_buffers_type, bool>> V
     boost::beast::error_code& ec) {
     ec = {};
     if (!buffer_) buffer_ = std::make_unique_for_overwrite<char[]>(kReadBytes);
-    if (!hash_ && !(hash_ = body_.hasher_at_offset(buffer_.get(), kReadBytes, ec))) return boost::none;
+    // At most a checkpoint step of bytes read and not sent.
+    if (!hash_ && !(hash_ = body_.hasher_at(body_.offset(), buffer_.get(), kReadBytes, ec))) return boost::none;
     // An empty file of the same identity is the empty file that was hashed.
     if (at_ >= body_.file_size()) return boost::none;
     // Reads end on multiples of kReadBytes, so the checkpoints' offsets are

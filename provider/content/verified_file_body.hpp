@@ -7,7 +7,9 @@
 // short, never bytes other than the ones announced. A resumed download sends
 // from an offset and checks the same way: its hasher starts from the
 // checkpoint at or before the offset (native/hash_checkpoints.hpp) and reads the
-// bytes from there to the offset without sending them.
+// bytes from there to the offset without sending them. A large download of
+// a file hashed under a read lease, and unchanged since, is instead read
+// under a lease of its own (verified_file_reader.hpp).
 #pragma once
 
 #include <boost/beast/core/error.hpp>
@@ -22,6 +24,7 @@
 
 #include "native/sha256.hpp"
 #include "provider/content/file_facts.hpp"
+#include "provider/content/read_lease.hpp"
 #include "native/hash_checkpoints.hpp"
 
 namespace umf::provider {
@@ -55,10 +58,11 @@ struct VerifiedFileBody {
         // Opens the file for sending from `offset` on if it is still the
         // one described by `identity` and hashing to `sha256`; otherwise
         // says why not, in words for the requester. `checkpoints` are the
-        // link's (null: none kept).
+        // link's (null: none kept); `leased_ctime_ns` is FileFacts's.
         std::optional<std::string> open(const std::filesystem::path& file, const FileIdentity& identity,
                                         std::string sha256, std::uint64_t offset = 0,
-                                        std::shared_ptr<native::HashCheckpoints> checkpoints = nullptr);
+                                        std::shared_ptr<native::HashCheckpoints> checkpoints = nullptr,
+                                        std::int64_t leased_ctime_ns = 0);
         // The bytes sent: from the offset to the end.
         std::uint64_t size() const { return size_ - offset_; }
         // The first byte sent, and the whole file's size.
@@ -69,11 +73,16 @@ struct VerifiedFileBody {
         // verified_file_reader.hpp). Reads up to `size` bytes at `at`:
         // how many, 0 at the end, -1 with `ec`.
         long read_at(std::uint64_t at, char* into, std::size_t size, boost::beast::error_code& ec) const;
-        // A hasher that has taken the bytes before the offset, read from the
+        // A hasher that has taken the bytes before `at`, read from the
         // nearest checkpoint on into `buffer`; null with `ec` when the file
         // ended first.
-        std::unique_ptr<native::Sha256> hasher_at_offset(char* buffer, std::size_t buffer_size,
-                                                         boost::beast::error_code& ec) const;
+        std::unique_ptr<native::Sha256> hasher_at(std::uint64_t at, char* buffer, std::size_t buffer_size,
+                                                  boost::beast::error_code& ec) const;
+        // A lease under which the file is still the one announced: held only
+        // when its hash was taken under a lease, the kernel grants one now
+        // and the file's ctime has not moved since. While it holds unbroken,
+        // the bytes read need no hashing (read_lease.hpp).
+        ReadLease unchanged_under_lease() const;
         // Hashes the piece of `n` bytes that ends at byte `end` (saving a
         // checkpoint there when one is due); false, with
         // DownloadCheck::changed, when it ends the file and the whole is not
@@ -87,6 +96,7 @@ struct VerifiedFileBody {
         std::uint64_t offset_ = 0;
         std::string sha256_;
         std::shared_ptr<native::HashCheckpoints> checkpoints_;
+        std::int64_t leased_ctime_ns_ = 0;
     };
 
     class writer {

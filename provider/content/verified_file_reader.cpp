@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <chrono>
 #include <new>
 
 namespace umf::provider {
@@ -13,6 +14,9 @@ namespace {
 constexpr std::size_t kPieceBytes = 1 << 20;
 // Pieces in flight: memory stays at a few megabytes whatever the file's size.
 constexpr std::size_t kPieces = 8;
+// How often a reader waiting on a slow connection looks at its lease: a
+// program opening the file for writing waits at most about this long.
+constexpr std::chrono::milliseconds kLeaseLook{5};
 static_assert(native::HashCheckpoints::kStep % kPieceBytes == 0);
 
 }  // namespace
@@ -65,13 +69,29 @@ void VerifiedFileReader::release() {
     freed_.notify_all();
 }
 
-char* VerifiedFileReader::free_buffer() {
+char* VerifiedFileReader::free_buffer(ReadLease* lease) {
     std::unique_lock lock(mutex_);
-    freed_.wait(lock, [this] { return stopping_ || !free_.empty(); });
+    while (!stopping_ && free_.empty()) {
+        if (!lease || !lease->held()) {
+            freed_.wait(lock);
+            continue;
+        }
+        // A slow phone must not keep a program that saves the file waiting.
+        freed_.wait_for(lock, kLeaseLook);
+        if (!lease->unbroken()) lease->release();
+    }
     if (stopping_) return nullptr;
     char* buffer = free_.back();
     free_.pop_back();
     return buffer;
+}
+
+void VerifiedFileReader::give_back(char* buffer) {
+    {
+        std::lock_guard lock(mutex_);
+        free_.push_back(buffer);
+    }
+    freed_.notify_all();
 }
 
 void VerifiedFileReader::publish(const Piece* piece, boost::beast::error_code ec, bool end) {
@@ -86,15 +106,58 @@ void VerifiedFileReader::publish(const Piece* piece, boost::beast::error_code ec
     if (wake) ready_();
 }
 
-// Every buffer is free until the first piece is out: one of them reaches
-// a resumed download's offset.
-void VerifiedFileReader::run() { read_all(buffers_.front().get()); }
-
-void VerifiedFileReader::read_all(char* scratch) {
-    boost::beast::error_code ec;
-    auto hash = body_.hasher_at_offset(scratch, kPieceBytes, ec);
-    if (!hash) return publish(nullptr, ec, false);
+void VerifiedFileReader::run() {
     std::uint64_t at = body_.offset();
+    if (ReadLease lease = body_.unchanged_under_lease(); lease.held()) {
+        const auto stopped_at = read_leased(lease, at);
+        if (!stopped_at || *stopped_at == body_.file_size()) return;
+        at = *stopped_at;
+    }
+    read_hashed(at);
+}
+
+std::optional<std::uint64_t> VerifiedFileReader::read_leased(ReadLease& lease, std::uint64_t at) {
+    const std::uint64_t size = body_.file_size();
+    if (at >= size) {
+        publish(nullptr, {}, true);
+        return size;
+    }
+    boost::beast::error_code ec;
+    while (at < size) {
+        char* buffer = free_buffer(&lease);
+        if (!buffer) return std::nullopt;
+        if (!lease.held()) {
+            give_back(buffer);
+            return at;
+        }
+        const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(size - at, kPieceBytes - at % kPieceBytes));
+        const long n = body_.read_at(at, buffer, want, ec);
+        if (n <= 0) {
+            publish(nullptr, n < 0 ? ec : boost::beast::error_code(DownloadCheck::changed), false);
+            return std::nullopt;
+        }
+        at += static_cast<std::uint64_t>(n);
+        // Read before the lease is given back, the piece is the hashed bytes.
+        const Piece piece{buffer, static_cast<std::size_t>(n)};
+        publish(&piece, {}, at == size);
+        if (!lease.unbroken()) {
+            lease.release();
+            return at;
+        }
+    }
+    return at;
+}
+
+void VerifiedFileReader::read_hashed(std::uint64_t at) {
+    boost::beast::error_code ec;
+    std::unique_ptr<native::Sha256> hash;
+    if (char* scratch = free_buffer()) {
+        hash = body_.hasher_at(at, scratch, kPieceBytes, ec);
+        give_back(scratch);
+    } else {
+        return;
+    }
+    if (!hash) return publish(nullptr, ec, false);
     const std::uint64_t size = body_.file_size();
     if (at >= size) return publish(nullptr, {}, true);
     while (at < size) {

@@ -7,6 +7,13 @@
 // nearest checkpoint, checkpoints saved on the way), and the last piece is
 // handed out only once the whole file hashed to the announced SHA-256: the
 // phone never gets bytes other than the announced ones.
+//
+// A file hashed under a read lease and unchanged since is read under a
+// lease of its own instead, and not hashed: while the lease holds, its bytes
+// are the hashed ones. That halves the provider's work for a download. If
+// someone opens the file for writing meanwhile, the lease is given back
+// within a few milliseconds, the bytes sent so far are hashed from the
+// file again, and the rest goes out checked as above.
 #pragma once
 
 #include <boost/beast/core/error.hpp>
@@ -17,6 +24,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -58,10 +66,16 @@ private:
     };
 
     void run();
-    // Reads and hashes the pieces until the end, a failure or a stop.
-    void read_all(char* scratch);
-    // Waits for a free buffer; null when stopping.
-    char* free_buffer();
+    // Reads the pieces from `at` on without hashing them while `lease`
+    // holds: where it stopped (the file's end, or where the lease broke and
+    // was given back), or nothing when stopping or failed (published).
+    std::optional<std::uint64_t> read_leased(ReadLease& lease, std::uint64_t at);
+    // Reads and hashes the pieces from `at` on until the end, a failure or a stop.
+    void read_hashed(std::uint64_t at);
+    // Waits for a free buffer; null when stopping. A `lease` is looked at
+    // while waiting, and given back as soon as it is broken.
+    char* free_buffer(ReadLease* lease = nullptr);
+    void give_back(char* buffer);
     // Queues a piece (or a failure, or the end) and wakes a waiting taker.
     void publish(const Piece* piece, boost::beast::error_code ec, bool end);
 

@@ -305,14 +305,14 @@ p::Message PutDesk::act(const Pending& pending, const PutReply& reply, Via via) 
     return p::PutStatus{pending.id, p::PutState::upload, link, std::nullopt, std::nullopt};
 }
 
-std::optional<UploadLease> PutDesk::begin_upload(std::string_view target) { return uploads_.begin(target); }
+std::optional<UploadCheckout> PutDesk::begin_upload(std::string_view target) { return uploads_.begin(target); }
 
-std::shared_ptr<UploadSink> PutDesk::keep_upload_sink(const UploadLease& lease, std::shared_ptr<UploadSink> sink) {
-    return uploads_.keep_sink(lease, std::move(sink));
+std::shared_ptr<UploadSink> PutDesk::keep_upload_sink(const UploadCheckout& checkout, std::shared_ptr<UploadSink> sink) {
+    return uploads_.keep_sink(checkout, std::move(sink));
 }
 
-void PutDesk::end_upload(const UploadLease& lease, UploadEnd how) {
-    uploads_.end(lease, how);
+void PutDesk::end_upload(const UploadCheckout& checkout, UploadEnd how) {
+    uploads_.end(checkout, how);
     if (how != UploadEnd::broken) return;
     // The watch tells the session if nobody goes on with it in time.
     std::lock_guard lock(mutex_);

@@ -77,13 +77,13 @@ public:
 
     // PUT /up/...: a request through an upload link begins (upload_table.hpp);
     // nullopt when the link is unknown, ended or expired.
-    std::optional<UploadLease> begin_upload(std::string_view target);
+    std::optional<UploadCheckout> begin_upload(std::string_view target);
     // The sink the link's first request made, or the one kept already.
-    std::shared_ptr<UploadSink> keep_upload_sink(const UploadLease& lease, std::shared_ptr<UploadSink> sink);
+    std::shared_ptr<UploadSink> keep_upload_sink(const UploadCheckout& checkout, std::shared_ptr<UploadSink> sink);
     // The request ended. A broken one leaves the link for the rest; if
     // nobody sends it within the link's lifetime, the session is told the
     // put failed (interrupted).
-    void end_upload(const UploadLease& lease, UploadEnd how);
+    void end_upload(const UploadCheckout& checkout, UploadEnd how);
     // The upload is stored as `stored_name`: put_status done (saved, or opened
     // after xdg-open for an `open` answer), pushed to the session and returned
     // for the HTTP answer.

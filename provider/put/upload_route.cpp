@@ -35,12 +35,12 @@ constexpr std::size_t kUploadChunkBytes = 64 * 1024;
 constexpr std::uint64_t kDirectReceiveBytes = 1 << 20;
 
 // One request of an upload under way: its parser (the body in chunks), the
-// link's lease and the sink it claimed. Its pending handlers own it, and it
+// link's checkout and the sink it claimed. Its pending handlers own it, and it
 // holds the connection.
 class Upload : public std::enable_shared_from_this<Upload> {
 public:
-    Upload(std::shared_ptr<HttpExchange> exchange, PutDesk& puts, UploadLease lease)
-        : exchange_(std::move(exchange)), puts_(puts), lease_(std::move(lease)) {}
+    Upload(std::shared_ptr<HttpExchange> exchange, PutDesk& puts, UploadCheckout checkout)
+        : exchange_(std::move(exchange)), puts_(puts), checkout_(std::move(checkout)) {}
     ~Upload();
 
     void start(http::request_parser<http::empty_body>&& header);
@@ -66,12 +66,12 @@ private:
     // A resumed request's Upload-Prefix-SHA256, when it has one, against the
     // bytes held; false when the upload failed on it.
     bool prefix_matches(const http::request_parser<http::empty_body>& header, std::int64_t held);
-    const UploadEntry& entry() const { return lease_.entry; }
+    const UploadEntry& entry() const { return checkout_.entry; }
 
     std::shared_ptr<HttpExchange> exchange_;
     PutDesk& puts_;
-    UploadLease lease_;
-    bool ended_ = false;  // the lease given back
+    UploadCheckout checkout_;
+    bool ended_ = false;  // the checkout given back
     bool direct_ = false;  // the body came past the stream: the connection ends after the answer
     std::uint64_t claim_ = 0;
     std::optional<http::request_parser<http::buffer_body>> parser_;
@@ -81,7 +81,7 @@ private:
 Upload::~Upload() {
     // Torn down mid-upload without a handler to hear it (the server
     // stopping): the bytes wait with the link like a broken connection's.
-    if (!ended_) puts_.end_upload(lease_, UploadEnd::broken);
+    if (!ended_) puts_.end_upload(checkout_, UploadEnd::broken);
 }
 
 // The request's Upload-Offset: where its body starts in the file (0 when
@@ -106,16 +106,16 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
         const std::string why = "an upload from byte " + std::to_string(from) + " needs a Content-Length of " +
                                 std::to_string(size - from);
         ended_ = true;
-        if (lease_.sink) lease_.sink->discard();
-        puts_.end_upload(lease_, UploadEnd::failed);
+        if (checkout_.sink) checkout_.sink->discard();
+        puts_.end_upload(checkout_, UploadEnd::failed);
         puts_.upload_failed(entry(), protocol::ErrorCode::interrupted, why);
         exchange_->answer_error(length && !header.chunked() ? http::status::bad_request : http::status::length_required,
                                 false, protocol::ErrorCode::bad_request, why);
         return;
     }
-    if (!lease_.sink) {
+    if (!checkout_.sink) {
         try {
-            lease_.sink = puts_.keep_upload_sink(lease_, std::make_shared<UploadSink>(entry().folder, size, entry().sha256));
+            checkout_.sink = puts_.keep_upload_sink(checkout_, std::make_shared<UploadSink>(entry().folder, size, entry().sha256));
         } catch (const UploadError& e) {
             fail(e.code(), e.what(), true);
             return;
@@ -124,11 +124,11 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
             return;
         }
     }
-    const auto claim = lease_.sink->claim();
+    const auto claim = checkout_.sink->claim();
     claim_ = claim.claim;
     if (*offset != claim.received) {
         ended_ = true;
-        puts_.end_upload(lease_, UploadEnd::broken);
+        puts_.end_upload(checkout_, UploadEnd::broken);
         refuse_offset(claim.received);
         return;
     }
@@ -174,7 +174,7 @@ bool Upload::prefix_matches(const http::request_parser<http::empty_body>& header
     }
     std::string digest;
     try {
-        digest = lease_.sink->received_sha256();
+        digest = checkout_.sink->received_sha256();
     } catch (const UploadError& e) {
         fail(e.code(), e.what(), true);
         return false;
@@ -207,10 +207,10 @@ void Upload::read_direct(std::uint64_t left) {
 bool Upload::take(const char* data, std::size_t size, bool answer) {
     if (ended_ || !parser_) return false;
     try {
-        lease_.sink->write(data, size, claim_);
+        checkout_.sink->write(data, size, claim_);
         return true;
     } catch (const UploadError& e) {
-        if (lease_.sink->superseded(claim_)) {
+        if (checkout_.sink->superseded(claim_)) {
             broke_off();
             return false;
         }
@@ -269,7 +269,7 @@ void Upload::broke_off() {
     chunk_ = {};
     if (!ended_) {
         ended_ = true;
-        puts_.end_upload(lease_, UploadEnd::broken);
+        puts_.end_upload(checkout_, UploadEnd::broken);
     }
     exchange_->drop();
 }
@@ -277,7 +277,7 @@ void Upload::broke_off() {
 void Upload::finish() {
     std::string stored;
     try {
-        stored = lease_.sink->store(entry().name, claim_);
+        stored = checkout_.sink->store(entry().name, claim_);
     } catch (const UploadError& e) {
         fail(e.code(), e.what(), true);
         return;
@@ -286,7 +286,7 @@ void Upload::finish() {
     parser_.reset();
     chunk_ = {};
     ended_ = true;
-    puts_.end_upload(lease_, UploadEnd::stored);
+    puts_.end_upload(checkout_, UploadEnd::stored);
     const protocol::Message done = puts_.upload_done(entry(), stored);
     exchange_->restart_timeout();
     exchange_->answer_json(200, keep_alive && !exchange_->stopping(), encode_reply(done));
@@ -294,12 +294,12 @@ void Upload::finish() {
 
 void Upload::fail(protocol::ErrorCode code, const std::string& message, bool answer,
                   std::optional<http::status> status) {
-    if (lease_.sink) lease_.sink->discard();  // the temporary file goes
+    if (checkout_.sink) checkout_.sink->discard();  // the temporary file goes
     parser_.reset();
     chunk_ = {};
     if (ended_) return;
     ended_ = true;
-    puts_.end_upload(lease_, UploadEnd::failed);
+    puts_.end_upload(checkout_, UploadEnd::failed);
     const protocol::Error error = puts_.upload_failed(entry(), code, message);
     if (!answer) {
         exchange_->drop();
@@ -330,15 +330,15 @@ void serve_upload(HttpExchange& exchange, http::request_parser<http::empty_body>
     const beast::string_view target = req.target();
     const std::string_view link(target.data(), target.size());
     if (req.method() == http::verb::head) {
-        auto lease = puts.begin_upload(link);
-        if (!lease) {
+        auto checkout = puts.begin_upload(link);
+        if (!checkout) {
             exchange.answer_error(http::status::not_found, false, protocol::ErrorCode::not_found,
                                   "unknown, finished or expired upload link");
             return;
         }
-        const std::int64_t received = lease->sink ? lease->sink->received() : 0;
-        puts.end_upload(*lease, UploadEnd::broken);  // only asked: the link waits on
-        answer_received(exchange, received, lease->entry.size);
+        const std::int64_t received = checkout->sink ? checkout->sink->received() : 0;
+        puts.end_upload(*checkout, UploadEnd::broken);  // only asked: the link waits on
+        answer_received(exchange, received, checkout->entry.size);
         return;
     }
     if (req.method() != http::verb::put) {
@@ -346,13 +346,13 @@ void serve_upload(HttpExchange& exchange, http::request_parser<http::empty_body>
                               "an upload is a PUT (or a HEAD asking how much arrived)", "PUT, HEAD");
         return;
     }
-    auto lease = puts.begin_upload(link);
-    if (!lease) {
+    auto checkout = puts.begin_upload(link);
+    if (!checkout) {
         exchange.answer_error(http::status::not_found, false, protocol::ErrorCode::not_found,
                               "unknown, finished or expired upload link");
         return;
     }
-    std::make_shared<Upload>(exchange.hold(), puts, std::move(*lease))->start(std::move(header));
+    std::make_shared<Upload>(exchange.hold(), puts, std::move(*checkout))->start(std::move(header));
 }
 
 }  // namespace umf::provider

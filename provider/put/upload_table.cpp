@@ -33,25 +33,25 @@ UploadTable::Slots::iterator UploadTable::find(std::string_view target, Clock::t
     return it;
 }
 
-std::optional<UploadLease> UploadTable::begin(std::string_view target, Clock::time_point now) {
+std::optional<UploadCheckout> UploadTable::begin(std::string_view target, Clock::time_point now) {
     std::lock_guard lock(mutex_);
     auto it = find(target, now);
     if (it == slots_.end()) return std::nullopt;
     ++it->second.requests;
-    return UploadLease{it->first, it->second.entry, it->second.sink};
+    return UploadCheckout{it->first, it->second.entry, it->second.sink};
 }
 
-std::shared_ptr<UploadSink> UploadTable::keep_sink(const UploadLease& lease, std::shared_ptr<UploadSink> sink) {
+std::shared_ptr<UploadSink> UploadTable::keep_sink(const UploadCheckout& checkout, std::shared_ptr<UploadSink> sink) {
     std::lock_guard lock(mutex_);
-    auto it = slots_.find(lease.key);
+    auto it = slots_.find(checkout.key);
     if (it == slots_.end()) return sink;
     if (!it->second.sink) it->second.sink = std::move(sink);
     return it->second.sink;
 }
 
-void UploadTable::end(const UploadLease& lease, UploadEnd how, Clock::time_point now) {
+void UploadTable::end(const UploadCheckout& checkout, UploadEnd how, Clock::time_point now) {
     std::lock_guard lock(mutex_);
-    auto it = slots_.find(lease.key);
+    auto it = slots_.find(checkout.key);
     if (it == slots_.end()) return;
     if (it->second.requests > 0) --it->second.requests;
     if (how != UploadEnd::broken) {

@@ -40,7 +40,7 @@ struct UploadEntry {
 };
 
 // One request's hold on a link: the put, and the sink once a request made it.
-struct UploadLease {
+struct UploadCheckout {
     std::string key;
     UploadEntry entry;
     std::shared_ptr<UploadSink> sink;
@@ -73,11 +73,11 @@ public:
     // A request through the link begins (a query is ignored): nullopt when
     // it is unknown, ended or expired. The link does not expire while a
     // request runs.
-    std::optional<UploadLease> begin(std::string_view target, Clock::time_point now = Clock::now());
+    std::optional<UploadCheckout> begin(std::string_view target, Clock::time_point now = Clock::now());
     // The sink the first request made, kept with the link; the one kept
     // already when another request made one first.
-    std::shared_ptr<UploadSink> keep_sink(const UploadLease& lease, std::shared_ptr<UploadSink> sink);
-    void end(const UploadLease& lease, UploadEnd how, Clock::time_point now = Clock::now());
+    std::shared_ptr<UploadSink> keep_sink(const UploadCheckout& checkout, std::shared_ptr<UploadSink> sink);
+    void end(const UploadCheckout& checkout, UploadEnd how, Clock::time_point now = Clock::now());
 
     // Broken uploads whose time ran out, taken out of the table.
     std::vector<AbandonedUpload> take_abandoned(Clock::time_point now = Clock::now());

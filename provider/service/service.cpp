@@ -58,6 +58,7 @@ p::Message content_for(const p::Grab& grab, const Resolved& resolved, const File
                 entry.size = facts->size;
                 entry.sha256 = facts->sha256;
                 entry.identity = facts->identity;
+                entry.leased_ctime_ns = facts->leased_ctime_ns;
                 entry.file = resolved.file;
             } else if (resolved.bytes) {
                 entry.size = static_cast<std::int64_t>(resolved.bytes->size());

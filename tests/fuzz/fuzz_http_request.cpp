@@ -187,7 +187,7 @@ void serve(Provider& p, const http::request<http::string_body>& req) {
     }
     if (req.method() != http::verb::get && req.method() != http::verb::head) return;
     if (target.starts_with(provider::kDownloadPrefix)) {
-        if (auto lease = p.service->downloads().begin(path)) p.service->downloads().end(*lease, true);
+        if (auto checkout = p.service->downloads().begin(path)) p.service->downloads().end(*checkout, true);
         // The part a resume asks for, against a file of a size the request
         // picks itself (its length): never past the end.
         const auto field = [&](http::field f) {
@@ -214,8 +214,8 @@ bool one_request(Provider& p, Wire& wire) {
     const beast::string_view target = header.get().target();
     if (target.starts_with(provider::kUploadPrefix)) {
         // The link is used up whatever follows; no input can name a live one.
-        if (auto lease = p.service->puts().begin_upload(std::string_view(target.data(), target.size())))
-            p.service->puts().end_upload(*lease, provider::UploadEnd::failed);
+        if (auto checkout = p.service->puts().begin_upload(std::string_view(target.data(), target.size())))
+            p.service->puts().end_upload(*checkout, provider::UploadEnd::failed);
         return false;
     }
     if (header.get().method() == http::verb::post && target.substr(0, target.find('?')) == "/share") return false;

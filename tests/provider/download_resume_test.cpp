@@ -8,15 +8,23 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <boost/beast/http/message.hpp>
+#include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <string>
+#include <thread>
 
 #include "provider/content/download_table.hpp"
 #include "provider/content/file_facts.hpp"
+#include "provider/content/read_lease.hpp"
 #include "provider/content/resume_range.hpp"
 #include "provider/content/verified_file_body.hpp"
 #include "provider/content/verified_file_reader.hpp"
@@ -135,11 +143,16 @@ protected:
         }
         return {sent, ec};
     }
-    // The same through a VerifiedFileReader, as a large body is sent.
+    // The same through a VerifiedFileReader, as a large body is sent;
+    // `leased_ctime_ns` as FileFacts has it, `on_piece` called after each
+    // piece taken with the bytes taken so far.
     std::pair<std::string, boost::beast::error_code> read(std::uint64_t offset, std::shared_ptr<HashCheckpoints> points,
-                                                          std::uint64_t stop = ~0ull) {
+                                                          std::uint64_t stop = ~0ull, std::int64_t leased_ctime_ns = 0,
+                                                          const std::function<void(std::size_t)>& on_piece = {},
+                                                          const std::string& announced = {}) {
         VerifiedFileBody::value_type body;
-        EXPECT_FALSE(body.open(file, identity, sha256, offset, points));
+        EXPECT_FALSE(body.open(file, identity, announced.empty() ? sha256 : announced, offset, points,
+                               leased_ctime_ns));
         std::mutex mutex;
         std::condition_variable woken;
         bool ready = false;
@@ -162,6 +175,7 @@ protected:
             if (next != VerifiedFileReader::Next::piece) break;
             sent.append(piece.data, piece.size);
             reader.release();
+            if (on_piece) on_piece(sent.size());
         }
         return {sent, ec};
     }
@@ -231,6 +245,77 @@ TEST_F(ResumedFile, TheReaderHoldsBackTheEndOfAChangedFile) {
     EXPECT_EQ(ec, DownloadCheck::changed);
     EXPECT_LT(sent.size(), bytes.size());
     EXPECT_TRUE(sent == bytes.substr(0, sent.size()));
+}
+
+// A file hashed under a lease and unchanged since (content/read_lease.hpp).
+class LeasedFile : public ResumedFile {
+protected:
+    std::int64_t ctime_ns = 0;
+    void SetUp() override {
+        ResumedFile::SetUp();
+        struct stat st {};
+        ASSERT_EQ(::stat(file.c_str(), &st), 0);
+        ctime_ns = std::int64_t{st.st_ctim.tv_sec} * 1000000000 + st.st_ctim.tv_nsec;
+        const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+        const bool leases = ReadLease(fd).held();
+        ::close(fd);
+        if (!leases) GTEST_SKIP() << "the file system of " << dir.path << " grants no leases";
+    }
+    // Opens the file for writing, writes `byte` at `at` unless it is -1,
+    // and says how long the open waited.
+    std::chrono::steady_clock::duration write_at(std::uint64_t at, int byte) {
+        const auto start = std::chrono::steady_clock::now();
+        const int fd = ::open(file.c_str(), O_WRONLY | O_CLOEXEC);
+        const auto waited = std::chrono::steady_clock::now() - start;
+        EXPECT_GE(fd, 0);
+        if (byte >= 0) {
+            const char c = static_cast<char>(byte);
+            EXPECT_EQ(::pwrite(fd, &c, 1, static_cast<off_t>(at)), 1);
+        }
+        ::close(fd);
+        return waited;
+    }
+};
+
+TEST_F(LeasedFile, IsSentWithoutBeingHashedAgain) {
+    // Announced with another hash: only a transfer that does not hash
+    // sends it whole. With a ctime that moved, it is hashed and held back.
+    const std::string other(64, '0');
+    const auto [sent, ec] = read(0, nullptr, ~0ull, ctime_ns, {}, other);
+    EXPECT_FALSE(ec) << ec.message();
+    EXPECT_TRUE(sent == bytes);
+    const auto [resumed, ec2] = read(HashCheckpoints::kStep + 7, nullptr, ~0ull, ctime_ns, {}, other);
+    EXPECT_FALSE(ec2) << ec2.message();
+    EXPECT_TRUE(resumed == bytes.substr(HashCheckpoints::kStep + 7));
+    const auto [held_back, ec3] = read(0, nullptr, ~0ull, ctime_ns + 1, {}, other);
+    EXPECT_EQ(ec3, DownloadCheck::changed);
+    EXPECT_LT(held_back.size(), bytes.size());
+}
+
+// A program saving the file while a slow phone takes it: its open waits
+// milliseconds, and the transfer goes on checked by the hash from there.
+TEST_F(LeasedFile, AWriterWaitsMillisecondsAndTheRestIsChecked) {
+    std::chrono::steady_clock::duration waited{};
+    const auto [sent, ec] = read(0, nullptr, ~0ull, ctime_ns, [&](std::size_t taken) {
+        // The phone stops taking after the first piece; the reader's
+        // buffers are full when the writer opens the file.
+        if (taken != (1u << 20)) return;
+        std::this_thread::sleep_for(std::chrono::milliseconds(200));
+        waited = write_at(0, -1);
+    });
+    EXPECT_FALSE(ec) << ec.message();
+    EXPECT_TRUE(sent == bytes) << "opened, not changed: the whole file, checked";
+    EXPECT_LT(waited, std::chrono::milliseconds(500));
+
+    // Changed ahead of the transfer: the end is held back. (A change of
+    // bytes already read and hashed again changes nothing sent.)
+    const std::size_t near_end = bytes.size() - 1000;
+    const auto [cut, ec2] = read(0, nullptr, ~0ull, ctime_ns, [&](std::size_t taken) {
+        if (taken == (1u << 20)) waited = write_at(near_end, static_cast<unsigned char>(bytes[near_end] ^ 0x55));
+    });
+    EXPECT_EQ(ec2, DownloadCheck::changed);
+    EXPECT_LT(cut.size(), bytes.size());
+    EXPECT_LT(waited, std::chrono::milliseconds(500));
 }
 
 }  // namespace

@@ -106,11 +106,11 @@ TEST_F(ProviderContent, AimsPreviewAndGrabsTakeWithDownloadLinks) {
     EXPECT_GE(content.download->size(), 4u + 22u) << "at least 128 random bits";
     EXPECT_FALSE(content.download->find(report.string()) != std::string::npos) << "no path in the link";
 
-    const auto lease = service->downloads().begin(*content.download);
-    ASSERT_TRUE(lease);
-    EXPECT_EQ(lease->entry->file, report);
-    EXPECT_EQ(lease->entry->token, kToken) << "the link is bound to the session's token";
-    service->downloads().end(*lease, true);
+    const auto checkout = service->downloads().begin(*content.download);
+    ASSERT_TRUE(checkout);
+    EXPECT_EQ(checkout->entry->file, report);
+    EXPECT_EQ(checkout->entry->token, kToken) << "the link is bound to the session's token";
+    service->downloads().end(*checkout, true);
     EXPECT_FALSE(service->downloads().begin(*content.download)) << "a link ends when its download completes";
 
     const auto url = std::get<p::Content>(one(grab_text("g2", 50, 5)));
@@ -324,9 +324,9 @@ TEST(ProviderDownloads, LinksExpireAndTheTableStaysBounded) {
     const std::string late = table.add(e, t0);
     EXPECT_FALSE(table.begin(late, t0 + std::chrono::seconds(61))) << "expired";
     const std::string fresh = table.add(e, t0);
-    const auto lease = table.begin(fresh + "?x=1", t0 + std::chrono::seconds(59));
-    ASSERT_TRUE(lease);
-    table.end(*lease, true);
+    const auto checkout = table.begin(fresh + "?x=1", t0 + std::chrono::seconds(59));
+    ASSERT_TRUE(checkout);
+    table.end(*checkout, true);
     for (const char* bad : {"/dl/", "/dl", "/dl/../x", "/index.html", ""}) EXPECT_FALSE(table.begin(bad, t0)) << bad;
     std::vector<std::string> links;
     for (int i = 0; i < 5; ++i) links.push_back(table.add(e, t0 + std::chrono::seconds(i)));

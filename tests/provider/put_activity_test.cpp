@@ -126,14 +126,14 @@ protected:
     }
     // The upload as the session does it: the link's entry, the bytes, done.
     std::string upload(const std::string& link, const std::string& bytes) {
-        auto lease = service->puts().begin_upload(link);
-        EXPECT_TRUE(lease);
-        if (!lease) return {};
-        UploadSink sink(lease->entry.folder, lease->entry.size, lease->entry.sha256);
+        auto checkout = service->puts().begin_upload(link);
+        EXPECT_TRUE(checkout);
+        if (!checkout) return {};
+        UploadSink sink(checkout->entry.folder, checkout->entry.size, checkout->entry.sha256);
         sink.write(bytes.data(), bytes.size());
-        const std::string stored = sink.store(lease->entry.name);
-        service->puts().end_upload(*lease, UploadEnd::stored);
-        service->puts().upload_done(lease->entry, stored);
+        const std::string stored = sink.store(checkout->entry.name);
+        service->puts().end_upload(*checkout, UploadEnd::stored);
+        service->puts().upload_done(checkout->entry, stored);
         return stored;
     }
     std::vector<std::string> console_lines() const {
@@ -231,10 +231,10 @@ TEST_F(PutActivityTest, RefusalsTimeoutsDeparturesAndFailuresAreTold) {
     decider->answer(decider->offers(3).at(2).id, {PutAnswer::save, false});
     const auto answer = push(2);
     ASSERT_TRUE(answer);
-    const auto lease = service->puts().begin_upload(link_of(*answer));
-    ASSERT_TRUE(lease);
-    service->puts().end_upload(*lease, UploadEnd::failed);
-    service->puts().upload_failed(lease->entry, p::ErrorCode::interrupted, "the upload broke off after 1 of 3 bytes");
+    const auto checkout = service->puts().begin_upload(link_of(*answer));
+    ASSERT_TRUE(checkout);
+    service->puts().end_upload(*checkout, UploadEnd::failed);
+    service->puts().upload_failed(checkout->entry, p::ErrorCode::interrupted, "the upload broke off after 1 of 3 bytes");
     // Asked, then the requester leaves.
     put(state, url_put("gone"));
     decider->offers(4);
@@ -286,9 +286,9 @@ TEST_F(PutActivityTest, OpenWithAlwaysOpensThatDevicesFilesFromThenOn) {
     // Not asked again, and opened again.
     const auto second = put(state, file_put("two", "2", "b.pdf"));
     EXPECT_EQ(decider->offers(0).size(), 1u);
-    const auto lease = service->puts().begin_upload(link_of(second));
-    ASSERT_TRUE(lease);
-    EXPECT_TRUE(lease->entry.open);
+    const auto checkout = service->puts().begin_upload(link_of(second));
+    ASSERT_TRUE(checkout);
+    EXPECT_TRUE(checkout->entry.open);
     const auto steps = recorder->steps();
     ASSERT_FALSE(steps.empty());
     EXPECT_EQ(steps.back().stage, PutStage::accepted);

@@ -201,15 +201,15 @@ TEST_F(PutService, AnAcceptedFileGetsASingleUseUploadLink) {
     ASSERT_TRUE(s.upload);
     EXPECT_EQ(s.upload->rfind("/up/", 0), 0u);
     EXPECT_EQ(s.upload->size(), 4u + 22u);
-    auto lease = service->puts().begin_upload(*s.upload);
-    ASSERT_TRUE(lease);
-    const UploadEntry& entry = lease->entry;
+    auto checkout = service->puts().begin_upload(*s.upload);
+    ASSERT_TRUE(checkout);
+    const UploadEntry& entry = checkout->entry;
     EXPECT_EQ(entry.size, 5);
     EXPECT_EQ(entry.sha256, sha256_hex("hello"));
     EXPECT_TRUE(entry.open);
     EXPECT_EQ(entry.folder, folder);
     EXPECT_EQ(entry.session, state.id);
-    service->puts().end_upload(*lease, UploadEnd::stored);
+    service->puts().end_upload(*checkout, UploadEnd::stored);
     EXPECT_FALSE(service->puts().begin_upload(*s.upload)) << "a stored upload ends the link";
 }
 
@@ -359,9 +359,9 @@ TEST(PutUploadTable, ALinkLastsUntilItsUploadIsStoredOrAbandoned) {
     e.name = "a";
     const std::string a = table.add(e, now), b = table.add(e, now);
     EXPECT_NE(a, b);
-    auto lease = table.begin(a + "?x=1", now);
-    ASSERT_TRUE(lease);
-    table.end(*lease, UploadEnd::stored, now);
+    auto checkout = table.begin(a + "?x=1", now);
+    ASSERT_TRUE(checkout);
+    table.end(*checkout, UploadEnd::stored, now);
     EXPECT_FALSE(table.begin(a, now)) << "stored: the link ended";
     EXPECT_FALSE(table.begin("/dl/" + b.substr(4), now));
     EXPECT_FALSE(table.begin(b, now + 100ms)) << "a link nobody used expires";
