@@ -113,7 +113,7 @@ void HashingWriter::restart() {
     if (::ftruncate(fd_, 0) != 0 || ::lseek(fd_, 0, SEEK_SET) != 0)
         throw std::runtime_error(std::string("cannot empty the file: ") + std::strerror(errno));
     sha_ = std::make_unique<native::Sha256>();
-    written_ = written_back_ = 0;
+    hashed_ = written_ = written_back_ = 0;
 }
 
 std::string HashingWriter::hex() {
@@ -126,9 +126,24 @@ std::unique_ptr<native::Sha256> HashingWriter::hash_so_far() const {
     return sha_->copy();
 }
 
-void HashingWriter::hash_piece(const char* data, std::size_t size) { sha_->update(data, size); }
+void HashingWriter::continue_from(std::uint64_t at, std::unique_ptr<native::Sha256> state,
+                                  native::HashCheckpoints* checkpoints) {
+    std::lock_guard lock(mutex_);
+    sha_ = std::move(state);
+    hashed_ = at;
+    checkpoints_ = checkpoints;
+}
+
+void HashingWriter::hash_piece(const char* data, std::size_t size) {
+    sha_->update(data, size);
+    // Saved where a piece ends on a step: a caller whose pieces end on
+    // multiples of their size, a divisor of the step, meets every one.
+    hashed_ += size;
+    if (checkpoints_ && hashed_ % native::HashCheckpoints::kStep == 0) checkpoints_->save(hashed_, *sha_);
+}
 
 void HashingWriter::write_piece(const char* data, std::size_t size) {
+    if (fd_ < 0) return;
     const std::string error = write_at_end(data, size);
     if (error.empty()) return;
     std::lock_guard lock(mutex_);

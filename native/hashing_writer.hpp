@@ -6,6 +6,9 @@
 // (on this kind of machine about 0.4 s and 0.5 s per GiB). A few pieces
 // are in flight at most (memory stays flat whatever the file's size).
 //
+// Given no file (fd -1), it only hashes: the requester's put, whose
+// sending thread reads and encrypts while the hash is taken beside it.
+//
 // A large file is written with O_DIRECT where the file system takes it:
 // straight from the piece to the disk, without a copy into the page cache
 // (which on this kind of machine costs from 0.2 to 2.6 s per GiB depending on
@@ -28,6 +31,7 @@
 #include <thread>
 #include <vector>
 
+#include "native/hash_checkpoints.hpp"
 #include "native/sha256.hpp"
 
 namespace umf::native {
@@ -44,9 +48,10 @@ public:
     // allocated aligned to it.
     static constexpr std::size_t kDirectAlign = 4096;
 
-    // Writes to `fd` (owned by the caller, open while this lives) from its
-    // current offset, `pieces` pieces of `piece_bytes` each; directly when
-    // `direct` and the file system allows it.
+    // Writes to `fd` (owned by the caller, open while this lives; -1: no
+    // file, the pieces are only hashed) from its current offset, `pieces`
+    // pieces of `piece_bytes` each; directly when `direct` and the file
+    // system allows it.
     HashingWriter(int fd, std::size_t piece_bytes, bool direct, std::size_t pieces = 6);
     ~HashingWriter();
     HashingWriter(const HashingWriter&) = delete;
@@ -68,6 +73,11 @@ public:
     // After drain(): a hasher in the state of everything written so far,
     // to go on from apart from this writer's.
     std::unique_ptr<native::Sha256> hash_so_far() const;
+    // After drain(): the hash goes on from `state`, the hash of the first
+    // `at` bytes, and saves its state into `checkpoints` (when given) at
+    // every HashCheckpoints::kStep bytes from the start (a resumed put's).
+    void continue_from(std::uint64_t at, std::unique_ptr<native::Sha256> state,
+                       native::HashCheckpoints* checkpoints = nullptr);
 
 private:
     struct Free {
@@ -95,6 +105,8 @@ private:
     bool direct_now_ = false;
     std::vector<std::unique_ptr<char, Free>> buffers_;
     std::unique_ptr<native::Sha256> sha_ = std::make_unique<native::Sha256>();
+    std::uint64_t hashed_ = 0;          // bytes hashed, counted from continue_from's `at`
+    native::HashCheckpoints* checkpoints_ = nullptr;
     std::uint64_t written_ = 0;         // bytes written to the file
     std::uint64_t written_back_ = 0;    // bytes handed to the kernel's writeback
 

@@ -103,7 +103,11 @@ struct FileToPut {
     fs::path path;
     std::string name;
     std::string mime;
-    FileDigest digest;
+    std::int64_t size = 0;
+    // Hashed before the put only for a provider that cannot take the hash
+    // after the bytes (no "put-hash-after" in its welcome).
+    std::optional<FileDigest> digest;
+    std::string sha256;  // as the screen checked it, once sent
 };
 
 class PutSession {
@@ -127,6 +131,7 @@ public:
                                       "the screen " + w.provider.name +
                                           " takes no puts (it runs with --puts never, or in public mode)",
                                       kNothing);
+                if (file_) hash_for(w, *action.put);
             },
             action);
     }
@@ -141,8 +146,7 @@ private:
             item.kind = p::ContentKind::file;
             item.name = file_->name;
             item.mime = file_->mime;
-            item.size = file_->digest.size;
-            item.sha256 = file_->digest.sha256;
+            item.size = file_->size;
         } else {
             item.kind = p::ContentKind::url;
             item.url = *o_.url;
@@ -155,18 +159,43 @@ private:
         f.path = path;
         f.name = p::safe_file_name(path.filename().string());
         f.mime = p::media_type_for(f.name);
-        try {
-            f.digest = digest_file(path);
-        } catch (const std::runtime_error& e) {
-            throw GrabFailure("input", e.what(), kInputError);
-        }
-        log("putting " + f.name + " (" + std::to_string(f.digest.size) + " bytes, " + f.mime + ")");
+        std::error_code ec;
+        const auto status = fs::status(path, ec);
+        if (ec || !fs::is_regular_file(status))
+            throw GrabFailure("input", path.string() + (ec ? ": " + ec.message() : std::string(" is not a regular file")),
+                              kInputError);
+        const auto size = fs::file_size(path, ec);
+        if (ec) throw GrabFailure("input", "cannot read " + path.string() + ": " + ec.message(), kInputError);
+        f.size = static_cast<std::int64_t>(size);
+        log("putting " + f.name + " (" + std::to_string(f.size) + " bytes, " + f.mime + ")");
         return f;
+    }
+
+    // The file's SHA-256 goes after its bytes where the screen takes it so
+    // (read once, and the offer goes out at once); else it is hashed now,
+    // before the put.
+    void hash_for(const p::Welcome& welcome, requester_core::PutItem& item) {
+        const auto& f = welcome.features;
+        item.hash_after = std::find(f.begin(), f.end(), p::kFeaturePutHashAfter) != f.end();
+        if (item.hash_after) {
+            item.sha256.reset();
+            return;
+        }
+        if (!file_->digest) {
+            try {
+                file_->digest = digest_file(file_->path);
+            } catch (const std::runtime_error& e) {
+                throw GrabFailure("input", e.what(), kInputError);
+            }
+            if (file_->digest->size != file_->size)
+                throw GrabFailure("input", file_->path.string() + " changed its size while it was hashed", kInputError);
+        }
+        item.sha256 = file_->digest->sha256;
     }
 
     p::PutStatus upload(const std::string& link) {
         if (!file_) throw GrabFailure("protocol", "the provider asked for an upload of a link", kConnection);
-        log("accepted; sending " + megabytes(static_cast<std::uint64_t>(file_->digest.size)));
+        log("accepted; sending " + megabytes(static_cast<std::uint64_t>(file_->size)));
         auto last = std::chrono::steady_clock::now();
         auto shown = last;
         const auto progress = [&](std::int64_t sent, std::int64_t size) {
@@ -180,12 +209,14 @@ private:
             log("sent " + megabytes(static_cast<std::uint64_t>(sent)) + " of " + megabytes(static_cast<std::uint64_t>(size)));
         };
         const auto started = std::chrono::steady_clock::now();
-        auto status = upload_file(session_.connection().url(),
-                                  {link, file_->path, file_->digest.size, file_->digest.checkpoints}, progress, {},
-                                  [this](const std::string& line) { log(line); });
-        log("sent " + transfer_rate(static_cast<std::uint64_t>(file_->digest.size),
-                                    std::chrono::steady_clock::now() - started));
-        return status;
+        // The digest is there when the put carried the hash (hash_for).
+        UploadRequest request{link, file_->path, file_->size, nullptr, !file_->digest};
+        if (file_->digest) request.checkpoints = file_->digest->checkpoints;
+        auto uploaded = upload_file(session_.connection().url(), request, progress, {},
+                                    [this](const std::string& line) { log(line); });
+        file_->sha256 = file_->digest ? file_->digest->sha256 : uploaded.sha256;
+        log("sent " + transfer_rate(static_cast<std::uint64_t>(file_->size), std::chrono::steady_clock::now() - started));
+        return uploaded.status;
     }
 
     Json report(const requester_core::Outcome& outcome, const p::FieldPoint& at) {
@@ -207,8 +238,8 @@ private:
         j["outcome"] = p::to_string(*status.outcome);
         if (status.name) j["name"] = *status.name;
         if (file_) {
-            j["size"] = file_->digest.size;
-            j["sha256"] = file_->digest.sha256;
+            j["size"] = file_->size;
+            j["sha256"] = file_->sha256;
         }
         log(*status.outcome == p::PutOutcome::opened
                 ? "the screen opened it" + (status.name ? " (" + *status.name + ")" : std::string())

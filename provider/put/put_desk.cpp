@@ -162,12 +162,12 @@ p::Message PutDesk::offer(const PutRequester& who, const p::Put& put, std::optio
         if (!put.url) return p::Error{put.id, p::ErrorCode::bad_request, "a url put needs \"url\""};
         offer.url = *put.url;
     } else if (put.kind == p::ContentKind::file) {
-        if (!put.name || !put.mime || !put.size || !put.sha256)
-            return p::Error{put.id, p::ErrorCode::bad_request, "a file put needs name, mime, size and sha256"};
+        if (!put.name || !put.mime || !put.size)
+            return p::Error{put.id, p::ErrorCode::bad_request, "a file put needs name, mime and size"};
         offer.name = p::safe_file_name(*put.name);
         offer.mime = *put.mime;
         offer.size = *put.size;
-        pending.sha256 = *put.sha256;
+        pending.sha256 = put.sha256.value_or("");  // empty: the upload names it after the bytes
         // Before anyone is asked: a file that cannot land is refused now.
         const auto refuse = [&](p::ErrorCode code, std::string why) -> p::Message {
             report(offer, who.session, PutStage::refused, why, false);

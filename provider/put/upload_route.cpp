@@ -66,6 +66,12 @@ private:
     // A resumed request's Upload-Prefix-SHA256, when it has one, against the
     // bytes held; false when the upload failed on it.
     bool prefix_matches(const http::request_parser<http::empty_body>& header, std::int64_t held);
+    // A request's Upload-SHA256 (the hash of a put that left it out, named
+    // after the bytes) given to the sink; false when the upload failed on it.
+    bool take_named_hash(const http::request_parser<http::empty_body>& header);
+    // Every byte is here but not the hash they must have: 202, and the link
+    // waits for a request that names it.
+    void await_hash();
     const UploadEntry& entry() const { return checkout_.entry; }
 
     std::shared_ptr<HttpExchange> exchange_;
@@ -132,7 +138,7 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
         refuse_offset(claim.received);
         return;
     }
-    if (!prefix_matches(header, claim.received)) return;
+    if (!prefix_matches(header, claim.received) || !take_named_hash(header)) return;
     const bool expect_continue = beast::iequals(header.get()[http::field::expect], "100-continue");
     parser_.emplace(std::move(header));
     parser_->body_limit(static_cast<std::uint64_t>(size - claim.received));
@@ -187,6 +193,23 @@ bool Upload::prefix_matches(const http::request_parser<http::empty_body>& header
          "it was being sent); nothing was kept, put it again",
          true, http::status::precondition_failed);
     return false;
+}
+
+bool Upload::take_named_hash(const http::request_parser<http::empty_body>& header) {
+    const beast::string_view named = header.get()["Upload-SHA256"];
+    if (named.empty()) return true;
+    if (named.size() != 64 ||
+        !std::all_of(named.begin(), named.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); })) {
+        fail(protocol::ErrorCode::bad_request, "Upload-SHA256 is not 64 hexadecimal digits", true);
+        return false;
+    }
+    try {
+        checkout_.sink->expect_sha256(std::string(named));
+    } catch (const UploadError& e) {
+        fail(e.code(), e.what(), true);
+        return false;
+    }
+    return true;
 }
 
 void Upload::read_direct(std::uint64_t left) {
@@ -274,7 +297,27 @@ void Upload::broke_off() {
     exchange_->drop();
 }
 
+void Upload::await_hash() {
+    const bool keep_alive = parser_->get().keep_alive() && !direct_;
+    parser_.reset();
+    chunk_ = {};
+    ended_ = true;
+    puts_.end_upload(checkout_, UploadEnd::broken);  // as a cut one: the link waits for the rest, here the hash
+    auto res = std::make_shared<http::response<http::empty_body>>(http::status::accepted, 11);
+    set_common_headers(*res);
+    res->set("Upload-Offset", std::to_string(entry().size));
+    res->set(http::field::cache_control, "no-store");
+    res->keep_alive(keep_alive && !exchange_->stopping());
+    res->prepare_payload();
+    exchange_->restart_timeout();
+    write_response(*exchange_, std::move(res));
+}
+
 void Upload::finish() {
+    if (!checkout_.sink->knows_sha256()) {
+        await_hash();
+        return;
+    }
     std::string stored;
     try {
         stored = checkout_.sink->store(entry().name, claim_);

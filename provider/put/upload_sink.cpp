@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -107,6 +108,24 @@ std::int64_t UploadSink::received() const {
     return received_;
 }
 
+bool UploadSink::knows_sha256() const {
+    std::lock_guard lock(mutex_);
+    return !sha256_.empty();
+}
+
+void UploadSink::expect_sha256(const std::string& hex) {
+    std::string lower = hex;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::lock_guard lock(mutex_);
+    if (sha256_.empty()) {
+        sha256_ = std::move(lower);
+        return;
+    }
+    if (lower != sha256_)
+        throw UploadError(ErrorCode::bad_request, "Upload-SHA256 " + lower + " is not the put's sha256 " + sha256_);
+}
+
 std::string UploadSink::received_sha256() {
     std::lock_guard lock(mutex_);
     if (done_) throw UploadError(ErrorCode::internal, "the upload is over");
@@ -179,6 +198,7 @@ std::string UploadSink::store(const std::string& name, std::uint64_t claim) {
     if (received_ != size_)
         throw UploadError(ErrorCode::interrupted, "the upload ended after " + std::to_string(received_) + " of " +
                                                       std::to_string(size_) + " bytes");
+    if (sha256_.empty()) throw UploadError(ErrorCode::interrupted, "the upload's SHA-256 was never named");
     flush_locked();
     const std::string digest = writer_->hex();
     if (digest != sha256_)

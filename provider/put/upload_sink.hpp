@@ -49,7 +49,8 @@ std::optional<std::uintmax_t> free_bytes(const std::filesystem::path& dir);
 class UploadSink {
 public:
     // Checks that `folder` has room for `size` bytes (too_large) and creates
-    // the temporary file there (internal when it cannot).
+    // the temporary file there (internal when it cannot). `sha256` empty:
+    // named later (expect_sha256()).
     UploadSink(const std::filesystem::path& folder, std::int64_t size, std::string sha256);
     ~UploadSink();
     UploadSink(const UploadSink&) = delete;
@@ -73,6 +74,11 @@ public:
     // internal when the disk refused them.
     std::string received_sha256();
     std::int64_t size() const { return size_; }
+    // The SHA-256 the bytes must have: whether it is known, and naming it
+    // when it is not (64 hex digits, any case). Throws UploadError
+    // bad_request when it was known and this is another.
+    bool knows_sha256() const;
+    void expect_sha256(const std::string& hex);
     // Every byte arrived and matches: stored under `name` or a numbered one,
     // returned. Throws UploadError interrupted (too few bytes, another hash)
     // or internal; the temporary file is gone either way.

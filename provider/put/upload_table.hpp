@@ -33,7 +33,7 @@ struct UploadEntry {
     std::string name;           // safe file name the put asked for
     std::string mime;
     std::int64_t size = 0;
-    std::string sha256;          // 64 lowercase hex digits
+    std::string sha256;          // 64 lowercase hex digits; empty: named after the bytes (Upload-SHA256)
     bool open = false;           // open with the desktop's application once saved
     std::filesystem::path folder;
     std::optional<ScreenPoint> at;  // where the phone pointed: the opened file's window goes there

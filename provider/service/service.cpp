@@ -307,7 +307,10 @@ Replies Service::hello(SessionState& state, const p::Hello& hello, SteadyTime no
         });
     if (activity_) activity_->welcomed({state.id, hello.client, state.peer});
     p::Welcome welcome{hello.id, config_.provider, map->field, config_.overlay, config_.limits};
-    if (puts_->enabled()) welcome.features.push_back(p::kFeaturePut);
+    if (puts_->enabled()) {
+        welcome.features.push_back(p::kFeaturePut);
+        welcome.features.push_back(p::kFeaturePutHashAfter);
+    }
     out.replies.push_back(std::move(welcome));
     return out;
 }

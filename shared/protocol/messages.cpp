@@ -301,7 +301,6 @@ Put read_put(MemberReader& r) {
         need(m.name.has_value(), "name");
         need(m.mime.has_value(), "mime");
         need(m.size.has_value(), "size");
-        need(m.sha256.has_value(), "sha256");
     }
     return m;
 }

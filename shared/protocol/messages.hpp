@@ -47,6 +47,9 @@ inline constexpr std::size_t kMaxFeatures = 32;      // a welcome's features, ea
 inline constexpr std::size_t kMaxFeatureBytes = 64;
 // The feature a provider that takes puts names in its welcome.
 inline constexpr const char* kFeaturePut = "put";
+// A file put may leave out sha256 and name it after the bytes
+// (docs/PROTOCOL.md, "The hash after the bytes").
+inline constexpr const char* kFeaturePutHashAfter = "put-hash-after";
 // |u| and |v| of any field point: far outside any field, yet small enough that
 // the provider's arithmetic on them stays exact to a fraction of a pixel.
 inline constexpr double kMaxCoordinate = 1e6;
@@ -219,7 +222,7 @@ struct Error {
 
 // requester -> provider: give the screen a URL or a file at the point
 // (docs/PROTOCOL.md, "Put"). kind url needs `url`; kind file needs name,
-// mime, size and sha256.
+// mime and size, and has sha256 unless the upload names it after the bytes.
 struct Put {
     RequestId id;
     FieldPoint point;

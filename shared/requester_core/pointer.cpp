@@ -137,7 +137,7 @@ Step Pointer::tap(double t) {
     }
     pending_ = p::RequestId{"p" + std::to_string(next_++)};
     view_.phase = Phase::putting;
-    if (item_->kind == p::ContentKind::file && !item_->sha256) {
+    if (item_->kind == p::ContentKind::file && !item_->sha256 && !item_->hash_after) {
         view_.put = PutProgress::hashing;  // hashed() sends it
         return {};
     }

@@ -54,7 +54,8 @@ struct Sighting {
 };
 
 // What Put mode gives the screen. A file needs name, mime and size; its
-// sha256 may come later (hashed()).
+// sha256 may come later (hashed()), or after the bytes (hash_after: the
+// put goes without it, and the upload names it).
 struct PutItem {
     protocol::ContentKind kind = protocol::ContentKind::url;  // url or file
     std::string title;
@@ -63,6 +64,7 @@ struct PutItem {
     std::string mime;
     std::int64_t size = 0;
     std::optional<std::string> sha256;
+    bool hash_after = false;
 };
 
 enum class Mode { grab, put };

@@ -213,14 +213,18 @@ protected:
     std::unique_ptr<Requester> requester(const std::optional<std::string>& device = std::nullopt) {
         auto r = std::make_unique<Requester>(server->port(), identity.fingerprint);
         const p::Welcome w = r->hello(device);
-        EXPECT_EQ(w.features, std::vector<std::string>{"put"});
+        EXPECT_EQ(w.features, (std::vector<std::string>{"put", "put-hash-after"}));
         return r;
     }
-    // Puts a file, has it accepted; the upload path.
+    // Puts a file, has it accepted; the upload path. `hash_after`: the put
+    // leaves its sha256 out, for the upload to name.
     std::string accepted_upload(Requester& r, const std::string& bytes, const std::string& id,
-                                PutAnswer answer = PutAnswer::save, const std::string& name = "report.pdf") {
+                                PutAnswer answer = PutAnswer::save, const std::string& name = "report.pdf",
+                                bool hash_after = false) {
         const std::size_t asked = decider->offers(0).size();
-        EXPECT_FALSE(r.send(file_put(bytes, id, name)));
+        p::Put put = file_put(bytes, id, name);
+        if (hash_after) put.sha256.reset();
+        EXPECT_FALSE(r.send(put));
         const p::Message asking = r.read();
         EXPECT_TRUE(std::holds_alternative<p::PutStatus>(asking)) << p::type_name(asking);
         const auto offers = decider->offers(asked + 1);
@@ -499,6 +503,75 @@ TEST_F(PutServer, AResumeWhoseFileChangedUnderTheBytesHeldEndsThePutAtOnce) {
     const p::Message done = r->read();
     ASSERT_NE(std::get_if<p::PutStatus>(&done), nullptr) << p::type_name(done);
     EXPECT_TRUE(umf::test::file_text(folder / "report.pdf") == bytes);
+}
+
+// A put without its SHA-256: every byte arrived is answered 202 and the
+// link waits for the hash (Upload-SHA256); a wrong one ends the put with
+// nothing kept, the right one (in capitals too, on a resumed request that
+// brings the rest) stores the file.
+TEST_F(PutServer, AHashNamedAfterTheBytesIsCheckedBeforeTheFileIsStored) {
+    auto r = requester();
+    std::string bytes(300000, '\0');
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>(i * 13 + (i >> 10));
+    const std::string named = "Upload-SHA256: " + sha256_of(bytes) + "\r\n";
+    const std::string size = std::to_string(bytes.size());
+
+    const std::string path = accepted_upload(*r, bytes, "p20", PutAnswer::save, "report.pdf", true);
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(path, bytes.size()) + bytes);
+        EXPECT_EQ(raw.read_status(), 202) << "all bytes, no hash";
+    }
+    EXPECT_EQ(held(path), static_cast<long>(bytes.size()));
+    EXPECT_EQ(folder_names(folder).size(), 1u) << "only the hidden temporary file";
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(path, 0, bytes.size(), "Upload-SHA256: " + sha256_of("other") + "\r\n"));
+        EXPECT_EQ(raw.read_status(), 400);
+    }
+    EXPECT_EQ(code_of(r->read()), p::ErrorCode::interrupted);
+    EXPECT_EQ(held(path), -1);
+    EXPECT_TRUE(folder_names(folder).empty()) << "nothing kept";
+
+    const std::string second = accepted_upload(*r, bytes, "p21", PutAnswer::save, "report.pdf", true);
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(second, bytes.size()) + bytes);
+        EXPECT_EQ(raw.read_status(), 202);
+    }
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(second, 0, bytes.size(), named));
+        EXPECT_EQ(raw.read_status(), 200);
+    }
+    const p::Message done = r->read();
+    ASSERT_NE(std::get_if<p::PutStatus>(&done), nullptr) << p::type_name(done);
+    EXPECT_TRUE(umf::test::file_text(folder / "report.pdf") == bytes);
+
+    const std::string third = accepted_upload(*r, bytes, "p22", PutAnswer::save, "report.pdf", true);
+    const long got = cut_after(third, bytes, bytes.size() / 2);
+    ASSERT_GT(got, 0);
+    std::string upper = sha256_of(bytes);
+    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        raw.write(request_head(third, bytes.size() - got, got, "Upload-SHA256: " + upper + "\r\n") + bytes.substr(got));
+        EXPECT_EQ(raw.read_status(), 200) << "named with the rest";
+    }
+    const p::Message stored = r->read();
+    ASSERT_NE(std::get_if<p::PutStatus>(&stored), nullptr) << p::type_name(stored);
+    EXPECT_EQ(std::get<p::PutStatus>(stored).name, std::optional<std::string>("report (1).pdf"));
+    EXPECT_TRUE(umf::test::file_text(folder / "report (1).pdf") == bytes);
+
+    // A put that carried its hash: another one named later is refused.
+    const std::string fourth = accepted_upload(*r, bytes, "p23");
+    {
+        RawTls raw(server->port(), identity.fingerprint);
+        // The header alone: it is refused before the body.
+        raw.write(request_head(fourth, bytes.size(), std::nullopt, "Upload-SHA256: " + sha256_of("other") + "\r\n"));
+        EXPECT_EQ(raw.read_status(), 400);
+    }
+    EXPECT_EQ(code_of(r->read()), p::ErrorCode::bad_request);
 }
 
 // Nobody sends the rest within the link's lifetime: the put is interrupted

@@ -125,7 +125,7 @@ TEST_F(PutService, WithoutADeciderTheWelcomeOffersNoPutAndPutsAreRefused) {
 }
 
 TEST_F(PutService, TheWelcomeNamesPutAndThePutAsksTheScreen) {
-    EXPECT_EQ(welcome(state, "phone-1").features, std::vector<std::string>{"put"});
+    EXPECT_EQ(welcome(state, "phone-1").features, (std::vector<std::string>{"put", "put-hash-after"}));
     const auto reply = put(state, url_put());
     EXPECT_EQ(status(reply).status, p::PutState::asking);
     EXPECT_EQ(status(reply).id, p::RequestId{std::string("p1")});
@@ -470,7 +470,7 @@ TEST(PutApiSessions, APushedAnswerReachesTheLongPoll) {
     ASSERT_EQ(welcomed.status, 200);
     const auto body = nlohmann::json::parse(welcomed.body);
     const std::string id = body["session"];
-    EXPECT_EQ(body["messages"][0]["features"], nlohmann::json::array({"put"}));
+    EXPECT_EQ(body["messages"][0]["features"], nlohmann::json::array({"put", "put-hash-after"}));
     const auto asked = sessions->message(id, p::encode(url_put()));
     EXPECT_EQ(nlohmann::json::parse(asked.body)["messages"][0]["status"], "asking");
 

@@ -8,9 +8,10 @@ the connection that carried them, client and target side, with a reset. It count
 ("DOWN UP\\n") as they pass (every MiB at most), so a test reads how much a
 transfer cost once its client has the bytes. Given CHANGE_FILE and
 CHANGE_AT, it also changes that byte of that file at the moment of the cut
-(the size kept), as a user who edits a file while it is being sent.
+(the size kept), as a user who edits a file while it is being sent; with
+"keep" after them, it changes the byte then and leaves the connection be.
 
-usage: cutting_relay.py TARGET_PORT CUT_AT COUNT_FILE [down|up [CHANGE_FILE CHANGE_AT]]
+usage: cutting_relay.py TARGET_PORT CUT_AT COUNT_FILE [down|up [CHANGE_FILE CHANGE_AT [keep]]]
 """
 import os
 import socket
@@ -21,6 +22,7 @@ import threading
 target_port, cut_at, count_file = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
 cut_direction = sys.argv[4] if len(sys.argv) > 4 else "down"
 change_file, change_at = (sys.argv[5], int(sys.argv[6])) if len(sys.argv) > 6 else (None, 0)
+keep_connection = len(sys.argv) > 7 and sys.argv[7] == "keep"
 lock = threading.Lock()
 carried = {"down": 0, "up": 0}
 cut_done = False
@@ -76,9 +78,10 @@ def pump(src, dst, direction, pair):
             if cut:
                 if change_file:
                     change_byte()
-                for s in pair:
-                    reset(s)
-                return
+                if not keep_connection:
+                    for s in pair:
+                        reset(s)
+                    return
     except OSError:
         pass
     finally:

@@ -15,7 +15,11 @@
 #         bytes the screen should hold, the screen refuses it (412), and the
 #         put ends there with the reason (exit 3): nothing kept, the rest
 #         never sent.
-# usage: resume_test.sh BUILD_DIR grab|put|put_changed [SIZE_MB]
+#   put_changed_uncut: the same change half way, the connection left be:
+#         the requester names the hash of the file as it is at the end, the
+#         screen finds its bytes are not that file, and the put ends with
+#         the reason (exit 3), nothing kept.
+# usage: resume_test.sh BUILD_DIR grab|put|put_changed|put_changed_uncut [SIZE_MB]
 set -euo pipefail
 build=$(cd "$1" && pwd)
 mode=$2
@@ -29,11 +33,12 @@ cleanup() {
   local rc=$?
   stop_provider || rc=1
   [ -n "$relay_pid" ] && kill "$relay_pid" 2>/dev/null
-  rm -rf "$work"
+  [ -n "${KEEP_WORK:-}" ] || rm -rf "$work"
   exit $rc
 }
 trap cleanup EXIT
-case $mode in grab | put | put_changed) ;; *) echo "usage: resume_test.sh BUILD_DIR grab|put|put_changed [SIZE_MB]"; exit 2 ;; esac
+case $mode in grab | put | put_changed | put_changed_uncut) ;;
+*) echo "usage: resume_test.sh BUILD_DIR grab|put|put_changed|put_changed_uncut [SIZE_MB]"; exit 2 ;; esac
 
 size=$((size_mb << 20))
 mkdir -p "$work/board" "$work/out" "$work/received"
@@ -50,6 +55,7 @@ direction=down
 change=()
 [ "$mode" != grab ] && direction=up
 [ "$mode" = put_changed ] && change=("$work/board/big.bin" 1000)
+[ "$mode" = put_changed_uncut ] && change=("$work/board/big.bin" 1000 keep)
 python3 "$here/../support/cutting_relay.py" "$port" "$((size / 2))" "$work/counts" "$direction" "${change[@]}" \
   >"$work/relay.port" &
 relay_pid=$!
@@ -75,6 +81,14 @@ if [ "$mode" = put_changed ]; then
   read -r down up <"$work/counts"
   [ "$up" -lt $(( size * 3 / 4 )) ] || { echo "FAIL: $up bytes went up after the file changed"; exit 1; }
   echo "ok: the changed file was refused at the resume, after $up of $size bytes: $(grep -o '"message":"[^"]*"' "$work/requester.json")"
+  exit 0
+fi
+if [ "$mode" = put_changed_uncut ]; then
+  [ "$status" -eq 3 ] || { echo "FAIL: exit $status, not 3:"; cat "$work/requester.json"; tail -20 "$work/requester.log"; exit 1; }
+  grep -q 'changed while it was being sent' "$work/requester.json" ||
+    { echo "FAIL: the reason is not given:"; cat "$work/requester.json"; exit 1; }
+  [ -z "$(ls -A "$work/received")" ] || { echo "FAIL: something was kept:"; ls -A "$work/received"; exit 1; }
+  echo "ok: the file changed while it was sent was not kept: $(grep -o '"message":"[^"]*"' "$work/requester.json")"
   exit 0
 fi
 [ "$status" -eq 0 ] ||
