@@ -1,7 +1,8 @@
 // The hashing writer of large transfers: pieces of every size and
 // alignment arrive in the file in order with the SHA-256 of all of them,
 // directly or through the page cache; a restart begins again from nothing;
-// a failing disk is reported, not lost.
+// a failing disk is reported, not lost. Without a file it only hashes,
+// keeping its states every checkpoint step and going on from one.
 #if defined(UMF_PROVIDER_TESTS)
 
 #include <fcntl.h>
@@ -9,6 +10,7 @@
 #include <unistd.h>
 
 #include <cstring>
+#include <memory>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -105,6 +107,38 @@ TEST(HashingWriter, AWriteThatFailsIsReported) {
         }
     }
     ::close(fd);
+}
+
+// The requester's put: no file, the hash's states saved at each step, and a
+// resumed transfer's hash taken up from the nearest one.
+TEST(HashingWriter, WithoutAFileItHashesAndKeepsCheckpoints) {
+    using umf::native::HashCheckpoints;
+    const std::size_t piece = 1 << 20;
+    std::string bytes(2 * HashCheckpoints::kStep + 3 * piece + 77, '\0');
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<char>((i * 40503u) >> 11);
+    HashCheckpoints points;
+    HashingWriter writer(-1, piece, false, 4);
+    writer.continue_from(0, std::make_unique<umf::native::Sha256>(), &points);
+    send(writer, bytes, {piece});
+    writer.drain();
+    EXPECT_EQ(writer.hash_so_far()->hex(), sha256_of(bytes));
+    EXPECT_EQ(points.nearest(bytes.size()).first, 2 * HashCheckpoints::kStep) << "a state at each step";
+
+    // Taken up at an offset past the first step, from the state kept there.
+    const std::size_t resume = HashCheckpoints::kStep + 5 * piece;
+    const auto read = [&](std::uint64_t at, char* into, std::size_t n) {
+        const std::size_t got = std::min<std::size_t>(n, bytes.size() - at);
+        std::memcpy(into, bytes.data() + at, got);
+        return static_cast<long>(got);
+    };
+    std::string buffer(piece, '\0');
+    auto state = points.hasher_at(resume, read, buffer.data(), buffer.size());
+    ASSERT_TRUE(state);
+    HashingWriter again(-1, piece, false, 4);
+    again.continue_from(resume, std::move(state), &points);
+    send(again, bytes.substr(resume), {piece});
+    again.drain();
+    EXPECT_EQ(again.hex(), sha256_of(bytes));
 }
 
 }  // namespace
