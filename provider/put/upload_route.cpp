@@ -90,6 +90,12 @@ Upload::~Upload() {
     if (!ended_) puts_.end_upload(checkout_, UploadEnd::broken);
 }
 
+// 64 hexadecimal digits, either case: a header's SHA-256.
+bool is_sha256_hex(beast::string_view text) {
+    return text.size() == 64 &&
+           std::all_of(text.begin(), text.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); });
+}
+
 // The request's Upload-Offset: where its body starts in the file (0 when
 // absent); nullopt when it is not a number.
 std::optional<std::int64_t> upload_offset(const http::request_parser<http::empty_body>& header) {
@@ -173,8 +179,7 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
 bool Upload::prefix_matches(const http::request_parser<http::empty_body>& header, std::int64_t held) {
     const beast::string_view expected = header.get()["Upload-Prefix-SHA256"];
     if (expected.empty()) return true;
-    if (expected.size() != 64 ||
-        !std::all_of(expected.begin(), expected.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); })) {
+    if (!is_sha256_hex(expected)) {
         fail(protocol::ErrorCode::bad_request, "Upload-Prefix-SHA256 is not 64 hexadecimal digits", true);
         return false;
     }
@@ -198,8 +203,7 @@ bool Upload::prefix_matches(const http::request_parser<http::empty_body>& header
 bool Upload::take_named_hash(const http::request_parser<http::empty_body>& header) {
     const beast::string_view named = header.get()["Upload-SHA256"];
     if (named.empty()) return true;
-    if (named.size() != 64 ||
-        !std::all_of(named.begin(), named.end(), [](char c) { return std::isxdigit(static_cast<unsigned char>(c)); })) {
+    if (!is_sha256_hex(named)) {
         fail(protocol::ErrorCode::bad_request, "Upload-SHA256 is not 64 hexadecimal digits", true);
         return false;
     }
