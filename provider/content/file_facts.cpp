@@ -72,8 +72,10 @@ struct FileFactsCache::OpenFile {
     OpenFile& operator=(const OpenFile&) = delete;
 
     // `stop` is looked at between reads: a provider stopping does not wait
-    // for the rest of a large file.
-    Hashed hash(const std::string& what, const std::atomic<bool>* stop = nullptr) const {
+    // for the rest of a large file. So is the lease: a program that opens
+    // the file for writing meanwhile waits one read, not the whole hash,
+    // and the hash is not taken as leased.
+    Hashed hash(const std::string& what, const std::atomic<bool>* stop = nullptr) {
         native::Sha256 hash;
         std::vector<char> buffer(1 << 20);
         for (;;) {
@@ -82,6 +84,7 @@ struct FileFactsCache::OpenFile {
             if (n < 0 && errno == EINTR) continue;
             if (n < 0) throw std::runtime_error("cannot read " + what + ": " + std::strerror(errno));
             if (n == 0) break;
+            if (lease.held() && !lease.unbroken()) lease.release();
             hash.update(buffer.data(), static_cast<std::size_t>(n));
         }
         const std::int64_t ctime = nanoseconds(st.st_ctim);
@@ -127,7 +130,7 @@ std::optional<FileFacts> FileFactsCache::cached_or_claim(std::unique_lock<std::m
     return std::nullopt;
 }
 
-FileFacts FileFactsCache::hash_claimed(const OpenFile& file, const Key& key) {
+FileFacts FileFactsCache::hash_claimed(OpenFile& file, const Key& key) {
     Hashed hash;
     try {
         hash = file.hash(key.path);
@@ -146,7 +149,7 @@ FileFacts FileFactsCache::hash_claimed(const OpenFile& file, const Key& key) {
 }
 
 FileFacts FileFactsCache::facts(const std::filesystem::path& file) {
-    const OpenFile f(file.string());
+    OpenFile f(file.string());
     const Key key{file.string(), identity_of(f.st)};
     std::unique_lock lock(mutex_);
     if (auto known = cached_or_claim(lock, key)) return *known;
@@ -155,7 +158,7 @@ FileFacts FileFactsCache::facts(const std::filesystem::path& file) {
 }
 
 std::optional<FileFacts> FileFactsCache::facts_or_later(const std::filesystem::path& file, Later later) {
-    const OpenFile f(file.string());
+    OpenFile f(file.string());
     const Key key{file.string(), identity_of(f.st)};
     std::unique_lock lock(mutex_);
     if (auto it = hashes_.find(key); it != hashes_.end()) return facts_of(key, it->second);
@@ -209,7 +212,7 @@ void FileFactsCache::hash_one_in_background(std::unique_lock<std::mutex>& lock, 
     Key key;
     Hashed hashed;
     try {
-        const OpenFile f(what);
+        OpenFile f(what);
         key = Key{what, identity_of(f.st)};
         std::optional<Hashed> known;
         {

@@ -93,7 +93,7 @@ private:
     struct OpenFile;
     static FileFacts facts_of(const Key& key, const Hashed& hashed);
     std::optional<FileFacts> cached_or_claim(std::unique_lock<std::mutex>& lock, const Key& key);
-    FileFacts hash_claimed(const OpenFile& file, const Key& key);
+    FileFacts hash_claimed(OpenFile& file, const Key& key);
     void queue(const std::filesystem::path& file);
     void hash_in_background();
     void hash_one_in_background(std::unique_lock<std::mutex>& lock, const std::filesystem::path& file);

@@ -119,6 +119,28 @@ TEST(FileFacts, AHashTakenUnderAnUnbrokenLeaseOfASettledFileIsLeased) {
     EXPECT_EQ(cache.facts(fresh).leased_ctime_ns, 0);
 }
 
+// A large file hashed while a program opens it for writing: the program
+// waits one read of the hash, not all of it, and the hash is not leased.
+TEST(FileFacts, AWriterDoesNotWaitForTheHashToEnd) {
+    umf::test::TempDir dir;
+    const fs::path big = dir.path / "big.bin";
+    write_file(big, std::size_t{512} << 20);
+    if (!leases_here(big)) GTEST_SKIP() << "the file system of " << dir.path << " grants no leases";
+    std::this_thread::sleep_for(120ms);
+    FileFactsCache cache;
+    const auto started = std::chrono::steady_clock::now();
+    auto hashed = std::async(std::launch::async, [&] { return cache.facts(big); });
+    // The hash of 512 MiB takes a quarter of a second or more here.
+    std::this_thread::sleep_for(30ms);
+    const auto opening = std::chrono::steady_clock::now();
+    { Fd writer(::open(big.c_str(), O_WRONLY | O_CLOEXEC)); }
+    const auto waited = std::chrono::steady_clock::now() - opening;
+    const FileFacts facts = hashed.get();
+    const auto hash_took = std::chrono::steady_clock::now() - started;
+    EXPECT_LT(waited, 100ms) << "the hash took " << std::chrono::duration<double>(hash_took).count() << " s";
+    EXPECT_EQ(facts.leased_ctime_ns, 0);
+}
+
 }  // namespace
 
 #endif
