@@ -124,6 +124,22 @@ struct Sent {
     std::string why;
 };
 
+// A hasher that has taken the file's first `size` bytes: the state kept at
+// or before it, and the bytes from there read again.
+std::unique_ptr<native::Sha256> prefix_hash(ReadOnlyFile& file, const native::HashCheckpoints& checkpoints,
+                                            std::int64_t size) {
+    std::vector<char> piece(kPieceBytes);
+    const auto read = [&](std::uint64_t at, char* into, std::size_t n) {
+        file.seek(static_cast<std::int64_t>(at));
+        return static_cast<long>(file.read(into, n));
+    };
+    auto hash = checkpoints.hasher_at(static_cast<std::uint64_t>(size), read, piece.data(), piece.size());
+    if (!hash)
+        throw input_failure(file.path().string() + " became shorter than the " + std::to_string(size) +
+                            " bytes already sent; put it again");
+    return hash;
+}
+
 // The SHA-256 of a put that names it after the bytes, taken on a thread
 // beside the sending one as the pieces go (native/hashing_writer.hpp, with
 // no file). Its states every HashCheckpoints::kStep let a resumed request
@@ -143,7 +159,6 @@ public:
         lane_.submit(piece, size);
         at_ += static_cast<std::int64_t>(size);
     }
-    std::int64_t at() const { return at_; }
     // Taken up again at byte `offset` (a resumed request's start): its
     // SHA-256 there, the Upload-Prefix-SHA256.
     std::string rewind(std::int64_t offset) {
@@ -163,16 +178,7 @@ private:
             at_ = -1;
         }
         if (offset == at_) return;
-        std::vector<char> buffer(kPieceBytes);
-        const auto read = [&](std::uint64_t from, char* into, std::size_t n) {
-            file_.seek(static_cast<std::int64_t>(from));
-            return static_cast<long>(file_.read(into, n));
-        };
-        auto state = points_->hasher_at(static_cast<std::uint64_t>(offset), read, buffer.data(), buffer.size());
-        if (!state)
-            throw input_failure(file_.path().string() + " became shorter than the " + std::to_string(offset) +
-                                " bytes already sent; put it again");
-        lane_.continue_from(static_cast<std::uint64_t>(offset), std::move(state), points_.get());
+        lane_.continue_from(static_cast<std::uint64_t>(offset), prefix_hash(file_, *points_, offset), points_.get());
         at_ = offset;
     }
 
@@ -236,20 +242,6 @@ Sent answered(const http::response<http::string_body>& answer) {
     return {interpret(answer), false, {}};
 }
 
-// The SHA-256 of the file's first `size` bytes: the state kept at or
-// before it, and the bytes from there read again.
-std::string prefix_sha256(ReadOnlyFile& file, const native::HashCheckpoints& checkpoints, std::int64_t size) {
-    std::vector<char> piece(kPieceBytes);
-    const auto read = [&](std::uint64_t at, char* into, std::size_t n) {
-        file.seek(static_cast<std::int64_t>(at));
-        return static_cast<long>(file.read(into, n));
-    };
-    auto hash = checkpoints.hasher_at(static_cast<std::uint64_t>(size), read, piece.data(), piece.size());
-    if (!hash)
-        throw input_failure("the file became shorter than the " + std::to_string(size) + " bytes already sent; put it again");
-    return hash->hex();
-}
-
 // Sends the file from byte `from` (Upload-Offset) to its end and reads the
 // answer, with blocking TLS (blocking_tls.hpp): each piece goes out as a
 // run of records, so the provider finds many in its socket at once. The
@@ -275,7 +267,7 @@ Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, Read
     if (from > 0 && running)
         req.set("Upload-Prefix-SHA256", running->rewind(from));
     else if (from > 0 && request.checkpoints)
-        req.set("Upload-Prefix-SHA256", prefix_sha256(file, *request.checkpoints, from));
+        req.set("Upload-Prefix-SHA256", prefix_hash(file, *request.checkpoints, from)->hex());
     if (!named.empty()) req.set("Upload-SHA256", named);
     file.seek(from);
     req.set(http::field::content_length, std::to_string(request.size - from));

@@ -122,7 +122,6 @@ std::optional<std::uint64_t> VerifiedFileReader::read_leased(ReadLease& lease, s
         publish(nullptr, {}, true);
         return size;
     }
-    boost::beast::error_code ec;
     while (at < size) {
         char* buffer = free_buffer(&lease);
         if (!buffer) return std::nullopt;
@@ -130,12 +129,8 @@ std::optional<std::uint64_t> VerifiedFileReader::read_leased(ReadLease& lease, s
             give_back(buffer);
             return at;
         }
-        const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(size - at, kPieceBytes - at % kPieceBytes));
-        const long n = body_.read_at(at, buffer, want, ec);
-        if (n <= 0) {
-            publish(nullptr, n < 0 ? ec : boost::beast::error_code(DownloadCheck::changed), false);
-            return std::nullopt;
-        }
+        const long n = read_piece(at, buffer);
+        if (n <= 0) return std::nullopt;
         at += static_cast<std::uint64_t>(n);
         // Read before the lease is given back, the piece is the hashed bytes.
         const Piece piece{buffer, static_cast<std::size_t>(n)};
@@ -148,29 +143,32 @@ std::optional<std::uint64_t> VerifiedFileReader::read_leased(ReadLease& lease, s
     return at;
 }
 
+long VerifiedFileReader::read_piece(std::uint64_t at, char* buffer) {
+    // Pieces end on multiples of kPieceBytes, so the checkpoints' offsets
+    // are reached exactly wherever the transfer began.
+    const std::uint64_t size = body_.file_size();
+    const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(size - at, kPieceBytes - at % kPieceBytes));
+    boost::beast::error_code ec;
+    const long n = body_.read_at(at, buffer, want, ec);
+    // None: shorter than when it was offered.
+    if (n <= 0) publish(nullptr, n < 0 ? ec : boost::beast::error_code(DownloadCheck::changed), false);
+    return n;
+}
+
 void VerifiedFileReader::read_hashed(std::uint64_t at) {
     boost::beast::error_code ec;
-    std::unique_ptr<native::Sha256> hash;
-    if (char* scratch = free_buffer()) {
-        hash = body_.hasher_at(at, scratch, kPieceBytes, ec);
-        give_back(scratch);
-    } else {
-        return;
-    }
+    char* scratch = free_buffer();
+    if (!scratch) return;
+    auto hash = body_.hasher_at(at, scratch, kPieceBytes, ec);
+    give_back(scratch);
     if (!hash) return publish(nullptr, ec, false);
     const std::uint64_t size = body_.file_size();
     if (at >= size) return publish(nullptr, {}, true);
     while (at < size) {
         char* buffer = free_buffer();
         if (!buffer) return;
-        // Pieces end on multiples of kPieceBytes, so the checkpoints'
-        // offsets are reached exactly wherever the transfer began.
-        const auto want = static_cast<std::size_t>(std::min<std::uint64_t>(size - at, kPieceBytes - at % kPieceBytes));
-        const long n = body_.read_at(at, buffer, want, ec);
-        if (n <= 0) {
-            // None: shorter than when it was offered.
-            return publish(nullptr, n < 0 ? ec : boost::beast::error_code(DownloadCheck::changed), false);
-        }
+        const long n = read_piece(at, buffer);
+        if (n <= 0) return;
         at += static_cast<std::uint64_t>(n);
         if (!body_.hash_piece(*hash, buffer, static_cast<std::size_t>(n), at, ec)) return publish(nullptr, ec, false);
         const Piece piece{buffer, static_cast<std::size_t>(n)};

@@ -72,6 +72,9 @@ private:
     std::optional<std::uint64_t> read_leased(ReadLease& lease, std::uint64_t at);
     // Reads and hashes the pieces from `at` on until the end, a failure or a stop.
     void read_hashed(std::uint64_t at);
+    // Reads the piece at `at` into `buffer`: its size, or 0 or less with the
+    // failure published.
+    long read_piece(std::uint64_t at, char* buffer);
     // Waits for a free buffer; null when stopping. A `lease` is looked at
     // while waiting, and given back as soon as it is broken.
     char* free_buffer(ReadLease* lease = nullptr);
