@@ -16,7 +16,8 @@
 // way to a lattice read from the spectrum of edge strength around the aim
 // (lattice.hpp), for modules of 3-5 pixels, then on the frame at half size
 // and below, for a faint field's larger modules; last, for a small frame,
-// steps 1 to 8 run once at double size (double_size).
+// steps 1 to 8 run once at double size (double_size), and last on the frame
+// smoothed. A video's frame may run only some of these (search_plan.hpp).
 // A wrong place is worse than none: every stage may end in "not found".
 #pragma once
 
@@ -34,6 +35,7 @@
 #include "shared/detect/lattice.hpp"
 #include "shared/detect/placement_vote.hpp"
 #include "shared/detect/refine.hpp"
+#include "shared/detect/search_plan.hpp"
 #include "shared/detect/vanishing_points.hpp"
 #include "shared/detect/window_index.hpp"
 
@@ -180,6 +182,9 @@ public:
     Detection detect(const GreyView& image) const;
     Detection detect(const GreyView& image, const Eigen::Vector2d& aim) const;
     Detection detect(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior) const;
+    // Only the searches `plan` names (search_plan.hpp): a video's frame.
+    Detection detect(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                     const SearchPlan& plan) const;
     // Colour frames are detected on their luma (image.hpp's to_luma).
     Detection detect(const ColourView& image) const;
 
@@ -211,6 +216,7 @@ private:
         struct Labellings {
             std::vector<GridLineFamily> family[2];
         };
+        SearchPlan plan;  // at the frame's own size; the searches within a fallback run whole
         int first_pair = 0;
         int end_pair = 0;
         std::vector<Labellings> left;
@@ -226,21 +232,25 @@ private:
     // the failure, or null when found.
     const char* search_sizes(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              Pass& pass, Detection& out) const;
-    // Steps 1 to 8 on the image at its own size, then at half size, and so
-    // on while the image is large enough.
+    // Steps 1 to 8 on the image at its own size (the scans in `scans`), then
+    // at half size, and so on while the image is large enough (the scans in
+    // `smaller_scans` at each of those sizes; none: not resized).
     const char* search_smaller(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                               Pass& pass, Detection& out) const;
+                               Pass& pass, Detection& out, unsigned scans = kEveryScan,
+                               unsigned smaller_scans = kEveryScan) const;
     // Steps 1 to 8 on `part` of the image (its corner at `origin`) resized
     // by `scale`, 0.5 (and on down, as search_smaller) or 2; the detection
     // is taken back to the image's coordinates.
     const char* search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
                                const Eigen::Vector2d& aim, const DetectionPrior* prior, Pass& pass,
-                               Detection& out) const;
+                               Detection& out, unsigned scans, unsigned smaller_scans) const;
     // Steps 1 to 8 on the image at its own size: the scans, each wider or
     // denser than the last, until one finds the field; `vanishing` is step
-    // 2's options at this size (wider at double size).
+    // 2's options at this size (wider at double size); only the scans in
+    // `scans` (SearchPlan::scans) are searched.
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                             const VanishingOptions& vanishing, Pass& pass, Detection& out) const;
+                             const VanishingOptions& vanishing, Pass& pass, Detection& out,
+                             unsigned scans = kEveryScan) const;
     // search over all of a scan's edgels, then, when that fails, over the
     // field-like ones alone, then over those not on thin lines
     // (field_edgels.hpp).
@@ -259,9 +269,10 @@ private:
     // steps 1 to 4; the failure, or null when found.
     const char* search_lattice(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                Detection& out) const;
-    // The same at half size and below (DetectorOptions::lattice_sizes).
+    // The same at half size and below (DetectorOptions::lattice_sizes): at
+    // half size when bit 0 of `sizes` is set, a quarter with bit 1, and so on.
     const char* search_lattice_smaller(const GreyView& image, const Eigen::Vector2d& aim,
-                                       const DetectionPrior* prior, Detection& out) const;
+                                       const DetectionPrior* prior, Detection& out, unsigned sizes) const;
     // Steps 5 to 8 on one grid (`grid_to_image`, rows x cols cells): its
     // modules read, the vote (near the prior first), the refit and checks,
     // the aim point; the failure, or null when found.

@@ -74,6 +74,11 @@ struct Resizing {
 }  // namespace
 
 Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior) const {
+    return detect(im, aim, prior, full_search());
+}
+
+Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                           const SearchPlan& plan) const {
     Detection out;
     out.aim_image = aim;
     const auto start = StageClock::now();
@@ -82,11 +87,12 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
         return out;
     }
     Pass pass;
+    pass.plan = plan;
     pass.end_pair = options_.first_pass_pairs > 0 ? options_.first_pass_pairs : std::numeric_limits<int>::max();
     const char* failure = search_sizes(im, aim, prior, pass, out);
     for (std::size_t k = 0; k < pass.left.size(); ++k)
         if (!pass.left[k].family[0].empty()) pass.end_of_left = k + 1;
-    if (failure && failure != kAimAtInfinity && pass.end_of_left > 0) {
+    if (failure && failure != kAimAtInfinity && plan.second_pass && pass.end_of_left > 0) {
         pass.first_pair = pass.end_pair;
         pass.end_pair = std::numeric_limits<int>::max();
         pass.search = 0;
@@ -104,13 +110,15 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
 
 const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                    Pass& pass, Detection& out) const {
-    const char* failure = search_smaller(im, aim, prior, pass, out);
+    const SearchPlan& plan = pass.plan;
+    const char* failure = search_smaller(im, aim, prior, pass, out, plan.scans, plan.smaller_scans);
     if (!failure) return nullptr;
-    if (pass.first() && options_.lattice_enabled &&
-        (!search_lattice(im, aim, prior, out) || !search_lattice_smaller(im, aim, prior, out)))
+    if (pass.first() && options_.lattice_enabled && plan.lattices != 0 &&
+        (((plan.lattices & 1u) && !search_lattice(im, aim, prior, out)) ||
+         ((plan.lattices & ~1u) && !search_lattice_smaller(im, aim, prior, out, plan.lattices >> 1))))
         return nullptr;
     const int max_side = options_.double_size_max_side;
-    if (max_side > 0 && std::max(im.width, im.height) <= max_side) {
+    if (plan.double_scans != 0 && max_side > 0 && std::max(im.width, im.height) <= max_side) {
         // The part around the aim, at double size: as many pixels as the frame.
         const double part = std::clamp(options_.double_size_part, 0.1, 1.0);
         const int w = std::max(8, static_cast<int>(std::lround(im.width * part)));
@@ -119,16 +127,18 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
             const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
             const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
             const GreyView around{im.row(y0) + x0, w, h, im.stride};
-            if (!search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, pass, out)) return nullptr;
+            if (!search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, pass, out, plan.double_scans, 0))
+                return nullptr;
         }
     }
-    if (options_.smoothed_search && !pass.nothing_left()) {
+    if ((plan.smoothed_scans | plan.smoothed_smaller_scans) != 0 && options_.smoothed_search &&
+        !pass.nothing_left()) {
         auto t = StageClock::now();
         std::vector<std::uint8_t> pixels;
         const GreyView soft = smoothed(im, pixels);
         out.times.edgels_ms += ms_since(t);
         out.pixels_visited += static_cast<long>(im.width) * im.height;
-        if (!search_smaller(soft, aim, prior, pass, out)) {
+        if (!search_smaller(soft, aim, prior, pass, out, plan.smoothed_scans, plan.smoothed_smaller_scans)) {
             out.from_smoothed = true;
             return nullptr;
         }
@@ -152,19 +162,20 @@ const char* Detector::search_lattice(const GreyView& im, const Eigen::Vector2d& 
 }
 
 const char* Detector::search_lattice_smaller(const GreyView& im, const Eigen::Vector2d& aim,
-                                             const DetectionPrior* prior, Detection& out) const {
+                                             const DetectionPrior* prior, Detection& out, unsigned sizes) const {
     // Two buffers in turn: each size is made from the one before.
     std::vector<std::uint8_t> buffers[2];
     GreyView current = im;
     double scale = 1;
     const char* failure = "no lattice";
-    for (int k = 0; k < options_.lattice_sizes; ++k) {
+    for (int k = 0; k < options_.lattice_sizes && (sizes >> k) != 0; ++k) {
         if (std::min(current.width, current.height) / 2 < options_.lattice.patch_px) break;
         auto t = StageClock::now();
         out.pixels_visited += static_cast<long>(current.width) * current.height;
         current = half_size(current, buffers[k % 2]);
         scale *= 0.5;
         out.times.edgels_ms += ms_since(t);
+        if (!((sizes >> k) & 1u)) continue;
         const Resizing resizing(scale, Eigen::Vector2d::Zero(), prior);
         failure = search_lattice(current, resizing.resized(aim), resizing.resized_prior(), out);
         if (failure == kAimAtInfinity) return failure;
@@ -177,16 +188,19 @@ const char* Detector::search_lattice_smaller(const GreyView& im, const Eigen::Ve
 }
 
 const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                     Pass& pass, Detection& out) const {
-    const char* failure = search_scans(im, aim, prior, options_.vanishing, pass, out);
+                                     Pass& pass, Detection& out, unsigned scans, unsigned smaller_scans) const {
+    const char* failure = search_scans(im, aim, prior, options_.vanishing, pass, out, scans);
     const int min_side = options_.half_size_min_side;
-    if (!failure || min_side <= 0 || std::min(im.width, im.height) / 2 < min_side) return failure;
-    return search_resized(im, 0.5, Eigen::Vector2d::Zero(), aim, prior, pass, out) ? failure : nullptr;
+    if (!failure || smaller_scans == 0 || min_side <= 0 || std::min(im.width, im.height) / 2 < min_side)
+        return failure;
+    return search_resized(im, 0.5, Eigen::Vector2d::Zero(), aim, prior, pass, out, smaller_scans, smaller_scans)
+               ? failure
+               : nullptr;
 }
 
 const char* Detector::search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
                                      const Eigen::Vector2d& aim, const DetectionPrior* prior, Pass& pass,
-                                     Detection& out) const {
+                                     Detection& out, unsigned scans, unsigned smaller_scans) const {
     if (pass.nothing_left()) return "no grid homography";
     auto t = StageClock::now();
     std::vector<std::uint8_t> pixels;
@@ -201,11 +215,11 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
     // size goes on to smaller sizes; double size is the last try.
     const char* failure = nullptr;
     if (scale < 1) {
-        failure = search_smaller(resized, resized_aim, p, pass, out);
+        failure = search_smaller(resized, resized_aim, p, pass, out, scans, smaller_scans);
     } else {
         VanishingOptions wider = options_.vanishing;
         wider.max_inlier_deg = options_.double_size_max_inlier_deg;
-        failure = search_scans(resized, resized_aim, p, wider, pass, out);
+        failure = search_scans(resized, resized_aim, p, wider, pass, out, scans);
     }
     if (failure) return failure;
     resizing.carry_back(out, aim);
@@ -213,18 +227,25 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
 }
 
 const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
-                                   const VanishingOptions& vanishing, Pass& pass, Detection& out) const {
+                                   const VanishingOptions& vanishing, Pass& pass, Detection& out,
+                                   unsigned scans) const {
     // Step 1. Edgels on sparse scanlines; when nothing is found on them,
     // again on the scanlines half way between (small modules need closer
     // scanlines for their grid lines to chain), keeping what was read, down
-    // to scanlines 4 pixels apart.
-    if (pass.nothing_left()) return "no grid homography";
+    // to scanlines 4 pixels apart. A scan left out of `scans` is read for
+    // the ones after it, not searched.
+    const char* const not_searched = "no grid homography";
+    if (pass.nothing_left() || scans == 0) return not_searched;
+    auto searched = [&](unsigned scan_bit, const EdgelScan& scan) {
+        return (scans & scan_bit) ? search_all_then_subsets(im, aim, prior, vanishing, scan, pass, out) : not_searched;
+    };
     auto t = StageClock::now();
     EdgelOptions edgel_options = options_.edgels;
     EdgelScan scan = find_edgels(im, edgel_options);
     out.pixels_visited += scan.pixels_visited;
     out.times.edgels_ms += ms_since(t);
-    const char* failure = search_all_then_subsets(im, aim, prior, vanishing, scan, pass, out);
+    const char* failure = searched(kFirstScan, scan);
+    if ((scans & ~kFirstScan) == 0) return failure;
     if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3 &&
         !pass.nothing_left()) {
         // A noisy image (low light): a faint field's edges drown in the
@@ -237,10 +258,12 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         scan = find_edgels(im, edgel_options);
         out.pixels_visited += scan.pixels_visited;
         out.times.edgels_ms += ms_since(t);
-        failure = search_all_then_subsets(im, aim, prior, vanishing, scan, pass, out);
+        failure = searched(kNoisyScan, scan);
     }
     int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan.step / 2;  // of the scanlines so far
-    while (failure && options_.rescan && scan.step >= 8 && !pass.nothing_left()) {
+    for (unsigned denser = kFirstDenserScan; failure && options_.rescan && scan.step >= 8 && !pass.nothing_left() &&
+                                             (scans & ~(denser - 1)) != 0;
+         denser <<= 1) {
         EdgelOptions between = edgel_options;
         between.step = scan.step;
         between.offset = (offset + scan.step / 2) % scan.step;
@@ -251,7 +274,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         scan.step /= 2;
         out.pixels_visited += more.pixels_visited;
         out.times.edgels_ms += ms_since(t);
-        failure = search_all_then_subsets(im, aim, prior, vanishing, scan, pass, out);
+        failure = searched(denser, scan);
     }
     return failure;
 }

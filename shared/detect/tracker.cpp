@@ -19,6 +19,7 @@ void Tracker::reset() {
     has_prior_ = false;
     frames_since_lock_ = 0;
     has_motion_ = false;
+    searches_without_lock_ = 0;
 }
 
 TrackResult Tracker::update(const GreyView& image) {
@@ -45,7 +46,14 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
     }
     if (!out.detection.found) {
         const double followed_ms = out.detection.times.total_ms;
-        out.detection = detector_->detect(image, aim, use_prior ? &prior : nullptr);
+        // The camera's first frame gets every search, as a photo would; so
+        // do the frames just after a lock, when the field is most likely
+        // still in view (a smear, a faint phase of the pulse). Later frames
+        // without a lock get one part each.
+        const bool spread = options_.spread_search && !use_prior && searches_without_lock_ > 0;
+        const SearchPlan plan = spread ? search_schedule(searches_without_lock_) : full_search();
+        ++searches_without_lock_;
+        out.detection = detector_->detect(image, aim, use_prior ? &prior : nullptr, plan);
         out.detection.times.total_ms += followed_ms;
     }
     const Detection& d = out.detection;
@@ -81,6 +89,7 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
     last_image_to_field_ = d.image_to_field;
     has_prior_ = true;
     frames_since_lock_ = 0;
+    searches_without_lock_ = 0;
     return out;
 }
 

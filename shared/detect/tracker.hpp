@@ -31,6 +31,11 @@ struct TrackerOptions {
     double still_modules = 0.25;
     // The smoothed point never trails the measured one by more than this.
     double max_lag_modules = 0.02;
+    // A frame without a lock, after the first and more than prior_frames
+    // after the last lock, runs one part of the search (search_plan.hpp's
+    // search_schedule), the next such frame the next part; false: every
+    // search on every frame without a lock, as for a photo on its own.
+    bool spread_search = true;
 };
 
 enum class TrackState {
@@ -69,6 +74,7 @@ private:
     Eigen::Vector2d last_raw_aim_ = Eigen::Vector2d::Zero();
     Eigen::Vector2d smoothed_ = Eigen::Vector2d::Zero();
     int frames_since_lock_ = 0;
+    int searches_without_lock_ = 0;  // the place in the search schedule
 };
 
 }  // namespace umf

@@ -1,0 +1,420 @@
+// umf_speed_benchmark: how fast the detector is, on frames made once and
+// timed one call at a time on one thread: single frames with the field and
+// without it (the content alone, what a phone sees while it is raised
+// towards the screen), the tracker over each category's frames in order,
+// ArUco on the same scenes with its board in place of the field, and the
+// detector on a field of the method's original authors. Prints Markdown
+// tables and the per-stage profile; docs/BENCHMARKS.md keeps them.
+#include <opencv2/imgcodecs.hpp>
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/bench/methods.hpp"
+#include "tests/bench/scenario.hpp"
+#include "tests/sim/field_mix.hpp"
+
+namespace umf::bench {
+namespace {
+
+struct Options {
+    int frames = 20;          // per category
+    double opacity = 0.3;
+    int runs = 3;             // each call timed this many times; its median counts
+    std::uint64_t seed = 1;
+    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    std::vector<cv::Size> resolutions{{640, 480}, {1280, 720}};
+    std::string original_field = UMF_ORIGINAL_FIELD;
+    std::string dump;  // also write the 640 x 480 frames as PGM here
+    bool parts = false;  // the search schedule's parts instead
+};
+
+// One category's frames at one resolution: with the field, the content
+// alone, with ArUco's board; consecutive, so that the tracker can follow them.
+struct Clip {
+    std::string category;
+    std::vector<Frame> field, bare, board;
+};
+
+struct Timing {
+    std::vector<double> ms;
+    int found = 0, right = 0, wrong = 0, frames = 0;
+    StageTimes stages;
+};
+
+double median_of(std::vector<double> v) { return percentile(std::move(v), 50); }
+
+GreyView view(const Frame& f) {
+    return {f.grey.data, f.grey.cols, f.grey.rows, static_cast<std::ptrdiff_t>(f.grey.step)};
+}
+
+void add_stages(StageTimes& sum, const StageTimes& t) {
+    sum.edgels_ms += t.edgels_ms, sum.vanishing_ms += t.vanishing_ms, sum.grid_ms += t.grid_ms;
+    sum.classify_ms += t.classify_ms, sum.vote_ms += t.vote_ms, sum.refine_ms += t.refine_ms;
+    sum.total_ms += t.total_ms;
+}
+
+// Where the field is on the screen, to judge a located point.
+struct Truth {
+    sim::FieldPlacement placement;
+    double radius_modules;
+};
+
+void judge(Timing& t, const Frame& f, bool found, const Eigen::Vector2d& aim_field, const Truth* truth) {
+    ++t.frames;
+    if (!found) return;
+    ++t.found;
+    if (!truth || !f.centre_on_screen) {
+        ++t.wrong;  // a place where there is none
+        return;
+    }
+    const cv::Point2d aim = sim::field_to_screen(truth->placement, {aim_field.x(), aim_field.y()});
+    (cv::norm(aim - f.centre_screen_px) / truth->placement.module_px <= truth->radius_modules ? t.right : t.wrong)++;
+}
+
+// A call timed `runs` times; the median counts.
+template <class Call>
+double timed(int runs, const Call& call) {
+    std::vector<double> ms;
+    for (int r = 0; r < runs; ++r) {
+        const auto t0 = BenchClock::now();
+        call();
+        ms.push_back(ms_between(t0, BenchClock::now()));
+    }
+    return median_of(ms);
+}
+
+Timing time_single(const Detector& detector, const std::vector<Frame>& frames, int runs, const Truth* truth) {
+    Timing t;
+    for (const Frame& f : frames) {
+        if (truth && !f.centre_on_screen) continue;
+        Detection d;
+        t.ms.push_back(timed(runs, [&] { d = detector.detect(view(f)); }));
+        add_stages(t.stages, d.times);
+        judge(t, f, d.found, d.aim_field, truth);
+    }
+    return t;
+}
+
+// The tracker over the clip in order, once (its state moves on with every
+// frame); frames whose centre is off the field are given to it but not
+// counted, as a phone keeps filming then too.
+Timing time_tracker(const Detector& detector, const std::vector<Frame>& frames, const Truth* truth) {
+    Timing t;
+    Tracker tracker(detector);
+    for (const Frame& f : frames) {
+        TrackResult r;
+        const double ms = timed(1, [&] { r = tracker.update(view(f)); });
+        if (!f.centre_on_screen) continue;
+        t.ms.push_back(ms);
+        judge(t, f, r.state == TrackState::locked, r.aim_field, truth);
+    }
+    return t;
+}
+
+Timing time_aruco(const ArucoBaseline& aruco, const std::vector<Frame>& frames, int runs) {
+    Timing t;
+    for (const Frame& f : frames) {
+        if (!f.centre_on_screen) continue;
+        ArucoLocation a;
+        t.ms.push_back(timed(runs, [&] { a = aruco.locate(f.grey); }));
+        ++t.frames;
+        if (a.found) ++t.found;
+    }
+    return t;
+}
+
+void merge(Timing& into, const Timing& t) {
+    into.ms.insert(into.ms.end(), t.ms.begin(), t.ms.end());
+    into.found += t.found, into.right += t.right, into.wrong += t.wrong, into.frames += t.frames;
+    add_stages(into.stages, t.stages);
+}
+
+std::string fixed(double v, int digits = 2) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(digits) << v;
+    return s.str();
+}
+
+std::string row(const std::string& name, const Timing& t, bool judged = true) {
+    if (t.ms.empty()) return "| " + name + " | 0 | | | | |\n";
+    const double max = *std::max_element(t.ms.begin(), t.ms.end());
+    std::string found = std::to_string(t.found) + " of " + std::to_string(t.frames);
+    if (judged) found += " (" + std::to_string(t.wrong) + " wrong)";
+    return "| " + name + " | " + found + " | " + fixed(median_of(t.ms)) + " | " + fixed(percentile(t.ms, 95)) +
+           " | " + fixed(max, 1) + " |\n";
+}
+
+std::string stage_profile(const StageTimes& s) {
+    const std::pair<const char*, double> stages[] = {
+        {"edgels (and resizing)", s.edgels_ms}, {"vanishing points", s.vanishing_ms},
+        {"grid lines, homography, lattice", s.grid_ms}, {"reading modules", s.classify_ms},
+        {"window vote", s.vote_ms}, {"refit and aim", s.refine_ms}};
+    double named = 0;
+    std::string out;
+    for (const auto& [name, ms] : stages) {
+        named += ms;
+        out += std::string(name) + " " + fixed(s.total_ms > 0 ? 100 * ms / s.total_ms : 0, 0) + " %, ";
+    }
+    out += "the rest " + fixed(s.total_ms > 0 ? 100 * (s.total_ms - named) / s.total_ms : 0, 0) + " %";
+    return out;
+}
+
+// The tuning set's scenes on its 1920 x 1080 screen, its contents made once.
+class Frames {
+public:
+    explicit Frames(const Options& opt) : opt_(opt), aruco_(scene_.screen.pixels, 30) {
+        screens_.resize(sim::kAllScreenKinds.size());
+        parallel_for(static_cast<int>(screens_.size()), opt.threads, [&](int k) {
+            screens_[static_cast<std::size_t>(k)] =
+                sim::make_screen(sim::kAllScreenKinds[static_cast<std::size_t>(k)], scene_.screen.pixels, 7);
+        });
+    }
+
+    // The tuning set's clips, with `shown` on the screen at `placement`.
+    std::vector<Clip> tuning(cv::Size res, const Field& shown, const sim::FieldPlacement& placement,
+                             const std::vector<Category>& categories) const {
+        std::vector<cv::Mat> with_field(screens_.size()), with_board(screens_.size());
+        parallel_for(static_cast<int>(screens_.size()), opt_.threads, [&](int k) {
+            const auto i = static_cast<std::size_t>(k);
+            with_field[i] = sim::mix_field(screens_[i], shown, placement, opt_.opacity);
+            with_board[i] = aruco_.mix(screens_[i], opt_.opacity);
+        });
+        std::vector<Clip> clips;
+        for (Category c : categories) {
+            const auto rs = category_recipes(scene_, c, opt_.frames, opt_.seed);
+            Clip clip{to_string(c), std::vector<Frame>(rs.size()), std::vector<Frame>(rs.size()),
+                      std::vector<Frame>(rs.size())};
+            parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
+                const auto at = static_cast<std::size_t>(i);
+                const auto kind = static_cast<std::size_t>(rs[at].screen);
+                clip.field[at] = shoot(scene_, rs[at], with_field[kind], res);
+                clip.bare[at] = shoot(scene_, rs[at], screens_[kind], res);
+                clip.board[at] = shoot(scene_, rs[at], with_board[kind], res);
+            });
+            clips.push_back(std::move(clip));
+        }
+        return clips;
+    }
+
+    const Scene& scene() const { return scene_; }
+    const ArucoBaseline& aruco() const { return aruco_; }
+
+private:
+    const Options& opt_;
+    Scene scene_;
+    ArucoBaseline aruco_;
+    std::vector<cv::Mat> screens_;
+};
+
+void dump_clips(const std::string& dir, const std::string& prefix, const std::vector<Clip>& clips) {
+    std::filesystem::create_directories(dir);
+    for (const Clip& c : clips)
+        for (std::size_t i = 0; i < c.field.size(); ++i) {
+            const std::string stem = dir + "/" + prefix + "-" + c.category + "-" + std::to_string(i);
+            cv::imwrite(stem + "-field.pgm", c.field[i].grey);
+            cv::imwrite(stem + "-bare.pgm", c.bare[i].grey);
+        }
+}
+
+std::string resolution_name(cv::Size r) { return std::to_string(r.width) + " x " + std::to_string(r.height); }
+
+// Each part of the tracker's search schedule alone (search_plan.hpp): its
+// time on frames without the field, and the frames with it that the part
+// finds where the first scan does not.
+std::string schedule_parts(const Detector& detector, const std::vector<Clip>& clips) {
+    std::string out = "| part (search_part) | median ms without the field | p95 | finds, of the frames the first scan "
+                      "misses |\n|---|---|---|---|\n";
+    int missed = 0, found_by_first = 0;
+    std::map<int, int> finds;
+    std::map<int, std::vector<double>> ms;
+    for (const Clip& c : clips) {
+        for (const Frame& f : c.field) {
+            if (!f.centre_on_screen) continue;
+            const Eigen::Vector2d centre(f.grey.cols / 2.0, f.grey.rows / 2.0);
+            if (detector.detect(view(f), centre, nullptr, first_scan_only()).found) {
+                ++found_by_first;
+                continue;
+            }
+            ++missed;
+            for (int k = 0; k < kSearchParts; ++k)
+                if (detector.detect(view(f), centre, nullptr, search_part(k)).found) ++finds[k];
+        }
+        for (const Frame& f : c.bare) {
+            const Eigen::Vector2d centre(f.grey.cols / 2.0, f.grey.rows / 2.0);
+            for (int k = -1; k < kSearchParts; ++k) {
+                const SearchPlan plan = k < 0 ? first_scan_only() : search_part(k);
+                ms[k].push_back(timed(1, [&] { detector.detect(view(f), centre, nullptr, plan); }));
+            }
+        }
+    }
+    for (const auto& [k, v] : ms)
+        out += "| " + (k < 0 ? std::string("the first scan") : std::to_string(k)) + " | " + fixed(median_of(v)) +
+               " | " + fixed(percentile(v, 95)) + " | " +
+               (k < 0 ? std::to_string(found_by_first) + " found" : std::to_string(finds[k]) + " of " +
+                                                                        std::to_string(missed)) +
+               " |\n";
+    return out;
+}
+
+// The tables of one resolution.
+std::string time_resolution(const Detector& detector, const Frames& frames, const std::vector<Clip>& clips,
+                            const Options& opt, const Truth& truth) {
+    Timing with_all, bare_all, video_all, video_bare_all, aruco_all;
+    std::string per_category;
+    for (const Clip& c : clips) {
+        const Timing with = time_single(detector, c.field, opt.runs, &truth);
+        const Timing bare = time_single(detector, c.bare, opt.runs, nullptr);
+        const Timing video = time_tracker(detector, c.field, &truth);
+        const Timing video_bare = time_tracker(detector, c.bare, nullptr);
+        const Timing aruco = time_aruco(frames.aruco(), c.board, opt.runs);
+        auto cell = [](const Timing& t) { return fixed(median_of(t.ms)) + " / " + fixed(percentile(t.ms, 95)); };
+        per_category += "| " + c.category + " | " + cell(with) + " | " + cell(bare) + " | " + cell(video) + " | " +
+                        cell(video_bare) + " | " + fixed(median_of(aruco.ms)) + " | " + std::to_string(with.right) +
+                        " / " + std::to_string(video.right) + " of " + std::to_string(with.frames) + " |\n";
+        merge(with_all, with), merge(bare_all, bare), merge(video_all, video), merge(video_bare_all, video_bare);
+        merge(aruco_all, aruco);
+    }
+    std::ostringstream out;
+    out << "| frames | found | median ms | p95 ms | max ms |\n|---|---|---|---|---|\n"
+        << row("with the field, single frame", with_all) << row("without the field, single frame", bare_all)
+        << row("with the field, tracker", video_all) << row("without the field, tracker", video_bare_all)
+        << row("ArUco, its board in place of the field", aruco_all, false)
+        << "\nArUco's median over umf's: single frame " << fixed(median_of(aruco_all.ms) / median_of(with_all.ms))
+        << " x, tracker " << fixed(median_of(aruco_all.ms) / median_of(video_all.ms)) << " x.\n\n"
+        << "Per category, median / p95 ms, and the frames found right (single frame / tracker):\n\n"
+        << "| category | with the field | without | tracker | tracker without | ArUco median | right |\n"
+        << "|---|---|---|---|---|---|---|\n"
+        << per_category << "\nWhere single frames with the field spend their time: " << stage_profile(with_all.stages)
+        << ".\n\nWithout the field: " << stage_profile(bare_all.stages) << ".\n\n";
+    return out.str();
+}
+
+int run(const Options& opt) {
+    const Field field = bench_field("b4-64x36.json");
+    const Detector detector(field);
+    Frames frames(opt);
+    const sim::FieldPlacement placement{{0, 0}, frames.scene().module_px};
+    const Truth truth{placement, 1.0};
+    const std::vector<Category> categories(kAllCategories.begin(), kAllCategories.end());
+
+    std::cout << "Frames: the tuning set's " << categories.size() << " categories, " << opt.frames
+              << " consecutive frames each, field and board at opacity " << opt.opacity << ", seed " << opt.seed
+              << "; each single-frame call timed " << opt.runs << " times (its median counts), the tracker once; "
+              << "one thread.\n\n";
+    for (cv::Size res : opt.resolutions) {
+        std::cerr << "making " << resolution_name(res) << " frames\n";
+        const auto clips = frames.tuning(res, field, placement, categories);
+        if (!opt.dump.empty() && res == cv::Size(640, 480)) dump_clips(opt.dump, "tuning", clips);
+        std::cerr << "timing " << resolution_name(res) << "\n";
+        std::cout << "### " << resolution_name(res) << "\n\n"
+                  << (opt.parts ? schedule_parts(detector, clips) + "\n"
+                                : time_resolution(detector, frames, clips, opt, truth));
+    }
+    if (opt.parts) return 0;
+
+    // The authors' 19 x 31 field (five shades, 3 x 3 edge windows) across the
+    // screen's height, centred.
+    const Field original = load_field(opt.original_field);
+    const double module = static_cast<double>(frames.scene().screen.pixels.height) / original.height;
+    const sim::FieldPlacement on_screen{
+        {(frames.scene().screen.pixels.width - module * original.width) / 2, 0}, module};
+    const Detector original_detector(original);
+    const Truth original_truth{on_screen, 1.0};
+    Timing with_original;
+    for (const Clip& c : frames.tuning({640, 480}, original, on_screen, {Category::general, Category::perspective})) {
+        std::vector<Frame> on_field;
+        for (const Frame& f : c.field) {
+            const cv::Point2d uv = sim::screen_to_field(on_screen, f.centre_screen_px);
+            Frame g = f;
+            g.centre_on_screen = f.centre_on_screen && uv.x >= 0 && uv.y >= 0 && uv.x <= original.width &&
+                                 uv.y <= original.height;
+            on_field.push_back(g);
+        }
+        merge(with_original, time_single(original_detector, on_field, opt.runs, &original_truth));
+    }
+    std::cout << "### The original authors' field (" << std::filesystem::path(opt.original_field).filename().string()
+              << ", " << fixed(module, 1) << " px modules), 640 x 480, general and perspective\n\n"
+              << "| frames | found | median ms | p95 ms | max ms |\n|---|---|---|---|---|\n"
+              << row("with the field, single frame", with_original) << "\n";
+    return 0;
+}
+
+std::vector<cv::Size> parse_resolutions(const std::string& text) {
+    std::vector<cv::Size> out;
+    std::stringstream s(text);
+    for (std::string item; std::getline(s, item, ',');) {
+        const auto x = item.find('x');
+        if (x == std::string::npos) throw std::invalid_argument("--resolutions: WxH,... expected, got " + item);
+        out.emplace_back(std::stoi(item.substr(0, x)), std::stoi(item.substr(x + 1)));
+    }
+    return out;
+}
+
+const char kUsage[] =
+    "umf_speed_benchmark: the detector's time per frame on the tuning set's scenes, one call at a time on one "
+    "thread.\n\n"
+    "Usage: umf_speed_benchmark [options]\n"
+    "  --frames N             consecutive frames per category (default 20)\n"
+    "  --opacity A            field and board opacity (default 0.3)\n"
+    "  --runs N               times each single-frame call is timed, its median counted (default 3)\n"
+    "  --resolutions WxH,...  (default 640x480,1280x720)\n"
+    "  --seed N               scenario seed (default 1)\n"
+    "  --threads N            threads making frames (default: all cores)\n"
+    "  --original-field FILE  the original authors' field (default tests/data/original-umf/sog5-19x31.json)\n"
+    "  --dump DIR             also write the 640 x 480 frames there as PGM (with the field and without)\n"
+    "  --parts                instead: each part of the tracker's search schedule alone, its time on the frames\n"
+    "                         without the field and the frames with it that it finds where the first scan does not\n"
+    "  --help                 this text\n\n"
+    "Progress goes to stderr, the tables to stdout.\n";
+
+}  // namespace
+}  // namespace umf::bench
+
+int main(int argc, char** argv) {
+    using namespace umf::bench;
+    Options opt;
+    try {
+        for (int i = 1; i < argc; ++i) {
+            const std::string a = argv[i];
+            auto value = [&]() -> std::string {
+                if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+                return argv[++i];
+            };
+            if (a == "--help") {
+                std::cout << kUsage;
+                return 0;
+            } else if (a == "--frames") {
+                opt.frames = std::stoi(value());
+            } else if (a == "--opacity") {
+                opt.opacity = std::stod(value());
+            } else if (a == "--runs") {
+                opt.runs = std::max(1, std::stoi(value()));
+            } else if (a == "--resolutions") {
+                opt.resolutions = parse_resolutions(value());
+            } else if (a == "--seed") {
+                opt.seed = std::stoull(value());
+            } else if (a == "--threads") {
+                opt.threads = std::max(1, std::stoi(value()));
+            } else if (a == "--original-field") {
+                opt.original_field = value();
+            } else if (a == "--parts") {
+                opt.parts = true;
+            } else if (a == "--dump") {
+                opt.dump = value();
+            } else {
+                std::cerr << "unknown option " << a << "\n\n" << kUsage;
+                return 2;
+            }
+        }
+        return run(opt);
+    } catch (const std::exception& e) {
+        std::cerr << "umf_speed_benchmark: " << e.what() << "\n";
+        return 1;
+    }
+}
