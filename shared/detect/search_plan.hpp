@@ -4,10 +4,11 @@
 // frame smoothed, and a second pass over the grid-line labellings the first
 // one left. Together they cost a frame without the field 20-60 ms at
 // 640 x 480, where the first scan alone costs about 1 ms. A video does not
-// need every frame to try everything: the tracker gives each frame without a
-// lock one part of the search (search_schedule), the first scan every other
-// frame and one fallback in between, so that no frame stalls the camera and
-// a field that only a fallback finds is found a few frames later.
+// need every frame to try everything: a tracker may give each frame without a
+// lock one part of the search (search_schedule; TrackerOptions::spread_search),
+// the first scan every other frame and one fallback in between, so that no
+// frame stalls the camera and a field that only a fallback finds is found
+// within a round of frames.
 #pragma once
 
 namespace umf {

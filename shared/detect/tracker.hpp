@@ -34,8 +34,12 @@ struct TrackerOptions {
     // A frame without a lock, after the first and more than prior_frames
     // after the last lock, runs one part of the search (search_plan.hpp's
     // search_schedule), the next such frame the next part; false: every
-    // search on every frame without a lock, as for a photo on its own.
-    bool spread_search = true;
+    // search on every frame without a lock, as for a photo on its own. Off
+    // until the parts are cheap enough for a round to take a few frames: a
+    // round of 24 frames cost the held-out far views at 640 x 480 and
+    // opacity 0.15 a third of their tracked frames (docs/BENCHMARKS.md,
+    // "Detector speed").
+    bool spread_search = false;
 };
 
 enum class TrackState {

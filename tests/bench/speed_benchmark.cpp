@@ -104,9 +104,12 @@ Timing time_single(const Detector& detector, const std::vector<Frame>& frames, i
 // The tracker over the clip in order, once (its state moves on with every
 // frame); frames whose centre is off the field are given to it but not
 // counted, as a phone keeps filming then too.
-Timing time_tracker(const Detector& detector, const std::vector<Frame>& frames, const Truth* truth) {
+Timing time_tracker(const Detector& detector, const std::vector<Frame>& frames, const Truth* truth,
+                    bool spread_search) {
     Timing t;
-    Tracker tracker(detector);
+    TrackerOptions options;
+    options.spread_search = spread_search;
+    Tracker tracker(detector, options);
     for (const Frame& f : frames) {
         TrackResult r;
         const double ms = timed(1, [&] { r = tracker.update(view(f)); });
@@ -265,13 +268,15 @@ std::string schedule_parts(const Detector& detector, const std::vector<Clip>& cl
 // The tables of one resolution.
 std::string time_resolution(const Detector& detector, const Frames& frames, const std::vector<Clip>& clips,
                             const Options& opt, const Truth& truth) {
-    Timing with_all, bare_all, video_all, video_bare_all, aruco_all;
+    Timing with_all, bare_all, video_all, video_bare_all, spread_all, spread_bare_all, aruco_all;
     std::string per_category;
     for (const Clip& c : clips) {
         const Timing with = time_single(detector, c.field, opt.runs, &truth);
         const Timing bare = time_single(detector, c.bare, opt.runs, nullptr);
-        const Timing video = time_tracker(detector, c.field, &truth);
-        const Timing video_bare = time_tracker(detector, c.bare, nullptr);
+        const Timing video = time_tracker(detector, c.field, &truth, false);
+        const Timing video_bare = time_tracker(detector, c.bare, nullptr, false);
+        merge(spread_all, time_tracker(detector, c.field, &truth, true));
+        merge(spread_bare_all, time_tracker(detector, c.bare, nullptr, true));
         const Timing aruco = time_aruco(frames.aruco(), c.board, opt.runs);
         auto cell = [](const Timing& t) { return fixed(median_of(t.ms)) + " / " + fixed(percentile(t.ms, 95)); };
         per_category += "| " + c.category + " | " + cell(with) + " | " + cell(bare) + " | " + cell(video) + " | " +
@@ -284,6 +289,8 @@ std::string time_resolution(const Detector& detector, const Frames& frames, cons
     out << "| frames | found | median ms | p95 ms | max ms |\n|---|---|---|---|---|\n"
         << row("with the field, single frame", with_all) << row("without the field, single frame", bare_all)
         << row("with the field, tracker", video_all) << row("without the field, tracker", video_bare_all)
+        << row("with the field, tracker spreading its search", spread_all)
+        << row("without the field, tracker spreading its search", spread_bare_all)
         << row("ArUco, its board in place of the field", aruco_all, false)
         << "\nArUco's median over umf's: single frame " << fixed(median_of(aruco_all.ms) / median_of(with_all.ms))
         << " x, tracker " << fixed(median_of(aruco_all.ms) / median_of(video_all.ms)) << " x.\n\n"

@@ -76,7 +76,9 @@ TEST(SearchSchedule, ATrackerWithoutALockSpreadsTheSearchAndStillFindsWhatOnlyAF
 
     // The camera starts on the screen without the field (the whole search),
     // then keeps seeing it for a round without a lock: one part a frame.
-    Tracker tracker(detector);
+    TrackerOptions spread;
+    spread.spread_search = true;
+    Tracker tracker(detector, spread);
     const TrackResult first = tracker.update(view_of(empty.grey));
     EXPECT_FALSE(first.detection.found);
     long most_pixels = 0;
@@ -90,7 +92,7 @@ TEST(SearchSchedule, ATrackerWithoutALockSpreadsTheSearchAndStillFindsWhatOnlyAF
               << " pixels, a part at most " << most_pixels << "\n";
 
     // The field comes into view: found within a round.
-    Tracker fresh(detector);
+    Tracker fresh(detector, spread);
     fresh.update(view_of(empty.grey));
     int frames = 0;
     TrackResult r;
