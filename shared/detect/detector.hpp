@@ -216,7 +216,7 @@ private:
         struct Labellings {
             std::vector<GridLineFamily> family[2];
         };
-        SearchPlan plan;  // at the frame's own size; the searches within a fallback run whole
+        SearchPlan plan;  // the parts of the search this call runs
         int first_pair = 0;
         int end_pair = 0;
         std::vector<Labellings> left;

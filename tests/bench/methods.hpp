@@ -60,6 +60,11 @@ inline Field bench_field(const std::string& name_or_path) {
                                                                    : std::string(UMF_DATA_DIR) + "/fields/" + name_or_path);
 }
 
+// A frame's grey image as the detector takes it.
+inline GreyView grey_view(const Frame& frame) {
+    return {frame.grey.data, frame.grey.cols, frame.grey.rows, static_cast<std::ptrdiff_t>(frame.grey.step)};
+}
+
 // The methods under test, each turning a frame into an Outcome with its
 // call timed and nothing else.
 class Methods {
@@ -153,10 +158,6 @@ public:
     const Field& field() const { return detector_.field(); }
 
 private:
-    static GreyView grey_view(const Frame& frame) {
-        return {frame.grey.data, frame.grey.cols, frame.grey.rows, static_cast<std::ptrdiff_t>(frame.grey.step)};
-    }
-
     // The umf methods' pixels, stage times and aim error (when found).
     void fill_umf(Outcome& o, const Frame& frame, const Detection& d, const Eigen::Vector2d& aim_field) const {
         o.pixels_pct = 100.0 * static_cast<double>(d.pixels_visited) / static_cast<double>(frame.grey.total());

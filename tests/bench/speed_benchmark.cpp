@@ -49,10 +49,6 @@ struct Timing {
 
 double median_of(std::vector<double> v) { return percentile(std::move(v), 50); }
 
-GreyView view(const Frame& f) {
-    return {f.grey.data, f.grey.cols, f.grey.rows, static_cast<std::ptrdiff_t>(f.grey.step)};
-}
-
 void add_stages(StageTimes& sum, const StageTimes& t) {
     sum.edgels_ms += t.edgels_ms, sum.vanishing_ms += t.vanishing_ms, sum.grid_ms += t.grid_ms;
     sum.classify_ms += t.classify_ms, sum.vote_ms += t.vote_ms, sum.refine_ms += t.refine_ms;
@@ -94,7 +90,7 @@ Timing time_single(const Detector& detector, const std::vector<Frame>& frames, i
     for (const Frame& f : frames) {
         if (truth && !f.centre_on_screen) continue;
         Detection d;
-        t.ms.push_back(timed(runs, [&] { d = detector.detect(view(f)); }));
+        t.ms.push_back(timed(runs, [&] { d = detector.detect(grey_view(f)); }));
         add_stages(t.stages, d.times);
         judge(t, f, d.found, d.aim_field, truth);
     }
@@ -112,7 +108,7 @@ Timing time_tracker(const Detector& detector, const std::vector<Frame>& frames, 
     Tracker tracker(detector, options);
     for (const Frame& f : frames) {
         TrackResult r;
-        const double ms = timed(1, [&] { r = tracker.update(view(f)); });
+        const double ms = timed(1, [&] { r = tracker.update(grey_view(f)); });
         if (!f.centre_on_screen) continue;
         t.ms.push_back(ms);
         judge(t, f, r.state == TrackState::locked, r.aim_field, truth);
@@ -240,19 +236,19 @@ std::string schedule_parts(const Detector& detector, const std::vector<Clip>& cl
         for (const Frame& f : c.field) {
             if (!f.centre_on_screen) continue;
             const Eigen::Vector2d centre(f.grey.cols / 2.0, f.grey.rows / 2.0);
-            if (detector.detect(view(f), centre, nullptr, first_scan_only()).found) {
+            if (detector.detect(grey_view(f), centre, nullptr, first_scan_only()).found) {
                 ++found_by_first;
                 continue;
             }
             ++missed;
             for (int k = 0; k < kSearchParts; ++k)
-                if (detector.detect(view(f), centre, nullptr, search_part(k)).found) ++finds[k];
+                if (detector.detect(grey_view(f), centre, nullptr, search_part(k)).found) ++finds[k];
         }
         for (const Frame& f : c.bare) {
             const Eigen::Vector2d centre(f.grey.cols / 2.0, f.grey.rows / 2.0);
             for (int k = -1; k < kSearchParts; ++k) {
                 const SearchPlan plan = k < 0 ? first_scan_only() : search_part(k);
-                ms[k].push_back(timed(1, [&] { detector.detect(view(f), centre, nullptr, plan); }));
+                ms[k].push_back(timed(1, [&] { detector.detect(grey_view(f), centre, nullptr, plan); }));
             }
         }
     }
