@@ -11,18 +11,21 @@
 //      then checked: the whole view must read as the field at that place,
 //      and so must the modules around the aim point (aim_check.hpp)
 //   8. the aim point from a refit to the module edges around it
-// When nothing is found, steps 1 to 8 run again on the frame at half size
-// (image.hpp's half_size), while it is large enough; then steps 1 to 4 give
-// way to a lattice read from the spectrum of edge strength around the aim
-// (lattice.hpp), for modules of 3-5 pixels, then on the frame at half size
-// and below, for a faint field's larger modules; last, for a small frame,
-// steps 1 to 8 run once at double size (double_size), and last on the frame
-// smoothed. A video's frame may run only some of these (search_plan.hpp).
+// When the first scan finds nothing, the other parts of the search run in
+// turn (search_plan.hpp, kPartOrder: the order that finds the tuning
+// frames soonest for their cost): steps 1 to 8 on the frame at half size
+// (image.hpp's half_size) and below, at double size around the aim
+// (double_size), on denser and noisier scans, on the frame smoothed; and
+// in place of steps 1 to 4 a lattice read from the spectrum of edge
+// strength around the aim (lattice.hpp), for modules of 3-5 pixels, at the
+// frame's size and smaller ones, for a faint field's larger modules. A
+// video's frame may run only some of these (search_plan.hpp).
 // A wrong place is worse than none: every stage may end in "not found".
 #pragma once
 
 #include <Eigen/Core>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -69,9 +72,8 @@ struct DetectorOptions {
     // edgels' two pixels a side take in, at a fine sensor most: at half
     // size the edge is twice as steep.
     int half_size_min_side = 240;
-    // When nothing is found at any of those sizes, the search once more on
-    // the frame at twice its size, if its longer side is at most this many
-    // pixels; 0: never. Modules of 3-4 pixels leave the edgels' two pixels
+    // The search also on the frame at twice its size, if its longer side is
+    // at most this many pixels; 0: never. Modules of 3-4 pixels leave the edgels' two pixels
     // a side and the 3 x 3 gradients reaching into the next module's edge;
     // at twice the size (cubic interpolation) they reach half as far.
     int double_size_max_side = 1024;
@@ -84,11 +86,9 @@ struct DetectorOptions {
     // 15 elsewhere): the interpolated image rounds the corners of modules of
     // 3-4 pixels, and their edges' gradients turn by 20 degrees and more.
     double double_size_max_inlier_deg = 25;
-    // When the frame's own size and smaller ones do not find the field, its
-    // grid as the lattice the spectrum of edge strength around the aim shows
-    // (lattice.hpp), before the search at double size: the modules of a far
-    // screen, 3-5 pixels, turn the edgels' gradients too far for steps 2-4,
-    // and the lattice costs far less than a search at double size.
+    // The field's grid also as the lattice the spectrum of edge strength
+    // around the aim shows (lattice.hpp): the modules of a far screen, 3-5
+    // pixels, turn the edgels' gradients too far for steps 2-4.
     bool lattice_enabled = true;
     // The lattice also on the frame at half size, a quarter and so on, this
     // many sizes (0: only the frame's own), while the patch fits: a faint
@@ -96,14 +96,12 @@ struct DetectorOptions {
     // edgels' directions, span the lattice's 3-12 pixels at one of them,
     // and the spectrum gathers the evidence of every module in the patch.
     int lattice_sizes = 3;
-    // When every search above fails, the search at the frame's size and
-    // smaller ones once more on the frame smoothed (`smoothed` in image.hpp,
-    // a Gaussian of sigma 1.4 px). A screen's colour stripes under a scaler
+    // The search at the frame's size and smaller ones also on the frame
+    // smoothed (`smoothed` in image.hpp, a Gaussian of sigma 1.4 px). A screen's colour stripes under a scaler
     // that skips photosites fold into a hatch of 2-5 px, and a dim room's
     // noise does likewise at the pixel's scale: their edges outnumber a faint
     // field's and pull the grid directions to their own. The smoothing keeps
-    // little of them and a module's edges whole, but blunts small modules,
-    // so it comes last.
+    // little of them and a module's edges whole, but blunts small modules.
     bool smoothed_search = true;
     // When a scan's edgels and its field-like ones (field_edgels.hpp) find
     // nothing, they are searched once more without the thin lines among
@@ -185,6 +183,10 @@ public:
     // Only the searches `plan` names (search_plan.hpp): a video's frame.
     Detection detect(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                      const SearchPlan& plan) const;
+    // The plans in turn until one finds the field, then the second pass over
+    // them all (full_search() is a photo's search).
+    Detection detect(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                     std::span<const SearchPlan> plans) const;
     // Colour frames are detected on their luma (image.hpp's to_luma).
     Detection detect(const ColourView& image) const;
 
@@ -216,7 +218,7 @@ private:
         struct Labellings {
             std::vector<GridLineFamily> family[2];
         };
-        SearchPlan plan;  // the parts of the search this call runs
+        SearchPlan plan;  // the part of the search running
         int first_pair = 0;
         int end_pair = 0;
         std::vector<Labellings> left;
@@ -226,10 +228,15 @@ private:
         bool first() const { return first_pair == 0; }
         bool nothing_left() const { return !first() && search >= end_of_left; }
     };
-    // Steps 1 to 8 on the image at its own size, then (when nothing is
-    // found) at half size and below, then on a lattice around the aim, then
-    // at double size, then on the image smoothed at its own size and below;
-    // the failure, or null when found.
+    // One pass over the plans in turn, until one finds the field: the
+    // failure of the first plan, or null when found.
+    const char* search_plans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                             std::span<const SearchPlan> plans, Pass& pass, Detection& out) const;
+    // The parts of the search pass.plan names: steps 1 to 8 on the image at
+    // its own size, then (when nothing is found) at half size and below,
+    // then on a lattice around the aim, then at double size, then on the
+    // image smoothed at its own size and below; the failure, or null when
+    // found.
     const char* search_sizes(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              Pass& pass, Detection& out) const;
     // Steps 1 to 8 on the image at its own size (the scans in `scans`), then

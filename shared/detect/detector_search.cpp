@@ -74,11 +74,17 @@ struct Resizing {
 }  // namespace
 
 Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior) const {
-    return detect(im, aim, prior, full_search());
+    static constexpr FullSearch kPlans = full_search(), kPlansNearPrior = full_search(kPartOrderNearPrior);
+    return detect(im, aim, prior, std::span<const SearchPlan>(prior ? kPlansNearPrior : kPlans));
 }
 
 Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                            const SearchPlan& plan) const {
+    return detect(im, aim, prior, std::span<const SearchPlan>(&plan, 1));
+}
+
+Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                           std::span<const SearchPlan> plans) const {
     Detection out;
     out.aim_image = aim;
     const auto start = StageClock::now();
@@ -87,16 +93,15 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
         return out;
     }
     Pass pass;
-    pass.plan = plan;
     pass.end_pair = options_.first_pass_pairs > 0 ? options_.first_pass_pairs : std::numeric_limits<int>::max();
-    const char* failure = search_sizes(im, aim, prior, pass, out);
+    const char* failure = search_plans(im, aim, prior, plans, pass, out);
     for (std::size_t k = 0; k < pass.left.size(); ++k)
         if (!pass.left[k].family[0].empty()) pass.end_of_left = k + 1;
-    if (failure && failure != kAimAtInfinity && plan.second_pass && pass.end_of_left > 0) {
+    if (failure && failure != kAimAtInfinity && pass.end_of_left > 0) {
         pass.first_pair = pass.end_pair;
         pass.end_pair = std::numeric_limits<int>::max();
         pass.search = 0;
-        const char* again = search_sizes(im, aim, prior, pass, out);
+        const char* again = search_plans(im, aim, prior, plans, pass, out);
         if (!again || again == kAimAtInfinity) failure = again;
     }
     // Another screen's field under the aim: a grid there read as a field,
@@ -106,6 +111,19 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
     out.failure = failure ? failure : "";
     out.times.total_ms = std::chrono::duration<double, std::milli>(StageClock::now() - start).count();
     return out;
+}
+
+const char* Detector::search_plans(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                   std::span<const SearchPlan> plans, Pass& pass, Detection& out) const {
+    const char* first_failure = "no grid homography";
+    for (std::size_t k = 0; k < plans.size(); ++k) {
+        pass.plan = plans[k];
+        const char* failure = search_sizes(im, aim, prior, pass, out);
+        if (!failure || failure == kAimAtInfinity) return failure;
+        if (k == 0) first_failure = failure;
+        if (pass.nothing_left()) break;
+    }
+    return first_failure;
 }
 
 const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,

@@ -1,15 +1,20 @@
 // Which of a frame's searches Detector::detect runs. A photo on its own gets
-// all of them: the first scan at the frame's own size, then, while nothing is
-// found, the rescans, the smaller sizes, the lattice, double size and the
-// frame smoothed, and a second pass over the grid-line labellings the first
-// one left. Together they cost a frame without the field about 40 ms at
-// 640 x 480 (median; 80 ms p95), where the first scan alone costs about 1 ms. A video does not
-// need every frame to try everything: a tracker may give each frame without a
-// lock one part of the search (search_schedule; TrackerOptions::spread_search),
-// the first scan every other frame and one fallback in between, so that no
-// frame stalls the camera and a field that only a fallback finds is found
-// within a round of frames.
+// all of them (full_search): the first scan at the frame's own size, then,
+// while nothing is found, the other parts in the order that finds a field
+// soonest for their cost (the rescans, the smaller sizes, the lattice,
+// double size and the frame smoothed), and a second pass over the grid-line
+// labellings the first one left. Together they cost a frame without the
+// field about 40 ms at 640 x 480 (median; 80 ms p95), where the first scan
+// alone costs about 1.3 ms. A video does not need every frame to try
+// everything: a tracker may give each frame without a lock one part of the
+// search (search_schedule; TrackerOptions::spread_search), the first scan
+// every other frame and one other part in between, so that no frame stalls
+// the camera and a field that only another part finds is found within a
+// round of frames.
 #pragma once
+
+#include <array>
+#include <cstddef>
 
 namespace umf {
 
@@ -30,22 +35,23 @@ struct SearchPlan {
     unsigned double_scans = kEveryScan;    // around the aim at twice the size (DetectorOptions::double_size_max_side)
     unsigned smoothed_scans = kEveryScan;  // the frame smoothed (DetectorOptions::smoothed_search), its own size
     unsigned smoothed_smaller_scans = kEveryScan;  // and below
-    bool second_pass = true;               // the labelling pairs the first pass left (DetectorOptions::first_pass_pairs)
 };
 
-// Every search: what a single photo gets.
-inline SearchPlan full_search() { return {}; }
-
 // The first scan at the frame's own size and nothing else.
-inline SearchPlan first_scan_only() { return {kFirstScan, 0, 0, 0, 0, 0, true}; }
+constexpr SearchPlan first_scan_only() { return {kFirstScan, 0, 0, 0, 0, 0}; }
 
-// The fallbacks in the order the schedule tries them: by how many of the
-// tuning frames the first scan misses each one finds, at opacity 0.1 and 0.3,
-// for what it costs on a frame without the field.
-inline SearchPlan search_part(int part) {
+// The parts of the search besides the first scan, by number (the numbers
+// umf_speed_benchmark --parts reports): 0 half size's first scan (and a
+// quarter's), 1 the lattice at the frame's size, 2 the noisy scan and the
+// first denser one, 3 the lattice at half size, 4 half size's other scans,
+// 5 the frame smoothed, its first scan, 6 double size's first scan, 7 the
+// denser scans after the first, 8 the lattice below half size, 9 the frame
+// smoothed, its other scans, 10 double size's other scans, 11 the frame
+// smoothed at smaller sizes.
+constexpr SearchPlan search_part(int part) {
     constexpr unsigned kRescans = kEveryScan & ~kFirstScan;
     constexpr unsigned kLaterDenserScans = kEveryScan & ~(kFirstScan | kNoisyScan | kFirstDenserScan);
-    SearchPlan p{0, 0, 0, 0, 0, 0, true};
+    SearchPlan p{0, 0, 0, 0, 0, 0};
     switch (part) {
         case 0: p.smaller_scans = kFirstScan; break;
         case 1: p.lattices = 1u; break;
@@ -64,17 +70,43 @@ inline SearchPlan search_part(int part) {
 }
 inline constexpr int kSearchParts = 12;
 
+// The order the parts run in, in a photo's search and in the schedule: by
+// how soon they find the tuning set's frames the first scan misses for what
+// they cost on frames without the field (umf_speed_benchmark --parts, which
+// prints the greedy order: most frames not yet found per millisecond next),
+// so that a frame a cheap part finds does not first pay for the dear ones.
+inline constexpr std::array<int, kSearchParts> kPartOrder = {0, 6, 1, 8, 2, 10, 4, 3, 11, 9, 5, 7};
+
+// A photo's search: the first scan, then the parts in order while nothing
+// is found (Detector::detect over the plans).
+using FullSearch = std::array<SearchPlan, kSearchParts + 1>;
+constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kPartOrder) {
+    FullSearch plans{};
+    plans[0] = first_scan_only();
+    for (std::size_t k = 0; k < order.size(); ++k) plans[k + 1] = search_part(order[k]);
+    return plans;
+}
+
+// The order when there is a prior (a tracker that lost its lock a few frames
+// ago): the frame's own size first (parts 2 and 7), as the tracker takes no
+// motion from a place found at another size and follows a coarser map less
+// well, then the others as kPartOrder has them. In kPartOrder's order a
+// tracker in a dim room kept finding the field at half size and searched
+// nearly every frame anew (tuning set, opacity 0.1, 1280 x 720: low_light
+// 1.07 ms median a frame before, 24.7 ms).
+inline constexpr std::array<int, kSearchParts> kPartOrderNearPrior = {2, 7, 0, 6, 1, 8, 10, 4, 3, 11, 9, 5};
+
 // The frames of one round of the schedule.
 inline constexpr int kSearchScheduleFrames = 2 * kSearchParts;
 
 // The search of the k-th consecutive frame without a lock: the first scan on
-// even frames, the fallbacks in turn on odd ones, round after round. Trying a
-// fallback beside the first scan on every frame would find a field that only
-// a fallback finds in half the frames, at about twice the cost of a frame
+// even frames, the parts in order on odd ones, round after round. Trying a
+// part beside the first scan on every frame would find a field that only
+// a part finds in half the frames, at about twice the cost of a frame
 // without the field (4.1 ms against 1.6 ms, median, 640 x 480).
-inline SearchPlan search_schedule(int k) {
+constexpr SearchPlan search_schedule(int k) {
     k = ((k % kSearchScheduleFrames) + kSearchScheduleFrames) % kSearchScheduleFrames;
-    return k % 2 == 1 ? search_part(k / 2) : first_scan_only();
+    return k % 2 == 1 ? search_part(kPartOrder[static_cast<std::size_t>(k / 2)]) : first_scan_only();
 }
 
 }  // namespace umf

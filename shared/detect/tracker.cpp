@@ -51,9 +51,10 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
         // still in view (a smear, a faint phase of the pulse). Later frames
         // without a lock get one part each.
         const bool spread = options_.spread_search && !use_prior && searches_without_lock_ > 0;
-        const SearchPlan plan = spread ? search_schedule(searches_without_lock_) : full_search();
+        const DetectionPrior* p = use_prior ? &prior : nullptr;
+        out.detection = spread ? detector_->detect(image, aim, p, search_schedule(searches_without_lock_))
+                               : detector_->detect(image, aim, p);
         ++searches_without_lock_;
-        out.detection = detector_->detect(image, aim, use_prior ? &prior : nullptr, plan);
         out.detection.times.total_ms += followed_ms;
     }
     const Detection& d = out.detection;

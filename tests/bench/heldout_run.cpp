@@ -17,8 +17,6 @@
 namespace umf::bench {
 namespace {
 
-constexpr std::uint64_t kHeldoutScreenSeed = 101;
-
 std::string now_text() {
     const std::time_t t = std::time(nullptr);
     char buf[64];

@@ -14,6 +14,7 @@
 namespace umf::bench {
 
 inline constexpr double kHeldoutRadiusModules = 0.5;
+inline constexpr std::uint64_t kHeldoutScreenSeed = 101;  // the contents on the held-out screens
 
 struct HeldoutOptions {
     int frames = 40;         // per category x opacity x resolution; 0: no sweep

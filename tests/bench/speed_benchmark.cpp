@@ -3,43 +3,27 @@
 // without it (the content alone, what a phone sees while it is raised
 // towards the screen), the tracker over each category's frames in order,
 // ArUco on the same scenes with its board in place of the field, and the
-// detector on a field of the method's original authors. Prints Markdown
-// tables and the per-stage profile; docs/BENCHMARKS.md keeps them.
+// detector on a field of the method's original authors. The tuning set's
+// scenes, or the held-out set's (heldout_scenario.hpp: other screens,
+// contents and camera). Prints Markdown tables and the per-stage profile;
+// docs/BENCHMARKS.md keeps them.
 #include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include "tests/bench/methods.hpp"
-#include "tests/bench/scenario.hpp"
-#include "tests/sim/field_mix.hpp"
+#include "tests/bench/part_order.hpp"
+#include "tests/bench/speed_frames.hpp"
 
 namespace umf::bench {
 namespace {
-
-struct Options {
-    int frames = 20;          // per category
-    double opacity = 0.3;
-    int runs = 3;             // each call timed this many times; its median counts
-    std::uint64_t seed = 1;
-    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-    std::vector<cv::Size> resolutions{{640, 480}, {1280, 720}};
-    std::string original_field = UMF_ORIGINAL_FIELD;
-    std::string dump;  // also write the 640 x 480 frames as PGM here
-    bool parts = false;  // the search schedule's parts instead
-};
-
-// One category's frames at one resolution: with the field, the content
-// alone, with ArUco's board; consecutive, so that the tracker can follow them.
-struct Clip {
-    std::string category;
-    std::vector<Frame> field, bare, board;
-};
 
 struct Timing {
     std::vector<double> ms;
@@ -54,12 +38,6 @@ void add_stages(StageTimes& sum, const StageTimes& t) {
     sum.classify_ms += t.classify_ms, sum.vote_ms += t.vote_ms, sum.refine_ms += t.refine_ms;
     sum.total_ms += t.total_ms;
 }
-
-// Where the field is on the screen, to judge a located point.
-struct Truth {
-    sim::FieldPlacement placement;
-    double radius_modules;
-};
 
 void judge(Timing& t, const Frame& f, bool found, const Eigen::Vector2d& aim_field, const Truth* truth) {
     ++t.frames;
@@ -85,14 +63,18 @@ double timed(int runs, const Call& call) {
     return median_of(ms);
 }
 
-Timing time_single(const Detector& detector, const std::vector<Frame>& frames, int runs, const Truth* truth) {
+// The clip's frames with the field (judged against the truth), or without it
+// (every place found is wrong).
+Timing time_single(const Detector& detector, const Clip& clip, bool with_field, int runs) {
     Timing t;
-    for (const Frame& f : frames) {
-        if (truth && !f.centre_on_screen) continue;
+    const std::vector<Frame>& frames = with_field ? clip.field : clip.bare;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const Frame& f = frames[i];
+        if (with_field && !f.centre_on_screen) continue;
         Detection d;
         t.ms.push_back(timed(runs, [&] { d = detector.detect(grey_view(f)); }));
         add_stages(t.stages, d.times);
-        judge(t, f, d.found, d.aim_field, truth);
+        judge(t, f, d.found, d.aim_field, with_field ? &clip.truth[i] : nullptr);
     }
     return t;
 }
@@ -100,28 +82,30 @@ Timing time_single(const Detector& detector, const std::vector<Frame>& frames, i
 // The tracker over the clip in order, once (its state moves on with every
 // frame); frames whose centre is off the field are given to it but not
 // counted, as a phone keeps filming then too.
-Timing time_tracker(const Detector& detector, const std::vector<Frame>& frames, const Truth* truth,
-                    bool spread_search) {
+Timing time_tracker(const Detector& detector, const Clip& clip, bool with_field, bool spread_search) {
     Timing t;
     TrackerOptions options;
     options.spread_search = spread_search;
     Tracker tracker(detector, options);
-    for (const Frame& f : frames) {
+    const std::vector<Frame>& frames = with_field ? clip.field : clip.bare;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const Frame& f = frames[i];
         TrackResult r;
         const double ms = timed(1, [&] { r = tracker.update(grey_view(f)); });
         if (!f.centre_on_screen) continue;
         t.ms.push_back(ms);
-        judge(t, f, r.state == TrackState::locked, r.aim_field, truth);
+        judge(t, f, r.state == TrackState::locked, r.aim_field, with_field ? &clip.truth[i] : nullptr);
     }
     return t;
 }
 
-Timing time_aruco(const ArucoBaseline& aruco, const std::vector<Frame>& frames, int runs) {
+Timing time_aruco(const Clip& clip, int runs) {
     Timing t;
-    for (const Frame& f : frames) {
+    for (std::size_t i = 0; i < clip.board.size(); ++i) {
+        const Frame& f = clip.board[i];
         if (!f.centre_on_screen) continue;
         ArucoLocation a;
-        t.ms.push_back(timed(runs, [&] { a = aruco.locate(f.grey); }));
+        t.ms.push_back(timed(runs, [&] { a = clip.aruco[i]->locate(f.grey); }));
         ++t.frames;
         if (a.found) ++t.found;
     }
@@ -164,53 +148,6 @@ std::string stage_profile(const StageTimes& s) {
     return out;
 }
 
-// The tuning set's scenes on its 1920 x 1080 screen, its contents made once.
-class Frames {
-public:
-    explicit Frames(const Options& opt) : opt_(opt), aruco_(scene_.screen.pixels, 30) {
-        screens_.resize(sim::kAllScreenKinds.size());
-        parallel_for(static_cast<int>(screens_.size()), opt.threads, [&](int k) {
-            screens_[static_cast<std::size_t>(k)] =
-                sim::make_screen(sim::kAllScreenKinds[static_cast<std::size_t>(k)], scene_.screen.pixels, 7);
-        });
-    }
-
-    // The tuning set's clips, with `shown` on the screen at `placement`.
-    std::vector<Clip> tuning(cv::Size res, const Field& shown, const sim::FieldPlacement& placement,
-                             const std::vector<Category>& categories) const {
-        std::vector<cv::Mat> with_field(screens_.size()), with_board(screens_.size());
-        parallel_for(static_cast<int>(screens_.size()), opt_.threads, [&](int k) {
-            const auto i = static_cast<std::size_t>(k);
-            with_field[i] = sim::mix_field(screens_[i], shown, placement, opt_.opacity);
-            with_board[i] = aruco_.mix(screens_[i], opt_.opacity);
-        });
-        std::vector<Clip> clips;
-        for (Category c : categories) {
-            const auto rs = category_recipes(scene_, c, opt_.frames, opt_.seed);
-            Clip clip{to_string(c), std::vector<Frame>(rs.size()), std::vector<Frame>(rs.size()),
-                      std::vector<Frame>(rs.size())};
-            parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
-                const auto at = static_cast<std::size_t>(i);
-                const auto kind = static_cast<std::size_t>(rs[at].screen);
-                clip.field[at] = shoot(scene_, rs[at], with_field[kind], res);
-                clip.bare[at] = shoot(scene_, rs[at], screens_[kind], res);
-                clip.board[at] = shoot(scene_, rs[at], with_board[kind], res);
-            });
-            clips.push_back(std::move(clip));
-        }
-        return clips;
-    }
-
-    const Scene& scene() const { return scene_; }
-    const ArucoBaseline& aruco() const { return aruco_; }
-
-private:
-    const Options& opt_;
-    Scene scene_;
-    ArucoBaseline aruco_;
-    std::vector<cv::Mat> screens_;
-};
-
 void dump_clips(const std::string& dir, const std::string& prefix, const std::vector<Clip>& clips) {
     std::filesystem::create_directories(dir);
     for (const Clip& c : clips)
@@ -223,14 +160,26 @@ void dump_clips(const std::string& dir, const std::string& prefix, const std::ve
 
 std::string resolution_name(cv::Size r) { return std::to_string(r.width) + " x " + std::to_string(r.height); }
 
-// Each part of the tracker's search schedule alone (search_plan.hpp): its
-// time on frames without the field, and the frames with it that the part
-// finds where the first scan does not.
-std::string schedule_parts(const Detector& detector, const std::vector<Clip>& clips) {
+// The detector's order (kPartOrder) against the greedy one, over `sets`.
+std::string order_comparison(const std::vector<PartFinds>& sets) {
+    const std::vector<int> ours(kPartOrder.begin(), kPartOrder.end()), greedy = greedy_order(sets);
+    int unfound = 0;
+    for (const PartFinds& set : sets) unfound += static_cast<int>(std::count(set.found_by.begin(), set.found_by.end(), 0u));
+    return "Mean time to find a frame the first scan misses, from the parts' median costs (" + std::to_string(unfound) +
+           " found by none): the detector's order (" + order_text(ours) + ") " +
+           fixed(mean_time_to_find(ours, sets)) + " ms; greedy (" + order_text(greedy) + ") " +
+           fixed(mean_time_to_find(greedy, sets)) + " ms.\n";
+}
+
+// Each part of the search (search_plan.hpp) alone: its time on frames
+// without the field, and the frames with it that the part finds where the
+// first scan does not; then the detector's order of the parts against the
+// greedy one. `finds` gains this resolution's.
+std::string schedule_parts(const Detector& detector, const std::vector<Clip>& clips, std::vector<PartFinds>& finds) {
     std::string out = "| part (search_part) | median ms without the field | p95 | finds, of the frames the first scan "
                       "misses |\n|---|---|---|---|\n";
-    int missed = 0, found_by_first = 0;
-    std::map<int, int> finds;
+    int found_by_first = 0;
+    std::vector<unsigned> found_by;  // per frame the first scan misses: the parts that find it, as bits
     std::map<int, std::vector<double>> ms;
     for (const Clip& c : clips) {
         for (const Frame& f : c.field) {
@@ -240,9 +189,10 @@ std::string schedule_parts(const Detector& detector, const std::vector<Clip>& cl
                 ++found_by_first;
                 continue;
             }
-            ++missed;
+            unsigned mask = 0;
             for (int k = 0; k < kSearchParts; ++k)
-                if (detector.detect(grey_view(f), centre, nullptr, search_part(k)).found) ++finds[k];
+                if (detector.detect(grey_view(f), centre, nullptr, search_part(k)).found) mask |= 1u << k;
+            found_by.push_back(mask);
         }
         for (const Frame& f : c.bare) {
             const Eigen::Vector2d centre(f.grey.cols / 2.0, f.grey.rows / 2.0);
@@ -252,28 +202,40 @@ std::string schedule_parts(const Detector& detector, const std::vector<Clip>& cl
             }
         }
     }
-    for (const auto& [k, v] : ms)
-        out += "| " + (k < 0 ? std::string("the first scan") : std::to_string(k)) + " | " + fixed(median_of(v)) +
-               " | " + fixed(percentile(v, 95)) + " | " +
-               (k < 0 ? std::to_string(found_by_first) + " found" : std::to_string(finds[k]) + " of " +
-                                                                        std::to_string(missed)) +
+    std::map<int, double> cost;
+    for (const auto& [k, v] : ms) {
+        cost[k] = median_of(v);
+        int finds = 0;
+        for (unsigned m : found_by) finds += k >= 0 && ((m >> k) & 1u);
+        out += "| " + (k < 0 ? std::string("the first scan") : std::to_string(k)) + " | " + fixed(cost[k]) + " | " +
+               fixed(percentile(v, 95)) + " | " +
+               (k < 0 ? std::to_string(found_by_first) + " found"
+                      : std::to_string(finds) + " of " + std::to_string(found_by.size())) +
                " |\n";
+    }
+    std::map<int, double> part_cost(cost);
+    part_cost.erase(-1);
+    finds.push_back({found_by, part_cost});
+    out += "\n" + order_comparison({finds.back()});
     return out;
 }
 
 // The tables of one resolution.
-std::string time_resolution(const Detector& detector, const Frames& frames, const std::vector<Clip>& clips,
-                            const Options& opt, const Truth& truth) {
+std::string time_resolution(const Detector& detector, const std::vector<Clip>& clips, const SpeedOptions& opt) {
     Timing with_all, bare_all, video_all, video_bare_all, spread_all, spread_bare_all, aruco_all;
     std::string per_category;
+    if (opt.profile) {
+        for (const Clip& c : clips) merge(with_all, time_single(detector, c, true, opt.runs));
+        return row("with the field, single frame", with_all) + "\n";
+    }
     for (const Clip& c : clips) {
-        const Timing with = time_single(detector, c.field, opt.runs, &truth);
-        const Timing bare = time_single(detector, c.bare, opt.runs, nullptr);
-        const Timing video = time_tracker(detector, c.field, &truth, false);
-        const Timing video_bare = time_tracker(detector, c.bare, nullptr, false);
-        merge(spread_all, time_tracker(detector, c.field, &truth, true));
-        merge(spread_bare_all, time_tracker(detector, c.bare, nullptr, true));
-        const Timing aruco = time_aruco(frames.aruco(), c.board, opt.runs);
+        const Timing with = time_single(detector, c, true, opt.runs);
+        const Timing bare = time_single(detector, c, false, opt.runs);
+        const Timing video = time_tracker(detector, c, true, false);
+        const Timing video_bare = time_tracker(detector, c, false, false);
+        merge(spread_all, time_tracker(detector, c, true, true));
+        merge(spread_bare_all, time_tracker(detector, c, false, true));
+        const Timing aruco = time_aruco(c, opt.runs);
         auto cell = [](const Timing& t) { return fixed(median_of(t.ms)) + " / " + fixed(percentile(t.ms, 95)); };
         per_category += "| " + c.category + " | " + cell(with) + " | " + cell(bare) + " | " + cell(video) + " | " +
                         cell(video_bare) + " | " + fixed(median_of(aruco.ms)) + " | " + std::to_string(with.right) +
@@ -298,53 +260,57 @@ std::string time_resolution(const Detector& detector, const Frames& frames, cons
     return out.str();
 }
 
-int run(const Options& opt) {
-    const Field field = bench_field("b4-64x36.json");
-    const Detector detector(field);
-    Frames frames(opt);
-    const sim::FieldPlacement placement{{0, 0}, frames.scene().module_px};
-    const Truth truth{placement, 1.0};
-    const std::vector<Category> categories(kAllCategories.begin(), kAllCategories.end());
-
-    std::cout << "Frames: the tuning set's " << categories.size() << " categories, " << opt.frames
-              << " consecutive frames each, field and board at opacity " << opt.opacity << ", seed " << opt.seed
-              << "; each single-frame call timed " << opt.runs << " times (its median counts), the tracker once; "
-              << "one thread.\n\n";
-    for (cv::Size res : opt.resolutions) {
-        std::cerr << "making " << resolution_name(res) << " frames\n";
-        const auto clips = frames.tuning(res, field, placement, categories);
-        if (!opt.dump.empty() && res == cv::Size(640, 480)) dump_clips(opt.dump, "tuning", clips);
-        std::cerr << "timing " << resolution_name(res) << "\n";
-        std::cout << "### " << resolution_name(res) << "\n\n"
-                  << (opt.parts ? schedule_parts(detector, clips) + "\n"
-                                : time_resolution(detector, frames, clips, opt, truth));
-    }
-    if (opt.parts) return 0;
-
-    // The authors' 19 x 31 field (five shades, 3 x 3 edge windows) across the
-    // screen's height, centred.
+// The authors' 19 x 31 field (five shades, 3 x 3 edge windows) across the
+// tuning screen's height, centred: general and perspective at 640 x 480.
+std::string time_original_field(const Frames& frames, const SpeedOptions& opt) {
     const Field original = load_field(opt.original_field);
     const double module = static_cast<double>(frames.scene().screen.pixels.height) / original.height;
     const sim::FieldPlacement on_screen{
         {(frames.scene().screen.pixels.width - module * original.width) / 2, 0}, module};
     const Detector original_detector(original);
-    const Truth original_truth{on_screen, 1.0};
     Timing with_original;
-    for (const Clip& c : frames.tuning({640, 480}, original, on_screen, {Category::general, Category::perspective})) {
-        std::vector<Frame> on_field;
-        for (const Frame& f : c.field) {
+    for (Clip& c : frames.tuning({640, 480}, original, on_screen, 1.0, {Category::general, Category::perspective})) {
+        for (Frame& f : c.field) {
             const cv::Point2d uv = sim::screen_to_field(on_screen, f.centre_screen_px);
-            Frame g = f;
-            g.centre_on_screen = f.centre_on_screen && uv.x >= 0 && uv.y >= 0 && uv.x <= original.width &&
+            f.centre_on_screen = f.centre_on_screen && uv.x >= 0 && uv.y >= 0 && uv.x <= original.width &&
                                  uv.y <= original.height;
-            on_field.push_back(g);
         }
-        merge(with_original, time_single(original_detector, on_field, opt.runs, &original_truth));
+        merge(with_original, time_single(original_detector, c, true, opt.runs));
     }
-    std::cout << "### The original authors' field (" << std::filesystem::path(opt.original_field).filename().string()
-              << ", " << fixed(module, 1) << " px modules), 640 x 480, general and perspective\n\n"
-              << "| frames | found | median ms | p95 ms | max ms |\n|---|---|---|---|---|\n"
-              << row("with the field, single frame", with_original) << "\n";
+    return "### The original authors' field (" + std::filesystem::path(opt.original_field).filename().string() +
+           ", " + fixed(module, 1) + " px modules), 640 x 480, general and perspective\n\n" +
+           "| frames | found | median ms | p95 ms | max ms |\n|---|---|---|---|---|\n" +
+           row("with the field, single frame", with_original) + "\n";
+}
+
+int run(const SpeedOptions& opt) {
+    const Field field = bench_field("b4-64x36.json");
+    const Detector detector(field);
+    std::optional<Frames> frames;
+    std::optional<HeldoutFrames> heldout;
+    if (opt.heldout) {
+        heldout.emplace(opt, field);
+        std::cout << "Frames: the held-out set's " << kAllHeldoutCategories.size() << " categories";
+    } else {
+        frames.emplace(opt);
+        std::cout << "Frames: the tuning set's " << kAllCategories.size() << " categories";
+    }
+    std::cout << ", " << opt.frames << " consecutive frames each, field and board at opacity " << opt.opacity
+              << ", seed " << opt.seed << "; each single-frame call timed " << opt.runs
+              << " times (its median counts), the tracker once; one thread.\n\n";
+    const std::vector<Category> categories(kAllCategories.begin(), kAllCategories.end());
+    std::vector<PartFinds> finds;
+    for (cv::Size res : opt.resolutions) {
+        std::cerr << "making " << resolution_name(res) << " frames\n";
+        const auto clips = heldout ? heldout->clips(res)
+                                   : frames->tuning(res, field, {{0, 0}, frames->scene().module_px}, 1.0, categories);
+        if (!opt.dump.empty() && res == cv::Size(640, 480)) dump_clips(opt.dump, heldout ? "heldout" : "tuning", clips);
+        std::cerr << "timing " << resolution_name(res) << "\n";
+        std::cout << "### " << resolution_name(res) << "\n\n"
+                  << (opt.parts ? schedule_parts(detector, clips, finds) + "\n" : time_resolution(detector, clips, opt));
+    }
+    if (opt.parts && finds.size() > 1) std::cout << "### All resolutions\n\n" << order_comparison(finds);
+    if (!opt.parts && !opt.profile && frames) std::cout << time_original_field(*frames, opt);
     return 0;
 }
 
@@ -360,9 +326,10 @@ std::vector<cv::Size> parse_resolutions(const std::string& text) {
 }
 
 const char kUsage[] =
-    "umf_speed_benchmark: the detector's time per frame on the tuning set's scenes, one call at a time on one "
-    "thread.\n\n"
+    "umf_speed_benchmark: the detector's time per frame on the tuning set's scenes (or the held-out set's), one "
+    "call at a time on one thread.\n\n"
     "Usage: umf_speed_benchmark [options]\n"
+    "  --set tuning|heldout   whose scenes (default tuning; the original authors' field with the tuning set only)\n"
     "  --frames N             consecutive frames per category (default 20)\n"
     "  --opacity A            field and board opacity (default 0.3)\n"
     "  --runs N               times each single-frame call is timed, its median counted (default 3)\n"
@@ -373,6 +340,7 @@ const char kUsage[] =
     "  --dump DIR             also write the 640 x 480 frames there as PGM (with the field and without)\n"
     "  --parts                instead: each part of the tracker's search schedule alone, its time on the frames\n"
     "                         without the field and the frames with it that it finds where the first scan does not\n"
+    "  --profile              only single frames with the field (each --runs times), for a profiler\n"
     "  --help                 this text\n\n"
     "Progress goes to stderr, the tables to stdout.\n";
 
@@ -381,7 +349,7 @@ const char kUsage[] =
 
 int main(int argc, char** argv) {
     using namespace umf::bench;
-    Options opt;
+    SpeedOptions opt;
     try {
         for (int i = 1; i < argc; ++i) {
             const std::string a = argv[i];
@@ -392,6 +360,10 @@ int main(int argc, char** argv) {
             if (a == "--help") {
                 std::cout << kUsage;
                 return 0;
+            } else if (a == "--set") {
+                const std::string set = value();
+                if (set != "tuning" && set != "heldout") throw std::invalid_argument("--set: tuning or heldout");
+                opt.heldout = set == "heldout";
             } else if (a == "--frames") {
                 opt.frames = std::stoi(value());
             } else if (a == "--opacity") {
@@ -406,6 +378,8 @@ int main(int argc, char** argv) {
                 opt.threads = std::max(1, std::stoi(value()));
             } else if (a == "--original-field") {
                 opt.original_field = value();
+            } else if (a == "--profile") {
+                opt.profile = true;
             } else if (a == "--parts") {
                 opt.parts = true;
             } else if (a == "--dump") {
