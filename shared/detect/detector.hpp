@@ -38,6 +38,7 @@
 #include "shared/detect/lattice.hpp"
 #include "shared/detect/placement_vote.hpp"
 #include "shared/detect/refine.hpp"
+#include "shared/detect/search_cache.hpp"
 #include "shared/detect/search_plan.hpp"
 #include "shared/detect/vanishing_points.hpp"
 #include "shared/detect/window_index.hpp"
@@ -219,6 +220,7 @@ private:
             std::vector<GridLineFamily> family[2];
         };
         SearchPlan plan;  // the part of the search running
+        SearchCache cache;  // images and scans the parts share
         int first_pair = 0;
         int end_pair = 0;
         std::vector<Labellings> left;
@@ -279,7 +281,8 @@ private:
     // The same at half size and below (DetectorOptions::lattice_sizes): at
     // half size when bit 0 of `sizes` is set, a quarter with bit 1, and so on.
     const char* search_lattice_smaller(const GreyView& image, const Eigen::Vector2d& aim,
-                                       const DetectionPrior* prior, Detection& out, unsigned sizes) const;
+                                       const DetectionPrior* prior, SearchCache& cache, Detection& out,
+                                       unsigned sizes) const;
     // Steps 5 to 8 on one grid (`grid_to_image`, rows x cols cells): its
     // modules read, the vote (near the prior first), the refit and checks,
     // the aim point; the failure, or null when found.

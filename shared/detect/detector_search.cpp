@@ -71,6 +71,19 @@ struct Resizing {
     }
 };
 
+// `source` made into `kind`, or what this call made of it before.
+GreyView derived(const GreyView& source, SearchCache::Derived kind, SearchCache& cache, Detection& out) {
+    if (const GreyView* made = cache.find(source, kind)) return *made;
+    auto t = StageClock::now();
+    std::vector<std::uint8_t> pixels;
+    const GreyView view = kind == SearchCache::Derived::half_size     ? half_size(source, pixels)
+                          : kind == SearchCache::Derived::double_size ? double_size(source, pixels)
+                                                                      : smoothed(source, pixels);
+    out.times.edgels_ms += ms_since(t);
+    out.pixels_visited += static_cast<long>(source.width) * source.height;
+    return cache.add(source, kind, std::move(pixels), view);
+}
+
 }  // namespace
 
 Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior) const {
@@ -133,7 +146,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     if (!failure) return nullptr;
     if (pass.first() && options_.lattice_enabled && plan.lattices != 0 &&
         (((plan.lattices & 1u) && !search_lattice(im, aim, prior, out)) ||
-         ((plan.lattices & ~1u) && !search_lattice_smaller(im, aim, prior, out, plan.lattices >> 1))))
+         ((plan.lattices & ~1u) && !search_lattice_smaller(im, aim, prior, pass.cache, out, plan.lattices >> 1))))
         return nullptr;
     const int max_side = options_.double_size_max_side;
     if (plan.double_scans != 0 && max_side > 0 && std::max(im.width, im.height) <= max_side) {
@@ -151,11 +164,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     }
     if ((plan.smoothed_scans | plan.smoothed_smaller_scans) != 0 && options_.smoothed_search &&
         !pass.nothing_left()) {
-        auto t = StageClock::now();
-        std::vector<std::uint8_t> pixels;
-        const GreyView soft = smoothed(im, pixels);
-        out.times.edgels_ms += ms_since(t);
-        out.pixels_visited += static_cast<long>(im.width) * im.height;
+        const GreyView soft = derived(im, SearchCache::Derived::smoothed, pass.cache, out);
         if (!search_smaller(soft, aim, prior, pass, out, plan.smoothed_scans, plan.smoothed_smaller_scans)) {
             out.from_smoothed = true;
             return nullptr;
@@ -180,19 +189,15 @@ const char* Detector::search_lattice(const GreyView& im, const Eigen::Vector2d& 
 }
 
 const char* Detector::search_lattice_smaller(const GreyView& im, const Eigen::Vector2d& aim,
-                                             const DetectionPrior* prior, Detection& out, unsigned sizes) const {
-    // Two buffers in turn: each size is made from the one before.
-    std::vector<std::uint8_t> buffers[2];
+                                             const DetectionPrior* prior, SearchCache& cache, Detection& out,
+                                             unsigned sizes) const {
     GreyView current = im;
     double scale = 1;
     const char* failure = "no lattice";
     for (int k = 0; k < options_.lattice_sizes && (sizes >> k) != 0; ++k) {
         if (std::min(current.width, current.height) / 2 < options_.lattice.patch_px) break;
-        auto t = StageClock::now();
-        out.pixels_visited += static_cast<long>(current.width) * current.height;
-        current = half_size(current, buffers[k % 2]);
+        current = derived(current, SearchCache::Derived::half_size, cache, out);
         scale *= 0.5;
-        out.times.edgels_ms += ms_since(t);
         if (!((sizes >> k) & 1u)) continue;
         const Resizing resizing(scale, Eigen::Vector2d::Zero(), prior);
         failure = search_lattice(current, resizing.resized(aim), resizing.resized_prior(), out);
@@ -220,11 +225,8 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
                                      const Eigen::Vector2d& aim, const DetectionPrior* prior, Pass& pass,
                                      Detection& out, unsigned scans, unsigned smaller_scans) const {
     if (pass.nothing_left()) return "no grid homography";
-    auto t = StageClock::now();
-    std::vector<std::uint8_t> pixels;
-    const GreyView resized = scale < 1 ? half_size(part, pixels) : double_size(part, pixels);
-    out.times.edgels_ms += ms_since(t);
-    out.pixels_visited += static_cast<long>(part.width) * part.height;
+    const GreyView resized = derived(
+        part, scale < 1 ? SearchCache::Derived::half_size : SearchCache::Derived::double_size, pass.cache, out);
     const Resizing resizing(scale, origin, prior);
     const DetectionPrior* p = resizing.resized_prior();
     const Eigen::Vector2d resized_aim = resizing.resized(aim);
@@ -257,11 +259,21 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     auto searched = [&](unsigned scan_bit, const EdgelScan& scan) {
         return (scans & scan_bit) ? search_all_then_subsets(im, aim, prior, vanishing, scan, pass, out) : not_searched;
     };
-    auto t = StageClock::now();
+    // Each step's whole scan, made once in this call: a later part, or the
+    // second pass, starts from where an earlier one left off.
+    std::vector<EdgelScan>& steps = pass.cache.scans(im);
+    std::size_t step = 0;
+    auto scan_step = [&](const auto& make) {
+        if (step >= steps.size()) {
+            auto t = StageClock::now();
+            steps.push_back(make());
+            out.pixels_visited += steps.back().pixels_visited;
+            out.times.edgels_ms += ms_since(t);
+        }
+        return steps[step++];
+    };
     EdgelOptions edgel_options = options_.edgels;
-    EdgelScan scan = find_edgels(im, edgel_options);
-    out.pixels_visited += scan.pixels_visited;
-    out.times.edgels_ms += ms_since(t);
+    EdgelScan scan = scan_step([&] { return find_edgels(im, edgel_options); });
     const char* failure = searched(kFirstScan, scan);
     if ((scans & ~kFirstScan) == 0) return failure;
     if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3 &&
@@ -272,10 +284,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         // vote keep the peaks the noise makes out of the grid).
         edgel_options.across = 3;
         edgel_options.noise_deviations = options_.noisy_edge_deviations;
-        t = StageClock::now();
-        scan = find_edgels(im, edgel_options);
-        out.pixels_visited += scan.pixels_visited;
-        out.times.edgels_ms += ms_since(t);
+        scan = scan_step([&] { return find_edgels(im, edgel_options); });
         failure = searched(kNoisyScan, scan);
     }
     int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan.step / 2;  // of the scanlines so far
@@ -286,12 +295,14 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         between.step = scan.step;
         between.offset = (offset + scan.step / 2) % scan.step;
         offset = std::min(offset, between.offset);
-        t = StageClock::now();
-        const EdgelScan more = find_edgels(im, between);
-        scan.edgels.insert(scan.edgels.end(), more.edgels.begin(), more.edgels.end());
-        scan.step /= 2;
-        out.pixels_visited += more.pixels_visited;
-        out.times.edgels_ms += ms_since(t);
+        scan = scan_step([&] {
+            EdgelScan more = find_edgels(im, between);
+            EdgelScan whole = scan;
+            whole.edgels.insert(whole.edgels.end(), more.edgels.begin(), more.edgels.end());
+            whole.step /= 2;
+            whole.pixels_visited = more.pixels_visited;
+            return whole;
+        });
         failure = searched(denser, scan);
     }
     return failure;
