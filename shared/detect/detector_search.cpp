@@ -232,7 +232,7 @@ const char* Detector::search_resized(const GreyView& part, double scale, const E
     const Eigen::Vector2d resized_aim = resizing.resized(aim);
     // The places checked at the other sizes count against the ones checked
     // here (confirm_place's extra bits), as for any other candidate. Half
-    // size goes on to smaller sizes; double size is the last try.
+    // size goes on to smaller sizes; double size goes no further.
     const char* failure = nullptr;
     if (scale < 1) {
         failure = search_smaller(resized, resized_aim, p, pass, out, scans, smaller_scans);
