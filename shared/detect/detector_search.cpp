@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
+#include <deque>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -261,9 +262,9 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     };
     // Each step's whole scan, made once in this call: a later part, or the
     // second pass, starts from where an earlier one left off.
-    std::vector<EdgelScan>& steps = pass.cache.scans(im);
+    std::deque<EdgelScan>& steps = pass.cache.scans(im);
     std::size_t step = 0;
-    auto scan_step = [&](const auto& make) {
+    auto scan_step = [&](const auto& make) -> const EdgelScan& {
         if (step >= steps.size()) {
             auto t = StageClock::now();
             steps.push_back(make());
@@ -273,10 +274,10 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         return steps[step++];
     };
     EdgelOptions edgel_options = options_.edgels;
-    EdgelScan scan = scan_step([&] { return find_edgels(im, edgel_options); });
-    const char* failure = searched(kFirstScan, scan);
+    const EdgelScan* scan = &scan_step([&] { return find_edgels(im, edgel_options); });
+    const char* failure = searched(kFirstScan, *scan);
     if ((scans & ~kFirstScan) == 0) return failure;
-    if (failure && options_.rescan && scan.noise_sigma >= kNoisyImage && edgel_options.across < 3 &&
+    if (failure && options_.rescan && scan->noise_sigma >= kNoisyImage && edgel_options.across < 3 &&
         !pass.nothing_left()) {
         // A noisy image (low light): a faint field's edges drown in the
         // scanlines' noise; three pixels across each line hold them, and a
@@ -284,26 +285,26 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         // vote keep the peaks the noise makes out of the grid).
         edgel_options.across = 3;
         edgel_options.noise_deviations = options_.noisy_edge_deviations;
-        scan = scan_step([&] { return find_edgels(im, edgel_options); });
-        failure = searched(kNoisyScan, scan);
+        scan = &scan_step([&] { return find_edgels(im, edgel_options); });
+        failure = searched(kNoisyScan, *scan);
     }
-    int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan.step / 2;  // of the scanlines so far
-    for (unsigned denser = kFirstDenserScan; failure && options_.rescan && scan.step >= 8 && !pass.nothing_left() &&
+    int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan->step / 2;  // of the scanlines so far
+    for (unsigned denser = kFirstDenserScan; failure && options_.rescan && scan->step >= 8 && !pass.nothing_left() &&
                                              (scans & ~(denser - 1)) != 0;
          denser <<= 1) {
         EdgelOptions between = edgel_options;
-        between.step = scan.step;
-        between.offset = (offset + scan.step / 2) % scan.step;
+        between.step = scan->step;
+        between.offset = (offset + scan->step / 2) % scan->step;
         offset = std::min(offset, between.offset);
-        scan = scan_step([&] {
+        scan = &scan_step([&] {
             EdgelScan more = find_edgels(im, between);
-            EdgelScan whole = scan;
+            EdgelScan whole = *scan;
             whole.edgels.insert(whole.edgels.end(), more.edgels.begin(), more.edgels.end());
             whole.step /= 2;
             whole.pixels_visited = more.pixels_visited;
             return whole;
         });
-        failure = searched(denser, scan);
+        failure = searched(denser, *scan);
     }
     return failure;
 }

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -35,8 +36,9 @@ public:
     }
 
     // The scans of `image` made so far in this call, each step's whole scan
-    // (the first, then each rescan added to it), in the order they were made.
-    std::vector<EdgelScan>& scans(const GreyView& image) {
+    // (the first, then each rescan added to it), in the order they were made;
+    // a deque, so that a step stays where it is while later ones are added.
+    std::deque<EdgelScan>& scans(const GreyView& image) {
         for (auto& s : scans_)
             if (same(s->image, image)) return s->steps;
         scans_.push_back(std::make_unique<Scans>(Scans{image, {}}));
@@ -55,7 +57,7 @@ private:
     };
     struct Scans {
         GreyView image;
-        std::vector<EdgelScan> steps;
+        std::deque<EdgelScan> steps;
     };
     std::vector<std::unique_ptr<Image>> images_;
     std::vector<std::unique_ptr<Scans>> scans_;
