@@ -1,6 +1,8 @@
 #include "shared/detect/classify.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -28,13 +30,15 @@ std::uint8_t median_of_9(std::uint8_t* p) {
 // A module's brightness: the median of nine pixels spread over its middle
 // half (a 3 x 3 pattern a quarter module apart). Text and thin lines under
 // the field darken or brighten a few of them, not the median. NaN when the
-// module is not wholly inside the image.
-double sample_module(const GreyView& im, const Eigen::Matrix3d& h, double cx, double cy, long& visited) {
+// module is not wholly inside the image. `c` is the module's centre under
+// the grid's homography h (homogeneous), `qx` and `qy` a quarter module
+// along each axis (h's first and second columns over 4).
+double sample_module(const GreyView& im, const Eigen::Vector3d& c, const Eigen::Vector3d& qx,
+                     const Eigen::Vector3d& qy, long& visited) {
     // The module is small enough for the homography to be affine across it:
-    // project its centre and a quarter module along each axis, step from there.
-    const Eigen::Vector3d c = h * Eigen::Vector3d(cx, cy, 1.0);
+    // a quarter module along each axis from its centre, step from there.
     if (c.z() <= 0) return kUnread;
-    const Eigen::Vector3d ex = h * Eigen::Vector3d(cx + 0.25, cy, 1.0), ey = h * Eigen::Vector3d(cx, cy + 0.25, 1.0);
+    const Eigen::Vector3d ex = c + qx, ey = c + qy;
     const double px = c.x() / c.z(), py = c.y() / c.z();
     const double dxx = ex.x() / ex.z() - px, dxy = ex.y() / ex.z() - py;
     const double dyx = ey.x() / ey.z() - px, dyy = ey.y() / ey.z() - py;
@@ -52,9 +56,19 @@ double sample_module(const GreyView& im, const Eigen::Matrix3d& h, double cx, do
     return median_of_9(v);
 }
 
+// The values in ascending order. They are medians of pixels, whole grey
+// levels, so counted rather than compared.
+void sort_grey_levels(std::vector<double>& v) {
+    std::array<int, 256> count{};
+    for (double x : v) ++count[static_cast<std::uint8_t>(x)];
+    std::size_t at = 0;
+    for (int level = 0; level < 256; ++level)
+        for (int c = 0; c < count[level]; ++c) v[at++] = level;
+}
+
 // Otsu's threshold over the sampled values.
 double otsu(std::vector<double> v, double& low_mean, double& high_mean) {
-    std::sort(v.begin(), v.end());
+    sort_grey_levels(v);
     const int n = static_cast<int>(v.size());
     std::vector<double> prefix(n + 1, 0);
     for (int i = 0; i < n; ++i) prefix[i + 1] = prefix[i] + v[i];
@@ -90,9 +104,16 @@ double field_step(const std::vector<double>& value, int rows, int cols) {
                 d.push_back(std::abs(value[static_cast<std::size_t>(i + 1) * cols + j] - v));
         }
     if (d.size() < 8) return 0;
-    const auto q = d.begin() + static_cast<std::ptrdiff_t>(d.size() * 3 / 4);
-    std::nth_element(d.begin(), q, d.end());
-    return *q;
+    // The (3/4 size)-th smallest; differences of grey levels, so counted.
+    std::array<int, 256> count{};
+    for (double x : d) ++count[static_cast<std::uint8_t>(x)];
+    const std::size_t q = d.size() * 3 / 4;
+    std::size_t below = 0;
+    for (int level = 0; level < 256; ++level) {
+        below += static_cast<std::size_t>(count[level]);
+        if (below > q) return level;
+    }
+    return 255;
 }
 
 // Binary modules, each judged against the modules around it that lie over
@@ -142,9 +163,12 @@ ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int ro
     ModuleGrid g(rows, cols);
     std::vector<double> value(static_cast<std::size_t>(rows) * cols, kUnread);
     std::vector<double> seen;
+    // Module centres step along a row by h's first column.
+    const Eigen::Vector3d qx = 0.25 * h.col(0), qy = 0.25 * h.col(1);
     for (int i = 0; i < rows; ++i)
         for (int j = 0; j < cols; ++j) {
-            const double v = sample_module(im, h, j + 0.5, i + 0.5, visited);
+            const Eigen::Vector3d c = h * Eigen::Vector3d(j + 0.5, i + 0.5, 1.0);
+            const double v = sample_module(im, c, qx, qy, visited);
             value[static_cast<std::size_t>(i) * cols + j] = v;
             if (std::isfinite(v)) seen.push_back(v);
         }

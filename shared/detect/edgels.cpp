@@ -9,6 +9,27 @@ namespace umf {
 
 namespace {
 
+// The lower quartile of |v[0..n)| (the element nth_element puts at n / 4).
+// Counted in a histogram of the small values that noise makes; sorted in
+// part only when the quartile lies beyond them (a line all edges).
+int lower_quartile(const int* v, int n, std::vector<int>& scratch) {
+    constexpr int kSmall = 256;
+    int counts[kSmall] = {};
+    for (int i = 0; i < n; ++i) {
+        const int a = std::abs(v[i]);
+        if (a < kSmall) ++counts[a];
+    }
+    const int k = n / 4;
+    for (int value = 0, below = 0; value < kSmall; ++value) {
+        below += counts[value];
+        if (below > k) return value;
+    }
+    scratch.resize(n);
+    for (int i = 0; i < n; ++i) scratch[i] = std::abs(v[i]);
+    std::nth_element(scratch.begin(), scratch.begin() + k, scratch.end());
+    return scratch[k];
+}
+
 // Edges along one line of samples s[0..n): peaks of the smoothed derivative
 // d[i] = s[i+1] + s[i+2] - s[i-1] - s[i-2] that stand out of the line's noise
 // (a robust estimate from the lower quartile of |d|) by `deviations` and reach
@@ -20,14 +41,10 @@ double scan_line(int n, Sample s, int floor, double deviations, std::vector<int>
     if (n < 7) return 0;
     d.assign(n, 0);
     for (int i = 2; i + 2 < n; ++i) d[i] = (s(i + 1) + s(i + 2)) - (s(i - 1) + s(i - 2));
-    scratch.resize(n - 4);
-    for (int i = 2; i + 2 < n; ++i) scratch[i - 2] = std::abs(d[i]);
-    auto quarter = scratch.begin() + scratch.size() / 4;
-    std::nth_element(scratch.begin(), quarter, scratch.end());
     // The noise's standard deviation from the lower quartile of |d|
     // (3.14 * quartile for Gaussian noise): where modules are small and
     // blurred, edges spread over most of a line and would inflate a median.
-    const double sigma_d = 3.14 * *quarter;
+    const double sigma_d = 3.14 * lower_quartile(d.data() + 2, n - 4, scratch);
     const double threshold = std::max(2.0 * floor, deviations * sigma_d);
     int prev = std::abs(d[2]), cur = std::abs(d[3]);
     for (int i = 3; i + 3 < n; ++i) {

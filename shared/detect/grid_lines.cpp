@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <span>
 
 namespace umf {
 
@@ -42,8 +43,8 @@ double crossing(const Eigen::Vector3d& l, const Eigen::Vector2d& c, const Eigen:
 
 // t(k) = (a k + b) / (c k + 1), fitted to labelled crossings in the linear
 // form a k + b - c k t = t.
-bool fit_projective_1d(const std::vector<std::pair<int, double>>& kt, const std::vector<double>& w, double& a,
-                       double& b, double& c) {
+bool fit_projective_1d(std::span<const std::pair<int, double>> kt, std::span<const double> w, double& a, double& b,
+                       double& c) {
     if (kt.size() < 3) return false;
     Eigen::Matrix3d ata = Eigen::Matrix3d::Zero();
     Eigen::Vector3d atb = Eigen::Vector3d::Zero();
@@ -191,6 +192,59 @@ std::vector<std::vector<std::pair<int, double>>> periodic_labellings(const Candi
     return result;
 }
 
+// A family's edgels by the scanline they lie on, each kept only on the
+// scanlines (rows or columns) that cross its line most steeply, sorted by
+// position along the scanline; columns first, then rows, each by coordinate.
+struct Scanlines {
+    std::vector<std::vector<int>> lists;       // per scanline, edgel indices by position
+    std::vector<Eigen::Vector2d> direction;    // per edgel index: towards the vanishing point
+    int columns_from = 0, rows_from = 0;       // the first column's and first row's coordinates
+    int columns = 0;                           // lists [0, columns) are columns, the rest rows
+
+    bool on_row(std::size_t list) const { return static_cast<int>(list) >= columns; }
+    // The scanline `distance` further on from `list`, of the same kind; null when it holds nothing.
+    const std::vector<int>* find(std::size_t list, int distance) const {
+        const int at = static_cast<int>(list) + distance;
+        const bool row = on_row(list);
+        if (row ? at >= static_cast<int>(lists.size()) : at >= columns) return nullptr;
+        return lists[at].empty() ? nullptr : &lists[at];
+    }
+};
+
+Scanlines steep_scanlines(const std::vector<Edgel>& edgels, const std::vector<int>& members, const Eigen::Vector3d& vp) {
+    Scanlines out;
+    out.direction.resize(edgels.size());
+    int lo[2] = {std::numeric_limits<int>::max(), std::numeric_limits<int>::max()}, hi[2] = {-1, -1};
+    std::vector<int> kept;
+    for (int i : members) {
+        const Edgel& e = edgels[i];
+        const Eigen::Vector2d dir = direction_to(vp, {e.x, e.y});
+        out.direction[i] = dir;
+        const bool steep = std::abs(dir.y()) >= std::abs(dir.x());
+        if (steep != e.on_row) continue;
+        const int line = static_cast<int>(std::lround(e.on_row ? e.y : e.x));
+        lo[e.on_row] = std::min(lo[e.on_row], line);
+        hi[e.on_row] = std::max(hi[e.on_row], line);
+        kept.push_back(i);
+    }
+    out.columns_from = hi[0] >= 0 ? lo[0] : 0;
+    out.rows_from = hi[1] >= 0 ? lo[1] : 0;
+    out.columns = hi[0] >= 0 ? hi[0] - lo[0] + 1 : 0;
+    out.lists.resize(static_cast<std::size_t>(out.columns) + (hi[1] >= 0 ? hi[1] - lo[1] + 1 : 0));
+    for (int i : kept) {
+        const Edgel& e = edgels[i];
+        const int line = static_cast<int>(std::lround(e.on_row ? e.y : e.x));
+        out.lists[e.on_row ? out.columns + line - out.rows_from : line - out.columns_from].push_back(i);
+    }
+    for (std::size_t s = 0; s < out.lists.size(); ++s) {
+        const bool row = out.on_row(s);
+        std::sort(out.lists[s].begin(), out.lists[s].end(), [&edgels, row](int a, int b) {
+            return row ? edgels[a].x < edgels[b].x : edgels[a].y < edgels[b].y;
+        });
+    }
+    return out;
+}
+
 }  // namespace
 
 std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& edgels, const LineFamily& family,
@@ -202,43 +256,35 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
     // Step 1: chain edgels from scanline to scanline along the direction to
     // the vanishing point. Each edgel is chained through the scanlines that
     // cross its line most steeply.
-    std::map<std::pair<int, int>, std::vector<int>> by_scanline;  // (on_row, scanline) -> edgels by position
-    for (int i : family.edgels) {
-        const Edgel& e = edgels[i];
-        const Eigen::Vector2d dir = direction_to(vp, {e.x, e.y});
-        const bool steep = std::abs(dir.y()) >= std::abs(dir.x());
-        if (steep != e.on_row) continue;
-        const int line = static_cast<int>(std::lround(e.on_row ? e.y : e.x));
-        by_scanline[{e.on_row ? 1 : 0, line}].push_back(i);
-    }
-    for (auto& [key, list] : by_scanline) {
-        const bool row = key.first == 1;
-        std::sort(list.begin(), list.end(), [&edgels, row](int a, int b) {
-            return row ? edgels[a].x < edgels[b].x : edgels[a].y < edgels[b].y;
-        });
-    }
+    const Scanlines scanlines = steep_scanlines(edgels, family.edgels, vp);
     std::vector<int> next(edgels.size(), -1), has_prev(edgels.size(), 0);
     // Module edges come and go along a grid line (neighbouring modules are
     // often equal), so a chain may skip a few scanlines.
     constexpr int kMaxSkip = 4;
-    for (auto& [key, list] : by_scanline) {
-        const bool row = key.first == 1;
-        for (int i : list) {
+    for (std::size_t s = 0; s < scanlines.lists.size(); ++s) {
+        const bool row = scanlines.on_row(s);
+        for (const int i : scanlines.lists[s]) {
             const Edgel& e = edgels[i];
-            const Eigen::Vector2d dir = direction_to(vp, {e.x, e.y});
+            const Eigen::Vector2d& dir = scanlines.direction[i];
             for (int skip = 1; skip <= kMaxSkip && next[i] < 0; ++skip) {
-                auto it = by_scanline.find({key.first, key.second + skip * scan_step});
-                if (it == by_scanline.end()) continue;
+                const std::vector<int>* there = scanlines.find(s, skip * scan_step);
+                if (!there) continue;
                 // Move along the line to that scanline.
-                const double s = row ? skip * scan_step / dir.y() : skip * scan_step / dir.x();
-                const double predicted = row ? e.x + s * dir.x() : e.y + s * dir.y();
+                const double step = row ? skip * scan_step / dir.y() : skip * scan_step / dir.x();
+                const double predicted = row ? e.x + step * dir.x() : e.y + step * dir.y();
+                const double reach = o.chain_tolerance_px * (1 + 0.25 * (skip - 1));
+                auto position = [&](int j) -> double { return row ? edgels[j].x : edgels[j].y; };
+                // The list is sorted by position: only those within reach can
+                // be nearest, and the first of equals wins, as in a full pass.
+                auto it = std::lower_bound(there->begin(), there->end(), predicted - reach - 1e-9,
+                                           [&](int j, double p) { return position(j) <= p; });
                 int best = -1;
-                double best_d = o.chain_tolerance_px * (1 + 0.25 * (skip - 1));
-                for (int j : it->second) {
-                    const double d = std::abs((row ? edgels[j].x : edgels[j].y) - predicted);
-                    if (d < best_d && !has_prev[j]) {
+                double best_d = reach;
+                for (; it != there->end() && position(*it) < predicted + reach + 1e-9; ++it) {
+                    const double d = std::abs(position(*it) - predicted);  // the test of a full pass
+                    if (d < best_d && !has_prev[*it]) {
                         best_d = d;
-                        best = j;
+                        best = *it;
                     }
                 }
                 if (best >= 0) {
@@ -251,7 +297,7 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
     const Eigen::Vector2d centre(width / 2.0, height / 2.0);
     const Eigen::Vector2d u = direction_to(across, centre);
     std::vector<Chain> chains;
-    for (auto& [key, list] : by_scanline)
+    for (const std::vector<int>& list : scanlines.lists)
         for (int i : list) {
             if (has_prev[i]) continue;
             Chain ch;
@@ -365,11 +411,13 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
         char& drawn = drawn_before[(static_cast<std::size_t>(i) * 2 + (l - i - 2)) * 3 + it % 3];
         if (drawn) continue;
         drawn = 1;
-        std::vector<std::pair<int, double>> kt{{p[0], cand[i].t}, {p[1], cand[j].t}, {p[2], cand[l].t}};
+        const std::pair<int, double> kt[3] = {{p[0], cand[i].t}, {p[1], cand[j].t}, {p[2], cand[l].t}};
+        static constexpr double kEqual[3] = {1, 1, 1};
         double a, b, c;
-        if (!fit_projective_1d(kt, {1, 1, 1}, a, b, c)) continue;
+        if (!fit_projective_1d(kt, kEqual, a, b, c)) continue;
         const double score = label(a, b, c, labels);
-        if (score > 0 && static_cast<int>(labels.size()) >= o.min_lines) tried.push_back({score, labels, a, b, c});
+        // Its labels are made again when it is chosen (label() is a pure function of a, b, c).
+        if (score > 0 && static_cast<int>(labels.size()) >= o.min_lines) tried.push_back({score, {}, a, b, c});
     }
     std::stable_sort(tried.begin(), tried.end(), [](const Hypothesis& x, const Hypothesis& y) { return x.score > y.score; });
 
@@ -397,8 +445,9 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
     // so the caller tries each until the window vote accepts one.
     std::vector<Hypothesis> chosen;
     std::vector<std::vector<char>> labelled_in_chosen;  // per chosen labelling: which candidates it labels
-    for (const auto& h : tried) {
+    for (Hypothesis& h : tried) {
         if (static_cast<int>(chosen.size()) >= o.max_hypotheses) break;
+        if (h.labels.empty()) label(h.a, h.b, h.c, h.labels);
         bool distinct = true;
         for (std::size_t c = 0; c < chosen.size(); ++c) {
             int shared = 0;

@@ -10,6 +10,8 @@ namespace umf {
 
 namespace {
 
+double cube(double x) { return x * x * x; }
+
 // Hartley's normalisation: centroid to the origin, mean distance sqrt(2), so
 // the linear system is well conditioned whatever the units.
 Eigen::Matrix3d normaliser(const std::vector<Point2>& pts) {
@@ -60,7 +62,7 @@ std::optional<Eigen::Matrix3d> homography_from_4(const Point2* from, const Point
     tf << 1, 0, -of.x(), 0, 1, -of.y(), 0, 0, 1;
     tt << 1, 0, ot.x(), 0, 1, ot.y(), 0, 0, 1;
     Eigen::Matrix3d h = tt * *b * a->inverse() * tf;
-    if (!h.allFinite() || std::abs(h.determinant()) < 1e-15 * std::pow(h.norm(), 3)) return std::nullopt;
+    if (!h.allFinite() || std::abs(h.determinant()) < 1e-15 * cube(h.norm())) return std::nullopt;
     if (std::abs(h(2, 2)) > 1e-12) h /= h(2, 2);
     return h;
 }
@@ -116,7 +118,7 @@ std::optional<Eigen::Matrix3d> fit_homography(const std::vector<Point2>& from, c
     Eigen::Matrix3d hn;
     hn << v(0), v(1), v(2), v(3), v(4), v(5), v(6), v(7), v(8);
     Eigen::Matrix3d h = tt.inverse() * hn * tf;
-    if (std::abs(h.determinant()) < 1e-15 * std::pow(h.norm(), 3)) return std::nullopt;
+    if (std::abs(h.determinant()) < 1e-15 * cube(h.norm())) return std::nullopt;
     if (std::abs(h(2, 2)) > 1e-12) h /= h(2, 2);
     return h;
 }

@@ -24,8 +24,10 @@ struct EdgelLine {
     double cos_tol;      // alignment needed to count as an inlier
 };
 
+// For angles in [0, 2 pi), as every one here is; the subtraction is exact there.
 double angle_between_mod_pi(double a, double b) {
-    double d = std::fmod(std::abs(a - b), kPi);
+    double d = std::abs(a - b);
+    if (d >= kPi) d -= kPi;
     return std::min(d, kPi - d);
 }
 
@@ -95,9 +97,19 @@ double dominant_angle(const std::vector<EdgelLine>& lines, double avoid, double 
 // Cosine of the angle an edgel may make with the direction to its vanishing
 // point: a Sobel gradient's direction is uncertain by about 3.46 sigma / |g|
 // radians for pixel noise sigma.
-double inlier_cos(double g, double noise_sigma, const VanishingOptions& o) {
+// Most edgels get one of the two bounds, whose cosines `bounds` holds.
+struct ToleranceBounds {
+    double cos_least, cos_most;
+    explicit ToleranceBounds(const VanishingOptions& o)
+        : cos_least(std::cos(std::min(o.max_inlier_deg, o.inlier_deg) * kPi / 180)),
+          cos_most(std::cos(o.max_inlier_deg * kPi / 180)) {}
+};
+
+double inlier_cos(double g, double noise_sigma, const VanishingOptions& o, const ToleranceBounds& bounds) {
     const double tol_deg =
         std::min(o.max_inlier_deg, std::max(o.inlier_deg, o.noise_deviations * 3.46 * noise_sigma / g * 180 / kPi));
+    if (tol_deg == o.max_inlier_deg) return bounds.cos_most;
+    if (tol_deg == std::min(o.max_inlier_deg, o.inlier_deg)) return bounds.cos_least;
     return std::cos(tol_deg * kPi / 180);
 }
 
@@ -135,6 +147,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
     const double cx = width / 2.0, cy = height / 2.0, scale = std::max(width, height) / 2.0;
     std::vector<EdgelLine> lines;
     lines.reserve(edgels.size());
+    const ToleranceBounds bounds(o);
     for (const auto& e : edgels) {
         const double g = std::hypot(e.gx, e.gy);
         if (g <= 0) continue;
@@ -144,7 +157,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         l.l = Eigen::Vector3d(e.gx / g, e.gy / g, -(e.gx * l.p.x() + e.gy * l.p.y()) / g);
         l.angle = std::fmod(std::atan2(l.d.y(), l.d.x()) + 2 * kPi, kPi);
         l.weight = g;
-        l.cos_tol = inlier_cos(g, noise_sigma, o);
+        l.cos_tol = inlier_cos(g, noise_sigma, o, bounds);
         lines.push_back(l);
     }
     if (static_cast<int>(lines.size()) < 2 * o.min_edgels) return out;
@@ -207,7 +220,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         }
         if (best_score < 0) return out;
         if (const double seen = scatter_noise(lines, candidates, best_v, o); seen > noise_sigma)
-            for (int i : candidates) lines[i].cos_tol = inlier_cos(lines[i].weight, seen, o);
+            for (int i : candidates) lines[i].cos_tol = inlier_cos(lines[i].weight, seen, o, bounds);
         std::vector<int> best = inliers_of(best_v);
         if (static_cast<int>(best.size()) < o.min_edgels) return out;
         Eigen::Vector3d v = fit_point(lines, best);
