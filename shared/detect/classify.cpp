@@ -129,25 +129,41 @@ void classify_binary(const std::vector<double>& value, int rows, int cols, doubl
     const double step = field_step(value, rows, cols);
     // A field step read under another tone curve or gain, and noise, stay within this.
     const double reach = 1.6 * step;
+    // The values are whole grey levels: as integers, with a border of
+    // unread ones, they sum exactly in any order. An unread module, and
+    // with a step any module further than it reaches, is left out by the
+    // one test |u - v| > within (grey levels differ by at most 255).
+    constexpr int kUnreadLevel = 1 << 14;
+    const int within = step > 0 ? static_cast<int>(std::floor(reach)) : 255;
+    const int padded_cols = cols + 2 * kRadius;
+    std::vector<int> level(static_cast<std::size_t>(rows + 2 * kRadius) * padded_cols, kUnreadLevel);
+    for (int i = 0; i < rows; ++i)
+        for (int j = 0; j < cols; ++j) {
+            const double v = value[static_cast<std::size_t>(i) * cols + j];
+            if (std::isfinite(v))
+                level[static_cast<std::size_t>(i + kRadius) * padded_cols + j + kRadius] = static_cast<int>(v);
+        }
     for (int i = 0; i < rows; ++i)
         for (int j = 0; j < cols; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * cols + j;
             const double v = value[k];
             if (!std::isfinite(v)) continue;
-            double sum = 0, sq = 0;
-            int n = 0;
-            for (int a = std::max(0, i - kRadius); a <= std::min(rows - 1, i + kRadius); ++a)
-                for (int b = std::max(0, j - kRadius); b <= std::min(cols - 1, j + kRadius); ++b) {
-                    const double u = value[static_cast<std::size_t>(a) * cols + b];
-                    if (!std::isfinite(u) || (step > 0 && std::abs(u - v) > reach)) continue;
-                    sum += u;
-                    sq += u * u;
-                    ++n;
+            const int centre = static_cast<int>(v);
+            int sum = 0, sq = 0, n = 0;
+            for (int a = 0; a <= 2 * kRadius; ++a) {
+                const int* row = &level[static_cast<std::size_t>(i + a) * padded_cols + j];
+                for (int b = 0; b <= 2 * kRadius; ++b) {
+                    const int u = row[b];
+                    const bool near = std::abs(u - centre) <= within;
+                    sum += near ? u : 0;
+                    sq += near ? u * u : 0;
+                    n += near;
                 }
+            }
             double local = threshold, local_gap = gap;
             if (n >= 8) {
-                local = sum / n;
-                const double var = std::max(0.0, sq / n - local * local);
+                local = static_cast<double>(sum) / n;
+                const double var = std::max(0.0, static_cast<double>(sq) / n - local * local);
                 // Two equal clusters sit one standard deviation from their middle.
                 local_gap = 2 * std::sqrt(var);
             }
