@@ -271,9 +271,9 @@ private:
                        const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
                        Detection& out) const;
     // Steps 2 and 3 on one scan's edgels: the labellings of both families'
-    // grid lines, best first; the failure, or null.
+    // grid lines, each with its first made; the failure, or null.
     const char* find_labellings(const GreyView& image, const VanishingOptions& vanishing, const EdgelScan& scan,
-                                Detection& out, std::vector<GridLineFamily> (&hypotheses)[2]) const;
+                                Detection& out, std::optional<GridLineLabellings> (&labellings)[2]) const;
     // Steps 5 to 8 on the lattices around the aim (lattice.hpp) in place of
     // steps 1 to 4; the failure, or null when found.
     const char* search_lattice(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,

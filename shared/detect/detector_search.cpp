@@ -347,57 +347,68 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
     // with the labellings the first one found.
     const std::size_t this_search = pass.search++;
     std::vector<GridLineFamily> hypotheses[2];
+    std::optional<GridLineLabellings> labellings[2];
     if (pass.first()) {
         pass.left.emplace_back();
-        if (const char* failure = find_labellings(im, vanishing, scan, out, hypotheses)) return failure;
+        if (const char* failure = find_labellings(im, vanishing, scan, out, labellings)) return failure;
+        for (int f = 0; f < 2; ++f) hypotheses[f] = labellings[f]->first();
     } else {
         if (this_search >= pass.left.size() || pass.left[this_search].family[0].empty()) return "no grid homography";
         for (int f = 0; f < 2; ++f) hypotheses[f] = std::move(pass.left[this_search].family[f]);
     }
 
     // Steps 4 to 8 for each pair of labellings, the likeliest first, until
-    // the window vote accepts one.
+    // the window vote accepts one. The first pair comes from each family's
+    // first labelling alone; the others are made only when it fails.
     const char* failure = "no grid homography";
+    auto try_pair = [&](const GridLineFamily& rows_family, const GridLineFamily& cols_family) {
+        auto t = StageClock::now();
+        Eigen::Matrix3d g2i;
+        int rows = 0, cols = 0;
+        const bool fitted = grid_homography(rows_family, cols_family, im, g2i, rows, cols);
+        out.times.grid_ms += ms_since(t);
+        if (fitted) failure = read_grid(im, aim, prior, g2i, rows, cols, out);
+        return fitted && (!failure || failure == kAimAtInfinity);
+    };
+    if (pass.first() && pass.end_pair > 0) {
+        if (try_pair(hypotheses[0].front(), hypotheses[1].front())) return failure;
+        auto t = StageClock::now();
+        for (int f = 0; f < 2; ++f) hypotheses[f] = labellings[f]->all();
+        for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
+        out.times.grid_ms += ms_since(t);
+    }
     const int n0 = static_cast<int>(hypotheses[0].size()), n1 = static_cast<int>(hypotheses[1].size());
     int ordinal = 0;
     for (int sum = 0; sum <= n0 + n1 - 2; ++sum)
         for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0, ++ordinal) {
-            if (ordinal < pass.first_pair) continue;
+            if (ordinal < pass.first_pair || (pass.first() && ordinal == 0)) continue;
             if (ordinal >= pass.end_pair) {
                 if (pass.first())
                     for (int f = 0; f < 2; ++f) pass.left[this_search].family[f] = std::move(hypotheses[f]);
                 return failure;
             }
-            auto t = StageClock::now();
-            Eigen::Matrix3d g2i;
-            int rows = 0, cols = 0;
-            const bool fitted = grid_homography(hypotheses[0][h0], hypotheses[1][sum - h0], im, g2i, rows, cols);
-            out.times.grid_ms += ms_since(t);
-            if (!fitted) continue;
-            failure = read_grid(im, aim, prior, g2i, rows, cols, out);
-            if (!failure || failure == kAimAtInfinity) return failure;
+            if (try_pair(hypotheses[0][h0], hypotheses[1][sum - h0])) return failure;
         }
     return failure;
 }
 
 const char* Detector::find_labellings(const GreyView& im, const VanishingOptions& vanishing, const EdgelScan& scan,
-                                      Detection& out, std::vector<GridLineFamily> (&hypotheses)[2]) const {
+                                      Detection& out, std::optional<GridLineLabellings> (&labellings)[2]) const {
     auto t = StageClock::now();
     // Step 2. The two vanishing points.
     const VanishingPoints vp = find_vanishing_points(scan.edgels, im.width, im.height, vanishing, scan.noise_sigma);
     out.times.vanishing_ms += ms_since(t);
     if (!vp.found) return "no grid directions";
 
-    // Step 3. Grid lines of both families: a few labellings of each, best first.
+    // Step 3. Grid lines of both families: each family's best labelling.
     for (int f = 0; f < 2; ++f) {
-        hypotheses[f] = find_grid_line_hypotheses(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point,
-                                                  im.width, im.height, scan.step, options_.grid);
-        if (hypotheses[f].empty()) {
+        labellings[f].emplace(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point, im.width, im.height,
+                              scan.step, options_.grid);
+        if (labellings[f]->first().empty()) {
             out.times.grid_ms += ms_since(t);
             return "no grid lines";
         }
     }
-    for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
     out.times.grid_ms += ms_since(t);
     return nullptr;
 }

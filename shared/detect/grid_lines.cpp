@@ -9,6 +9,8 @@
 #include <random>
 #include <span>
 
+#include "shared/detect/grid_line_comb.hpp"
+
 namespace umf {
 
 namespace {
@@ -114,84 +116,6 @@ GridLineFamily build_family(const std::vector<Edgel>& edgels, const Chains& chai
 }
 
 
-// cos and sin of theta to about 1e-9, branch-free and several times
-// cheaper than the library's: the comb below takes a hundred thousand a
-// frame. Reduced to [-pi, pi], then Taylor series of the half angle.
-inline void cos_sin(double theta, double& c, double& s) {
-    constexpr double kTwoPi = 6.283185307179586, kInvTwoPi = 1 / kTwoPi;
-    const double h = 0.5 * (theta - kTwoPi * std::nearbyint(theta * kInvTwoPi));
-    const double h2 = h * h;
-    const double sh =
-        h * (1 + h2 * (-1.0 / 6 + h2 * (1.0 / 120 + h2 * (-1.0 / 5040 + h2 * (1.0 / 362880 +
-             h2 * (-1.0 / 39916800 + h2 * (1.0 / 6227020800.0)))))));
-    const double ch =
-        1 + h2 * (-0.5 + h2 * (1.0 / 24 + h2 * (-1.0 / 720 + h2 * (1.0 / 40320 + h2 * (-1.0 / 3628800 +
-            h2 * (1.0 / 479001600 + h2 * (-1.0 / 87178291200.0)))))));
-    s = 2 * sh * ch;
-    c = ch * ch - sh * sh;
-}
-
-// The spacings s and phases at which the weighted candidates near the centre
-// (Gaussian window) are most periodic: the peaks of the Fourier magnitude
-// |sum w exp(2 pi i t / s)| within 60 % of the best, when the best stands
-// clearly above the noise. A half or a third of the true spacing is just as
-// periodic, and twice it may be when every other line is weak, so the caller
-// judges them all. For each, the candidates near the centre labelled
-// k = round((t - phase) / s).
-template <typename Candidates>
-std::vector<std::vector<std::pair<int, double>>> periodic_labellings(const Candidates& cand, int width, int height) {
-    std::vector<std::vector<std::pair<int, double>>> result;
-    const double sigma = std::max(width, height) / 6.0;
-    std::vector<double> t, w;
-    double total = 0;
-    for (const auto& c : cand) {
-        const double g = std::exp(-0.5 * c.t * c.t / (sigma * sigma));
-        if (g < 0.05) continue;
-        t.push_back(c.t);
-        w.push_back(g * std::sqrt(c.weight));
-        total += w.back();
-    }
-    if (t.size() < 6) return result;
-    constexpr double kTwoPi = 6.283185307179586;
-    struct Peak {
-        double s, magnitude, phase;
-    };
-    std::vector<Peak> spectrum;
-    for (double s = 3.5; s < sigma; s *= 1.03) {
-        double re = 0, im = 0;
-        const double f = kTwoPi / s;
-        for (std::size_t i = 0; i < t.size(); ++i) {
-            double c, sn;
-            cos_sin(f * t[i], c, sn);
-            re += w[i] * c;
-            im += w[i] * sn;
-        }
-        spectrum.push_back({s, std::hypot(re, im), std::atan2(im, re)});
-    }
-    double best = 0;
-    for (const auto& p : spectrum) best = std::max(best, p.magnitude);
-    // Random phases add up to about the root of the summed squared weights.
-    double noise = 0;
-    for (double x : w) noise += x * x;
-    noise = std::sqrt(noise);
-    if (best < 2.5 * noise || best < 0.3 * total) return result;
-    for (std::size_t i = 1; i + 1 < spectrum.size(); ++i) {
-        const Peak& p = spectrum[i];
-        if (p.magnitude < 0.6 * best || p.magnitude < spectrum[i - 1].magnitude ||
-            p.magnitude < spectrum[i + 1].magnitude)
-            continue;
-        const double s = p.s, offset = p.phase / kTwoPi * s;  // t = offset + k s at the comb's teeth
-        std::vector<std::pair<int, double>> labels;
-        for (double x : t) {
-            const double kf = (x - offset) / s;
-            const double k = std::round(kf);
-            if (std::abs(kf - k) < 0.2) labels.emplace_back(static_cast<int>(k), x);
-        }
-        if (labels.size() >= 4) result.push_back(std::move(labels));
-    }
-    return result;
-}
-
 // A family's edgels by the scanline they lie on, each kept only on the
 // scanlines (rows or columns) that cross its line most steeply, sorted by
 // position along the scanline; columns first, then rows, each by coordinate.
@@ -247,11 +171,147 @@ Scanlines steep_scanlines(const std::vector<Edgel>& edgels, const std::vector<in
 
 }  // namespace
 
-std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& edgels, const LineFamily& family,
-                               const Eigen::Vector3d& across, int width, int height, int scan_step,
-                               const GridLineOptions& o) {
-    if (family.edgels.size() < 3 || scan_step <= 0) return {};
+// Chains of edgels, the candidate lines they make where they cross the
+// reference line, and the labellings made of them so far.
+struct GridLineLabellings::State {
+    struct Candidate {
+        double t;
+        double weight;
+        std::vector<int> chains;
+    };
+    struct Hypothesis {
+        double score = 0;
+        std::vector<std::pair<int, int>> labels;  // (candidate, k)
+        double a = 0, b = 0, c = 0;
+    };
+    struct Hit {
+        int k, candidate;
+        double miss;
+    };
+
+    const std::vector<Edgel>& edgels;
+    GridLineOptions o;
+    int width, height;
+    Eigen::Vector3d vp;
+    Eigen::Vector2d centre, u;
+    std::vector<Chain> chains;
+    std::vector<Candidate> cand;
+    double mean_weight = 0;
+    std::vector<Hit> hits;  // reused by every call of label()
+    std::optional<Hypothesis> comb;
+    bool first_made = false, all_made = false;
+    std::optional<GridLineFamily> comb_family;  // the comb's labelling, once made
+    std::vector<GridLineFamily> first, all;
+
+    State(const std::vector<Edgel>& e, const GridLineOptions& options, int w, int h)
+        : edgels(e), o(options), width(w), height(h) {}
+
+    // Labels every candidate that lies on a predicted line, at most one per
+    // line (the nearest), and scores the labelling by the edgels it explains.
+    double label(double a, double b, double c, std::vector<std::pair<int, int>>& labels);
+    // The labelling refitted to all its candidates and its lines fitted.
+    GridLineFamily finish(Hypothesis best);
+    // Labellings from triples of neighbouring candidates, best first.
+    std::vector<Hypothesis> triples();
+};
+
+double GridLineLabellings::State::label(double a, double b, double c, std::vector<std::pair<int, int>>& labels) {
+    hits.clear();
+    for (int i = 0; i < static_cast<int>(cand.size()); ++i) {
+        // Invert t(k): k = (t - b) / (a - c t).
+        const double t = cand[i].t, den = a - c * t;
+        if (std::abs(den) < 1e-9) continue;
+        const double kf = (t - b) / den;
+        if (!(std::abs(kf) < 1e4)) continue;
+        const int k = static_cast<int>(std::lround(kf));
+        // Both ends of the step must lie on the same branch of the map.
+        if ((c * k + 1) <= 0 || (c * (k + 1) + 1) <= 0) continue;
+        const double tk = (a * k + b) / (c * k + 1), tk1 = (a * (k + 1) + b) / (c * (k + 1) + 1);
+        const double spacing = std::abs(tk1 - tk), miss = std::abs(t - tk);
+        if (!(spacing > 3.0) || miss > o.label_tolerance * spacing) continue;
+        hits.push_back({k, i, miss});
+    }
+    // At most one candidate per line: the nearest.
+    std::sort(hits.begin(), hits.end(),
+              [](const Hit& x, const Hit& y) { return x.k != y.k ? x.k < y.k : x.miss < y.miss; });
+    labels.clear();
+    double score = 0;
+    for (std::size_t h = 0; h < hits.size(); ++h) {
+        if (h > 0 && hits[h].k == hits[h - 1].k) continue;
+        labels.emplace_back(hits[h].candidate, hits[h].k);
+        score += cand[hits[h].candidate].weight;
+    }
+    // A grid of half the true spacing explains every line and every stray
+    // edge between them; lines it predicts but nothing supports cost it.
+    // Not a whole line's worth each: over text many true lines break into
+    // pieces too short to chain, and at full cost a grid of twice the
+    // spacing, skipping them, would win.
+    if (!labels.empty()) {
+        const int span = labels.back().second - labels.front().second + 1;
+        score -= o.unsupported_line_cost * mean_weight * (span - static_cast<int>(labels.size()));
+    }
+    return score;
+}
+
+std::vector<GridLineLabellings::State::Hypothesis> GridLineLabellings::State::triples() {
+    std::mt19937_64 rng(o.seed);
+    std::vector<Hypothesis> tried;
+    std::vector<std::pair<int, int>> labels;
+    const int m = static_cast<int>(cand.size());
+    std::vector<char> drawn_before(static_cast<std::size_t>(m) * 6, 0);
+    for (int it = 0; it < o.ransac_iterations; ++it) {
+        // Three neighbouring candidates, taken as lines 0, 1, 2 (or 0, 1, 3
+        // and 0, 2, 3 when one line between them was missed).
+        const int i = static_cast<int>(rng() % std::max(1, m - 2));
+        if (i + 2 >= m) break;
+        static const int patterns[3][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}};
+        const int* p = patterns[it % 3];
+        const int j = i + 1, l = i + 2 + (it % 3 != 0 && i + 3 < m && (rng() & 1) ? 1 : 0);
+        if (l >= m) continue;
+        // A triple drawn before gives the same labelling again.
+        char& drawn = drawn_before[(static_cast<std::size_t>(i) * 2 + (l - i - 2)) * 3 + it % 3];
+        if (drawn) continue;
+        drawn = 1;
+        const std::pair<int, double> kt[3] = {{p[0], cand[i].t}, {p[1], cand[j].t}, {p[2], cand[l].t}};
+        static constexpr double kEqual[3] = {1, 1, 1};
+        double a, b, c;
+        if (!fit_projective_1d(kt, kEqual, a, b, c)) continue;
+        const double score = label(a, b, c, labels);
+        // Its labels are made again if it is chosen (label() is a pure function of a, b, c).
+        if (score > 0 && static_cast<int>(labels.size()) >= o.min_lines) tried.push_back({score, {}, a, b, c});
+    }
+    std::stable_sort(tried.begin(), tried.end(), [](const Hypothesis& x, const Hypothesis& y) { return x.score > y.score; });
+    return tried;
+}
+
+GridLineFamily GridLineLabellings::State::finish(Hypothesis best) {
+    // Refit to every labelled candidate, then label again with the refit.
+    std::vector<std::pair<int, int>> labels;
+    for (int round = 0; round < 2; ++round) {
+        std::vector<std::pair<int, double>> kt;
+        std::vector<double> w;
+        for (auto [i, k] : best.labels) {
+            kt.emplace_back(k, cand[i].t);
+            w.push_back(cand[i].weight);
+        }
+        double a, b, c;
+        if (!fit_projective_1d(kt, w, a, b, c)) break;
+        const double score = label(a, b, c, labels);
+        if (score < best.score) break;
+        best = {score, labels, a, b, c};
+    }
+    return build_family(edgels, chains, cand, best.labels, best.a, best.b, best.c, vp, centre, u, o.min_lines);
+}
+
+GridLineLabellings::GridLineLabellings(const std::vector<Edgel>& edgels, const LineFamily& family,
+                                       const Eigen::Vector3d& across, int width, int height, int scan_step,
+                                       const GridLineOptions& o)
+    : state_(std::make_unique<State>(edgels, o, width, height)) {
+    State& st = *state_;
+    st.first_made = st.all_made = true;  // nothing to label until the candidates are made
+    if (family.edgels.size() < 3 || scan_step <= 0) return;
     const Eigen::Vector3d& vp = family.vanishing_point;
+    st.vp = vp;
 
     // Step 1: chain edgels from scanline to scanline along the direction to
     // the vanishing point. Each edgel is chained through the scanlines that
@@ -296,7 +356,9 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
     }
     const Eigen::Vector2d centre(width / 2.0, height / 2.0);
     const Eigen::Vector2d u = direction_to(across, centre);
-    std::vector<Chain> chains;
+    st.centre = centre;
+    st.u = u;
+    std::vector<Chain>& chains = st.chains;
     for (const std::vector<int>& list : scanlines.lists)
         for (int i : list) {
             if (has_prev[i]) continue;
@@ -317,17 +379,12 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
             if ((centre + ch.t * u - mid).norm() > o.max_reach * length) continue;
             chains.push_back(std::move(ch));
         }
-    if (static_cast<int>(chains.size()) < o.min_lines) return {};
+    if (static_cast<int>(chains.size()) < o.min_lines) return;
 
     // Step 2: label the chains. Chains that cross the reference line close
     // together are pieces of one line.
     std::sort(chains.begin(), chains.end(), [](const Chain& a, const Chain& b) { return a.t < b.t; });
-    struct Candidate {
-        double t;
-        double weight;
-        std::vector<int> chains;
-    };
-    std::vector<Candidate> cand;
+    std::vector<State::Candidate>& cand = st.cand;
     for (int i = 0; i < static_cast<int>(chains.size()); ++i) {
         const double w = static_cast<double>(chains[i].members.size());
         if (!cand.empty() && chains[i].t - cand.back().t < 1.5) {
@@ -339,148 +396,85 @@ std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& 
             cand.push_back({chains[i].t, w, {i}});
         }
     }
-    if (static_cast<int>(cand.size()) < o.min_lines) return {};
+    if (static_cast<int>(cand.size()) < o.min_lines) return;
+    for (const auto& c : cand) st.mean_weight += c.weight;
+    st.mean_weight /= static_cast<double>(cand.size());
+    st.first_made = st.all_made = false;
 
-    double mean_weight = 0;
-    for (const auto& c : cand) mean_weight += c.weight;
-    mean_weight /= static_cast<double>(cand.size());
-    std::mt19937_64 rng(o.seed);
-    // Labels every candidate that lies on a predicted line, at most one per
-    // line (the nearest), and scores the labelling by the edgels it explains.
-    struct Hit {
-        int k, candidate;
-        double miss;
-    };
-    std::vector<Hit> hits;  // reused by every call of label()
-    auto label = [&](double a, double b, double c, std::vector<std::pair<int, int>>& labels) {
-        hits.clear();
-        for (int i = 0; i < static_cast<int>(cand.size()); ++i) {
-            // Invert t(k): k = (t - b) / (a - c t).
-            const double t = cand[i].t, den = a - c * t;
-            if (std::abs(den) < 1e-9) continue;
-            const double kf = (t - b) / den;
-            if (!(std::abs(kf) < 1e4)) continue;
-            const int k = static_cast<int>(std::lround(kf));
-            // Both ends of the step must lie on the same branch of the map.
-            if ((c * k + 1) <= 0 || (c * (k + 1) + 1) <= 0) continue;
-            const double tk = (a * k + b) / (c * k + 1), tk1 = (a * (k + 1) + b) / (c * (k + 1) + 1);
-            const double spacing = std::abs(tk1 - tk), miss = std::abs(t - tk);
-            if (!(spacing > 3.0) || miss > o.label_tolerance * spacing) continue;
-            hits.push_back({k, i, miss});
-        }
-        // At most one candidate per line: the nearest.
-        std::sort(hits.begin(), hits.end(),
-                  [](const Hit& x, const Hit& y) { return x.k != y.k ? x.k < y.k : x.miss < y.miss; });
-        labels.clear();
-        double score = 0;
-        for (std::size_t h = 0; h < hits.size(); ++h) {
-            if (h > 0 && hits[h].k == hits[h - 1].k) continue;
-            labels.emplace_back(hits[h].candidate, hits[h].k);
-            score += cand[hits[h].candidate].weight;
-        }
-        // A grid of half the true spacing explains every line and every stray
-        // edge between them; lines it predicts but nothing supports cost it.
-        // Not a whole line's worth each: over text many true lines break into
-        // pieces too short to chain, and at full cost a grid of twice the
-        // spacing, skipping them, would win.
-        if (!labels.empty()) {
-            const int span = labels.back().second - labels.front().second + 1;
-            score -= o.unsupported_line_cost * mean_weight * (span - static_cast<int>(labels.size()));
-        }
-        return score;
-    };
-    struct Hypothesis {
-        double score = 0;
-        std::vector<std::pair<int, int>> labels;  // (candidate, k)
-        double a = 0, b = 0, c = 0;
-    };
-    std::vector<Hypothesis> tried;
+    // The labelling from the spacing that makes the candidates near the
+    // centre most periodic (grid_line_comb.hpp). The triples (State::triples)
+    // need three clean neighbours in a row, which a document rarely leaves.
+    std::vector<double> t, weight;
+    for (const auto& c : cand) t.push_back(c.t), weight.push_back(c.weight);
     std::vector<std::pair<int, int>> labels;
-    const int m = static_cast<int>(cand.size());
-    std::vector<char> drawn_before(static_cast<std::size_t>(m) * 6, 0);
-    for (int it = 0; it < o.ransac_iterations; ++it) {
-        // Three neighbouring candidates, taken as lines 0, 1, 2 (or 0, 1, 3
-        // and 0, 2, 3 when one line between them was missed).
-        const int i = static_cast<int>(rng() % std::max(1, m - 2));
-        if (i + 2 >= m) break;
-        static const int patterns[3][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}};
-        const int* p = patterns[it % 3];
-        const int j = i + 1, l = i + 2 + (it % 3 != 0 && i + 3 < m && (rng() & 1) ? 1 : 0);
-        if (l >= m) continue;
-        // A triple drawn before gives the same labelling again.
-        char& drawn = drawn_before[(static_cast<std::size_t>(i) * 2 + (l - i - 2)) * 3 + it % 3];
-        if (drawn) continue;
-        drawn = 1;
-        const std::pair<int, double> kt[3] = {{p[0], cand[i].t}, {p[1], cand[j].t}, {p[2], cand[l].t}};
-        static constexpr double kEqual[3] = {1, 1, 1};
-        double a, b, c;
-        if (!fit_projective_1d(kt, kEqual, a, b, c)) continue;
-        const double score = label(a, b, c, labels);
-        // Its labels are made again when it is chosen (label() is a pure function of a, b, c).
-        if (score > 0 && static_cast<int>(labels.size()) >= o.min_lines) tried.push_back({score, {}, a, b, c});
-    }
-    std::stable_sort(tried.begin(), tried.end(), [](const Hypothesis& x, const Hypothesis& y) { return x.score > y.score; });
-
-    // One more labelling, from the spacing that makes the candidates near the
-    // centre most periodic. Text strokes fall anywhere, the field's lines
-    // fall on a comb, so their phases add up at the comb's spacing however
-    // many strokes lie between them; the triples above need three clean
-    // neighbours in a row, which a document rarely leaves.
-    std::optional<Hypothesis> best_comb;
-    for (const auto& comb : periodic_labellings(cand, width, height)) {
+    for (const auto& comb : periodic_labellings(t, weight, width, height)) {
         double a, b, c;
         const std::vector<double> w(comb.size(), 1.0);
         if (!fit_projective_1d(comb, w, a, b, c)) continue;
-        const double score = label(a, b, c, labels);
+        const double score = st.label(a, b, c, labels);
         if (static_cast<int>(labels.size()) < o.min_lines) continue;
-        if (!best_comb || score > best_comb->score) best_comb = Hypothesis{score, labels, a, b, c};
+        if (!st.comb || score > st.comb->score) st.comb = State::Hypothesis{score, labels, a, b, c};
     }
-    if (best_comb) {
-        best_comb->score = std::max(best_comb->score, tried.empty() ? best_comb->score : tried.front().score);
-        tried.insert(tried.begin(), *best_comb);
-    }
+}
 
-    // The best labellings that explain different candidates: over text, the
-    // document's own lines run parallel to the field's and may score higher,
-    // so the caller tries each until the window vote accepts one.
-    std::vector<Hypothesis> chosen;
+GridLineLabellings::~GridLineLabellings() = default;
+GridLineLabellings::GridLineLabellings(GridLineLabellings&&) noexcept = default;
+
+const std::vector<GridLineFamily>& GridLineLabellings::first() {
+    State& st = *state_;
+    if (st.first_made) return st.first;
+    st.first_made = true;
+    if (st.comb) {
+        GridLineFamily fam = st.finish(*st.comb);
+        if (fam.found) {
+            st.comb_family = fam;
+            st.first.push_back(std::move(fam));
+            return st.first;
+        }
+    }
+    if (!all().empty()) st.first.push_back(all().front());
+    return st.first;
+}
+
+const std::vector<GridLineFamily>& GridLineLabellings::all() {
+    State& st = *state_;
+    if (st.all_made) return st.all;
+    st.all_made = true;
+    // The comb first, then the best triples that explain other candidates:
+    // over text, the document's own lines run parallel to the field's and
+    // may score higher, so the caller tries each until the window vote
+    // accepts one.
+    std::vector<State::Hypothesis> tried = st.triples();
+    if (st.comb) tried.insert(tried.begin(), *st.comb);
+    std::vector<State::Hypothesis*> chosen;
     std::vector<std::vector<char>> labelled_in_chosen;  // per chosen labelling: which candidates it labels
-    for (Hypothesis& h : tried) {
-        if (static_cast<int>(chosen.size()) >= o.max_hypotheses) break;
-        if (h.labels.empty()) label(h.a, h.b, h.c, h.labels);
+    for (State::Hypothesis& h : tried) {
+        if (static_cast<int>(chosen.size()) >= st.o.max_hypotheses) break;
+        if (h.labels.empty()) st.label(h.a, h.b, h.c, h.labels);
         bool distinct = true;
         for (std::size_t c = 0; c < chosen.size(); ++c) {
             int shared = 0;
             for (auto [i, k] : h.labels) shared += labelled_in_chosen[c][i];
-            distinct &= shared < 0.7 * std::min(h.labels.size(), chosen[c].labels.size());
+            distinct &= shared < 0.7 * std::min(h.labels.size(), chosen[c]->labels.size());
         }
         if (!distinct) continue;
-        chosen.push_back(h);
-        labelled_in_chosen.emplace_back(cand.size(), 0);
+        chosen.push_back(&h);
+        labelled_in_chosen.emplace_back(st.cand.size(), 0);
         for (auto [i, k] : h.labels) labelled_in_chosen.back()[i] = 1;
     }
-
-    std::vector<GridLineFamily> result;
-    for (auto best : chosen) {
-        // Refit to every labelled candidate, then label again with the refit.
-        for (int round = 0; round < 2; ++round) {
-            std::vector<std::pair<int, double>> kt;
-            std::vector<double> w;
-            for (auto [i, k] : best.labels) {
-                kt.emplace_back(k, cand[i].t);
-                w.push_back(cand[i].weight);
-            }
-            double a, b, c;
-            if (!fit_projective_1d(kt, w, a, b, c)) break;
-            const double score = label(a, b, c, labels);
-            if (score < best.score) break;
-            best = {score, labels, a, b, c};
-        }
-        GridLineFamily fam = build_family(edgels, chains, cand, best.labels, best.a, best.b, best.c, vp, centre, u,
-                                          o.min_lines);
-        if (fam.found) result.push_back(std::move(fam));
+    for (std::size_t c = 0; c < chosen.size(); ++c) {
+        const bool is_comb = c == 0 && st.comb;
+        GridLineFamily fam = is_comb && st.comb_family ? *st.comb_family : st.finish(*chosen[c]);
+        if (fam.found) st.all.push_back(std::move(fam));
     }
-    return result;
+    return st.all;
+}
+
+std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& edgels, const LineFamily& family,
+                                                      const Eigen::Vector3d& across, int width, int height,
+                                                      int scan_step, const GridLineOptions& options) {
+    GridLineLabellings labellings(edgels, family, across, width, height, scan_step, options);
+    return labellings.all();
 }
 
 GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamily& family,

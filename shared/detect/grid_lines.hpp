@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "shared/detect/edgels.hpp"
@@ -47,9 +48,33 @@ GridLineFamily find_grid_lines(const std::vector<Edgel>& edgels, const LineFamil
                                const Eigen::Vector3d& across, int width, int height, int scan_step,
                                const GridLineOptions& options = {});
 
-// Up to options.max_hypotheses distinct labellings, best first. Over text a
-// document's own lines, parallel to the field's, may win the labelling; the
-// detector tries each until the window vote accepts one.
+// The labellings of one family's grid lines, best first, each made when it
+// is first asked for. The first is the candidates' most periodic comb
+// (grid_line_comb.hpp) when there is one; the others come from triples of
+// neighbouring lines (a RANSAC that costs several times the rest of this
+// stage), and a frame whose first labellings read as the field needs none
+// of them. Over text a document's own lines, parallel to the field's, may
+// win the labelling; the detector tries each until the window vote accepts
+// one. Holds a reference to `edgels`.
+class GridLineLabellings {
+public:
+    GridLineLabellings(const std::vector<Edgel>& edgels, const LineFamily& family, const Eigen::Vector3d& across,
+                       int width, int height, int scan_step, const GridLineOptions& options = {});
+    ~GridLineLabellings();
+    GridLineLabellings(GridLineLabellings&&) noexcept;
+    GridLineLabellings& operator=(GridLineLabellings&&) = delete;
+
+    // The best labelling alone; empty when there is none.
+    const std::vector<GridLineFamily>& first();
+    // Up to options.max_hypotheses distinct labellings, the first first.
+    const std::vector<GridLineFamily>& all();
+
+private:
+    struct State;
+    std::unique_ptr<State> state_;
+};
+
+// GridLineLabellings(...).all().
 std::vector<GridLineFamily> find_grid_line_hypotheses(const std::vector<Edgel>& edgels, const LineFamily& family,
                                                       const Eigen::Vector3d& across, int width, int height,
                                                       int scan_step, const GridLineOptions& options = {});

@@ -67,4 +67,33 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"tilted", sim::ScreenKind::blank, 0.5, 40, -25, 20, 250}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
+// The first labelling is made without the triples and is the first of all
+// of them; over a document the others are there for the detector to try.
+TEST(GridLineLabellings, TheFirstIsMadeAloneAndLeadsAllOfThem) {
+    Field f = test::shipped_field("b4-64x36.json");
+    test::Photo photo = test::photograph_field(f, 0.3, 10, -15, 5, 300, sim::ScreenKind::document);
+    GreyView view = photo.view();
+    auto scan = find_edgels(view);
+    auto vp = find_vanishing_points(scan.edgels, view.width, view.height);
+    ASSERT_TRUE(vp.found);
+    for (int fam = 0; fam < 2; ++fam) {
+        GridLineLabellings labellings(scan.edgels, vp.family[fam], vp.family[1 - fam].vanishing_point, view.width,
+                                      view.height, scan.step);
+        const std::vector<GridLineFamily> first = labellings.first();
+        ASSERT_EQ(first.size(), 1u) << "family " << fam;
+        const std::vector<GridLineFamily>& all = labellings.all();
+        ASSERT_GE(all.size(), 2u) << "family " << fam;
+        ASSERT_EQ(all.front().lines.size(), first.front().lines.size());
+        for (std::size_t k = 0; k < first.front().lines.size(); ++k) {
+            EXPECT_EQ(all.front().lines[k].index, first.front().lines[k].index);
+            EXPECT_TRUE(all.front().lines[k].line.isApprox(first.front().lines[k].line));
+        }
+        // The same labellings a second time, from the same edgels.
+        EXPECT_EQ(find_grid_line_hypotheses(scan.edgels, vp.family[fam], vp.family[1 - fam].vanishing_point,
+                                            view.width, view.height, scan.step)
+                      .size(),
+                  all.size());
+    }
+}
+
 }  // namespace
