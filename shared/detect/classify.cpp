@@ -179,7 +179,7 @@ ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int ro
     ModuleGrid g(rows, cols);
     std::vector<double> value(static_cast<std::size_t>(rows) * cols, kUnread);
     std::vector<double> seen;
-    // Module centres step along a row by h's first column.
+    // A quarter module along each axis is the same step everywhere in homogeneous coordinates.
     const Eigen::Vector3d qx = 0.25 * h.col(0), qy = 0.25 * h.col(1);
     for (int i = 0; i < rows; ++i)
         for (int j = 0; j < cols; ++j) {

@@ -6,8 +6,8 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
-#include <deque>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <optional>
 
@@ -351,7 +351,6 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
     if (pass.first()) {
         pass.left.emplace_back();
         if (const char* failure = find_labellings(im, vanishing, scan, out, labellings)) return failure;
-        for (int f = 0; f < 2; ++f) hypotheses[f] = labellings[f]->first();
     } else {
         if (this_search >= pass.left.size() || pass.left[this_search].family[0].empty()) return "no grid homography";
         for (int f = 0; f < 2; ++f) hypotheses[f] = std::move(pass.left[this_search].family[f]);
@@ -370,8 +369,8 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
         if (fitted) failure = read_grid(im, aim, prior, g2i, rows, cols, out);
         return fitted && (!failure || failure == kAimAtInfinity);
     };
-    if (pass.first() && pass.end_pair > 0) {
-        if (try_pair(hypotheses[0].front(), hypotheses[1].front())) return failure;
+    if (pass.first()) {
+        if (try_pair(*labellings[0]->first(), *labellings[1]->first())) return failure;
         auto t = StageClock::now();
         for (int f = 0; f < 2; ++f) hypotheses[f] = labellings[f]->all();
         for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
@@ -404,7 +403,7 @@ const char* Detector::find_labellings(const GreyView& im, const VanishingOptions
     for (int f = 0; f < 2; ++f) {
         labellings[f].emplace(scan.edgels, vp.family[f], vp.family[1 - f].vanishing_point, im.width, im.height,
                               scan.step, options_.grid);
-        if (labellings[f]->first().empty()) {
+        if (!labellings[f]->first()) {
             out.times.grid_ms += ms_since(t);
             return "no grid lines";
         }

@@ -199,9 +199,9 @@ struct GridLineLabellings::State {
     double mean_weight = 0;
     std::vector<Hit> hits;  // reused by every call of label()
     std::optional<Hypothesis> comb;
-    bool first_made = false, all_made = false;
-    std::optional<GridLineFamily> comb_family;  // the comb's labelling, once made
-    std::vector<GridLineFamily> first, all;
+    std::optional<GridLineFamily> comb_family;  // the comb's lines, once made (found or not)
+    bool all_made = true;  // until there are candidates to label, there is nothing to make
+    std::vector<GridLineFamily> all;
 
     State(const std::vector<Edgel>& e, const GridLineOptions& options, int w, int h)
         : edgels(e), o(options), width(w), height(h) {}
@@ -308,7 +308,6 @@ GridLineLabellings::GridLineLabellings(const std::vector<Edgel>& edgels, const L
                                        const GridLineOptions& o)
     : state_(std::make_unique<State>(edgels, o, width, height)) {
     State& st = *state_;
-    st.first_made = st.all_made = true;  // nothing to label until the candidates are made
     if (family.edgels.size() < 3 || scan_step <= 0) return;
     const Eigen::Vector3d& vp = family.vanishing_point;
     st.vp = vp;
@@ -399,7 +398,7 @@ GridLineLabellings::GridLineLabellings(const std::vector<Edgel>& edgels, const L
     if (static_cast<int>(cand.size()) < o.min_lines) return;
     for (const auto& c : cand) st.mean_weight += c.weight;
     st.mean_weight /= static_cast<double>(cand.size());
-    st.first_made = st.all_made = false;
+    st.all_made = false;
 
     // The labelling from the spacing that makes the candidates near the
     // centre most periodic (grid_line_comb.hpp). The triples (State::triples)
@@ -420,20 +419,12 @@ GridLineLabellings::GridLineLabellings(const std::vector<Edgel>& edgels, const L
 GridLineLabellings::~GridLineLabellings() = default;
 GridLineLabellings::GridLineLabellings(GridLineLabellings&&) noexcept = default;
 
-const std::vector<GridLineFamily>& GridLineLabellings::first() {
+const GridLineFamily* GridLineLabellings::first() {
     State& st = *state_;
-    if (st.first_made) return st.first;
-    st.first_made = true;
-    if (st.comb) {
-        GridLineFamily fam = st.finish(*st.comb);
-        if (fam.found) {
-            st.comb_family = fam;
-            st.first.push_back(std::move(fam));
-            return st.first;
-        }
-    }
-    if (!all().empty()) st.first.push_back(all().front());
-    return st.first;
+    if (st.comb && !st.comb_family) st.comb_family = st.finish(*st.comb);
+    if (st.comb_family && st.comb_family->found) return &*st.comb_family;
+    const std::vector<GridLineFamily>& every = all();
+    return every.empty() ? nullptr : &every.front();
 }
 
 const std::vector<GridLineFamily>& GridLineLabellings::all() {
@@ -463,8 +454,8 @@ const std::vector<GridLineFamily>& GridLineLabellings::all() {
         for (auto [i, k] : h.labels) labelled_in_chosen.back()[i] = 1;
     }
     for (std::size_t c = 0; c < chosen.size(); ++c) {
-        const bool is_comb = c == 0 && st.comb;
-        GridLineFamily fam = is_comb && st.comb_family ? *st.comb_family : st.finish(*chosen[c]);
+        const bool comb_made = c == 0 && st.comb && st.comb_family;
+        GridLineFamily fam = comb_made ? *st.comb_family : st.finish(*chosen[c]);
         if (fam.found) st.all.push_back(std::move(fam));
     }
     return st.all;

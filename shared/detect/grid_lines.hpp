@@ -64,8 +64,8 @@ public:
     GridLineLabellings(GridLineLabellings&&) noexcept;
     GridLineLabellings& operator=(GridLineLabellings&&) = delete;
 
-    // The best labelling alone; empty when there is none.
-    const std::vector<GridLineFamily>& first();
+    // The best labelling alone; null when there is none. Valid while this lives.
+    const GridLineFamily* first();
     // Up to options.max_hypotheses distinct labellings, the first first.
     const std::vector<GridLineFamily>& all();
 

@@ -94,10 +94,8 @@ double dominant_angle(const std::vector<EdgelLine>& lines, double avoid, double 
     return best < 0 ? -1 : (best + 0.5) * kPi / kBins;
 }
 
-// Cosine of the angle an edgel may make with the direction to its vanishing
-// point: a Sobel gradient's direction is uncertain by about 3.46 sigma / |g|
-// radians for pixel noise sigma.
-// Most edgels get one of the two bounds, whose cosines `bounds` holds.
+// The cosines of VanishingOptions' two bounds on an edgel's tolerance: most
+// edgels get one of them.
 struct ToleranceBounds {
     double cos_least, cos_most;
     explicit ToleranceBounds(const VanishingOptions& o)
@@ -105,6 +103,9 @@ struct ToleranceBounds {
           cos_most(std::cos(o.max_inlier_deg * kPi / 180)) {}
 };
 
+// Cosine of the angle an edgel may make with the direction to its vanishing
+// point: a Sobel gradient's direction is uncertain by about 3.46 sigma / |g|
+// radians for pixel noise sigma.
 double inlier_cos(double g, double noise_sigma, const VanishingOptions& o, const ToleranceBounds& bounds) {
     const double tol_deg =
         std::min(o.max_inlier_deg, std::max(o.inlier_deg, o.noise_deviations * 3.46 * noise_sigma / g * 180 / kPi));
