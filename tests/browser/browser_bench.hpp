@@ -44,7 +44,9 @@ inline std::string page_html() {
         return "position:fixed;left:" + std::to_string(s.left) + "px;bottom:" + std::to_string(s.bottom) +
                "px;width:" + std::to_string(s.width) + "px;height:" + std::to_string(s.height) + "px;";
     };
-    std::string html = "<!doctype html><html><head><meta charset=utf-8><title>Companion test page</title><style>"
+    // The title is the page's only once passage 15 sits under kText: a test
+    // waits for it (page_window, reported) before it points.
+    std::string html = "<!doctype html><html><head><meta charset=utf-8><title>Loading</title><style>"
                        "body{margin:0;font:18px sans-serif} p{height:100px;margin:0;overflow:hidden;white-space:nowrap}"
                        "</style></head><body>\n";
     for (int i = 1; i <= 30; ++i)
@@ -55,10 +57,15 @@ inline std::string page_html() {
             "display:block;background:#fff;font-size:40px\">Release notes</a>\n";
     html += "<img id=image src=\"chart.png\" alt=\"A chart\" style=\"" + fixed(kImage) + "\">\n";
     html += "<video id=video src=\"clip.webm\" style=\"" + fixed(kVideo) + "background:#000\"></video>\n";
-    // Passage 15 under kText's centre: the long text scrolled to its middle.
-    html += "<script>addEventListener('load',()=>{const p=document.getElementById('p15');"
+    // Passage 15 under kText's centre: the long text scrolled to its middle,
+    // and again whenever the viewport's height changes (Chromium's infobar
+    // for --no-sandbox may come after the page has loaded and would move the
+    // text a passage down under the point).
+    html += "<script>const place=()=>{const p=document.getElementById('p15');"
             "scrollTo(0,p.offsetTop+50-(innerHeight-" +
-            std::to_string(kText.bottom + kText.height / 2) + "));document.title='Companion test page';});</script>\n";
+            std::to_string(kText.bottom + kText.height / 2) +
+            "));};addEventListener('resize',place);"
+            "addEventListener('load',()=>{place();document.title='Companion test page';});</script>\n";
     return html + "</body></html>\n";
 }
 
