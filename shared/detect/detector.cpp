@@ -63,7 +63,8 @@ bool covers(const Eigen::Matrix3d& grid_to_image, int rows, int cols, const Eige
 const char Detector::kAimAtInfinity[] = "aim point at infinity";
 const char Detector::kAnotherField[] = "another field";
 
-Detector::Detector(const Field& field, DetectorOptions options) : index_(field), options_(std::move(options)) {}
+Detector::Detector(const Field& field, DetectorOptions options)
+    : index_(field), edges_(index_.field()), options_(std::move(options)) {}
 
 Detection Detector::detect(const GreyView& image) const {
     return detect(image, Eigen::Vector2d(image.width / 2.0, image.height / 2.0));
@@ -155,7 +156,7 @@ const char* Detector::place_from_vote(const GreyView& im, const Eigen::Vector2d&
         double su, sv;
         vote.placement.field_point(vote.centre_x, vote.centre_y, su, sv);
         const Refinement r =
-            refine_homography(im, index_.field(), field_to_image, Point2(su, sv), options_.refine, out.pixels_visited);
+            refine_homography(im, index_.field(), edges_, field_to_image, Point2(su, sv), options_.refine, out.pixels_visited);
         out.times.refine_ms += ms_since(t);
         if (r.refined) {
             field_to_image = r.field_to_image;
@@ -232,7 +233,7 @@ bool Detector::place_aim(const GreyView& im, const Eigen::Matrix3d& field_to_ima
     if (options_.aim_refit_modules <= 0) return true;
     RefineOptions around = options_.refine;
     around.max_radius_modules = options_.aim_refit_modules;
-    const Refinement r = refine_homography(im, index_.field(), field_to_image, *seed, around, out.pixels_visited);
+    const Refinement r = refine_homography(im, index_.field(), edges_, field_to_image, *seed, around, out.pixels_visited);
     if (!r.refined) return true;
     const auto refitted = apply_homography(r.field_to_image.inverse(), aim);
     // The refit searches edges within 0.4 module of the whole view's
@@ -267,7 +268,7 @@ Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
     const Eigen::Matrix3d predicted_f2i = predicted_image_to_field.inverse();
     auto seed = apply_homography(predicted_image_to_field, aim);
     if (!seed || !predicted_f2i.allFinite()) return finish("prediction unusable");
-    const Refinement r = refine_homography(im, f, predicted_f2i, *seed, options_.refine, out.pixels_visited);
+    const Refinement r = refine_homography(im, f, edges_, predicted_f2i, *seed, options_.refine, out.pixels_visited);
     out.times.refine_ms = ms_since(t);
     if (!r.refined) return finish("too few module edges near the prediction");
 

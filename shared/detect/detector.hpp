@@ -312,6 +312,7 @@ private:
                              Detection& out, double extra_bits = 0) const;
 
     WindowIndex index_;
+    ModuleEdges edges_;  // the field's, for every refit
     DetectorOptions options_;
 };
 

@@ -11,14 +11,6 @@ namespace umf {
 
 namespace {
 
-// A module edge the field predicts: its midpoint in field coordinates, the
-// field direction across it (towards the brighter side when polarity > 0).
-struct ExpectedEdge {
-    Point2 mid;
-    Point2 across;
-    double polarity;  // +1: brighter on the +across side, -1: darker
-};
-
 double bilinear(const GreyView& im, double x, double y, long& visited) {
     x -= 0.5;  // pixel centres are at +0.5
     y -= 0.5;
@@ -85,49 +77,18 @@ std::optional<FoundEdge> find_edge(const GreyView& im, const Eigen::Matrix3d& h,
     return FoundEdge{*p + (best + offset) * dir, best_g};
 }
 
-// The field's edges between differing modules whose midpoints lie within
-// `radius` (modules, Chebyshev) of the seed and inside the field's visible box.
-std::vector<ExpectedEdge> edges_near(const Field& f, const std::vector<double>& brightness, const Point2& seed,
-                                     double radius, double u0, double v0, double u1, double v1) {
-    std::vector<ExpectedEdge> out;
-    const int c_lo = std::max(0, static_cast<int>(std::floor(std::max(u0, seed.x() - radius))));
-    const int c_hi = std::min(f.width - 1, static_cast<int>(std::ceil(std::min(u1, seed.x() + radius))));
-    const int r_lo = std::max(0, static_cast<int>(std::floor(std::max(v0, seed.y() - radius))));
-    const int r_hi = std::min(f.height - 1, static_cast<int>(std::ceil(std::min(v1, seed.y() + radius))));
-    for (int r = r_lo; r <= r_hi; ++r)
-        for (int c = c_lo; c <= c_hi; ++c) {
-            const double here = brightness[f.at(r, c)];
-            if (c > 0) {  // the edge on the module's left
-                const double d = here - brightness[f.at(r, c - 1)];
-                if (d != 0) out.push_back({Point2(c, r + 0.5), Point2(1, 0), d > 0 ? 1.0 : -1.0});
-            }
-            if (r > 0) {  // the edge above it
-                const double d = here - brightness[f.at(r - 1, c)];
-                if (d != 0) out.push_back({Point2(c + 0.5, r), Point2(0, 1), d > 0 ? 1.0 : -1.0});
-            }
-        }
-    return out;
-}
-
 }  // namespace
-
-std::vector<double> module_brightness(const Field& f) {
-    std::vector<double> out(static_cast<std::size_t>(f.colors));
-    for (int k = 0; k < f.colors; ++k) {
-        out[k] = k;
-        if (k < static_cast<int>(f.palette.size()) && f.palette[k].size() == 7 && f.palette[k][0] == '#') {
-            const long rgb = std::strtol(f.palette[k].c_str() + 1, nullptr, 16);
-            out[k] = 0.299 * ((rgb >> 16) & 255) + 0.587 * ((rgb >> 8) & 255) + 0.114 * (rgb & 255);
-        }
-    }
-    return out;
-}
 
 Refinement refine_homography(const GreyView& im, const Field& f, const Eigen::Matrix3d& field_to_image,
                              const Point2& seed, const RefineOptions& o, long& visited) {
+    return refine_homography(im, f, ModuleEdges(f), field_to_image, seed, o, visited);
+}
+
+Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdges& field_edges,
+                             const Eigen::Matrix3d& field_to_image, const Point2& seed, const RefineOptions& o,
+                             long& visited) {
     Refinement out;
     out.field_to_image = field_to_image;
-    const std::vector<double> brightness = module_brightness(f);
     // The field's box seen in the image, from the image's corners.
     const Eigen::Matrix3d to_field = field_to_image.inverse();
     double u0 = f.width, v0 = f.height, u1 = 0, v1 = 0;
@@ -148,16 +109,22 @@ Refinement refine_homography(const GreyView& im, const Field& f, const Eigen::Ma
     // ring within the search range), then once more over everything
     // with the edges the whole view predicts.
     bool last = false;
+    std::vector<ExpectedEdge> edges;
     for (double radius = 4;; radius = std::min(radius * 1.5, span)) {
-        std::vector<ExpectedEdge> edges = edges_near(f, brightness, seed, radius, u0, v0, u1, v1);
-        // Spread the searched edges evenly when there are too many.
-        const std::size_t stride = std::max<std::size_t>(1, (edges.size() + o.max_edges - 1) / o.max_edges);
+        // The edges whose midpoints lie within `radius` (modules, Chebyshev)
+        // of the seed and inside the field's visible box, spread evenly when
+        // there are too many.
+        const int c_lo = std::max(0, static_cast<int>(std::floor(std::max(u0, seed.x() - radius))));
+        const int c_hi = std::min(f.width - 1, static_cast<int>(std::ceil(std::min(u1, seed.x() + radius))));
+        const int r_lo = std::max(0, static_cast<int>(std::floor(std::max(v0, seed.y() - radius))));
+        const int r_hi = std::min(f.height - 1, static_cast<int>(std::ceil(std::min(v1, seed.y() + radius))));
+        field_edges.spread_within(r_lo, r_hi, c_lo, c_hi, static_cast<std::size_t>(o.max_edges), edges);
         std::vector<Point2> from, to;
         std::vector<double> strength;
-        for (std::size_t i = 0; i < edges.size(); i += stride) {
+        for (const ExpectedEdge& e : edges) {
             ++out.edges_searched;
-            if (auto q = find_edge(im, h, edges[i], o, max_gradient, visited)) {
-                from.push_back(edges[i].mid);
+            if (auto q = find_edge(im, h, e, o, max_gradient, visited)) {
+                from.push_back(e.mid);
                 to.push_back(q->at);
                 strength.push_back(q->gradient);
             }

@@ -10,6 +10,7 @@
 
 #include "shared/detect/homography.hpp"
 #include "shared/detect/image.hpp"
+#include "shared/detect/module_edges.hpp"
 #include "shared/field/field.hpp"
 
 namespace umf {
@@ -34,12 +35,12 @@ struct Refinement {
     double rms_px = 0;     // of the inliers of the last round
 };
 
-// Brightness of each module value as the image shows it: the luma of the
-// field's palette, or the value itself for the grey default.
-std::vector<double> module_brightness(const Field& field);
-
 // `field_to_image` is the homography from the vote; `seed` the field point
-// (u, v) where it is known to be right.
+// (u, v) where it is known to be right; `field_edges` the field's own.
+Refinement refine_homography(const GreyView& image, const Field& field, const ModuleEdges& field_edges,
+                             const Eigen::Matrix3d& field_to_image, const Point2& seed, const RefineOptions& options,
+                             long& pixels_visited);
+// The same, listing the field's edges first (for a single call).
 Refinement refine_homography(const GreyView& image, const Field& field, const Eigen::Matrix3d& field_to_image,
                              const Point2& seed, const RefineOptions& options, long& pixels_visited);
 
