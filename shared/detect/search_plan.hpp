@@ -7,10 +7,10 @@
 // field about 40 ms at 640 x 480 (median; 80 ms p95), where the first scan
 // alone costs about 1.3 ms. A video does not need every frame to try
 // everything: a tracker may give each frame without a lock one part of the
-// search (search_schedule; TrackerOptions::spread_search), the first scan
-// every other frame and one other part in between, so that no frame stalls
+// search (search_schedule; TrackerOptions::spread_search): the first scan
+// and as many other parts as fit in a budget, so that no frame stalls
 // the camera and a field that only another part finds is found within a
-// round of frames.
+// round of a few frames.
 #pragma once
 
 #include <array>
@@ -96,17 +96,58 @@ constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kP
 // 1.07 ms median a frame before, 24.7 ms).
 inline constexpr std::array<int, kSearchParts> kPartOrderNearPrior = {2, 7, 0, 6, 1, 8, 10, 4, 3, 11, 9, 5};
 
-// The frames of one round of the schedule.
-inline constexpr int kSearchScheduleFrames = 2 * kSearchParts;
+// What each part costs a frame without the field, one against another: the
+// medians of `umf_speed_benchmark --parts` at 640 x 480, in ms (part 8, the
+// lattice below half size, runs only on larger frames; about a quarter of
+// part 3 there).
+inline constexpr std::array<double, kSearchParts> kPartCost = {1.00, 3.16, 3.26, 3.19, 2.21, 1.87,
+                                                               1.47, 5.40, 0.80, 6.44, 6.35, 4.12};
 
-// The search of the k-th consecutive frame without a lock: the first scan on
-// even frames, the parts in order on odd ones, round after round. Trying a
-// part beside the first scan on every frame would find a field that only
-// a part finds in half the frames, at about twice the cost of a frame
-// without the field (4.1 ms against 1.6 ms, median, 640 x 480).
-constexpr SearchPlan search_schedule(int k) {
-    k = ((k % kSearchScheduleFrames) + kSearchScheduleFrames) % kSearchScheduleFrames;
-    return k % 2 == 1 ? search_part(kPartOrder[static_cast<std::size_t>(k / 2)]) : first_scan_only();
+// One frame's share of a search spread over a video's frames: the first scan,
+// then parts in kPartOrder's order.
+struct ScheduledSearch {
+    std::array<SearchPlan, kSearchParts + 1> plans{};
+    std::size_t count = 0;
+};
+
+// The round of the schedule: kPartOrder cut into consecutive groups, each
+// as many parts as fit in `budget` (their kPartCost summed, at least one
+// part a group). Returns the number of groups; starts[g] is where group g
+// begins in kPartOrder, starts[groups] its end.
+constexpr int schedule_groups(double budget, std::array<int, kSearchParts + 1>& starts) {
+    int groups = 0, at = 0;
+    while (at < kSearchParts) {
+        starts[static_cast<std::size_t>(groups++)] = at;
+        double spent = kPartCost[static_cast<std::size_t>(kPartOrder[static_cast<std::size_t>(at)])];
+        ++at;
+        while (at < kSearchParts &&
+               spent + kPartCost[static_cast<std::size_t>(kPartOrder[static_cast<std::size_t>(at)])] <= budget)
+            spent += kPartCost[static_cast<std::size_t>(kPartOrder[static_cast<std::size_t>(at++)])];
+    }
+    starts[static_cast<std::size_t>(groups)] = kSearchParts;
+    return groups;
+}
+
+// The frames of one round of the schedule with this budget.
+constexpr int schedule_frames(double budget) {
+    std::array<int, kSearchParts + 1> starts{};
+    return schedule_groups(budget, starts);
+}
+
+// The search of the k-th consecutive frame without a lock: the first scan,
+// then the k-th group of parts of the round, round after round. A part the
+// field needs comes every few frames while no frame costs much more than
+// the first scan and `budget` (about 1.3 + 8 ms at 640 x 480 for a budget
+// of 8, against about 40 ms for the whole search).
+constexpr ScheduledSearch search_schedule(int k, double budget) {
+    std::array<int, kSearchParts + 1> starts{};
+    const int groups = schedule_groups(budget, starts);
+    const int g = ((k % groups) + groups) % groups;
+    ScheduledSearch out;
+    out.plans[out.count++] = first_scan_only();
+    for (int at = starts[static_cast<std::size_t>(g)]; at < starts[static_cast<std::size_t>(g) + 1]; ++at)
+        out.plans[out.count++] = search_part(kPartOrder[static_cast<std::size_t>(at)]);
+    return out;
 }
 
 }  // namespace umf

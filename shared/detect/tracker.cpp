@@ -49,11 +49,15 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
         // The camera's first frame gets every search, as a photo would; so
         // do the frames just after a lock, when the field is most likely
         // still in view (a smear, a faint phase of the pulse). Later frames
-        // without a lock get one part each.
+        // without a lock get a share of the parts each.
         const bool spread = options_.spread_search && !use_prior && searches_without_lock_ > 0;
         const DetectionPrior* p = use_prior ? &prior : nullptr;
-        out.detection = spread ? detector_->detect(image, aim, p, search_schedule(searches_without_lock_))
-                               : detector_->detect(image, aim, p);
+        if (spread) {
+            const ScheduledSearch share = search_schedule(searches_without_lock_ - 1, options_.search_budget);
+            out.detection = detector_->detect(image, aim, p, std::span<const SearchPlan>(share.plans.data(), share.count));
+        } else {
+            out.detection = detector_->detect(image, aim, p);
+        }
         ++searches_without_lock_;
         out.detection.times.total_ms += followed_ms;
     }

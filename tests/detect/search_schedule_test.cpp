@@ -1,6 +1,7 @@
 // The search spread over a video's frames (search_plan.hpp): a round of the
-// schedule covers the whole search, a frame without a lock runs one part of
-// it, and a field only a fallback finds is still found within a round.
+// schedule covers the whole search, a frame without a lock runs the first
+// scan and a share of the rest within a budget, and a field only a fallback
+// finds is still found within a round.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,29 +20,48 @@ GreyView view_of(const cv::Mat& grey) {
     return {grey.data, grey.cols, grey.rows, static_cast<std::ptrdiff_t>(grey.step)};
 }
 
-TEST(SearchSchedule, ARoundCoversTheWholeSearchOnePartAFrame) {
-    SearchPlan all{0, 0, 0, 0, 0, 0};
-    for (int k = 0; k < kSearchScheduleFrames; ++k) {
-        const SearchPlan p = search_schedule(k);
-        const unsigned masks[] = {p.scans, p.smaller_scans, p.lattices, p.double_scans, p.smoothed_scans,
-                                  p.smoothed_smaller_scans};
-        int parts = 0;
-        for (unsigned m : masks) parts += m != 0;
-        EXPECT_EQ(parts, 1) << "frame " << k << " of the round";
-        if (k % 2 == 0) {
-            EXPECT_EQ(p.scans, kFirstScan) << "frame " << k << ": the first scan on even frames";
-        }
-        all.scans |= p.scans, all.smaller_scans |= p.smaller_scans, all.lattices |= p.lattices;
-        all.double_scans |= p.double_scans, all.smoothed_scans |= p.smoothed_scans;
-        all.smoothed_smaller_scans |= p.smoothed_smaller_scans;
-        // Round after round, from any frame.
-        const SearchPlan next = search_schedule(k + kSearchScheduleFrames);
-        EXPECT_EQ(next.scans, p.scans);
-        EXPECT_EQ(next.lattices, p.lattices);
+// Which parts a plan names (each part's masks are its own).
+std::vector<int> parts_of(const SearchPlan& p) {
+    std::vector<int> out;
+    for (int k = 0; k < kSearchParts; ++k) {
+        const SearchPlan q = search_part(k);
+        if ((p.scans & q.scans) || (p.smaller_scans & q.smaller_scans) || (p.lattices & q.lattices) ||
+            (p.double_scans & q.double_scans) || (p.smoothed_scans & q.smoothed_scans) ||
+            (p.smoothed_smaller_scans & q.smoothed_smaller_scans))
+            out.push_back(k);
     }
-    for (unsigned m : {all.scans, all.smaller_scans, all.lattices, all.double_scans, all.smoothed_scans,
-                       all.smoothed_smaller_scans})
-        EXPECT_EQ(m, ~0u);
+    return out;
+}
+
+TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
+    EXPECT_EQ(schedule_frames(0), kSearchParts) << "no budget: one part a frame";
+    EXPECT_EQ(schedule_frames(1000), 1) << "a budget for everything: one frame";
+    EXPECT_LE(schedule_frames(8), 8) << "a round of a few frames";
+    for (const double budget : {0.0, 3.0, 8.0, 12.0, 1000.0}) {
+        const int frames = schedule_frames(budget);
+        std::vector<int> seen;
+        for (int k = 0; k < frames; ++k) {
+            const ScheduledSearch s = search_schedule(k, budget);
+            ASSERT_GE(s.count, 2u) << "the first scan and a part at least";
+            EXPECT_EQ(s.plans[0].scans, kFirstScan);
+            EXPECT_EQ(s.plans[0].smaller_scans | s.plans[0].lattices | s.plans[0].double_scans |
+                          s.plans[0].smoothed_scans | s.plans[0].smoothed_smaller_scans, 0u);
+            double cost = 0;
+            for (std::size_t i = 1; i < s.count; ++i) {
+                const std::vector<int> parts = parts_of(s.plans[i]);
+                ASSERT_EQ(parts.size(), 1u);
+                EXPECT_EQ(parts[0], kPartOrder[seen.size()]) << "in kPartOrder's order";
+                seen.push_back(parts[0]);
+                cost += kPartCost[static_cast<std::size_t>(parts[0])];
+            }
+            EXPECT_TRUE(s.count == 2 || cost <= budget) << "budget " << budget << ", frame " << k;
+            // Round after round, from any frame.
+            const ScheduledSearch next = search_schedule(k + frames, budget);
+            ASSERT_EQ(next.count, s.count);
+            for (std::size_t i = 0; i < s.count; ++i) EXPECT_EQ(parts_of(next.plans[i]), parts_of(s.plans[i]));
+        }
+        EXPECT_EQ(seen.size(), static_cast<std::size_t>(kSearchParts)) << "every part once a round";
+    }
 }
 
 TEST(SearchSchedule, APhotosSearchIsTheFirstScanThenEveryPartOnce) {
@@ -85,7 +105,7 @@ TEST(SearchSchedule, ATrackerWithoutALockSpreadsTheSearchAndStillFindsWhatOnlyAF
         if (!frame.centre_on_screen) continue;
         const GreyView v = view_of(frame.grey);
         const Eigen::Vector2d centre(v.width / 2.0, v.height / 2.0);
-        if (detector.detect(v, centre, nullptr, search_schedule(0)).found) continue;
+        if (detector.detect(v, centre, nullptr, first_scan_only()).found) continue;
         full = detector.detect(v);
         if (full.found) {
             chosen = &r;
@@ -96,21 +116,22 @@ TEST(SearchSchedule, ATrackerWithoutALockSpreadsTheSearchAndStillFindsWhatOnlyAF
     const bench::Frame empty = bench::shoot(scene, *chosen, bare[static_cast<std::size_t>(chosen->screen)], vga);
 
     // The camera starts on the screen without the field (the whole search),
-    // then keeps seeing it for a round without a lock: one part a frame.
+    // then keeps seeing it for a round without a lock: a share a frame.
     TrackerOptions spread;
     spread.spread_search = true;
+    const int round = schedule_frames(spread.search_budget);
     Tracker tracker(detector, spread);
     const TrackResult first = tracker.update(view_of(empty.grey));
     EXPECT_FALSE(first.detection.found);
     long most_pixels = 0;
-    for (int k = 1; k < kSearchScheduleFrames; ++k) {
+    for (int k = 1; k <= round; ++k) {
         const TrackResult r = tracker.update(view_of(empty.grey));
         EXPECT_FALSE(r.detection.found);
         EXPECT_LT(r.detection.pixels_visited, first.detection.pixels_visited) << "frame " << k;
         most_pixels = std::max(most_pixels, r.detection.pixels_visited);
     }
     std::cout << "[ measure  ] without the field: the whole search read " << first.detection.pixels_visited
-              << " pixels, a part at most " << most_pixels << "\n";
+              << " pixels, a share at most " << most_pixels << "\n";
 
     // The field comes into view: found within a round, no frame before the
     // lock reading as much as the whole search.
@@ -118,7 +139,7 @@ TEST(SearchSchedule, ATrackerWithoutALockSpreadsTheSearchAndStillFindsWhatOnlyAF
     fresh.update(view_of(empty.grey));
     int frames = 0;
     TrackResult r;
-    while (frames < kSearchScheduleFrames) {
+    while (frames < round + 1) {
         r = fresh.update(view_of(frame.grey));
         ++frames;
         if (r.state == TrackState::locked) break;
