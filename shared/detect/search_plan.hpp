@@ -6,7 +6,7 @@
 // labellings the first one left. Together they cost a frame without the
 // field about 40 ms at 640 x 480 (median; 80 ms p95), where the first scan
 // alone costs about 1.3 ms. A video does not need every frame to try
-// everything: a tracker may give each frame without a lock one part of the
+// everything: a tracker may give each frame without a lock a share of the
 // search (search_schedule; TrackerOptions::spread_search): the first scan
 // and as many other parts as fit in a budget, so that no frame stalls
 // the camera and a field that only another part finds is found within a
@@ -136,9 +136,11 @@ constexpr int schedule_frames(double budget) {
 
 // The search of the k-th consecutive frame without a lock: the first scan,
 // then the k-th group of parts of the round, round after round. A part the
-// field needs comes every few frames while no frame costs much more than
-// the first scan and `budget` (about 1.3 + 8 ms at 640 x 480 for a budget
-// of 8, against about 40 ms for the whole search).
+// field needs comes every few frames, and a frame pays for the first scan
+// and about `budget` (nominally 1.3 + 8 ms at 640 x 480 for a budget of 8,
+// against about 40 ms for the whole search; more where the share's second
+// pass over the labellings its plans left is long: 31 ms p95 on the tuning
+// frames without the field).
 constexpr ScheduledSearch search_schedule(int k, double budget) {
     std::array<int, kSearchParts + 1> starts{};
     const int groups = schedule_groups(budget, starts);
