@@ -37,34 +37,34 @@ ModuleEdges::ModuleEdges(const Field& f) {
     row_start_.push_back(entries_.size());
 }
 
+std::pair<std::size_t, std::size_t> ModuleEdges::run(int r, int c0, int c1) const {
+    const auto by_col = [](const Entry& e, int c) { return e.col < c; };
+    const auto first = entries_.begin() + static_cast<std::ptrdiff_t>(row_start_[static_cast<std::size_t>(r)]);
+    const auto last = entries_.begin() + static_cast<std::ptrdiff_t>(row_start_[static_cast<std::size_t>(r) + 1]);
+    const auto b = std::lower_bound(first, last, c0, by_col);
+    const auto e = std::lower_bound(b, last, c1 + 1, by_col);
+    return {static_cast<std::size_t>(b - entries_.begin()), static_cast<std::size_t>(e - entries_.begin())};
+}
+
 void ModuleEdges::spread_within(int r0, int r1, int c0, int c1, std::size_t most,
                                 std::vector<ExpectedEdge>& out) const {
     out.clear();
     if (r0 > r1 || c0 > c1) return;
-    // Each row's share is one run of its entries: count them all first, for
-    // the stride, then take every stride-th across the runs.
-    struct Run {
-        std::size_t begin, end;
-    };
-    std::vector<Run> runs;
-    runs.reserve(static_cast<std::size_t>(r1 - r0 + 1));
+    // Each row's share is one run of its entries: the runs are counted
+    // first, for the stride, then every stride-th entry taken across them
+    // (two binary searches a row each time, and nothing allocated per call).
     std::size_t total = 0;
-    auto by_col = [](const Entry& e, int c) { return e.col < c; };
     for (int r = r0; r <= r1; ++r) {
-        const auto first = entries_.begin() + static_cast<std::ptrdiff_t>(row_start_[r]);
-        const auto last = entries_.begin() + static_cast<std::ptrdiff_t>(row_start_[r + 1]);
-        const auto b = std::lower_bound(first, last, c0, by_col);
-        const auto e = std::lower_bound(b, last, c1 + 1, by_col);
-        runs.push_back({static_cast<std::size_t>(b - entries_.begin()), static_cast<std::size_t>(e - entries_.begin())});
-        total += runs.back().end - runs.back().begin;
+        const auto [b, e] = run(r, c0, c1);
+        total += e - b;
     }
     const std::size_t stride = std::max<std::size_t>(1, (total + most - 1) / std::max<std::size_t>(1, most));
-    out.reserve(std::min(total, most));
     std::size_t skip = 0;  // entries to pass over before the next one taken
-    for (const Run& run : runs) {
-        std::size_t i = run.begin + skip;
-        for (; i < run.end; i += stride) out.push_back(entries_[i].edge);
-        skip = i - run.end;
+    for (int r = r0; r <= r1; ++r) {
+        const auto [b, e] = run(r, c0, c1);
+        std::size_t i = b + skip;
+        for (; i < e; i += stride) out.push_back(entries_[i].edge);
+        skip = i - e;
     }
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "shared/detect/homography.hpp"
@@ -41,8 +42,11 @@ private:
         int col;
         ExpectedEdge edge;
     };
-    std::vector<Entry> entries_;            // row by row, columns ascending
-    std::vector<std::size_t> row_start_;    // rows + 1 offsets into entries_
+    // Row r's entries of columns c0..c1: [first, second) in entries_.
+    std::pair<std::size_t, std::size_t> run(int r, int c0, int c1) const;
+
+    std::vector<Entry> entries_;          // row by row, columns ascending
+    std::vector<std::size_t> row_start_;  // rows + 1 offsets into entries_
 };
 
 }  // namespace umf
