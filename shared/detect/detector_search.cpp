@@ -145,7 +145,8 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     const SearchPlan& plan = pass.plan;
     const char* failure = search_smaller(im, aim, prior, pass, out, plan.scans, plan.smaller_scans);
     if (!failure) return nullptr;
-    if (pass.first() && options_.lattice_enabled && plan.lattices != 0 &&
+    if (pass.first() && options_.lattice_enabled && plan.lattices != 0 && (plan.pairs & kFirstPairs) &&
+        (plan.edgel_sets & kAllEdgels) &&
         (((plan.lattices & 1u) && !search_lattice(im, aim, prior, out)) ||
          ((plan.lattices & ~1u) && !search_lattice_smaller(im, aim, prior, pass.cache, out, plan.lattices >> 1))))
         return nullptr;
@@ -312,8 +313,10 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
 const char* Detector::search_all_then_subsets(const GreyView& im, const Eigen::Vector2d& aim,
                                               const DetectionPrior* prior, const VanishingOptions& vanishing,
                                               const EdgelScan& scan, Pass& pass, Detection& out) const {
-    const char* failure = search(im, aim, prior, vanishing, scan, pass, out);
-    if (!failure) return nullptr;
+    const unsigned sets = pass.plan.edgel_sets;
+    const char* failure = "no grid homography";
+    if ((sets & kAllEdgels) && !(failure = search(im, aim, prior, vanishing, scan, pass, out))) return nullptr;
+    if ((sets & ~kAllEdgels) == 0) return failure;
     // A faint field under strong content: its own edges alone (field_edgels.hpp),
     // when that leaves out enough of the others to matter; then the edges
     // less those of thin lines (a spreadsheet's rules).
@@ -325,14 +328,16 @@ const char* Detector::search_all_then_subsets(const GreyView& im, const Eigen::V
         fewer.noise_sigma = scan.noise_sigma;
         return fewer;
     };
-    auto t = StageClock::now();
-    const EdgelScan field_like = subset(edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels)));
-    out.times.edgels_ms += ms_since(t);
     auto worth_a_search = [&](const EdgelScan& fewer) {
         return fewer.edgels.size() >= 40 && fewer.edgels.size() <= scan.edgels.size() * 17 / 20;
     };
-    if (worth_a_search(field_like) && !search(im, aim, prior, vanishing, field_like, pass, out)) return nullptr;
-    if (options_.thin_line_px <= 0) return failure;
+    auto t = StageClock::now();
+    if (sets & kFieldLikeEdgels) {
+        const EdgelScan field_like = subset(edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels)));
+        out.times.edgels_ms += ms_since(t);
+        if (worth_a_search(field_like) && !search(im, aim, prior, vanishing, field_like, pass, out)) return nullptr;
+    }
+    if (options_.thin_line_px <= 0 || !(sets & kOffThinLineEdgels)) return failure;
     t = StageClock::now();
     const EdgelScan off_lines = subset(edgels_off_thin_lines(scan.edgels, options_.thin_line_px));
     out.times.edgels_ms += ms_since(t);
@@ -369,20 +374,27 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
         if (fitted) failure = read_grid(im, aim, prior, g2i, rows, cols, out);
         return fitted && (!failure || failure == kAimAtInfinity);
     };
+    // A plan may leave either pass's pairs to another frame's (SearchPlan::pairs).
+    const unsigned pairs = pass.plan.pairs;
     if (pass.first()) {
-        if (try_pair(*labellings[0]->first(), *labellings[1]->first())) return failure;
+        if ((pairs & kFirstPairs) && try_pair(*labellings[0]->first(), *labellings[1]->first())) return failure;
         auto t = StageClock::now();
         for (int f = 0; f < 2; ++f) hypotheses[f] = labellings[f]->all();
         for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
         out.times.grid_ms += ms_since(t);
     }
     const int n0 = static_cast<int>(hypotheses[0].size()), n1 = static_cast<int>(hypotheses[1].size());
+    if (pass.first() && !(pairs & kFirstPairs)) {
+        if ((pairs & kLaterPairs) && static_cast<long>(n0) * n1 > pass.end_pair)
+            for (int f = 0; f < 2; ++f) pass.left[this_search].family[f] = std::move(hypotheses[f]);
+        return failure;
+    }
     int ordinal = 0;
     for (int sum = 0; sum <= n0 + n1 - 2; ++sum)
         for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0, ++ordinal) {
             if (ordinal < pass.first_pair || (pass.first() && ordinal == 0)) continue;
             if (ordinal >= pass.end_pair) {
-                if (pass.first())
+                if (pass.first() && (pairs & kLaterPairs))
                     for (int f = 0; f < 2; ++f) pass.left[this_search].family[f] = std::move(hypotheses[f]);
                 return failure;
             }

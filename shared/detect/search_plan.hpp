@@ -24,6 +24,20 @@ inline constexpr unsigned kNoisyScan = 2u;         // three pixels wide, in a no
 inline constexpr unsigned kFirstDenserScan = 4u;   // the lines half way between; each next bit halves again
 inline constexpr unsigned kEveryScan = ~0u;
 
+// The sets of a scan's edgels searched (Detector's search_all_then_subsets),
+// as bits: all of them, the field-like ones alone, those off thin lines.
+inline constexpr unsigned kAllEdgels = 1u;
+inline constexpr unsigned kFieldLikeEdgels = 2u;
+inline constexpr unsigned kOffThinLineEdgels = 4u;
+inline constexpr unsigned kEveryEdgelSet = 7u;
+
+// The pairs of grid-line labellings each search tries, as bits: the first
+// pass's likeliest few (DetectorOptions::first_pass_pairs), the second pass's
+// rest.
+inline constexpr unsigned kFirstPairs = 1u;
+inline constexpr unsigned kLaterPairs = 2u;
+inline constexpr unsigned kEveryPair = 3u;
+
 // The parts of the search; each scan mask names the scans searched at that
 // size (a mask of 0 leaves the size out, its resizing too).
 struct SearchPlan {
@@ -35,6 +49,10 @@ struct SearchPlan {
     unsigned double_scans = kEveryScan;    // around the aim at twice the size (DetectorOptions::double_size_max_side)
     unsigned smoothed_scans = kEveryScan;  // the frame smoothed (DetectorOptions::smoothed_search), its own size
     unsigned smoothed_smaller_scans = kEveryScan;  // and below
+    // Of every scan above: its edgel sets searched, and their pairs tried.
+    // A lattice is read with the first pairs of all edgels.
+    unsigned edgel_sets = kEveryEdgelSet;
+    unsigned pairs = kEveryPair;
 };
 
 // The first scan at the frame's own size and nothing else.
@@ -70,6 +88,18 @@ constexpr SearchPlan search_part(int part) {
 }
 inline constexpr int kSearchParts = 12;
 
+// A part's pieces, for a search spread thinner still: piece 0 its searches
+// over all edgels with their first pairs of labellings, piece 1 over the
+// field-like edgels and those off thin lines with their first pairs, piece
+// 2 every set's later pairs. Each costs a frame without the field a
+// fraction of the part (its lattice, if any, is in piece 0).
+inline constexpr int kPiecesOfAPart = 3;
+constexpr SearchPlan search_piece(SearchPlan part, int piece) {
+    part.edgel_sets = piece == 1 ? (kFieldLikeEdgels | kOffThinLineEdgels) : piece == 0 ? kAllEdgels : kEveryEdgelSet;
+    part.pairs = piece == 2 ? kLaterPairs : kFirstPairs;
+    return part;
+}
+
 // The order the parts run in, in a photo's search and in the schedule: by
 // how soon they find the tuning set's frames the first scan misses for what
 // they cost on frames without the field (umf_speed_benchmark --parts, which
@@ -96,59 +126,97 @@ constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kP
 // 1.07 ms median a frame before, 24.7 ms).
 inline constexpr std::array<int, kSearchParts> kPartOrderNearPrior = {2, 7, 0, 6, 1, 8, 10, 4, 3, 11, 9, 5};
 
-// What each part costs a frame without the field, one against another: the
-// medians of `umf_speed_benchmark --parts` at 640 x 480, in ms (part 8, the
-// lattice below half size, runs only on larger frames; about a quarter of
-// part 3 there).
-inline constexpr std::array<double, kSearchParts> kPartCost = {1.00, 3.16, 3.26, 3.19, 2.21, 1.87,
-                                                               1.47, 5.40, 0.80, 6.44, 6.35, 4.12};
+// Whether a part searches edgels at all (the others are lattices alone).
+constexpr bool searches_edgels(const SearchPlan& p) {
+    return (p.scans | p.smaller_scans | p.double_scans | p.smoothed_scans | p.smoothed_smaller_scans) != 0;
+}
 
-// One frame's share of a search spread over a video's frames: the first scan,
-// then parts in kPartOrder's order.
+// One piece of the spread search's round: `piece` (search_piece) of `part`
+// (search_part; -1 the first scan) and what it costs a frame without the
+// field, in ms at 640 x 480: the median over the tuning set's frames without
+// the field of the piece run alone, its scans and images made for it alone
+// (less where a share's pieces share them).
+struct SearchPiece {
+    int part = -1;
+    int piece = 0;
+    double cost = 0;
+    constexpr SearchPlan plan() const { return search_piece(part < 0 ? first_scan_only() : search_part(part), piece); }
+};
+
+// Each piece's cost, by part (the first scan first) and piece. Part 8, the
+// lattice below half size, runs only on larger frames: about a quarter of
+// part 3 there.
+inline constexpr double kPieceCost[kSearchParts + 1][kPiecesOfAPart] = {
+    {0.60, 0.66, 1.04},                                               // the first scan
+    {0.49, 0.52, 0.87}, {3.83, 0, 0},       {1.44, 1.48, 2.49}, {4.02, 0, 0},
+    {1.19, 1.25, 2.13}, {1.51, 1.56, 1.97}, {1.19, 1.10, 1.47}, {2.40, 2.45, 4.16},
+    {0.80, 0, 0},       {3.90, 4.02, 5.75}, {2.89, 2.52, 4.13}, {2.38, 2.56, 3.60}};
+
+// The round of a search spread over a video's frames: every part's piece 0
+// in kPartOrder's order, where most of what the parts find is found; then
+// the first scan's piece 1 and every part's, then their pieces 2 (the
+// first scan's piece 0 runs on every frame and is not in the round).
+constexpr int round_pieces() {
+    int n = kPiecesOfAPart - 1;  // the first scan's
+    for (int part = 0; part < kSearchParts; ++part) n += searches_edgels(search_part(part)) ? kPiecesOfAPart : 1;
+    return n;
+}
+inline constexpr int kRoundPieces = round_pieces();
+constexpr std::array<SearchPiece, kRoundPieces> spread_round() {
+    std::array<SearchPiece, kRoundPieces> round{};
+    std::size_t n = 0;
+    for (int piece = 0; piece < kPiecesOfAPart; ++piece) {
+        if (piece > 0) round[n++] = {-1, piece, kPieceCost[0][piece]};
+        for (const int part : kPartOrder)
+            if (piece == 0 || searches_edgels(search_part(part)))
+                round[n++] = {part, piece, kPieceCost[part + 1][piece]};
+    }
+    return round;
+}
+inline constexpr std::array<SearchPiece, kRoundPieces> kSpreadRound = spread_round();
+
+// One frame's share of the spread search: the first scan's piece 0, then
+// consecutive pieces of the round.
 struct ScheduledSearch {
-    std::array<SearchPlan, kSearchParts + 1> plans{};
+    std::array<SearchPlan, kRoundPieces + 1> plans{};
     std::size_t count = 0;
 };
 
-// The round of the schedule: kPartOrder cut into consecutive groups, each
-// as many parts as fit in `budget` (their kPartCost summed, at least one
-// part a group). Returns the number of groups; starts[g] is where group g
-// begins in kPartOrder, starts[groups] its end.
-constexpr int schedule_groups(double budget, std::array<int, kSearchParts + 1>& starts) {
+// The round cut into consecutive groups, each as many pieces as fit in
+// `budget` (their costs summed, at least one piece a group). Returns the
+// number of groups; starts[g] is where group g begins in kSpreadRound,
+// starts[groups] its end.
+constexpr int schedule_groups(double budget, std::array<int, kRoundPieces + 1>& starts) {
     int groups = 0, at = 0;
-    while (at < kSearchParts) {
+    while (at < kRoundPieces) {
         starts[static_cast<std::size_t>(groups++)] = at;
-        double spent = kPartCost[static_cast<std::size_t>(kPartOrder[static_cast<std::size_t>(at)])];
-        ++at;
-        while (at < kSearchParts &&
-               spent + kPartCost[static_cast<std::size_t>(kPartOrder[static_cast<std::size_t>(at)])] <= budget)
-            spent += kPartCost[static_cast<std::size_t>(kPartOrder[static_cast<std::size_t>(at++)])];
+        double spent = kSpreadRound[static_cast<std::size_t>(at++)].cost;
+        while (at < kRoundPieces && spent + kSpreadRound[static_cast<std::size_t>(at)].cost <= budget)
+            spent += kSpreadRound[static_cast<std::size_t>(at++)].cost;
     }
-    starts[static_cast<std::size_t>(groups)] = kSearchParts;
+    starts[static_cast<std::size_t>(groups)] = kRoundPieces;
     return groups;
 }
 
 // The frames of one round of the schedule with this budget.
 constexpr int schedule_frames(double budget) {
-    std::array<int, kSearchParts + 1> starts{};
+    std::array<int, kRoundPieces + 1> starts{};
     return schedule_groups(budget, starts);
 }
 
-// The search of the k-th consecutive frame without a lock: the first scan,
-// then the k-th group of parts of the round, round after round. A part the
-// field needs comes every few frames, and a frame pays for the first scan
-// and about `budget` (nominally 1.3 + 8 ms at 640 x 480 for a budget of 8,
-// against about 40 ms for the whole search; more where the share's second
-// pass over the labellings its plans left is long: 31 ms p95 on the tuning
-// frames without the field).
+// The search of the k-th consecutive frame without a lock: the first scan's
+// piece 0, then the k-th group of the round, round after round. A frame
+// pays for about 0.6 ms and `budget` at 640 x 480 (the pieces of one part
+// more than one piece alone: with their shared scans, a part's three pieces
+// cost about one and a half of the part).
 constexpr ScheduledSearch search_schedule(int k, double budget) {
-    std::array<int, kSearchParts + 1> starts{};
+    std::array<int, kRoundPieces + 1> starts{};
     const int groups = schedule_groups(budget, starts);
     const int g = ((k % groups) + groups) % groups;
     ScheduledSearch out;
-    out.plans[out.count++] = first_scan_only();
+    out.plans[out.count++] = search_piece(first_scan_only(), 0);
     for (int at = starts[static_cast<std::size_t>(g)]; at < starts[static_cast<std::size_t>(g) + 1]; ++at)
-        out.plans[out.count++] = search_part(kPartOrder[static_cast<std::size_t>(at)]);
+        out.plans[out.count++] = kSpreadRound[static_cast<std::size_t>(at)].plan();
     return out;
 }
 

@@ -32,17 +32,14 @@ struct TrackerOptions {
     // The smoothed point never trails the measured one by more than this.
     double max_lag_modules = 0.02;
     // A frame without a lock, after the first and more than prior_frames
-    // after the last lock, runs the first scan and as many other parts of
-    // the search as fit in search_budget (search_plan.hpp's
-    // search_schedule), the next such frame the next parts; false: every
-    // search on every frame without a lock, as for a photo on its own. Off
-    // while it still loses a few tracked frames that need a fallback again
-    // and again (docs/BENCHMARKS.md, "Detector speed: a search spread in
-    // shares of a budget").
+    // after the last lock, runs the first scan's first piece and as many
+    // other pieces of the search as fit in search_budget (search_plan.hpp's
+    // search_schedule), the next such frame the next pieces; false: every
+    // search on every frame without a lock, as for a photo on its own.
     bool spread_search = false;
-    // In search_plan.hpp's kPartCost units (ms at 640 x 480 on the machine
+    // In search_plan.hpp's kPieceCost units (ms at 640 x 480 on the machine
     // they were measured on).
-    double search_budget = 8;
+    double search_budget = 2;
 };
 
 enum class TrackState {

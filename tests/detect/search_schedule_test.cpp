@@ -34,25 +34,46 @@ std::vector<int> parts_of(const SearchPlan& p) {
 }
 
 TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
-    EXPECT_EQ(schedule_frames(0), kSearchParts) << "no budget: one part a frame";
+    EXPECT_EQ(schedule_frames(0), kRoundPieces) << "no budget: one piece a frame";
     EXPECT_EQ(schedule_frames(1000), 1) << "a budget for everything: one frame";
-    EXPECT_LE(schedule_frames(8), 8) << "a round of a few frames";
-    for (const double budget : {0.0, 3.0, 8.0, 12.0, 1000.0}) {
+    // Every piece of every part once a round: piece 0 of each part, pieces
+    // 1 and 2 of the first scan and of each part that searches edgels.
+    std::vector<std::pair<int, int>> expected;
+    for (int piece = 0; piece < kPiecesOfAPart; ++piece) {
+        if (piece > 0) expected.emplace_back(-1, piece);
+        for (int part : kPartOrder)
+            if (piece == 0 || search_part(part).lattices == 0) expected.emplace_back(part, piece);
+    }
+    ASSERT_EQ(expected.size(), static_cast<std::size_t>(kRoundPieces));
+    for (const double budget : {0.0, 2.0, 3.0, 8.0, 1000.0}) {
         const int frames = schedule_frames(budget);
-        std::vector<int> seen;
+        std::vector<std::pair<int, int>> seen;
         for (int k = 0; k < frames; ++k) {
             const ScheduledSearch s = search_schedule(k, budget);
-            ASSERT_GE(s.count, 2u) << "the first scan and a part at least";
+            ASSERT_GE(s.count, 2u) << "the first scan and a piece at least";
             EXPECT_EQ(s.plans[0].scans, kFirstScan);
+            EXPECT_EQ(s.plans[0].edgel_sets, kAllEdgels);
+            EXPECT_EQ(s.plans[0].pairs, kFirstPairs);
             EXPECT_EQ(s.plans[0].smaller_scans | s.plans[0].lattices | s.plans[0].double_scans |
                           s.plans[0].smoothed_scans | s.plans[0].smoothed_smaller_scans, 0u);
             double cost = 0;
             for (std::size_t i = 1; i < s.count; ++i) {
+                const SearchPiece& piece = kSpreadRound[seen.size()];
+                EXPECT_EQ(std::make_pair(piece.part, piece.piece), expected[seen.size()]) << "in the round's order";
+                seen.emplace_back(piece.part, piece.piece);
                 const std::vector<int> parts = parts_of(s.plans[i]);
-                ASSERT_EQ(parts.size(), 1u);
-                EXPECT_EQ(parts[0], kPartOrder[seen.size()]) << "in kPartOrder's order";
-                seen.push_back(parts[0]);
-                cost += kPartCost[static_cast<std::size_t>(parts[0])];
+                if (piece.part < 0) {
+                    EXPECT_EQ(s.plans[i].scans, kFirstScan);
+                    EXPECT_TRUE(parts.empty() || parts == std::vector<int>{2} || parts == std::vector<int>{7})
+                        << "the first scan alone";
+                } else {
+                    EXPECT_EQ(parts, std::vector<int>{piece.part});
+                }
+                EXPECT_EQ(s.plans[i].edgel_sets, piece.piece == 0   ? kAllEdgels
+                                                 : piece.piece == 1 ? (kFieldLikeEdgels | kOffThinLineEdgels)
+                                                                    : kEveryEdgelSet);
+                EXPECT_EQ(s.plans[i].pairs, piece.piece == 2 ? kLaterPairs : kFirstPairs);
+                cost += piece.cost;
             }
             EXPECT_TRUE(s.count == 2 || cost <= budget) << "budget " << budget << ", frame " << k;
             // Round after round, from any frame.
@@ -60,8 +81,46 @@ TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
             ASSERT_EQ(next.count, s.count);
             for (std::size_t i = 0; i < s.count; ++i) EXPECT_EQ(parts_of(next.plans[i]), parts_of(s.plans[i]));
         }
-        EXPECT_EQ(seen.size(), static_cast<std::size_t>(kSearchParts)) << "every part once a round";
+        EXPECT_EQ(seen, expected) << "every piece once a round";
     }
+}
+
+// The first scan's three pieces in one call try the same pairs of the same
+// labellings in the same order as the first scan: the same place, found or
+// not, on any frame. So a spread search's pieces add up to the whole.
+TEST(SearchSchedule, APartsPiecesTogetherAreThePart) {
+    const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
+    const Detector detector(field);
+    const bench::Scene scene;
+    const sim::FieldPlacement placement{{0, 0}, scene.module_px};
+    const cv::Size vga(640, 480);
+    int found = 0, compared = 0;
+    for (const auto category : {bench::Category::general, bench::Category::ruled, bench::Category::smeared}) {
+        for (const auto& r : bench::category_recipes(scene, category, 4, 3)) {
+            const cv::Mat screen = sim::make_screen(sim::kAllScreenKinds[static_cast<std::size_t>(r.screen) %
+                                                                         sim::kAllScreenKinds.size()],
+                                                    scene.screen.pixels, 7);
+            for (const double opacity : {0.0, 0.15}) {
+                const bench::Frame frame =
+                    bench::shoot(scene, r, opacity > 0 ? sim::mix_field(screen, field, placement, opacity) : screen, vga);
+                const GreyView v = view_of(frame.grey);
+                const Eigen::Vector2d centre(v.width / 2.0, v.height / 2.0);
+                const Detection whole = detector.detect(v, centre, nullptr, first_scan_only());
+                const SearchPlan pieces[] = {search_piece(first_scan_only(), 0), search_piece(first_scan_only(), 1),
+                                             search_piece(first_scan_only(), 2)};
+                const Detection pieced = detector.detect(v, centre, nullptr, std::span<const SearchPlan>(pieces));
+                ++compared;
+                found += whole.found;
+                EXPECT_EQ(pieced.found, whole.found);
+                EXPECT_EQ(pieced.grids_read, whole.grids_read);
+                EXPECT_EQ(pieced.places_checked, whole.places_checked);
+                EXPECT_EQ(pieced.aim_field, whole.aim_field);
+                EXPECT_EQ(pieced.failure, whole.failure);
+            }
+        }
+    }
+    EXPECT_GT(found, 0) << "some frames with the field found";
+    EXPECT_LT(found, compared) << "and some not";
 }
 
 TEST(SearchSchedule, APhotosSearchIsTheFirstScanThenEveryPartOnce) {
