@@ -7,10 +7,10 @@
 // field about 40 ms at 640 x 480 (median; 80 ms p95), where the first scan
 // alone costs about 1.3 ms. A video does not need every frame to try
 // everything: a tracker may give each frame without a lock a share of the
-// search (search_schedule; TrackerOptions::spread_search): the first scan
-// and as many other parts as fit in a budget, so that no frame stalls
-// the camera and a field that only another part finds is found within a
-// round of a few frames.
+// search (search_schedule; TrackerOptions::spread_search): the first part
+// of the first scan and as many other pieces of the parts as fit in a
+// budget, so that no frame stalls the camera and a field that only another
+// part finds is found within a round of frames.
 #pragma once
 
 #include <array>
@@ -152,12 +152,23 @@ inline constexpr double kPieceCost[kSearchParts + 1][kPiecesOfAPart] = {
     {1.19, 1.25, 2.13}, {1.51, 1.56, 1.97}, {1.19, 1.10, 1.47}, {2.40, 2.45, 4.16},
     {0.80, 0, 0},       {3.90, 4.02, 5.75}, {2.89, 2.52, 4.13}, {2.38, 2.56, 3.60}};
 
+// What a frame of a search spread over a video's frames runs before its
+// share of the round: the first scan's first pairs over every edgel set
+// (its pieces 0 and 1). A ruled page's field is found by the edgels off
+// its rules; with them a round away, a tracker on such a page lost most of
+// its frames (the tuning set's ruled video at opacity 0.1, 640 x 480: 39
+// of 40 found with every search, 14 with them in the round).
+constexpr SearchPlan spread_first() {
+    SearchPlan p = first_scan_only();
+    p.pairs = kFirstPairs;
+    return p;
+}
+
 // The round of a search spread over a video's frames: every part's piece 0
 // in kPartOrder's order, where most of what the parts find is found; then
-// the first scan's piece 1 and every part's, then their pieces 2 (the
-// first scan's piece 0 runs on every frame and is not in the round).
+// every part's piece 1, then the first scan's piece 2 and every part's.
 constexpr int round_pieces() {
-    int n = kPiecesOfAPart - 1;  // the first scan's
+    int n = 1;  // the first scan's piece 2
     for (int part = 0; part < kSearchParts; ++part) n += searches_edgels(search_part(part)) ? kPiecesOfAPart : 1;
     return n;
 }
@@ -166,7 +177,7 @@ constexpr std::array<SearchPiece, kRoundPieces> spread_round() {
     std::array<SearchPiece, kRoundPieces> round{};
     std::size_t n = 0;
     for (int piece = 0; piece < kPiecesOfAPart; ++piece) {
-        if (piece > 0) round[n++] = {-1, piece, kPieceCost[0][piece]};
+        if (piece == 2) round[n++] = {-1, piece, kPieceCost[0][piece]};
         for (const int part : kPartOrder)
             if (piece == 0 || searches_edgels(search_part(part)))
                 round[n++] = {part, piece, kPieceCost[part + 1][piece]};
@@ -175,8 +186,8 @@ constexpr std::array<SearchPiece, kRoundPieces> spread_round() {
 }
 inline constexpr std::array<SearchPiece, kRoundPieces> kSpreadRound = spread_round();
 
-// One frame's share of the spread search: the first scan's piece 0, then
-// consecutive pieces of the round.
+// One frame's share of the spread search: spread_first(), then consecutive
+// pieces of the round.
 struct ScheduledSearch {
     std::array<SearchPlan, kRoundPieces + 1> plans{};
     std::size_t count = 0;
@@ -204,17 +215,16 @@ constexpr int schedule_frames(double budget) {
     return schedule_groups(budget, starts);
 }
 
-// The search of the k-th consecutive frame without a lock: the first scan's
-// piece 0, then the k-th group of the round, round after round. A frame
-// pays for about 0.6 ms and `budget` at 640 x 480 (the pieces of one part
-// more than one piece alone: with their shared scans, a part's three pieces
-// cost about one and a half of the part).
+// The search of the k-th consecutive frame without a lock: spread_first(),
+// then the k-th group of the round, round after round. A frame pays for
+// about 1.1 ms and `budget` at 640 x 480 (a piece costs less in a share
+// than alone, where it makes the scans and images it shares with others).
 constexpr ScheduledSearch search_schedule(int k, double budget) {
     std::array<int, kRoundPieces + 1> starts{};
     const int groups = schedule_groups(budget, starts);
     const int g = ((k % groups) + groups) % groups;
     ScheduledSearch out;
-    out.plans[out.count++] = search_piece(first_scan_only(), 0);
+    out.plans[out.count++] = spread_first();
     for (int at = starts[static_cast<std::size_t>(g)]; at < starts[static_cast<std::size_t>(g) + 1]; ++at)
         out.plans[out.count++] = kSpreadRound[static_cast<std::size_t>(at)].plan();
     return out;

@@ -77,7 +77,8 @@ public:
             placements_.push_back(heldout_placement(s, field_));
             const double module = placements_.back().module_px;
             methods_.push_back(std::make_unique<Methods>(field_, s.geometry.pixels, placements_.back(),
-                                                         static_cast<int>(std::lround(module)), kHeldoutRadiusModules));
+                                                         static_cast<int>(std::lround(module)), kHeldoutRadiusModules,
+                                                         opt.tracking));
         }
         const int n = static_cast<int>(heldout_screens().size() * sim::kAllHeldoutContents.size());
         screens_.resize(static_cast<std::size_t>(n));

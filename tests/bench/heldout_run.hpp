@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "shared/detect/tracker.hpp"
 #include "tests/bench/heldout_scenario.hpp"
 
 namespace umf::bench {
@@ -31,6 +32,7 @@ struct HeldoutOptions {
     std::string field = "b4-64x36.json";  // bench_field: a shipped name or a file's path
     std::string shown_field;               // on the screen, when another than `field`
     std::string command;
+    TrackerOptions tracking;  // the trackers' (umf video)
     // Effects of the second camera model left out of every frame, to see
     // what each costs (diagnosis only; the held-out numbers of record have
     // all of them): pixel_structure, rolling_shutter, curved_blur,

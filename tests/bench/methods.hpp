@@ -72,8 +72,14 @@ public:
     // The field at `placement` on a screen of `screen` pixels, the ArUco
     // board with cells of `board_cell_px`; a located point counts as right
     // within `radius_modules` of the truth.
-    Methods(const Field& field, cv::Size screen, sim::FieldPlacement placement, int board_cell_px, double radius_modules)
-        : placement_(placement), radius_(radius_modules), detector_(field), aruco_(screen, board_cell_px) {}
+    // `tracking`: the trackers' options (umf video).
+    Methods(const Field& field, cv::Size screen, sim::FieldPlacement placement, int board_cell_px, double radius_modules,
+            TrackerOptions tracking = {})
+        : placement_(placement),
+          radius_(radius_modules),
+          detector_(field),
+          tracking_(tracking),
+          aruco_(screen, board_cell_px) {}
 
     Outcome umf(const Frame& frame) const {
         Outcome o;
@@ -102,7 +108,7 @@ public:
 
     // A fresh tracker on this detector: one per configuration and per
     // pulsing video.
-    Tracker tracker() const { return Tracker(detector_); }
+    Tracker tracker() const { return Tracker(detector_, tracking_); }
 
     // One frame of a video: every frame goes to the tracker (a phone keeps
     // filming while the centre is off the screen), but such frames are
@@ -172,6 +178,7 @@ private:
     sim::FieldPlacement placement_;
     double radius_;
     Detector detector_;
+    TrackerOptions tracking_;
     ArucoBaseline aruco_;
 };
 

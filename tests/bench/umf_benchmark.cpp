@@ -75,6 +75,8 @@ Usage: umf_benchmark [options]
                          0 = skip)
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
+  --spread-search BUDGET "umf video": a tracker without a lock spreads its search over frames, each the first
+                         scan's first piece and pieces within BUDGET (TrackerOptions::search_budget; default: off)
   --dump DIR             also save every frame as PNG there (for looking at them; use with few frames)
   --field NAME|FILE      the 64 x 36 field the detector looks for: a shipped one of shared/data/fields
                          (default b4-64x36.json) or a field file's path (one with a '/')
@@ -106,6 +108,7 @@ struct Options {
     std::string dump;
     std::string field = "b4-64x36.json";
     std::string shown_field;  // empty: field
+    TrackerOptions tracking;
 };
 
 std::vector<std::string> split(const std::string& list) {
@@ -189,6 +192,17 @@ Options parse(int argc, char** argv) {
             o.seed = static_cast<std::uint64_t>(positive_int(value(), a, 0));
         } else if (a == "--threads") {
             o.threads = positive_int(value(), a);
+        } else if (a == "--spread-search") {
+            const std::string v = value();
+            std::size_t used = 0;
+            try {
+                o.tracking.search_budget = std::stod(v, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != v.size() || !(o.tracking.search_budget >= 0))
+                throw std::invalid_argument("--spread-search: not a number >= 0");
+            o.tracking.spread_search = true;
         } else if (a == "--field") {
             o.field = value();
         } else if (a == "--shown-field") {
@@ -347,7 +361,8 @@ public:
     Bench(const Options& opt, const std::string& command)
         : opt_(opt), field_(bench_field(opt.field)),
           shown_(opt.shown_field.empty() ? field_ : bench_field(opt.shown_field)),
-          methods_(field_, scene_.screen.pixels, sim::FieldPlacement{{0, 0}, scene_.module_px}, 30, opt.radius) {
+          methods_(field_, scene_.screen.pixels, sim::FieldPlacement{{0, 0}, scene_.module_px}, 30, opt.radius,
+                   opt.tracking) {
         report_.success_radius_modules = opt.radius;
         report_.command = command;
         report_.started = now_text();
@@ -513,6 +528,7 @@ int run_heldout_set(const Options& opt, const std::string& command) {
     h.shown_field = opt.shown_field;
     h.command = command;
     h.without = opt.without;
+    h.tracking = opt.tracking;
     return run_heldout(h);
 }
 
