@@ -145,8 +145,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     const SearchPlan& plan = pass.plan;
     const char* failure = search_smaller(im, aim, prior, pass, out, plan.scans, plan.smaller_scans);
     if (!failure) return nullptr;
-    if (pass.first() && options_.lattice_enabled && plan.lattices != 0 && (plan.pairs & kFirstPairs) &&
-        (plan.edgel_sets & kAllEdgels) &&
+    if (pass.first() && options_.lattice_enabled && plan.lattices != 0 && (plan.edgel_sets & kAllEdgels) &&
         (((plan.lattices & 1u) && !search_lattice(im, aim, prior, out)) ||
          ((plan.lattices & ~1u) && !search_lattice_smaller(im, aim, prior, pass.cache, out, plan.lattices >> 1))))
         return nullptr;
@@ -374,27 +373,20 @@ const char* Detector::search(const GreyView& im, const Eigen::Vector2d& aim, con
         if (fitted) failure = read_grid(im, aim, prior, g2i, rows, cols, out);
         return fitted && (!failure || failure == kAimAtInfinity);
     };
-    // A plan may leave either pass's pairs to another frame's (SearchPlan::pairs).
-    const unsigned pairs = pass.plan.pairs;
     if (pass.first()) {
-        if ((pairs & kFirstPairs) && try_pair(*labellings[0]->first(), *labellings[1]->first())) return failure;
+        if (try_pair(*labellings[0]->first(), *labellings[1]->first())) return failure;
         auto t = StageClock::now();
         for (int f = 0; f < 2; ++f) hypotheses[f] = labellings[f]->all();
         for (int f = 0; f < 2; ++f) add_halved_labellings(hypotheses[f], hypotheses[1 - f].front().spacing_px);
         out.times.grid_ms += ms_since(t);
     }
     const int n0 = static_cast<int>(hypotheses[0].size()), n1 = static_cast<int>(hypotheses[1].size());
-    if (pass.first() && !(pairs & kFirstPairs)) {
-        if ((pairs & kLaterPairs) && static_cast<long>(n0) * n1 > pass.end_pair)
-            for (int f = 0; f < 2; ++f) pass.left[this_search].family[f] = std::move(hypotheses[f]);
-        return failure;
-    }
     int ordinal = 0;
     for (int sum = 0; sum <= n0 + n1 - 2; ++sum)
         for (int h0 = std::max(0, sum - n1 + 1); h0 <= std::min(sum, n0 - 1); ++h0, ++ordinal) {
             if (ordinal < pass.first_pair || (pass.first() && ordinal == 0)) continue;
             if (ordinal >= pass.end_pair) {
-                if (pass.first() && (pairs & kLaterPairs))
+                if (pass.first() && pass.plan.second_pass)
                     for (int f = 0; f < 2; ++f) pass.left[this_search].family[f] = std::move(hypotheses[f]);
                 return failure;
             }

@@ -151,9 +151,11 @@ std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>&
     // points; only the winner is counted on all of them.
     constexpr std::size_t kJudges = 120;
     const std::size_t stride = std::max<std::size_t>(1, n / kJudges);
-    auto judge = [&](const Eigen::Matrix3d& h) {
-        int count = 0;
-        for (std::size_t i = 0; i < n; i += stride) count += fits(h, i);
+    // A sample's count, or any count no more than `beat` once it cannot
+    // exceed it: only a better sample than the best so far changes anything.
+    auto judge = [&](const Eigen::Matrix3d& h, int beat) {
+        int count = 0, left = static_cast<int>((n + stride - 1) / stride);
+        for (std::size_t i = 0; i < n && count + left > beat; i += stride, --left) count += fits(h, i);
         return count;
     };
     RobustHomography best;
@@ -177,7 +179,7 @@ std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>&
         }
         auto h = homography_from_4(sf.data(), st.data());
         if (!h) continue;
-        const int c = judge(*h);
+        const int c = judge(*h, best_judged);
         if (c > best_judged) {
             best_judged = c;
             best.h = *h;

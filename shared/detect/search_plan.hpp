@@ -31,13 +31,6 @@ inline constexpr unsigned kFieldLikeEdgels = 2u;
 inline constexpr unsigned kOffThinLineEdgels = 4u;
 inline constexpr unsigned kEveryEdgelSet = 7u;
 
-// The pairs of grid-line labellings each search tries, as bits: the first
-// pass's likeliest few (DetectorOptions::first_pass_pairs), the second pass's
-// rest.
-inline constexpr unsigned kFirstPairs = 1u;
-inline constexpr unsigned kLaterPairs = 2u;
-inline constexpr unsigned kEveryPair = 3u;
-
 // The parts of the search; each scan mask names the scans searched at that
 // size (a mask of 0 leaves the size out, its resizing too).
 struct SearchPlan {
@@ -49,10 +42,12 @@ struct SearchPlan {
     unsigned double_scans = kEveryScan;    // around the aim at twice the size (DetectorOptions::double_size_max_side)
     unsigned smoothed_scans = kEveryScan;  // the frame smoothed (DetectorOptions::smoothed_search), its own size
     unsigned smoothed_smaller_scans = kEveryScan;  // and below
-    // Of every scan above: its edgel sets searched, and their pairs tried.
-    // A lattice is read with the first pairs of all edgels.
+    // Of every scan above: its edgel sets searched (a lattice is read with
+    // all edgels), and whether its searches' later pairs of labellings are
+    // tried in the second pass, after the first pass's likeliest few
+    // (DetectorOptions::first_pass_pairs) of every search.
     unsigned edgel_sets = kEveryEdgelSet;
-    unsigned pairs = kEveryPair;
+    bool second_pass = true;
 };
 
 // The first scan at the frame's own size and nothing else.
@@ -89,14 +84,16 @@ constexpr SearchPlan search_part(int part) {
 inline constexpr int kSearchParts = 12;
 
 // A part's pieces, for a search spread thinner still: piece 0 its searches
-// over all edgels with their first pairs of labellings, piece 1 over the
-// field-like edgels and those off thin lines with their first pairs, piece
-// 2 every set's later pairs. Each costs a frame without the field a
-// fraction of the part (its lattice, if any, is in piece 0).
-inline constexpr int kPiecesOfAPart = 3;
+// over all edgels, piece 1 over the field-like edgels and those off thin
+// lines, both with their first pairs of labellings only (a spread search
+// leaves the later pairs out: on the tuning set they found no frame the
+// first pairs of another piece did not, and made the round half as long
+// again). Each costs a frame without the field a fraction of the part (its
+// lattice, if any, is in piece 0).
+inline constexpr int kPiecesOfAPart = 2;
 constexpr SearchPlan search_piece(SearchPlan part, int piece) {
-    part.edgel_sets = piece == 1 ? (kFieldLikeEdgels | kOffThinLineEdgels) : piece == 0 ? kAllEdgels : kEveryEdgelSet;
-    part.pairs = piece == 2 ? kLaterPairs : kFirstPairs;
+    part.edgel_sets = piece == 0 ? kAllEdgels : (kFieldLikeEdgels | kOffThinLineEdgels);
+    part.second_pass = false;
     return part;
 }
 
@@ -132,25 +129,23 @@ constexpr bool searches_edgels(const SearchPlan& p) {
 }
 
 // One piece of the spread search's round: `piece` (search_piece) of `part`
-// (search_part; -1 the first scan) and what it costs a frame without the
-// field, in ms at 640 x 480: the median over the tuning set's frames without
-// the field of the piece run alone, its scans and images made for it alone
-// (less where a share's pieces share them).
+// (search_part) and what it costs a frame without the field, in ms at 640 x
+// 480: the median over the tuning set's frames without the field of the
+// piece run alone, its scans and images made for it alone (less where a
+// share's pieces share them).
 struct SearchPiece {
-    int part = -1;
+    int part = 0;
     int piece = 0;
     double cost = 0;
-    constexpr SearchPlan plan() const { return search_piece(part < 0 ? first_scan_only() : search_part(part), piece); }
+    constexpr SearchPlan plan() const { return search_piece(search_part(part), piece); }
 };
 
-// Each piece's cost, by part (the first scan first) and piece. Part 8, the
-// lattice below half size, runs only on larger frames: about a quarter of
-// part 3 there.
-inline constexpr double kPieceCost[kSearchParts + 1][kPiecesOfAPart] = {
-    {0.60, 0.66, 1.04},                                               // the first scan
-    {0.49, 0.52, 0.87}, {3.83, 0, 0},       {1.44, 1.48, 2.49}, {4.02, 0, 0},
-    {1.19, 1.25, 2.13}, {1.51, 1.56, 1.97}, {1.19, 1.10, 1.47}, {2.40, 2.45, 4.16},
-    {0.80, 0, 0},       {3.90, 4.02, 5.75}, {2.89, 2.52, 4.13}, {2.38, 2.56, 3.60}};
+// Each piece's cost, by part and piece (0 for a piece a lattice part does
+// not have). Part 8, the lattice below half size, runs only on larger
+// frames: about a quarter of part 3 there.
+inline constexpr double kPieceCost[kSearchParts][kPiecesOfAPart] = {
+    {0.49, 0.52}, {3.83, 0}, {1.44, 1.48}, {4.02, 0},    {1.19, 1.25}, {1.51, 1.56},
+    {1.19, 1.10}, {2.40, 2.45}, {0.80, 0}, {3.90, 4.02}, {2.89, 2.52}, {2.38, 2.56}};
 
 // What a frame of a search spread over a video's frames runs before its
 // share of the round: the first scan's first pairs over every edgel set
@@ -160,15 +155,15 @@ inline constexpr double kPieceCost[kSearchParts + 1][kPiecesOfAPart] = {
 // of 40 found with every search, 14 with them in the round).
 constexpr SearchPlan spread_first() {
     SearchPlan p = first_scan_only();
-    p.pairs = kFirstPairs;
+    p.second_pass = false;
     return p;
 }
 
 // The round of a search spread over a video's frames: every part's piece 0
 // in kPartOrder's order, where most of what the parts find is found; then
-// every part's piece 1, then the first scan's piece 2 and every part's.
+// every part's piece 1.
 constexpr int round_pieces() {
-    int n = 1;  // the first scan's piece 2
+    int n = 0;
     for (int part = 0; part < kSearchParts; ++part) n += searches_edgels(search_part(part)) ? kPiecesOfAPart : 1;
     return n;
 }
@@ -176,12 +171,9 @@ inline constexpr int kRoundPieces = round_pieces();
 constexpr std::array<SearchPiece, kRoundPieces> spread_round() {
     std::array<SearchPiece, kRoundPieces> round{};
     std::size_t n = 0;
-    for (int piece = 0; piece < kPiecesOfAPart; ++piece) {
-        if (piece == 2) round[n++] = {-1, piece, kPieceCost[0][piece]};
+    for (int piece = 0; piece < kPiecesOfAPart; ++piece)
         for (const int part : kPartOrder)
-            if (piece == 0 || searches_edgels(search_part(part)))
-                round[n++] = {part, piece, kPieceCost[part + 1][piece]};
-    }
+            if (piece == 0 || searches_edgels(search_part(part))) round[n++] = {part, piece, kPieceCost[part][piece]};
     return round;
 }
 inline constexpr std::array<SearchPiece, kRoundPieces> kSpreadRound = spread_round();

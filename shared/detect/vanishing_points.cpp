@@ -195,9 +195,11 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         std::vector<int> judges;
         const std::size_t judge_stride = std::max<std::size_t>(1, candidates.size() / kJudges);
         for (std::size_t i = 0; i < candidates.size(); i += judge_stride) judges.push_back(candidates[i]);
-        auto score = [&](const Eigen::Vector3d& v) {
-            int n = 0;
-            for (int i : judges) n += aligned(lines[i], v);
+        // A hypothesis's score, or any score no more than `beat` once it
+        // cannot exceed it: only a better one than the best so far counts.
+        auto score = [&](const Eigen::Vector3d& v, int beat) {
+            int n = 0, left = static_cast<int>(judges.size());
+            for (auto i = judges.begin(); i != judges.end() && n + left > beat; ++i, --left) n += aligned(lines[*i], v);
             return n;
         };
         Eigen::Vector3d best_v = Eigen::Vector3d::Zero();
@@ -213,7 +215,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
                 if (v.norm() < 1e-12) continue;
                 v.normalize();
             }
-            const int s = score(v);
+            const int s = score(v, best_score);
             if (s > best_score) {
                 best_score = s;
                 best_v = v;

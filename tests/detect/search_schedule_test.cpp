@@ -36,15 +36,12 @@ std::vector<int> parts_of(const SearchPlan& p) {
 TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
     EXPECT_EQ(schedule_frames(0), kRoundPieces) << "no budget: one piece a frame";
     EXPECT_EQ(schedule_frames(1000), 1) << "a budget for everything: one frame";
-    // Every piece of every part once a round: piece 0 of each part, pieces
-    // 1 and 2 of each part that searches edgels, and the first scan's piece
-    // 2 (its pieces 0 and 1 run on every frame).
+    // Every piece of every part once a round: piece 0 of each part, piece 1
+    // of each part that searches edgels (the first scan runs on every frame).
     std::vector<std::pair<int, int>> expected;
-    for (int piece = 0; piece < kPiecesOfAPart; ++piece) {
-        if (piece == 2) expected.emplace_back(-1, piece);
+    for (int piece = 0; piece < kPiecesOfAPart; ++piece)
         for (int part : kPartOrder)
             if (piece == 0 || search_part(part).lattices == 0) expected.emplace_back(part, piece);
-    }
     ASSERT_EQ(expected.size(), static_cast<std::size_t>(kRoundPieces));
     for (const double budget : {0.0, 2.0, 3.0, 8.0, 1000.0}) {
         const int frames = schedule_frames(budget);
@@ -54,7 +51,7 @@ TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
             ASSERT_GE(s.count, 2u) << "the first scan and a piece at least";
             EXPECT_EQ(s.plans[0].scans, kFirstScan);
             EXPECT_EQ(s.plans[0].edgel_sets, kEveryEdgelSet);
-            EXPECT_EQ(s.plans[0].pairs, kFirstPairs);
+            EXPECT_FALSE(s.plans[0].second_pass);
             EXPECT_EQ(s.plans[0].smaller_scans | s.plans[0].lattices | s.plans[0].double_scans |
                           s.plans[0].smoothed_scans | s.plans[0].smoothed_smaller_scans, 0u);
             double cost = 0;
@@ -62,18 +59,10 @@ TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
                 const SearchPiece& piece = kSpreadRound[seen.size()];
                 EXPECT_EQ(std::make_pair(piece.part, piece.piece), expected[seen.size()]) << "in the round's order";
                 seen.emplace_back(piece.part, piece.piece);
-                const std::vector<int> parts = parts_of(s.plans[i]);
-                if (piece.part < 0) {
-                    EXPECT_EQ(s.plans[i].scans, kFirstScan);
-                    EXPECT_TRUE(parts.empty() || parts == std::vector<int>{2} || parts == std::vector<int>{7})
-                        << "the first scan alone";
-                } else {
-                    EXPECT_EQ(parts, std::vector<int>{piece.part});
-                }
-                EXPECT_EQ(s.plans[i].edgel_sets, piece.piece == 0   ? kAllEdgels
-                                                 : piece.piece == 1 ? (kFieldLikeEdgels | kOffThinLineEdgels)
-                                                                    : kEveryEdgelSet);
-                EXPECT_EQ(s.plans[i].pairs, piece.piece == 2 ? kLaterPairs : kFirstPairs);
+                EXPECT_EQ(parts_of(s.plans[i]), std::vector<int>{piece.part});
+                EXPECT_EQ(s.plans[i].edgel_sets,
+                          piece.piece == 0 ? kAllEdgels : (kFieldLikeEdgels | kOffThinLineEdgels));
+                EXPECT_FALSE(s.plans[i].second_pass);
                 cost += piece.cost;
             }
             EXPECT_TRUE(s.count == 2 || cost <= budget) << "budget " << budget << ", frame " << k;
@@ -86,9 +75,10 @@ TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
     }
 }
 
-// The first scan's three pieces in one call try the same pairs of the same
-// labellings in the same order as the first scan: the same place, found or
-// not, on any frame. So a spread search's pieces add up to the whole.
+// The first scan's two pieces in one call try the same pairs of the same
+// labellings in the same order as its first pass (spread_first); with the
+// second pass, as the first scan does: the same place, found or not, on any
+// frame.
 TEST(SearchSchedule, APartsPiecesTogetherAreThePart) {
     const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
     const Detector detector(field);
@@ -106,17 +96,23 @@ TEST(SearchSchedule, APartsPiecesTogetherAreThePart) {
                     bench::shoot(scene, r, opacity > 0 ? sim::mix_field(screen, field, placement, opacity) : screen, vga);
                 const GreyView v = view_of(frame.grey);
                 const Eigen::Vector2d centre(v.width / 2.0, v.height / 2.0);
+                const SearchPlan pieces[] = {search_piece(first_scan_only(), 0), search_piece(first_scan_only(), 1)};
+                SearchPlan with_second_pass[] = {pieces[0], pieces[1]};
+                for (SearchPlan& p : with_second_pass) p.second_pass = true;
+                for (const auto& [whole, pieced] :
+                     {std::pair(detector.detect(v, centre, nullptr, spread_first()),
+                                detector.detect(v, centre, nullptr, std::span<const SearchPlan>(pieces))),
+                      std::pair(detector.detect(v, centre, nullptr, first_scan_only()),
+                                detector.detect(v, centre, nullptr, std::span<const SearchPlan>(with_second_pass)))}) {
+                    EXPECT_EQ(pieced.found, whole.found);
+                    EXPECT_EQ(pieced.grids_read, whole.grids_read);
+                    EXPECT_EQ(pieced.places_checked, whole.places_checked);
+                    EXPECT_EQ(pieced.aim_field, whole.aim_field);
+                    EXPECT_EQ(pieced.failure, whole.failure);
+                }
                 const Detection whole = detector.detect(v, centre, nullptr, first_scan_only());
-                const SearchPlan pieces[] = {search_piece(first_scan_only(), 0), search_piece(first_scan_only(), 1),
-                                             search_piece(first_scan_only(), 2)};
-                const Detection pieced = detector.detect(v, centre, nullptr, std::span<const SearchPlan>(pieces));
                 ++compared;
                 found += whole.found;
-                EXPECT_EQ(pieced.found, whole.found);
-                EXPECT_EQ(pieced.grids_read, whole.grids_read);
-                EXPECT_EQ(pieced.places_checked, whole.places_checked);
-                EXPECT_EQ(pieced.aim_field, whole.aim_field);
-                EXPECT_EQ(pieced.failure, whole.failure);
             }
         }
     }
