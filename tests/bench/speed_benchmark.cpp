@@ -79,6 +79,29 @@ Timing time_single(const Detector& detector, const Clip& clip, bool with_field, 
     return t;
 }
 
+// Each share of the spread search's round (search_schedule at the
+// tracker's default budget) on each frame without the field: what a frame
+// costs a tracker that has not found the field for a while, whichever share
+// it is at (the tracker's own row also holds each clip's first frame, which
+// gets the whole search).
+Timing time_shares(const Detector& detector, const Clip& clip, int runs) {
+    Timing t;
+    const double budget = TrackerOptions{}.search_budget;
+    for (const Frame& f : clip.bare) {
+        const GreyView v = grey_view(f);
+        const Eigen::Vector2d centre(v.width / 2.0, v.height / 2.0);
+        for (int k = 0; k < schedule_frames(budget); ++k) {
+            const ScheduledSearch share = search_schedule(k, budget);
+            Detection d;
+            t.ms.push_back(timed(runs, [&] {
+                d = detector.detect(v, centre, nullptr, std::span<const SearchPlan>(share.plans.data(), share.count));
+            }));
+            judge(t, f, d.found, d.aim_field, nullptr);
+        }
+    }
+    return t;
+}
+
 // The tracker over the clip in order, once (its state moves on with every
 // frame); frames whose centre is off the field are given to it but not
 // counted, as a phone keeps filming then too.
@@ -222,7 +245,7 @@ std::string schedule_parts(const Detector& detector, const std::vector<Clip>& cl
 
 // The tables of one resolution.
 std::string time_resolution(const Detector& detector, const std::vector<Clip>& clips, const SpeedOptions& opt) {
-    Timing with_all, bare_all, video_all, video_bare_all, spread_all, spread_bare_all, aruco_all;
+    Timing with_all, bare_all, video_all, video_bare_all, spread_all, spread_bare_all, shares_all, aruco_all;
     std::string per_category;
     if (opt.profile) {
         for (const Clip& c : clips) merge(with_all, time_single(detector, c, true, opt.runs));
@@ -235,6 +258,7 @@ std::string time_resolution(const Detector& detector, const std::vector<Clip>& c
         const Timing video_bare = time_tracker(detector, c, false, false);
         merge(spread_all, time_tracker(detector, c, true, true));
         merge(spread_bare_all, time_tracker(detector, c, false, true));
+        merge(shares_all, time_shares(detector, c, 1));
         const Timing aruco = time_aruco(c, opt.runs);
         auto cell = [](const Timing& t) { return fixed(median_of(t.ms)) + " / " + fixed(percentile(t.ms, 95)); };
         per_category += "| " + c.category + " | " + cell(with) + " | " + cell(bare) + " | " + cell(video) + " | " +
@@ -249,6 +273,9 @@ std::string time_resolution(const Detector& detector, const std::vector<Clip>& c
         << row("with the field, tracker", video_all) << row("without the field, tracker", video_bare_all)
         << row("with the field, tracker spreading its search", spread_all)
         << row("without the field, tracker spreading its search", spread_bare_all)
+        << row("without the field, each share of the spread search (" +
+                   std::to_string(schedule_frames(TrackerOptions{}.search_budget)) + " a round) on each frame",
+               shares_all)
         << row("ArUco, its board in place of the field", aruco_all, false)
         << "\nArUco's median over umf's: single frame " << fixed(median_of(aruco_all.ms) / median_of(with_all.ms))
         << " x, tracker " << fixed(median_of(aruco_all.ms) / median_of(video_all.ms)) << " x.\n\n"
