@@ -6,38 +6,63 @@
 
 namespace umf {
 
-void fft(Complex* data, int n, int stride) {
-    if (!is_power_of_two(n)) throw std::invalid_argument("fft: the length must be a power of two");
-    const auto at = [&](int i) -> Complex& { return data[static_cast<std::ptrdiff_t>(i) * stride]; };
+namespace {
+
+// e^{-2 pi i k / n} for k < n / 2: every span's twiddle factors (a span s
+// takes every (n / s)-th), each as exact as one sincos makes it.
+std::vector<Complex> twiddles(int n) {
+    constexpr double kTwoPi = 6.283185307179586;
+    std::vector<Complex> w(static_cast<std::size_t>(n / 2));
+    for (int k = 0; k < n / 2; ++k) w[static_cast<std::size_t>(k)] = std::polar(1.0, -kTwoPi * k / n);
+    return w;
+}
+
+// The transform of n contiguous values, n a power of two.
+void transform(Complex* data, int n, const std::vector<Complex>& w) {
     // Bit-reversed order, then butterflies of growing span.
     for (int i = 1, j = 0; i < n; ++i) {
         int bit = n >> 1;
         for (; j & bit; bit >>= 1) j ^= bit;
         j ^= bit;
-        if (i < j) std::swap(at(i), at(j));
+        if (i < j) std::swap(data[i], data[j]);
     }
-    constexpr double kTwoPi = 6.283185307179586;
     for (int span = 2; span <= n; span <<= 1) {
-        const Complex step = std::polar(1.0, -kTwoPi / span);
-        for (int start = 0; start < n; start += span) {
-            Complex w = 1;
-            for (int k = 0; k < span / 2; ++k) {
-                Complex& a = at(start + k);
-                Complex& b = at(start + k + span / 2);
-                const Complex t = w * b;
+        const int half = span / 2, every = n / span;
+        for (int start = 0; start < n; start += span)
+            for (int k = 0; k < half; ++k) {
+                Complex& a = data[start + k];
+                Complex& b = data[start + k + half];
+                const Complex t = w[static_cast<std::size_t>(k * every)] * b;
                 b = a - t;
                 a += t;
-                w *= step;
             }
-        }
     }
 }
 
+}  // namespace
+
+void fft(Complex* data, int n, int stride) {
+    if (!is_power_of_two(n)) throw std::invalid_argument("fft: the length must be a power of two");
+    std::vector<Complex> line(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) line[static_cast<std::size_t>(i)] = data[static_cast<std::ptrdiff_t>(i) * stride];
+    transform(line.data(), n, twiddles(n));
+    for (int i = 0; i < n; ++i) data[static_cast<std::ptrdiff_t>(i) * stride] = line[static_cast<std::size_t>(i)];
+}
+
 void fft_2d(std::vector<Complex>& image, int n) {
+    if (!is_power_of_two(n)) throw std::invalid_argument("fft: the length must be a power of two");
     if (static_cast<long>(image.size()) != static_cast<long>(n) * n)
         throw std::invalid_argument("fft_2d: the image must hold n x n values");
-    for (int y = 0; y < n; ++y) fft(image.data() + static_cast<std::ptrdiff_t>(y) * n, n, 1);
-    for (int x = 0; x < n; ++x) fft(image.data() + x, n, n);
+    const std::vector<Complex> w = twiddles(n);
+    for (int y = 0; y < n; ++y) transform(image.data() + static_cast<std::ptrdiff_t>(y) * n, n, w);
+    // Each column through a contiguous line: a stride of n values misses the
+    // cache on every butterfly.
+    std::vector<Complex> column(static_cast<std::size_t>(n));
+    for (int x = 0; x < n; ++x) {
+        for (int y = 0; y < n; ++y) column[static_cast<std::size_t>(y)] = image[static_cast<std::size_t>(y) * n + x];
+        transform(column.data(), n, w);
+        for (int y = 0; y < n; ++y) image[static_cast<std::size_t>(y) * n + x] = column[static_cast<std::size_t>(y)];
+    }
 }
 
 }  // namespace umf

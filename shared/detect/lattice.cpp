@@ -21,7 +21,7 @@ std::vector<double> edge_strength(const GreyView& im, int x0, int y0, int n) {
         for (int x = 0; x < n; ++x) {
             float gx, gy;
             sobel(im, x0 + x, y0 + y, gx, gy);
-            const double m = std::hypot(static_cast<double>(gx), static_cast<double>(gy));
+            const double m = std::sqrt(static_cast<double>(gx) * gx + static_cast<double>(gy) * gy);
             e[static_cast<std::size_t>(y) * n + x] = m;
             sum += m;
         }
@@ -60,8 +60,8 @@ std::vector<Peak> spectral_peaks(const std::vector<double>& e, int n, const Latt
     for (int ky = -n / 2 + 1; ky < n / 2; ++ky)
         for (int kx = 0; kx < n / 2; ++kx) {
             if (kx == 0 && ky <= 0) continue;
-            const double r = std::hypot(kx, ky);
-            if (r < r_lo || r > r_hi) continue;
+            const double r2 = static_cast<double>(kx * kx + ky * ky);
+            if (r2 < r_lo * r_lo || r2 > r_hi * r_hi) continue;
             const double m = mag(kx, ky);
             band_sum += m;
             ++band_bins;
@@ -78,45 +78,89 @@ std::vector<Peak> spectral_peaks(const std::vector<double>& e, int n, const Latt
     return peaks;
 }
 
-// The patch's Fourier coefficient at frequency f (cycles per pixel), from
-// separable phasors: n^2 multiply-adds.
-Complex coefficient(const std::vector<double>& e, int n, const Eigen::Vector2d& f) {
-    std::vector<Complex> ex(static_cast<std::size_t>(n)), ey(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) {
-        ex[static_cast<std::size_t>(i)] = std::polar(1.0, -kTwoPi * f.x() * i);
-        ey[static_cast<std::size_t>(i)] = std::polar(1.0, -kTwoPi * f.y() * i);
-    }
-    Complex total = 0;
-    for (int y = 0; y < n; ++y) {
-        Complex row = 0;
-        const double* line = e.data() + static_cast<std::ptrdiff_t>(y) * n;
-        for (int x = 0; x < n; ++x) row += line[x] * ex[static_cast<std::size_t>(x)];
-        total += row * ey[static_cast<std::size_t>(y)];
-    }
-    return total;
+// e^(-2 pi i freq k) for k = 0 .. n-1: one axis's phasors at a frequency.
+std::vector<Complex> phasors(double freq, int n) {
+    std::vector<Complex> p(static_cast<std::size_t>(n));
+    for (int k = 0; k < n; ++k) p[static_cast<std::size_t>(k)] = std::polar(1.0, -kTwoPi * freq * k);
+    return p;
 }
 
-// The peak's frequency to a 16th of a bin, by a search over halving steps:
-// a whole bin (1/n cycle per pixel) off would move the lines at the patch's
-// edges by half a module, a 32nd of one by a 64th.
-Eigen::Vector2d refine_frequency(const std::vector<double>& e, int n, const Peak& p) {
-    Eigen::Vector2d f(static_cast<double>(p.kx) / n, static_cast<double>(p.ky) / n);
-    double best = std::abs(coefficient(e, n, f));
+// The patch's Fourier coefficients near a frequency, separably: the patch's
+// rows transformed at one x frequency (rows[y]) and its columns at one y
+// frequency (cols[x]) make the coefficient at any y frequency with the
+// first, or any x frequency with the second, in n multiply-adds rather than
+// n^2. Only a move of the x frequency (y frequency) makes rows (cols) anew.
+class PatchCoefficients {
+public:
+    PatchCoefficients(const std::vector<double>& e, int n, const Eigen::Vector2d& f) : e_(e), n_(n), f_(f) {
+        transform_rows();
+        transform_cols();
+    }
+    const Eigen::Vector2d& frequency() const { return f_; }
+    Complex at() const { return sum(cols_, phasors(f_.x(), n_)); }
+    // At the frequency moved by `d` along one axis (d.x() or d.y() is 0).
+    Complex moved(const Eigen::Vector2d& d) const {
+        return d.x() != 0 ? sum(cols_, phasors(f_.x() + d.x(), n_)) : sum(rows_, phasors(f_.y() + d.y(), n_));
+    }
+    void move(const Eigen::Vector2d& d) {
+        f_ += d;
+        if (d.x() != 0) transform_rows();
+        if (d.y() != 0) transform_cols();
+    }
+
+private:
+    static Complex sum(const std::vector<Complex>& a, const std::vector<Complex>& p) {
+        Complex total = 0;
+        for (std::size_t k = 0; k < a.size(); ++k) total += a[k] * p[k];
+        return total;
+    }
+    void transform_rows() {
+        const std::vector<Complex> px = phasors(f_.x(), n_);
+        rows_.assign(static_cast<std::size_t>(n_), 0);
+        for (int y = 0; y < n_; ++y) {
+            const double* line = e_.data() + static_cast<std::ptrdiff_t>(y) * n_;
+            Complex row = 0;
+            for (int x = 0; x < n_; ++x) row += line[x] * px[static_cast<std::size_t>(x)];
+            rows_[static_cast<std::size_t>(y)] = row;
+        }
+    }
+    void transform_cols() {
+        const std::vector<Complex> py = phasors(f_.y(), n_);
+        cols_.assign(static_cast<std::size_t>(n_), 0);
+        for (int y = 0; y < n_; ++y) {
+            const double* line = e_.data() + static_cast<std::ptrdiff_t>(y) * n_;
+            const Complex w = py[static_cast<std::size_t>(y)];
+            for (int x = 0; x < n_; ++x) cols_[static_cast<std::size_t>(x)] += line[x] * w;
+        }
+    }
+    const std::vector<double>& e_;
+    int n_;
+    Eigen::Vector2d f_;
+    std::vector<Complex> rows_, cols_;
+};
+
+// The peak's frequency to a 16th of a bin, by a search over halving steps
+// (a whole bin, 1/n cycle per pixel, off would move the lines at the
+// patch's edges by half a module, a 32nd of one by a 64th), and the patch's
+// coefficient there.
+std::pair<Eigen::Vector2d, Complex> refine_frequency(const std::vector<double>& e, int n, const Peak& p) {
+    PatchCoefficients c(e, n, Eigen::Vector2d(static_cast<double>(p.kx) / n, static_cast<double>(p.ky) / n));
+    Complex best = c.at();
     for (double step = 0.25 / n; step > 0.05 / n; step /= 2) {
         for (bool moved = true; moved;) {
             moved = false;
             for (const Eigen::Vector2d& d : {Eigen::Vector2d(step, 0), Eigen::Vector2d(-step, 0), Eigen::Vector2d(0, step),
                                             Eigen::Vector2d(0, -step)}) {
-                const double m = std::abs(coefficient(e, n, f + d));
-                if (m > best) {
+                const Complex m = c.moved(d);
+                if (std::abs(m) > std::abs(best)) {
                     best = m;
-                    f += d;
+                    c.move(d);
                     moved = true;
                 }
             }
         }
     }
-    return f;
+    return {c.frequency(), best};
 }
 
 // The partner of the first peak: the strongest one at an angle to it, with
@@ -196,8 +240,10 @@ std::vector<Lattice> find_lattices(const GreyView& im, const Eigen::Vector2d& ai
         if (!seen) pairs.emplace_back(&peaks[i], other);
     }
     for (const auto& [p1, p2] : pairs) {
-        const Eigen::Vector2d f[2] = {refine_frequency(e, n, *p1), refine_frequency(e, n, *p2)};
-        const double phase[2] = {std::arg(coefficient(e, n, f[0])), std::arg(coefficient(e, n, f[1]))};
+        const auto [f1, c1] = refine_frequency(e, n, *p1);
+        const auto [f2, c2] = refine_frequency(e, n, *p2);
+        const Eigen::Vector2d f[2] = {f1, f2};
+        const double phase[2] = {std::arg(c1), std::arg(c2)};
         Lattice l;
         if (lattice_from(f, phase, x0, y0, n, l)) out.push_back(l);
     }
