@@ -144,8 +144,8 @@ struct SearchPiece {
 // not have). Part 8, the lattice below half size, runs only on larger
 // frames: about a quarter of part 3 there.
 inline constexpr double kPieceCost[kSearchParts][kPiecesOfAPart] = {
-    {0.49, 0.52}, {3.83, 0}, {1.44, 1.48}, {4.02, 0},    {1.19, 1.25}, {1.51, 1.56},
-    {1.19, 1.10}, {2.40, 2.45}, {0.80, 0}, {3.90, 4.02}, {2.89, 2.52}, {2.38, 2.56}};
+    {0.52, 0.54}, {1.36, 0}, {1.45, 1.44}, {1.47, 0},    {1.22, 1.26}, {1.58, 1.55},
+    {1.13, 1.03}, {2.22, 2.35}, {0.40, 0}, {3.52, 3.83}, {2.87, 2.75}, {2.35, 2.46}};
 
 // What a frame of a search spread over a video's frames runs before its
 // share of the round: the first scan's first pairs over every edgel set
