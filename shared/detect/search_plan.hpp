@@ -7,9 +7,9 @@
 // field about 40 ms at 640 x 480 (median; 80 ms p95), where the first scan
 // alone costs about 1.3 ms. A video does not need every frame to try
 // everything: a tracker may give each frame without a lock a share of the
-// search (search_schedule; TrackerOptions::spread_search): the first part
-// of the first scan and as many other pieces of the parts as fit in a
-// budget, so that no frame stalls the camera and a field that only another
+// search (search_schedule; TrackerOptions::spread_search): the first scan's
+// first pairs of labellings and as many pieces of the other parts as fit in
+// a budget, so that no frame stalls the camera and a field that only another
 // part finds is found within a round of frames.
 #pragma once
 

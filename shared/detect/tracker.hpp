@@ -32,10 +32,13 @@ struct TrackerOptions {
     // The smoothed point never trails the measured one by more than this.
     double max_lag_modules = 0.02;
     // A frame without a lock, after the first and more than prior_frames
-    // after the last lock, runs the first scan's first piece and as many
-    // other pieces of the search as fit in search_budget (search_plan.hpp's
-    // search_schedule), the next such frame the next pieces; false: every
-    // search on every frame without a lock, as for a photo on its own.
+    // after the last lock, runs the first scan's first pairs over every
+    // edgel set and as many pieces of the other parts as fit in
+    // search_budget (search_plan.hpp's search_schedule), the next such frame
+    // the next pieces; false: every search on every frame without a lock, as
+    // for a photo on its own. Off while it loses tracked frames that only
+    // one part finds (docs/BENCHMARKS.md, "Detector speed: a search spread
+    // in pieces": the held-out far views at 640 x 480, 35 of 40 to 19).
     bool spread_search = false;
     // In search_plan.hpp's kPieceCost units (ms at 640 x 480 on the machine
     // they were measured on).
