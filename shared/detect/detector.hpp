@@ -226,12 +226,16 @@ private:
         std::vector<Labellings> left;
         std::size_t end_of_left = 0;  // one past the last search with pairs left
         std::size_t search = 0;       // the searches run so far in this pass
+        // What ended the first search over edgels: the failure a frame
+        // reports, whichever plans its search was cut into.
+        const char* first_search_failure = nullptr;
 
         bool first() const { return first_pair == 0; }
         bool nothing_left() const { return !first() && search >= end_of_left; }
     };
     // One pass over the plans in turn, until one finds the field: the
-    // failure of the first plan, or null when found.
+    // failure of the first search over edgels (else of the first plan), or
+    // null when found.
     const char* search_plans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              std::span<const SearchPlan> plans, Pass& pass, Detection& out) const;
     // The parts of the search pass.plan names: steps 1 to 8 on the image at
@@ -260,12 +264,12 @@ private:
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              const VanishingOptions& vanishing, Pass& pass, Detection& out,
                              unsigned scans = kEveryScan) const;
-    // search over all of a scan's edgels, then, when that fails, over the
-    // field-like ones alone, then over those not on thin lines
-    // (field_edgels.hpp).
-    const char* search_all_then_subsets(const GreyView& image, const Eigen::Vector2d& aim,
-                                        const DetectionPrior* prior, const VanishingOptions& vanishing,
-                                        const EdgelScan& scan, Pass& pass, Detection& out) const;
+    // search over a scan's field-like edgels alone, then, when that fails,
+    // over all of them, then over those not on thin lines
+    // (field_edgels.hpp; SearchPlan::edgel_sets names those searched).
+    const char* search_edgel_sets(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                  const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
+                                  Detection& out) const;
     // Steps 2 to 8 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                        const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,

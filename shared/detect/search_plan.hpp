@@ -24,8 +24,9 @@ inline constexpr unsigned kNoisyScan = 2u;         // three pixels wide, in a no
 inline constexpr unsigned kFirstDenserScan = 4u;   // the lines half way between; each next bit halves again
 inline constexpr unsigned kEveryScan = ~0u;
 
-// The sets of a scan's edgels searched (Detector's search_all_then_subsets),
+// The sets of a scan's edgels searched (Detector's search_edgel_sets),
 // as bits: all of them, the field-like ones alone, those off thin lines.
+// The field-like ones are searched first.
 inline constexpr unsigned kAllEdgels = 1u;
 inline constexpr unsigned kFieldLikeEdgels = 2u;
 inline constexpr unsigned kOffThinLineEdgels = 4u;
@@ -42,9 +43,9 @@ struct SearchPlan {
     unsigned double_scans = kEveryScan;    // around the aim at twice the size (DetectorOptions::double_size_max_side)
     unsigned smoothed_scans = kEveryScan;  // the frame smoothed (DetectorOptions::smoothed_search), its own size
     unsigned smoothed_smaller_scans = kEveryScan;  // and below
-    // Of every scan above: its edgel sets searched (a lattice is read with
-    // all edgels), and whether its searches' later pairs of labellings are
-    // tried in the second pass, after the first pass's likeliest few
+    // Of every scan above: its edgel sets searched, and whether its
+    // searches' later pairs of labellings are tried in the second pass,
+    // after the first pass's likeliest few
     // (DetectorOptions::first_pass_pairs) of every search.
     unsigned edgel_sets = kEveryEdgelSet;
     bool second_pass = true;
@@ -84,15 +85,16 @@ constexpr SearchPlan search_part(int part) {
 inline constexpr int kSearchParts = 12;
 
 // A part's pieces, for a search spread thinner still: piece 0 its searches
-// over all edgels, piece 1 over the field-like edgels and those off thin
-// lines, both with their first pairs of labellings only (a spread search
-// leaves the later pairs out: on the tuning set they found no frame the
-// first pairs of another piece did not, and made the round half as long
-// again). Each costs a frame without the field a fraction of the part (its
-// lattice, if any, is in piece 0).
+// over the field-like edgels (and its lattice, if any), piece 1 over all
+// edgels and those off thin lines, both with their first pairs of
+// labellings only (a spread search leaves the later pairs out: on the
+// tuning set they found no frame the first pairs of another piece did not,
+// and made the round half as long again). Each costs a frame without the
+// field a fraction of the part.
 inline constexpr int kPiecesOfAPart = 2;
 constexpr SearchPlan search_piece(SearchPlan part, int piece) {
-    part.edgel_sets = piece == 0 ? kAllEdgels : (kFieldLikeEdgels | kOffThinLineEdgels);
+    part.edgel_sets = piece == 0 ? kFieldLikeEdgels : (kAllEdgels | kOffThinLineEdgels);
+    if (piece != 0) part.lattices = 0;
     part.second_pass = false;
     return part;
 }

@@ -61,7 +61,8 @@ TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
                 seen.emplace_back(piece.part, piece.piece);
                 EXPECT_EQ(parts_of(s.plans[i]), std::vector<int>{piece.part});
                 EXPECT_EQ(s.plans[i].edgel_sets,
-                          piece.piece == 0 ? kAllEdgels : (kFieldLikeEdgels | kOffThinLineEdgels));
+                          piece.piece == 0 ? kFieldLikeEdgels : (kAllEdgels | kOffThinLineEdgels));
+                if (piece.piece != 0) EXPECT_EQ(s.plans[i].lattices, 0u) << "a lattice is in its part's piece 0";
                 EXPECT_FALSE(s.plans[i].second_pass);
                 cost += piece.cost;
             }
