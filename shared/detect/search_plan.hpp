@@ -146,8 +146,8 @@ struct SearchPiece {
 // not have). Part 8, the lattice below half size, runs only on larger
 // frames: about a quarter of part 3 there.
 inline constexpr double kPieceCost[kSearchParts][kPiecesOfAPart] = {
-    {0.52, 0.54}, {1.36, 0}, {1.45, 1.44}, {1.47, 0},    {1.22, 1.26}, {1.58, 1.55},
-    {1.13, 1.03}, {2.22, 2.35}, {0.40, 0}, {3.52, 3.83}, {2.87, 2.75}, {2.35, 2.46}};
+    {0.46, 0.78}, {1.33, 0}, {1.09, 1.73}, {1.45, 0},    {0.81, 1.53}, {1.37, 1.73},
+    {0.96, 1.16}, {1.73, 2.83}, {0.40, 0}, {3.03, 4.50}, {2.22, 3.15}, {2.09, 3.21}};
 
 // What a frame of a search spread over a video's frames runs before its
 // share of the round: the first scan's first pairs over every edgel set

@@ -58,15 +58,25 @@ double alignment(const EdgelLine& e, const Eigen::Vector3d& v) {
 Eigen::Vector3d fit_point(const std::vector<EdgelLine>& lines, const std::vector<int>& members) {
     Eigen::Vector3d v = Eigen::Vector3d::Zero();
     for (int round = 0; round < 4; ++round) {
-        Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+        // The solver reads the lower triangle alone: only it is summed.
+        double m00 = 0, m10 = 0, m11 = 0, m20 = 0, m21 = 0, m22 = 0;
         for (int i : members) {
             double w = lines[i].weight;
             if (round > 0) {
                 const double reach = (v.head<2>() - v.z() * lines[i].p).squaredNorm();
                 w /= std::max(reach, 1e-6);
             }
-            m += w * lines[i].l * lines[i].l.transpose();
+            const Eigen::Vector3d& l = lines[i].l;
+            const double a0 = w * l.x(), a1 = w * l.y(), a2 = w * l.z();
+            m00 += a0 * l.x();
+            m10 += a1 * l.x();
+            m11 += a1 * l.y();
+            m20 += a2 * l.x();
+            m21 += a2 * l.y();
+            m22 += a2 * l.z();
         }
+        Eigen::Matrix3d m;
+        m << m00, 0, 0, m10, m11, 0, m20, m21, m22;
         Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(m);
         v = eig.eigenvectors().col(0).normalized();
     }
