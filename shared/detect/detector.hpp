@@ -104,8 +104,8 @@ struct DetectorOptions {
     // field's and pull the grid directions to their own. The smoothing keeps
     // little of them and a module's edges whole, but blunts small modules.
     bool smoothed_search = true;
-    // When a scan's edgels and its field-like ones (field_edgels.hpp) find
-    // nothing, they are searched once more without the thin lines among
+    // When a scan's field-like edgels (field_edgels.hpp) and all of them
+    // find nothing, they are searched once more without the thin lines among
     // them, up to this many pixels wide (0: not): a spreadsheet's rules run
     // with the field's lines and outweigh a faint field's edges.
     double thin_line_px = 6;

@@ -1,10 +1,10 @@
-// Between stages 1 and 2, a second look for faint fields: the edgels whose
-// step is the field's own. Mixed in faintly, the field's module edges all
-// step by about the same few grey levels (the opacity times the palette's
+// Between stages 1 and 2, the first look at a scan: the edgels whose step
+// is the field's own. Mixed in faintly, the field's module edges all step
+// by about the same few grey levels (the opacity times the palette's
 // contrast), while text, card borders and the screen's bezel step by far
-// more; chained into lines they outnumber and outweigh the field's. When a
-// search over all edgels finds nothing, the detector searches again over
-// these alone.
+// more; chained into lines they outnumber and outweigh the field's. The
+// detector searches these alone before all edgels, and when both find
+// nothing, the edgels off thin lines.
 #pragma once
 
 #include <vector>
