@@ -15,10 +15,10 @@ namespace {
 
 using namespace umf;
 
-// The held-out set's moving and turned views of its first screen at 640 x
-// 480, the field at opacity 0.3: searched with all edgels first, 3 of 20
-// of them were found on the first grid read, the rest after 2 to 28; with
-// the field-like edgels first, 16.
+// The held-out set's moving and turned views (its screens and contents
+// as the recipes pick them) at 640 x 480, the field at opacity 0.3:
+// searched with all edgels first, 3 of 20 were found on the first grid
+// read; with the field-like edgels first, 16.
 TEST(DetectorEdgelSets, TheFieldsOwnEdgelsFindItOnTheFirstGrid) {
     const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
     const Detector detector(field);
