@@ -88,6 +88,51 @@ Agreement agreement(const ModuleGrid& g, const Field& f, const GridPlacement& p)
     return {compared, matched};
 }
 
+// The agreement of every placement within `radius` rows and columns of
+// `predicted`, in the order dr, then dc, from -radius: one pass over the grid,
+// as a shift of the placement only shifts the field module each grid module
+// is compared with.
+std::vector<Agreement> agreements_near(const ModuleGrid& g, const Field& f, const GridPlacement& predicted, int radius) {
+    const int side = 2 * radius + 1;
+    std::vector<Agreement> out(static_cast<std::size_t>(side) * side);
+    auto inside = [&](int r, int c) { return r >= 0 && c >= 0 && r < f.height && c < f.width; };
+    auto sign = [](int d) { return (d > 0) - (d < 0); };
+    for (int i = 0; i < g.rows; ++i)
+        for (int j = 0; j < g.cols; ++j) {
+            int r, c;
+            predicted.field_module(i, j, r, c);
+            if (f.key == WindowKey::modules) {
+                const int v = g.at(i, j);
+                if (v == ModuleGrid::kUnknown) continue;
+                for (int dr = -radius; dr <= radius; ++dr) {
+                    if (r + dr < 0 || r + dr >= f.height) continue;
+                    Agreement* a = &out[static_cast<std::size_t>(dr + radius) * side];
+                    for (int dc = -radius; dc <= radius; ++dc) {
+                        if (c + dc < 0 || c + dc >= f.width) continue;
+                        ++a[dc + radius].compared;
+                        a[dc + radius].matched += v == f.at(r + dr, c + dc);
+                    }
+                }
+                continue;
+            }
+            for (int e = 0; e < 2; ++e) {
+                const int i2 = i + e, j2 = j + 1 - e;
+                const std::int8_t s = e == 0 ? g.right_of(i, j) : g.below(i, j);
+                if (i2 >= g.rows || j2 >= g.cols || s == ModuleGrid::kUnknown) continue;
+                int r2, c2;
+                predicted.field_module(i2, j2, r2, c2);
+                for (int dr = -radius; dr <= radius; ++dr)
+                    for (int dc = -radius; dc <= radius; ++dc) {
+                        if (!inside(r + dr, c + dc) || !inside(r2 + dr, c2 + dc)) continue;
+                        Agreement& a = out[static_cast<std::size_t>(dr + radius) * side + dc + radius];
+                        ++a.compared;
+                        a.matched += s == sign(f.at(r2 + dr, c2 + dc) - f.at(r + dr, c + dc));
+                    }
+            }
+        }
+    return out;
+}
+
 // Calls known(i, j, placement) for every complete window of the grid that is
 // a window of the field, with the placement it implies; counts the windows
 // read and known into `out`.
@@ -170,10 +215,11 @@ VoteResult vote_near(const ModuleGrid& grid, const WindowIndex& index, const Gri
     const double choice_bits = std::log2(static_cast<double>(side) * side);
     double best_bits = -1e300, second_bits = -1e300;
     Agreement best_agreement;
+    const std::vector<Agreement> near = agreements_near(grid, f, predicted, radius);
     for (int dr = -radius; dr <= radius; ++dr)
         for (int dc = -radius; dc <= radius; ++dc) {
             const GridPlacement p{predicted.quarter_turns, predicted.row_offset + dr, predicted.col_offset + dc};
-            const Agreement a = agreement(grid, f, p);
+            const Agreement& a = near[static_cast<std::size_t>(dr + radius) * side + dc + radius];
             const double bits = evidence_bits(a, f, options);
             if (bits > best_bits) {
                 second_bits = best_bits;
