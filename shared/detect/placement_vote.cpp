@@ -133,6 +133,31 @@ std::vector<Agreement> agreements_near(const ModuleGrid& g, const Field& f, cons
     return out;
 }
 
+// Calls agree(i, j) for every complete window of a module-keyed grid whose
+// modules all read as the field's under p, row by row: the windows that
+// vote for p, since the field's windows are unique, turned too (without
+// looking each one up).
+template <typename Agree>
+void matching_windows(const ModuleGrid& g, const Field& f, const GridPlacement& p, int n, Agree agree) {
+    // Per column, the matching modules that end at the current row; per
+    // row, the columns in a row whose runs are n long.
+    std::vector<int> run(static_cast<std::size_t>(g.cols), 0);
+    for (int i = 0; i < g.rows; ++i) {
+        int columns = 0;
+        for (int j = 0; j < g.cols; ++j) {
+            int r, c;
+            p.field_module(i, j, r, c);
+            const std::int8_t v = g.at(i, j);
+            const bool match = v != ModuleGrid::kUnknown && r >= 0 && c >= 0 && r < f.height && c < f.width &&
+                               v == f.at(r, c);
+            int& k = run[static_cast<std::size_t>(j)];
+            k = match ? k + 1 : 0;
+            columns = k >= n ? columns + 1 : 0;
+            if (columns >= n) agree(i - n + 1, j - n + 1);
+        }
+    }
+}
+
 // Calls known(i, j, placement) for every complete window of the grid that is
 // a window of the field, with the placement it implies; counts the windows
 // read and known into `out`.
@@ -235,12 +260,18 @@ VoteResult vote_near(const ModuleGrid& grid, const WindowIndex& index, const Gri
     out.margin_bits = best_bits - second_bits;
     // Complete windows that agree: the same count the global vote reports.
     const int n = index.codec().window();
-    read_windows(grid, index, out, [&](int i, int j, const GridPlacement& q) {
-        if (pack(q) != pack(out.placement)) return;
+    auto vote = [&](int i, int j) {
         ++out.votes;
         out.centre_x += j + n / 2.0;
         out.centre_y += i + n / 2.0;
-    });
+    };
+    if (f.key == WindowKey::modules) {
+        matching_windows(grid, f, out.placement, n, vote);
+    } else {
+        read_windows(grid, index, out, [&](int i, int j, const GridPlacement& q) {
+            if (pack(q) == pack(out.placement)) vote(i, j);
+        });
+    }
     if (out.votes > 0) {
         out.centre_x /= out.votes;
         out.centre_y /= out.votes;

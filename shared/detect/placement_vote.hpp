@@ -41,8 +41,10 @@ struct VoteResult {
     GridPlacement placement;
     int votes = 0;          // windows that voted for the winner
     int runner_up = 0;      // votes of the best other placement
-    int windows_read = 0;   // windows fully read from the grid
-    int windows_known = 0;  // of those, found in the field
+    // vote_placement: windows fully read from the grid, and of those the
+    // ones found in the field (vote_near only counts those that agree).
+    int windows_read = 0;
+    int windows_known = 0;
     double agreement = 0;   // fraction of read modules or edges that match the field at the winner
     double evidence_bits = 0;
     double margin_bits = 0;  // vote_near: the winner's evidence over the runner-up's

@@ -148,6 +148,45 @@ TEST(PlacementVote, ToleratesMisreadAndUnreadModules) {
     EXPECT_GE(place_noisy_grids("k3e4-64x36.json", 2, 2, 100), 90);
 }
 
+// vote_near counts a module-keyed grid's agreeing windows from the modules
+// themselves, without looking them up: the same windows the whole vote
+// counts for that placement, with the same centre, wherever the grid
+// reaches past the field's edge, with misread and unread modules, under
+// every turn.
+TEST(PlacementVote, VoteNearCountsTheWindowsTheWholeVoteCounts) {
+    for (const char* name : {"b4-64x36.json", "k3e4-64x36.json"}) {
+        Field f = shipped(name);
+        WindowIndex index(f);
+        std::mt19937 rng(5);
+        int compared = 0;
+        for (int trial = 0; trial < 200; ++trial) {
+            std::vector<std::pair<int, int>> source;
+            const int r0 = static_cast<int>(rng() % (f.height - 13)), c0 = static_cast<int>(rng() % (f.width - 15));
+            ModuleGrid g = turned_region(f, r0, c0, 13, 15, trial % 4, source);
+            for (auto& m : g.value) {
+                const int roll = static_cast<int>(rng() % 100);
+                if (roll < 4)
+                    m = static_cast<std::int8_t>((m + 1 + rng() % (f.colors - 1)) % f.colors);
+                else if (roll < 8)
+                    m = ModuleGrid::kUnknown;
+            }
+            g.derive_edges();
+            const VoteResult whole = vote_placement(g, index);
+            if (whole.votes < 2) continue;
+            // Predicted one module off, so that part of the grid lies off the field under some placements.
+            GridPlacement predicted = whole.placement;
+            predicted.row_offset += 1;
+            const VoteResult near = vote_near(g, index, predicted, 2);
+            ASSERT_EQ(near.placement, whole.placement) << name << " trial " << trial;
+            EXPECT_EQ(near.votes, whole.votes) << name << " trial " << trial;
+            EXPECT_DOUBLE_EQ(near.centre_x, whole.centre_x) << name << " trial " << trial;
+            EXPECT_DOUBLE_EQ(near.centre_y, whole.centre_y) << name << " trial " << trial;
+            ++compared;
+        }
+        EXPECT_GE(compared, 150) << name;
+    }
+}
+
 TEST(PlacementVote, NeverPlacesRandomGrids) {
     for (const char* name : {"b4-64x36.json", "k3e4-64x36.json"}) {
         Field f = shipped(name);
