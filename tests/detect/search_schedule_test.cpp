@@ -62,7 +62,9 @@ TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
                 EXPECT_EQ(parts_of(s.plans[i]), std::vector<int>{piece.part});
                 EXPECT_EQ(s.plans[i].edgel_sets,
                           piece.piece == 0 ? kFieldLikeEdgels : (kAllEdgels | kOffThinLineEdgels));
-                if (piece.piece != 0) EXPECT_EQ(s.plans[i].lattices, 0u) << "a lattice is in its part's piece 0";
+                if (piece.piece != 0) {
+                    EXPECT_EQ(s.plans[i].lattices, 0u) << "a lattice is in its part's piece 0";
+                }
                 EXPECT_FALSE(s.plans[i].second_pass);
                 cost += piece.cost;
             }

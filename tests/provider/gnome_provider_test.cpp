@@ -11,7 +11,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <opencv2/imgcodecs.hpp>
@@ -56,7 +58,8 @@ TEST(GnomeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWi
     const fs::path notes = work / "notes.txt", report = work / "report.txt";
     std::ofstream(notes) << "notes from a native Wayland window on GNOME\n";
     std::ofstream(report) << "a report shown in an Xwayland window on GNOME\n";
-    for (const auto& p : {work, notes, report}) (void)::chown(p.c_str(), session.uid(), session.gid());
+    for (const auto& p : {work, notes, report})
+        ASSERT_EQ(::chown(p.c_str(), session.uid(), session.gid()), 0) << p << ": " << std::strerror(errno);
     const auto x = session.xwayland();
     ASSERT_TRUE(x) << "no Xwayland in the session";
     const std::map<std::string, std::string> x11 = {{"DISPLAY", x->first}, {"XAUTHORITY", x->second}};

@@ -12,9 +12,14 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <stdexcept>
 
 #include "provider/desktop/gnome/gnome_install.hpp"
 #include "tests/support/temp_dir.hpp"
@@ -33,8 +38,12 @@ public:
         if (::setegid(gid) != 0 || ::seteuid(uid) != 0) throw std::runtime_error("cannot become the test user");
     }
     ~AsUser() {
-        (void)::seteuid(0);
-        (void)::setegid(0);
+        // A test left running as the user would write root's files as the
+        // user's, or fail far from here: stop at once instead.
+        if (::seteuid(0) != 0 || ::setegid(0) != 0) {
+            std::perror("cannot become root again after running as the test user");
+            std::abort();
+        }
     }
     AsUser(const AsUser&) = delete;
     AsUser& operator=(const AsUser&) = delete;
@@ -220,8 +229,13 @@ private:
     }
 
     void chown_all(const fs::path& path) const {
-        (void)::chown(path.c_str(), uid_, gid_);
-        for (const auto& entry : fs::recursive_directory_iterator(path)) (void)::lchown(entry.path().c_str(), uid_, gid_);
+        auto give = [&](const fs::path& p, int result) {
+            if (result != 0)
+                throw std::runtime_error("cannot give " + p.string() + " to the test user: " + std::strerror(errno));
+        };
+        give(path, ::chown(path.c_str(), uid_, gid_));
+        for (const auto& entry : fs::recursive_directory_iterator(path))
+            give(entry.path(), ::lchown(entry.path().c_str(), uid_, gid_));
     }
 
     void wait_for_path(const fs::path& path, Clock::duration timeout, const std::string& what) const {
