@@ -196,8 +196,12 @@ std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>&
     best.inliers = count_inliers(best.h, best.inlier);
     if (best.inliers < 4) return std::nullopt;
     // Refit to every inlier, then take the inliers of the refit.
+    std::vector<Point2> f, t;
+    f.reserve(n);
+    t.reserve(n);
     for (int round = 0; round < 2; ++round) {
-        std::vector<Point2> f, t;
+        f.clear();
+        t.clear();
         for (std::size_t i = 0; i < n; ++i)
             if (best.inlier[i]) {
                 f.push_back(from[i]);

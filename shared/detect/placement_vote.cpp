@@ -192,6 +192,9 @@ VoteResult vote_placement(const ModuleGrid& grid, const WindowIndex& index, cons
     const int n = index.codec().window();
     std::vector<std::uint64_t> ballots;
     std::vector<std::pair<int, int>> where;  // window corner of each ballot, before sorting
+    const std::size_t windows = static_cast<std::size_t>(std::max(0, grid.rows - n + 1)) * std::max(0, grid.cols - n + 1);
+    ballots.reserve(windows);
+    where.reserve(windows);
     read_windows(grid, index, out, [&](int i, int j, const GridPlacement& p) {
         ballots.push_back(pack(p));
         where.emplace_back(i, j);

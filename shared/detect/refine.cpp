@@ -110,6 +110,12 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
     // with the edges the whole view predicts.
     bool last = false;
     std::vector<ExpectedEdge> edges;
+    // The rounds' lists, made once: a frame runs a dozen rounds of up to
+    // max_edges edges, and the tracker runs one every frame.
+    std::vector<Point2> from, to, kf, kt;
+    std::vector<double> strength, sorted;
+    for (auto* v : {&from, &to, &kf, &kt}) v->reserve(static_cast<std::size_t>(std::max(0, o.max_edges)));
+    for (auto* v : {&strength, &sorted}) v->reserve(static_cast<std::size_t>(std::max(0, o.max_edges)));
     for (double radius = 4;; radius = std::min(radius * 1.5, span)) {
         // The edges whose midpoints lie within `radius` (modules, Chebyshev)
         // of the seed and inside the field's visible box, spread evenly when
@@ -119,8 +125,9 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
         const int r_lo = std::max(0, static_cast<int>(std::floor(std::max(v0, seed.y() - radius))));
         const int r_hi = std::min(f.height - 1, static_cast<int>(std::ceil(std::min(v1, seed.y() + radius))));
         field_edges.spread_within(r_lo, r_hi, c_lo, c_hi, static_cast<std::size_t>(o.max_edges), edges);
-        std::vector<Point2> from, to;
-        std::vector<double> strength;
+        from.clear();
+        to.clear();
+        strength.clear();
         for (const ExpectedEdge& e : edges) {
             ++out.edges_searched;
             if (auto q = find_edge(im, h, e, o, max_gradient, visited)) {
@@ -133,7 +140,7 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
         // edge near a predicted one is usually far stronger than a faint
         // field's, and would pull the fit towards itself.
         if (strength.size() >= 8) {
-            std::vector<double> sorted = strength;
+            sorted.assign(strength.begin(), strength.end());
             std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
             const double limit = o.max_strength_ratio * sorted[sorted.size() / 2];
             max_gradient = limit;  // the next rounds look past stronger peaks
@@ -162,7 +169,8 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
                 const auto here = apply_homography(*fit, seed), next = apply_homography(*fit, seed + Point2(1, 0));
                 if (!here || !next) break;
                 const double tol = std::max(1.0, o.tolerance_modules * (*next - *here).norm());
-                std::vector<Point2> kf, kt;
+                kf.clear();
+                kt.clear();
                 double sq = 0;
                 for (std::size_t i = 0; i < from.size(); ++i) {
                     auto q = apply_homography(*fit, from[i]);
