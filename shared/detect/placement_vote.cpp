@@ -59,39 +59,11 @@ struct Agreement {
     long matched = 0;
 };
 
-Agreement agreement(const ModuleGrid& g, const Field& f, const GridPlacement& p) {
-    long compared = 0, matched = 0;
-    auto inside = [&](int r, int c) { return r >= 0 && c >= 0 && r < f.height && c < f.width; };
-    auto sign = [](int d) { return (d > 0) - (d < 0); };
-    for (int i = 0; i < g.rows; ++i)
-        for (int j = 0; j < g.cols; ++j) {
-            int r, c;
-            p.field_module(i, j, r, c);
-            if (!inside(r, c)) continue;  // the view may reach past the field's edge
-            if (f.key == WindowKey::modules) {
-                if (g.at(i, j) == ModuleGrid::kUnknown) continue;
-                ++compared;
-                matched += g.at(i, j) == f.at(r, c);
-                continue;
-            }
-            for (int e = 0; e < 2; ++e) {
-                const int i2 = i + e, j2 = j + 1 - e;
-                const std::int8_t s = e == 0 ? g.right_of(i, j) : g.below(i, j);
-                if (i2 >= g.rows || j2 >= g.cols || s == ModuleGrid::kUnknown) continue;
-                int r2, c2;
-                p.field_module(i2, j2, r2, c2);
-                if (!inside(r2, c2)) continue;
-                ++compared;
-                matched += s == sign(f.at(r2, c2) - f.at(r, c));
-            }
-        }
-    return {compared, matched};
-}
-
 // The agreement of every placement within `radius` rows and columns of
-// `predicted`, in the order dr, then dc, from -radius: one pass over the grid,
-// as a shift of the placement only shifts the field module each grid module
-// is compared with.
+// `predicted` (radius 0: its own), in the order dr, then dc, from -radius:
+// one pass over the grid, as a shift of the placement only shifts the field
+// module each grid module is compared with. The view may reach past the
+// field's edge: modules off the field are not compared.
 std::vector<Agreement> agreements_near(const ModuleGrid& g, const Field& f, const GridPlacement& predicted, int radius) {
     const int side = 2 * radius + 1;
     std::vector<Agreement> out(static_cast<std::size_t>(side) * side);
@@ -225,7 +197,7 @@ VoteResult vote_placement(const ModuleGrid& grid, const WindowIndex& index, cons
     out.centre_x /= out.votes;
     out.centre_y /= out.votes;
     const Field& f = index.field();
-    const Agreement a = agreement(grid, f, out.placement);
+    const Agreement a = agreements_near(grid, f, out.placement, 0).front();
     out.agreement = a.compared ? static_cast<double>(a.matched) / a.compared : 0.0;
     // Log-likelihood ratio of "this placement" against "chance", less the
     // bits needed to single out one of the placements.
