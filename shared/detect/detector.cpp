@@ -268,6 +268,9 @@ Detection Detector::follow(const GreyView& im, const Eigen::Vector2d& aim,
     const Eigen::Matrix3d predicted_f2i = predicted_image_to_field.inverse();
     auto seed = apply_homography(predicted_image_to_field, aim);
     if (!seed || !predicted_f2i.allFinite()) return finish("prediction unusable");
+    // The refit and the check below read most of the frame's cache lines,
+    // out of order: fetched in order first, they cost less.
+    bring_into_cache(im);
     const Refinement r = refine_homography(im, f, edges_, predicted_f2i, *seed, options_.refine, out.pixels_visited);
     out.times.refine_ms = ms_since(t);
     if (!r.refined) return finish("too few module edges near the prediction");

@@ -142,6 +142,22 @@ TEST(Edgels, HonourTheStride) {
     for (std::size_t i = 0; i < a.edgels.size(); ++i) EXPECT_EQ(a.edgels[i].x, b.edgels[i].x);
 }
 
+TEST(BringIntoCache, ReadsOnlyTheViewsRowsWhateverTheirWidthAndStride) {
+    // Each view ends at the buffer's last byte (its last row without the
+    // stride's padding): a read past the view is a read past the buffer,
+    // which the sanitizer build stops. Widths about a cache line of 64
+    // bytes, and the smallest views.
+    for (const int width : {1, 63, 64, 65, 130}) {
+        for (const int stride : {width, width + 7}) {
+            const int height = 3;
+            std::vector<std::uint8_t> pixels(static_cast<std::size_t>(stride) * (height - 1) + width, 7);
+            const std::vector<std::uint8_t> before = pixels;
+            bring_into_cache(GreyView{pixels.data(), width, height, stride});
+            EXPECT_EQ(pixels, before) << width << " wide, stride " << stride;
+        }
+    }
+}
+
 TEST(Luma, WeighsChannelsInEveryOrder) {
     const std::uint8_t rgb[3] = {200, 100, 50}, bgr[3] = {50, 100, 200}, rgba[4] = {200, 100, 50, 255},
                        bgra[4] = {50, 100, 200, 0};
