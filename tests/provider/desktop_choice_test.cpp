@@ -45,17 +45,15 @@ TEST(DesktopSession, AnUnknownCompositorIsNeverTreatedAsX11) {
     EXPECT_EQ(choice.kind, DesktopKind::unsupported_wayland);
     EXPECT_TRUE(is_wayland(choice.kind));
     EXPECT_NE(choice.reason.find("XDG_CURRENT_DESKTOP=weston"), std::string::npos) << choice.reason;
-    DesktopFacts only_type;
-    only_type.session_type = "wayland";
-    only_type.x_display = ":1";
+    const DesktopFacts only_type{.session_type = "wayland", .wayland_display = "", .x_display = ":1",
+                                 .current_desktop = "", .swaysock = "", .hyprland = ""};
     EXPECT_EQ(choose_desktop(only_type).kind, DesktopKind::unsupported_wayland);
 }
 
 TEST(DesktopSession, X11AndHeadless) {
-    DesktopFacts x11;
-    x11.session_type = "x11";
-    x11.x_display = ":0";
-    x11.current_desktop = "GNOME";  // GNOME on Xorg is an X11 desktop
+    // GNOME on Xorg is an X11 desktop.
+    const DesktopFacts x11{.session_type = "x11", .wayland_display = "", .x_display = ":0",
+                           .current_desktop = "GNOME", .swaysock = "", .hyprland = ""};
     EXPECT_EQ(choose_desktop(x11).kind, DesktopKind::x11);
     EXPECT_FALSE(is_wayland(DesktopKind::x11));
     EXPECT_EQ(choose_desktop(DesktopFacts{}).kind, DesktopKind::headless);

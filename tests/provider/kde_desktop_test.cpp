@@ -59,17 +59,6 @@ struct KdeDesktop : ::testing::Test {
     std::unique_ptr<KWinSession> session;
 };
 
-KWinWindow window(std::string uuid, int stacking, WindowRect rect, std::string caption, int pid) {
-    KWinWindow w;
-    w.uuid = std::move(uuid);
-    w.stacking = stacking;
-    w.rect = rect;
-    w.caption = std::move(caption);
-    w.resource_class = "app";
-    w.pid = pid;
-    return w;
-}
-
 TEST_F(KdeDesktop, TheWindowListIsReadAndTheTopMostUnskippedWindowAtThePointWins) {
     const auto parsed = parse_window_list(
         R"([{"uuid":"{a}","stacking":0,"x":0,"y":0,"width":800,"height":600,"caption":"below","resourceClass":"xterm",)"

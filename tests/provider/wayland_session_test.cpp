@@ -86,8 +86,9 @@ TEST(WaylandSession, ACompositorWithoutABackendGetsNoOverlayAndIsToldWhatWorks) 
     // click can land on one.
     std::istringstream lines(tree);
     for (std::string line; std::getline(lines, line);)
-        if (line.find("umf") != std::string::npos && line.find("umf-weston-xterm") == std::string::npos)
+        if (line.find("umf") != std::string::npos && line.find("umf-weston-xterm") == std::string::npos) {
             EXPECT_NE(line.find("Qt Selection Owner"), std::string::npos) << line;
+        }
     EXPECT_FALSE(provider.wait_exit(0s)) << "the provider stopped:\n" << read_file(dir.path / "provider.log");
 }
 

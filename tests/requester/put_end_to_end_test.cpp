@@ -297,8 +297,9 @@ TEST_F(PutEndToEnd, AnUploadCutHalfwayLeavesNothingUnderARealName) {
     EXPECT_EQ(phone.wait(), -1);
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
     for (const auto& f : files_in(b_folder()))
-        if (std::find(before.begin(), before.end(), f) == before.end())
+        if (std::find(before.begin(), before.end(), f) == before.end()) {
             EXPECT_EQ(f.filename().string().rfind(".umf-put-", 0), 0u) << f << " appeared under a real name";
+        }
 }
 
 TEST_F(PutEndToEnd, AFileAboveTheScreensLimitIsRefusedBeforeAnyoneIsAsked) {
