@@ -1,7 +1,9 @@
 # Sourced by the tests that run a real Avahi daemon in namespaces of their
 # own (tests/discovery). start_avahi DIR IFACE starts a private system bus at
 # DIR/bus and avahi-daemon on IFACE only (IPv4, no wide-area, publishing
-# nothing of its own), its pid file and socket in /run, which the caller
+# nothing of its own; no AAAA records over IPv4 either, so that a resolve
+# gives the IPv4 address even once the kernel has given IFACE its IPv6
+# link-local one), its pid file and socket in /run, which the caller
 # mounted as a tmpfs private to its mount namespace; the pids go to
 # DIR/pids, which stop_avahi DIR reads.
 
@@ -46,6 +48,7 @@ enable-wide-area=no
 [publish]
 publish-hinfo=no
 publish-workstation=no
+publish-aaaa-on-ipv4=no
 CONF
   dbus-daemon --config-file="$dir/bus.conf" --nofork >"$dir/bus.log" 2>&1 &
   echo $! >>"$dir/pids"
