@@ -3,6 +3,7 @@
 #include <boost/beast/core/string.hpp>
 #include <boost/beast/http/empty_body.hpp>
 #include <boost/beast/http/string_body.hpp>
+#include <boost/beast/http/write.hpp>
 #include <cctype>
 #include <chrono>
 #include <memory>
@@ -133,13 +134,12 @@ void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTabl
         if (!head) res->body() = entry.bytes->substr(static_cast<std::size_t>(offset));
         prepare(*res);
         auto& r = *res;
-        http::async_write(exchange.stream(), r,
-                          [held = exchange.hold(), res = std::move(res), keep_alive, end, head](beast::error_code ec,
-                                                                                                 std::size_t) {
-                              if (ec) return;
-                              end->complete = !head;
-                              held->written(keep_alive);
-                          });
+        send_response(exchange.stream(), r,
+                      [held = exchange.hold(), res = std::move(res), keep_alive, end, head](beast::error_code ec) {
+                          if (ec) return;
+                          end->complete = !head;
+                          held->written(keep_alive);
+                      });
         return;
     }
     VerifiedFileBody::value_type body;
@@ -164,19 +164,18 @@ void serve_download(HttpExchange& exchange, const HttpRequest& req, DownloadTabl
         res->keep_alive(false);
         auto& r = *res;
         const auto idle = std::chrono::seconds(60);
-        http::async_write(exchange.stream(), r,
-                          [held = exchange.hold(), res = std::move(res), body = std::make_shared<VerifiedFileBody::value_type>(
-                                                                             std::move(body)),
-                           file = *entry.file, end, forget_file = std::move(forget_file), idle](beast::error_code ec,
-                                                                                                std::size_t) mutable {
-                              if (ec) return;
-                              send_file_direct(held, std::move(*body), idle,
-                                               [file, end, forget_file](beast::error_code sent) {
-                                                   // A cut body: the next grab hashes the file again.
-                                                   if (sent == DownloadCheck::changed) forget_file(file);
-                                                   end->complete = !sent;
-                                               });
-                          });
+        send_response(exchange.stream(), r,
+                      [held = exchange.hold(), res = std::move(res),
+                       body = std::make_shared<VerifiedFileBody::value_type>(std::move(body)), file = *entry.file, end,
+                       forget_file = std::move(forget_file), idle](beast::error_code ec) mutable {
+                          if (ec) return;
+                          send_file_direct(held, std::move(*body), idle,
+                                           [file, end, forget_file](beast::error_code sent) {
+                                               // A cut body: the next grab hashes the file again.
+                                               if (sent == DownloadCheck::changed) forget_file(file);
+                                               end->complete = !sent;
+                                           });
+                      });
         return;
     }
     auto res = std::make_shared<http::response<VerifiedFileBody>>(

@@ -179,7 +179,7 @@ void HttpConnection::write_response(std::shared_ptr<http::response<Body>> respon
     const bool keep_alive = response->keep_alive();
     auto& res = *response;
     response_ = std::move(response);
-    http::async_write(stream_, res, [self = shared_from_this(), keep_alive](beast::error_code ec, std::size_t) {
+    send_response(stream_, res, [self = shared_from_this(), keep_alive](beast::error_code ec) {
         self->response_.reset();
         if (ec) return;  // the peer went away mid-response; the session ends and frees what it held
         self->after_response(keep_alive);

@@ -10,11 +10,11 @@
 #include <boost/beast/http/message.hpp>
 #include <boost/beast/http/status.hpp>
 #include <boost/beast/http/string_body.hpp>
-#include <boost/beast/http/write.hpp>
 #include <memory>
 #include <optional>
 #include <string>
 
+#include "provider/net/response_write.hpp"
 #include "provider/net/tls_stream.hpp"
 #include "shared/protocol/messages.hpp"
 
@@ -60,12 +60,11 @@ template <class Body>
 void write_response(HttpExchange& exchange, std::shared_ptr<boost::beast::http::response<Body>> response) {
     const bool keep_alive = response->keep_alive();
     auto& res = *response;
-    boost::beast::http::async_write(
-        exchange.stream(), res,
-        [held = exchange.hold(), response = std::move(response), keep_alive](boost::beast::error_code ec, std::size_t) {
-            if (ec) return;
-            held->written(keep_alive);
-        });
+    send_response(exchange.stream(), res,
+                  [held = exchange.hold(), response = std::move(response), keep_alive](boost::beast::error_code ec) {
+                      if (ec) return;
+                      held->written(keep_alive);
+                  });
 }
 
 }  // namespace umf::provider

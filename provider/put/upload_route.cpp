@@ -5,7 +5,6 @@
 #include <boost/beast/http/buffer_body.hpp>
 #include <boost/beast/http/read.hpp>
 #include <boost/beast/http/string_body.hpp>
-#include <boost/beast/http/write.hpp>
 #include <cctype>
 #include <charconv>
 #include <chrono>
@@ -160,20 +159,19 @@ void Upload::start(http::request_parser<http::empty_body>&& header) {
     auto res = std::make_shared<http::response<http::empty_body>>(http::status::continue_, 11);
     auto& r = *res;
     const std::uint64_t left = static_cast<std::uint64_t>(size - claim.received);
-    http::async_write(exchange_->stream(), r,
-                      [self = shared_from_this(), res = std::move(res), left](beast::error_code ec, std::size_t) {
-                          if (ec) {
-                              self->broke_off();
-                              return;
-                          }
-                          // The client waited for this answer: nothing of the body
-                          // is in the stream yet, so a large one can go past it.
-                          if (left >= kDirectReceiveBytes && direct_receive_possible(*self->exchange_)) {
-                              self->read_direct(left);
-                              return;
-                          }
-                          self->read();
-                      });
+    send_response(exchange_->stream(), r, [self = shared_from_this(), res = std::move(res), left](beast::error_code ec) {
+        if (ec) {
+            self->broke_off();
+            return;
+        }
+        // The client waited for this answer: nothing of the body is in the
+        // stream yet, so a large one can go past it.
+        if (left >= kDirectReceiveBytes && direct_receive_possible(*self->exchange_)) {
+            self->read_direct(left);
+            return;
+        }
+        self->read();
+    });
 }
 
 bool Upload::prefix_matches(const http::request_parser<http::empty_body>& header, std::int64_t held) {
@@ -261,10 +259,8 @@ void Upload::refuse_offset(std::int64_t held) {
     res->keep_alive(false);
     res->prepare_payload();
     auto& r = *res;
-    http::async_write(exchange_->stream(), r,
-                      [held_exchange = exchange_, res = std::move(res)](beast::error_code, std::size_t) {
-                          held_exchange->drop();
-                      });
+    send_response(exchange_->stream(), r,
+                  [held_exchange = exchange_, res = std::move(res)](beast::error_code) { held_exchange->drop(); });
 }
 
 void Upload::read() {
