@@ -229,6 +229,8 @@ private:
         // What ended the first search over edgels: the failure a frame
         // reports, whichever plans its search was cut into.
         const char* first_search_failure = nullptr;
+        // The lattice at the frame's own size ran (SearchPlan::lattice_first_if_small).
+        bool lattice_searched = false;
 
         bool first() const { return first_pair == 0; }
         bool nothing_left() const { return !first() && search >= end_of_left; }

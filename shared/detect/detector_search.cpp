@@ -146,7 +146,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     const char* failure = search_smaller(im, aim, prior, pass, out, plan.scans, plan.smaller_scans);
     if (!failure) return nullptr;
     if (pass.first() && options_.lattice_enabled && plan.lattices != 0 &&
-        (((plan.lattices & 1u) && !search_lattice(im, aim, prior, out)) ||
+        (((plan.lattices & 1u) && !pass.lattice_searched && !search_lattice(im, aim, prior, out)) ||
          ((plan.lattices & ~1u) && !search_lattice_smaller(im, aim, prior, pass.cache, out, plan.lattices >> 1))))
         return nullptr;
     const int max_side = options_.double_size_max_side;
@@ -275,6 +275,15 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     };
     EdgelOptions edgel_options = options_.edgels;
     const EdgelScan* scan = &scan_step([&] { return find_edgels(im, edgel_options); });
+    if (pass.plan.lattice_first_if_small && pass.first() && options_.lattice_enabled && !pass.lattice_searched &&
+        modules_look_small(scan->edgels)) {
+        // A far screen: its grid lines would not be found, and the content's
+        // would each be read in vain first (tuning set, single frames of the
+        // tiny category at 640 x 480: 6.2 ms median).
+        pass.lattice_searched = true;
+        const char* failure = search_lattice(im, aim, prior, out);
+        if (!failure || failure == kAimAtInfinity) return failure;
+    }
     const char* failure = searched(kFirstScan, *scan);
     if ((scans & ~kFirstScan) == 0) return failure;
     if (failure && options_.rescan && scan->noise_sigma >= kNoisyImage && edgel_options.across < 3 &&

@@ -11,8 +11,15 @@ namespace {
 constexpr int kBinsPerOctave = 4;
 constexpr int kBins = 8 * kBinsPerOctave;  // steps of 1 to 256 grey levels
 
+// floor(log2(step) * kBinsPerOctave), clamped to the bins: the octave from
+// the exponent, the quarter from the mantissa (no logarithm; this runs on
+// every edgel of a scan).
 int bin_of(double step) {
-    return std::clamp(static_cast<int>(std::floor(std::log2(std::max(step, 1.0)) * kBinsPerOctave)), 0, kBins - 1);
+    static const double kQuarter[3] = {std::exp2(0.25), std::exp2(0.5), std::exp2(0.75)};
+    int octave = 0;
+    const double mantissa = 2 * std::frexp(std::max(step, 1.0), &octave);  // in [1, 2)
+    const int quarter = (mantissa >= kQuarter[0]) + (mantissa >= kQuarter[1]) + (mantissa >= kQuarter[2]);
+    return std::min((octave - 1) * kBinsPerOctave + quarter, kBins - 1);
 }
 
 }  // namespace
@@ -42,6 +49,31 @@ std::vector<Edgel> edgels_stepping_by(const std::vector<Edgel>& edgels, double s
     for (const Edgel& e : edgels)
         if (e.step >= low && e.step <= high) out.push_back(e);
     return out;
+}
+
+bool modules_look_small(const std::vector<Edgel>& edgels) {
+    constexpr int kSmallModulePx = 5, kLongestGapPx = 40, kFewestGaps = 100;
+    const double step = commonest_edge_step(edgels);
+    if (step <= 0) return false;
+    // As edgels_stepping_by would keep them, without the copy.
+    const double low = step / 2, high = step * 2;
+    std::array<int, kLongestGapPx + 1> count{};
+    int gaps = 0;
+    const Edgel* a = nullptr;
+    for (const Edgel& b : edgels) {
+        if (!(b.step >= low && b.step <= high)) continue;
+        if (a && a->on_row == b.on_row && (a->on_row ? a->y == b.y : a->x == b.x)) {
+            const long gap = std::lround(a->on_row ? b.x - a->x : b.y - a->y);
+            if (gap > 0) {
+                ++count[static_cast<std::size_t>(std::min<long>(gap, kLongestGapPx))];
+                ++gaps;
+            }
+        }
+        a = &b;
+    }
+    if (gaps < kFewestGaps) return false;
+    const auto commonest = std::max_element(count.begin() + 1, count.end());
+    return commonest - count.begin() <= kSmallModulePx && 4 * *commonest >= gaps;
 }
 
 std::vector<Edgel> edgels_off_thin_lines(const std::vector<Edgel>& edgels, double max_width_px) {

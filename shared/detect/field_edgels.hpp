@@ -20,6 +20,15 @@ double commonest_edge_step(const std::vector<Edgel>& edgels);
 // The edgels whose step lies within `spread` times of `step` either way.
 std::vector<Edgel> edgels_stepping_by(const std::vector<Edgel>& edgels, double step, double spread = 2.0);
 
+// Whether the field's modules look a few pixels wide: along the scanlines,
+// the commonest gap between consecutive field-like edgels (those stepping
+// by about the commonest step) is at most 5 pixels and holds at least a
+// quarter of the gaps (of at least 100). Such a far field's edges turn the
+// gradients too far for the grid-line search, which then reads the
+// content's grids in vain, while the lattice (lattice.hpp) finds it.
+// `edgels` in the order find_edgels gives them.
+bool modules_look_small(const std::vector<Edgel>& edgels);
+
 // The edgels less those of thin lines: a table's rules, a chart's axes and
 // text strokes cross a scanline as two edges of opposite sign and like
 // step at most `max_width_px` apart, where the field's edges lie a module

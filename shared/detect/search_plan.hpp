@@ -49,6 +49,10 @@ struct SearchPlan {
     // (DetectorOptions::first_pass_pairs) of every search.
     unsigned edgel_sets = kEveryEdgelSet;
     bool second_pass = true;
+    // The lattice at the frame's own size before the first scan's searches
+    // when that scan's edgels say the modules are small
+    // (modules_look_small); part 1 then does not run it again.
+    bool lattice_first_if_small = false;
 };
 
 // The first scan at the frame's own size and nothing else.
@@ -112,6 +116,7 @@ using FullSearch = std::array<SearchPlan, kSearchParts + 1>;
 constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kPartOrder) {
     FullSearch plans{};
     plans[0] = first_scan_only();
+    plans[0].lattice_first_if_small = order == kPartOrder;
     for (std::size_t k = 0; k < order.size(); ++k) plans[k + 1] = search_part(order[k]);
     return plans;
 }

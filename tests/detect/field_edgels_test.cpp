@@ -139,5 +139,35 @@ TEST(FieldEdgels, ThinLinesLeaveTheFieldsEdges) {
     EXPECT_EQ(edgels_off_thin_lines({a, b}, 6).size(), 2u) << "a module apart";
 }
 
+// Edgels of one step on `rows` row scanlines, `gap_px` apart along each.
+std::vector<Edgel> edges_every(float gap_px, int rows, int per_row, float step = 20) {
+    std::vector<Edgel> out;
+    for (int r = 0; r < rows; ++r)
+        for (int k = 0; k < per_row; ++k) {
+            Edgel e = with_step(step);
+            e.y = static_cast<float>(8 * r + 4);
+            e.x = 2.3f + gap_px * static_cast<float>(k);
+            out.push_back(e);
+        }
+    return out;
+}
+
+TEST(FieldEdgels, ModulesLookSmallWhenTheFieldsEdgesLieAFewPixelsApart) {
+    EXPECT_TRUE(modules_look_small(edges_every(4, 10, 30))) << "a far field's modules, 4 px";
+    EXPECT_TRUE(modules_look_small(edges_every(5, 10, 30)));
+    EXPECT_FALSE(modules_look_small(edges_every(6, 10, 30)));
+    EXPECT_FALSE(modules_look_small(edges_every(12, 10, 30))) << "modules of 12 px";
+    EXPECT_FALSE(modules_look_small(edges_every(4, 3, 30))) << "87 gaps, too few to say";
+    // Text's strong edges close together do not count: only the edgels of the
+    // commonest step (the field's, 12 px apart here) are measured.
+    std::vector<Edgel> both = edges_every(12, 10, 30);
+    const std::vector<Edgel> text = edges_every(3, 6, 40, 120);
+    both.insert(both.end(), text.begin(), text.end());
+    EXPECT_FALSE(modules_look_small(both));
+    // Gaps are measured along each scanline, never from one to the next.
+    std::vector<Edgel> one_a_row = edges_every(4, 200, 1);
+    EXPECT_FALSE(modules_look_small(one_a_row));
+}
+
 }  // namespace
 }  // namespace umf
