@@ -116,7 +116,7 @@ using FullSearch = std::array<SearchPlan, kSearchParts + 1>;
 constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kPartOrder) {
     FullSearch plans{};
     plans[0] = first_scan_only();
-    plans[0].lattice_first_if_small = order == kPartOrder;
+    plans[0].lattice_first_if_small = true;
     for (std::size_t k = 0; k < order.size(); ++k) plans[k + 1] = search_part(order[k]);
     return plans;
 }
