@@ -99,9 +99,13 @@ TEST(SearchSchedule, APartsPiecesTogetherAreThePart) {
                     bench::shoot(scene, r, opacity > 0 ? sim::mix_field(screen, field, placement, opacity) : screen, vga);
                 const GreyView v = view_of(frame.grey);
                 const Eigen::Vector2d centre(v.width / 2.0, v.height / 2.0);
-                const SearchPlan pieces[] = {search_piece(first_scan_only(), 0), search_piece(first_scan_only(), 1)};
+                SearchPlan pieces[] = {search_piece(first_scan_only(), 0), search_piece(first_scan_only(), 1)};
+                pieces[0].lattice_first_if_small = true;  // as spread_first() has it
                 SearchPlan with_second_pass[] = {pieces[0], pieces[1]};
-                for (SearchPlan& p : with_second_pass) p.second_pass = true;
+                for (SearchPlan& p : with_second_pass) {
+                    p.second_pass = true;
+                    p.lattice_first_if_small = false;
+                }
                 const Detection first_scan = detector.detect(v, centre, nullptr, first_scan_only());
                 for (const auto& [whole, pieced] :
                      {std::pair(detector.detect(v, centre, nullptr, spread_first()),
