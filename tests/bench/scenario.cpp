@@ -245,6 +245,11 @@ std::vector<FrameRecipe> pulsing_recipes(const Scene& scene, sim::ScreenKind kin
 double pulsing_opacity(int frame) { return sim::pulse_opacity(frame / sim::kFps, 0.1, 0.4, 1.5); }
 
 Frame shoot(const Scene& scene, const FrameRecipe& recipe, const cv::Mat& mixed_screen, cv::Size resolution) {
+    return shoot(scene, recipe, sim::ScreenSource(mixed_screen, scene.screen), resolution);
+}
+
+Frame shoot(const Scene& scene, const FrameRecipe& recipe, const sim::ScreenSource& mixed_screen, cv::Size resolution) {
+    CV_Assert(mixed_screen.geometry().pixels == scene.screen.pixels && mixed_screen.geometry().width_mm == scene.screen.width_mm);
     sim::Degradation degradation = recipe.degradation;
     if (recipe.smear_scales_with_width) degradation.motion_blur_px *= resolution.width / 640.0;
     if (recipe.sensor) {
@@ -253,7 +258,7 @@ Frame shoot(const Scene& scene, const FrameRecipe& recipe, const cv::Mat& mixed_
         pipeline.scale = resolution.width >= 1920 ? 2 : 3;
         degradation.motion_blur_px *= pipeline.scale;
         const sim::CameraModel sensor{resolution * pipeline.scale, scene.hfov_deg};
-        sim::Shot shot = sim::photograph(mixed_screen, scene.screen, sensor, recipe.pose, degradation, scene.module_px);
+        sim::Shot shot = sim::photograph(mixed_screen, sensor, recipe.pose, degradation, scene.module_px);
         Frame f;
         f.centre_screen_px = shot.centre_screen_px;
         f.centre_on_screen = shot.centre_on_screen;
@@ -262,7 +267,7 @@ Frame shoot(const Scene& scene, const FrameRecipe& recipe, const cv::Mat& mixed_
         return f;
     }
     const sim::CameraModel camera{resolution, scene.hfov_deg};
-    sim::Shot shot = sim::photograph(mixed_screen, scene.screen, camera, recipe.pose, degradation, scene.module_px);
+    sim::Shot shot = sim::photograph(mixed_screen, camera, recipe.pose, degradation, scene.module_px);
     Frame f;
     f.centre_screen_px = shot.centre_screen_px;
     f.centre_on_screen = shot.centre_on_screen;

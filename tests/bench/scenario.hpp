@@ -16,6 +16,7 @@
 
 #include "tests/sim/camera.hpp"
 #include "tests/sim/screen_content.hpp"
+#include "tests/sim/screen_source.hpp"
 #include "tests/sim/sensor_pipeline.hpp"
 #include "tests/sim/sequence.hpp"
 
@@ -90,8 +91,11 @@ struct Frame {
 };
 
 // Photographs `mixed_screen` (content with the field or the board blended
-// in) as the recipe says, then draws the occluder if there is one.
+// in) as the recipe says, then draws the occluder if there is one. A
+// screen shot many times is best made ready once (sim::ScreenSource, of the
+// scene's screen geometry): the same frames at a fraction of the cost.
 Frame shoot(const Scene& scene, const FrameRecipe& recipe, const cv::Mat& mixed_screen, cv::Size resolution);
+Frame shoot(const Scene& scene, const FrameRecipe& recipe, const sim::ScreenSource& mixed_screen, cv::Size resolution);
 
 // A hand or a mug between the phone and the screen, drawn into a photographed
 // BGR frame: a shaded blob covering 15..35 % of the image from one of its

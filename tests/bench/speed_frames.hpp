@@ -82,12 +82,16 @@ public:
                       std::vector<Frame>(rs.size()),
                       std::vector<Truth>(rs.size(), Truth{placement, radius}),
                       std::vector<const ArucoBaseline*>(rs.size(), &aruco_)};
+            // Made ready per category, so that only one category's renderings are kept.
+            const auto field_sources = sim::screen_sources(with_field, scene_.screen);
+            const auto bare_sources = sim::screen_sources(screens_, scene_.screen);
+            const auto board_sources = sim::screen_sources(with_board, scene_.screen);
             parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
                 const auto at = static_cast<std::size_t>(i);
                 const auto kind = static_cast<std::size_t>(rs[at].screen);
-                clip.field[at] = shoot(scene_, rs[at], with_field[kind], res);
-                clip.bare[at] = shoot(scene_, rs[at], screens_[kind], res);
-                clip.board[at] = shoot(scene_, rs[at], with_board[kind], res);
+                clip.field[at] = shoot(scene_, rs[at], field_sources[kind], res);
+                clip.bare[at] = shoot(scene_, rs[at], bare_sources[kind], res);
+                clip.board[at] = shoot(scene_, rs[at], board_sources[kind], res);
             });
             clips.push_back(std::move(clip));
         }

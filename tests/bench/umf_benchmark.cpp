@@ -451,11 +451,16 @@ private:
     void configuration(Category category, const std::vector<FrameRecipe>& rs, double opacity, cv::Size res,
                        const std::vector<cv::Mat>& with_field, const std::vector<cv::Mat>& with_board) {
         std::vector<Frame> field_frames(rs.size()), board_frames(rs.size());
+        // Made ready per configuration, not per opacity, so that only one
+        // category's renderings are kept (the pixel grid's are large).
+        const auto field_sources = sim::screen_sources(with_field, scene_.screen);
+        const auto board_sources =
+            opt_.aruco ? sim::screen_sources(with_board, scene_.screen) : std::vector<sim::ScreenSource>{};
         parallel_for(static_cast<int>(rs.size()), opt_.threads, [&](int i) {
             const auto at = static_cast<std::size_t>(i);
             const auto kind = static_cast<std::size_t>(rs[at].screen);
-            field_frames[at] = shoot(scene_, rs[at], with_field[kind], res);
-            if (opt_.aruco) board_frames[at] = shoot(scene_, rs[at], with_board[kind], res);
+            field_frames[at] = shoot(scene_, rs[at], field_sources[kind], res);
+            if (opt_.aruco) board_frames[at] = shoot(scene_, rs[at], board_sources[kind], res);
         });
         ConfigResult cr;
         cr.category = to_string(category);

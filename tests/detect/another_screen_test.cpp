@@ -16,6 +16,7 @@
 #include "shared/detect/tracker.hpp"
 #include "shared/field/generator.hpp"
 #include "tests/detect/photo.hpp"
+#include "tests/sim/screen_source.hpp"
 
 namespace {
 
@@ -40,8 +41,9 @@ std::vector<sim::Shot> photographs(const Field& shown, double opacity = 0.3) {
     camera.resolution = {640, 480};
     const sim::FieldPlacement placement = sim::centred_placement(shown, geometry.pixels, 30);
     std::vector<sim::Shot> shots;
-    const cv::Mat mixed =
-        sim::mix_field(sim::make_screen(sim::ScreenKind::web_page, geometry.pixels, 5), shown, placement, opacity);
+    const sim::ScreenSource mixed(
+        sim::mix_field(sim::make_screen(sim::ScreenKind::web_page, geometry.pixels, 5), shown, placement, opacity),
+        geometry);
     for (double pitch : {-25.0, 20.0})
         for (double yaw : {-20.0, 15.0})
             for (double roll : {10.0, 120.0}) {
@@ -50,7 +52,7 @@ std::vector<sim::Shot> photographs(const Field& shown, double opacity = 0.3) {
                 pose.aim_screen_px = {960 + 4 * yaw, 540 + 4 * pitch};
                 sim::Degradation degradation;
                 degradation.noise_sigma = 2;
-                shots.push_back(sim::photograph(mixed, geometry, camera, pose, degradation));
+                shots.push_back(sim::photograph(mixed, camera, pose, degradation));
             }
     return shots;
 }

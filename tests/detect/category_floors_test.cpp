@@ -21,13 +21,13 @@ using namespace umf;
 struct Scenes {
     Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
     bench::Scene scene;
-    std::vector<cv::Mat> screens;
+    std::vector<sim::ScreenSource> screens;
 
     explicit Scenes(double opacity = 0.3) {
         const sim::FieldPlacement placement{{0, 0}, scene.module_px};
         for (auto kind : sim::kAllScreenKinds)
-            screens.push_back(
-                sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), field, placement, opacity));
+            screens.emplace_back(sim::mix_field(sim::make_screen(kind, scene.screen.pixels, 7), field, placement, opacity),
+                                 scene.screen);
     }
     bench::Frame shoot(const bench::FrameRecipe& recipe, cv::Size resolution) const {
         return bench::shoot(scene, recipe, screens[static_cast<std::size_t>(recipe.screen)], resolution);

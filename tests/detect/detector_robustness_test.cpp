@@ -9,6 +9,7 @@
 #include "shared/detect/detector.hpp"
 #include "shared/detect/tracker.hpp"
 #include "tests/detect/photo.hpp"
+#include "tests/sim/screen_source.hpp"
 
 namespace {
 
@@ -38,12 +39,13 @@ Seen photograph_and_detect(const Field& f, double module_px, sim::ScreenKind kin
     sim::CameraModel camera;
     camera.resolution = {640, 480};
     const sim::FieldPlacement placement = sim::centred_placement(f, geometry.pixels, module_px);
-    const cv::Mat mixed = sim::mix_field(sim::make_screen(kind, geometry.pixels, 5), f, placement, opacity);
+    const sim::ScreenSource mixed(sim::mix_field(sim::make_screen(kind, geometry.pixels, 5), f, placement, opacity),
+                                  geometry);
     Seen seen;
     for (const auto& p : kPoses) {
         sim::Degradation degradation;
         degradation.noise_sigma = 2;
-        const sim::Shot shot = sim::photograph(mixed, geometry, camera, pose_of(p), degradation);
+        const sim::Shot shot = sim::photograph(mixed, camera, pose_of(p), degradation);
         const Detection d = detector.detect(GreyView{shot.grey.data, shot.grey.cols, shot.grey.rows,
                                              static_cast<std::ptrdiff_t>(shot.grey.step)});
         if (!d.found) continue;
@@ -109,13 +111,14 @@ TEST(DetectorNegatives, NeverPlacesAnImpostorNorDoesTheTrackerLockOnOne) {
     // The tracker has just locked on the real field, so it has a prior and
     // follows: an impostor must not be confirmed near the predicted place.
     const test::Photo real = test::photograph_field(f, 0.5, 0, 0, 0, 300);
-    for (const cv::Mat& screen : impostor_screens()) {
+    for (const cv::Mat& impostor : impostor_screens()) {
+        const sim::ScreenSource screen(impostor, geometry);
         Tracker tracker(detector);
         ASSERT_EQ(tracker.update(real.view()).state, TrackState::locked);
         for (const auto& p : kPoses) {
             sim::Degradation degradation;
             degradation.noise_sigma = 2;
-            const sim::Shot shot = sim::photograph(screen, geometry, camera, pose_of(p), degradation);
+            const sim::Shot shot = sim::photograph(screen, camera, pose_of(p), degradation);
             const GreyView view{shot.grey.data, shot.grey.cols, shot.grey.rows,
                                 static_cast<std::ptrdiff_t>(shot.grey.step)};
             const Detection d = detector.detect(view);

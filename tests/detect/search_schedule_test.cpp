@@ -153,10 +153,11 @@ TEST(SearchSchedule, ATrackerWithoutALockSpreadsTheSearchAndStillFindsWhatOnlyAF
     const Detector detector(field);
     const bench::Scene scene;
     const sim::FieldPlacement placement{{0, 0}, scene.module_px};
-    std::vector<cv::Mat> bare, with_field;
+    std::vector<cv::Mat> bare;
+    std::vector<sim::ScreenSource> with_field;
     for (auto kind : sim::kAllScreenKinds) {
         bare.push_back(sim::make_screen(kind, scene.screen.pixels, 7));
-        with_field.push_back(sim::mix_field(bare.back(), field, placement, 0.3));
+        with_field.emplace_back(sim::mix_field(bare.back(), field, placement, 0.3), scene.screen);
     }
     const auto recipes = bench::category_recipes(scene, bench::Category::tiny, 20, 1);
     const cv::Size vga(640, 480);

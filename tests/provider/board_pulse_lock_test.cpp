@@ -27,6 +27,7 @@
 #include "shared/overlay/pulse.hpp"
 #include "tests/provider/gui_test_app.hpp"
 #include "tests/sim/camera.hpp"
+#include "tests/sim/screen_source.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace umf::provider {
@@ -57,16 +58,17 @@ TEST(BoardPulseLock, EveryDemoTileStaysFoundThroughTheKioskPulse) {
     // per distinct opacity (the pulse repeats its values).
     constexpr double kFps = 25;
     const int frames = static_cast<int>(std::lround(kiosk.period_s * kFps));
-    std::map<long, cv::Mat> screens;
+    const sim::ScreenGeometry screen{{width, height}, 527};
+    std::map<long, sim::ScreenSource> screens;
     std::vector<long> frame_opacity;
     for (int i = 0; i < frames; ++i) {
         const long key = std::lround(1000 * overlay::opacity_at(kiosk, i / kFps));
         frame_opacity.push_back(key);
         if (!screens.count(key))
-            screens[key] = to_mat(compose_screen(nullptr, &board, QSize(width, height), field, key / 1000.0, {}));
+            screens.try_emplace(key, to_mat(compose_screen(nullptr, &board, QSize(width, height), field, key / 1000.0, {})),
+                                screen);
     }
 
-    const sim::ScreenGeometry screen{{width, height}, 527};
     const sim::CameraModel camera{{640, 480}, 65};
     const std::vector<std::array<double, 3>> poses = {{0, 0, 0}, {20, 0, 0}, {0, -30, 0}, {-15, 20, 10}, {30, 10, -20}};
     int wrong = 0, found_frames = 0, all_frames = 0, longest_miss = 0;
@@ -87,7 +89,7 @@ TEST(BoardPulseLock, EveryDemoTileStaysFoundThroughTheKioskPulse) {
                 d.noise_sigma = 2;
                 d.jpeg_quality = 85;
                 d.seed = 100 * t + i;
-                const sim::Shot shot = sim::photograph(screens[frame_opacity[i]], screen, camera, pose, d);
+                const sim::Shot shot = sim::photograph(screens.at(frame_opacity[i]), camera, pose, d);
                 const Detection found = detector.detect(
                     GreyView{shot.grey.data, shot.grey.cols, shot.grey.rows, static_cast<int>(shot.grey.step)});
                 double u = 0, v = 0;

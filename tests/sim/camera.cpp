@@ -6,14 +6,12 @@
 
 #include "tests/sim/homography.hpp"
 #include "tests/sim/resample.hpp"
+#include "tests/sim/screen_source.hpp"
 
 namespace umf::sim {
 namespace {
 
-// Around the screen: a thin black bezel, then a dim desk. The bezel gives
-// the detector the real-world distraction of a strong dark frame.
-constexpr double kBezelMm = 8;
-const cv::Vec3b kBezelBgr(18, 18, 18);
+// Around the screen and its bezel (screen_source.hpp): a dim desk.
 const cv::Vec3b kDeskBgr(40, 52, 66);
 // Octaves of stripe detail let through unfiltered with subpixels (see
 // sample_perspective). Chosen by eye: moire shows as faint coloured bands,
@@ -36,34 +34,6 @@ cv::Matx33d rot_z(double a) { return {std::cos(a), -std::sin(a), 0, std::sin(a),
 // rot_y(-yaw) towards -x for a camera on the right.
 cv::Matx33d camera_to_world(const CameraPose& pose) {
     return rot_y(-radians(pose.yaw_deg)) * rot_x(-radians(pose.pitch_deg)) * rot_z(radians(pose.roll_deg));
-}
-
-cv::Mat pad(const cv::Mat& image, int left_right, int top_bottom, const cv::Scalar& value) {
-    cv::Mat out;
-    cv::copyMakeBorder(image, out, top_bottom, top_bottom, left_right, left_right, cv::BORDER_CONSTANT, value);
-    return out;
-}
-
-// The screen in linear light with its bezel, ready for sampling, and the
-// map from screen coordinates to its pixel coordinates. With subpixels it is
-// the striped screen, three times as wide, so that the sampling averages
-// real stripes, as the camera's pixels do.
-struct ScreenSource {
-    cv::Mat linear;
-    cv::Matx33d from_screen;
-};
-
-ScreenSource screen_source(const cv::Mat& screen_bgr, int bezel_px, bool subpixels, bool grid) {
-    if (grid) {
-        const cv::Vec3f bezel = to_linear(kBezelBgr);
-        return {pad(pixel_grid(to_linear(screen_bgr)), 3 * bezel_px, 3 * bezel_px, cv::Scalar(bezel)),
-                scaling(3, 3) * translation(bezel_px, bezel_px)};
-    }
-    if (!subpixels)
-        return {to_linear(pad(screen_bgr, bezel_px, bezel_px, cv::Scalar(kBezelBgr))), translation(bezel_px, bezel_px)};
-    const cv::Vec3f bezel = to_linear(kBezelBgr);
-    return {pad(subpixel_stripes(to_linear(screen_bgr)), 3 * bezel_px, bezel_px, cv::Scalar(bezel)),
-            scaling(3, 1) * translation(bezel_px, bezel_px)};
 }
 
 }  // namespace
@@ -99,18 +69,22 @@ double screen_px_in_image_at(const cv::Matx33d& s2i, cv::Point2d screen_px) {
 
 Shot photograph(const cv::Mat& screen_bgr, const ScreenGeometry& screen, const CameraModel& camera,
                 const CameraPose& pose, const Degradation& d, double screen_module_px_for_gt) {
-    CV_Assert(screen_bgr.type() == CV_8UC3 && screen_bgr.size() == screen.pixels);
+    return photograph(ScreenSource(screen_bgr, screen), camera, pose, d, screen_module_px_for_gt);
+}
+
+Shot photograph(const ScreenSource& source, const CameraModel& camera, const CameraPose& pose, const Degradation& d,
+                double screen_module_px_for_gt) {
+    const ScreenGeometry& screen = source.geometry();
     Shot shot;
     const cv::Matx33d s2i = screen_to_image(screen, camera, pose);
     // inv() of a depth-scaled homography has third output 1 / depth: also
     // positive exactly for image rays that meet the screen plane in front.
     shot.image_to_screen = s2i.inv();
 
-    const int bezel_px = static_cast<int>(std::lround(kBezelMm / screen_mm_per_px(screen)));
-    const ScreenSource source = screen_source(screen_bgr, bezel_px, d.subpixels, d.pixel_grid);
+    const ScreenSource::Light& light_source = source.light(rendering_for(d));
     const double aliasing = d.pixel_grid ? kGridAliasing : d.subpixels ? kStripeAliasing : 0.0;
-    cv::Mat light = sample_perspective(source.linear, source.from_screen * shot.image_to_screen, camera.resolution,
-                                       to_linear(kDeskBgr), aliasing);
+    cv::Mat light = sample_perspective(light_source.mipmap, light_source.from_screen * shot.image_to_screen,
+                                       camera.resolution, to_linear(kDeskBgr), aliasing);
 
     // Order of a real camera: the lens blurs the light (defocus, shake during
     // the exposure), reflections add light on the way, the exposure scales

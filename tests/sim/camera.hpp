@@ -27,6 +27,8 @@
 
 namespace umf::sim {
 
+class ScreenSource;  // screen_source.hpp
+
 struct ScreenGeometry {
     cv::Size pixels{1920, 1080};
     double width_mm = 527;  // physical width; height follows the pixel aspect (square pixels)
@@ -79,6 +81,12 @@ double screen_px_in_image_at(const cv::Matx33d& screen_to_image, cv::Point2d scr
 // triples the source, to about 80 MB of floats).
 Shot photograph(const cv::Mat& screen_bgr, const ScreenGeometry& screen, const CameraModel& camera,
                 const CameraPose& pose, const Degradation& degradation, double screen_module_px_for_gt = 0);
+// The same photograph of a screen made ready once for many shots. Without
+// the conversion to linear light and the mipmap levels a 640 x 480 shot
+// costs about a fifth less (33 against 42 ms), with subpixels 72 % less and
+// with the pixel grid 89 % less (measured 2026-12-01, one thread).
+Shot photograph(const ScreenSource& screen, const CameraModel& camera, const CameraPose& pose,
+                const Degradation& degradation, double screen_module_px_for_gt = 0);
 
 cv::Point2d image_to_screen(const Shot& shot, cv::Point2d image_px);
 cv::Point2d image_to_field(const Shot& shot, const FieldPlacement& placement, cv::Point2d image_px);

@@ -77,41 +77,40 @@ bool all_in_front(const cv::Matx33d& image_to_source, cv::Size image) {
     return true;  // the sign is linear in the image point, so corners decide
 }
 
-// Level 0 is the source itself; each further level halves the previous one
-// (area average). scale: level coordinates per source coordinate in x and y.
-struct Pyramid {
-    std::vector<cv::Mat> levels;
-    std::vector<cv::Vec2d> scale;
-};
-
 cv::Size halved(cv::Size s) { return {(s.width + 1) / 2, (s.height + 1) / 2}; }
-
-// Halving stops before a side would drop below a few pixels.
-int possible_levels(cv::Size source) {
-    int count = 1;
-    for (cv::Size s = source; std::min(s.width, s.height) >= 2 * kMinLevelSide; s = halved(s)) ++count;
-    return count;
-}
-
-Pyramid build_pyramid(const cv::Mat& source, int last_level) {
-    Pyramid p{{source}, {cv::Vec2d(1.0, 1.0)}};
-    for (int level = 1; level <= last_level; ++level) {
-        cv::Mat next;
-        cv::resize(p.levels.back(), next, halved(p.levels.back().size()), 0, 0, cv::INTER_AREA);
-        // resize maps continuous coordinates by the exact size ratio, also for odd sizes.
-        p.scale.emplace_back(double(next.cols) / source.cols, double(next.rows) / source.rows);
-        p.levels.push_back(next);
-    }
-    return p;
-}
 
 }  // namespace
 
-cv::Mat sample_perspective(const cv::Mat& source_image, const cv::Matx33d& image_to_source, cv::Size image,
+Mipmap::Mipmap(cv::Mat source) {
+    CV_Assert(source.type() == CV_32FC3);
+    sizes_.push_back(source.size());
+    while (std::min(sizes_.back().width, sizes_.back().height) >= 2 * kMinLevelSide) sizes_.push_back(halved(sizes_.back()));
+    levels_.resize(sizes_.size());
+    levels_[0] = std::move(source);
+    made_ = std::make_unique<std::once_flag[]>(sizes_.size());
+}
+
+// resize maps continuous coordinates by the exact size ratio, also for odd sizes.
+cv::Vec2d Mipmap::scale(int level) const {
+    return {double(size(level).width) / sizes_[0].width, double(size(level).height) / sizes_[0].height};
+}
+
+const cv::Mat& Mipmap::level(int level) const {
+    const auto i = static_cast<std::size_t>(level);
+    if (level > 0)
+        std::call_once(made_[i], [&] { cv::resize(this->level(level - 1), levels_[i], sizes_[i], 0, 0, cv::INTER_AREA); });
+    return levels_[i];
+}
+
+cv::Mat sample_perspective(const cv::Mat& source, const cv::Matx33d& image_to_source, cv::Size image,
                            const cv::Vec3f& outside, double level_bias) {
-    CV_Assert(source_image.type() == CV_32FC3);
-    const cv::Size source = source_image.size();
-    const int level_count = possible_levels(source);
+    return sample_perspective(Mipmap(source), image_to_source, image, outside, level_bias);
+}
+
+cv::Mat sample_perspective(const Mipmap& pyramid, const cv::Matx33d& image_to_source, cv::Size image,
+                           const cv::Vec3f& outside, double level_bias) {
+    const cv::Size source = pyramid.size(0);
+    const int level_count = pyramid.level_count();
     const cv::Size cells((image.width + kCell - 1) / kCell, (image.height + kCell - 1) / kCell);
     cv::Mat wanted = wanted_levels(image_to_source, cells, source, level_count, level_bias);
 
@@ -139,7 +138,6 @@ cv::Mat sample_perspective(const cv::Mat& source_image, const cv::Matx33d& image
         image_to_source * scaling(1.0 / kSupersample, 1.0 / kSupersample) * translation(0.5, 0.5);
     const int first_level = static_cast<int>(std::floor(lo));
     const int last_level = std::min(level_count - 1, static_cast<int>(std::ceil(hi)));
-    const Pyramid pyramid = build_pyramid(source_image, last_level);
     std::vector<cv::Rect> areas;
     for (int level = first_level; level <= last_level; ++level)
         areas.push_back(level_area(wanted, neighbourhood_min, neighbourhood_max, level, fine));
@@ -155,10 +153,10 @@ cv::Mat sample_perspective(const cv::Mat& source_image, const cv::Matx33d& image
     cv::Mat weight_sum(kStripRows, fine.width, CV_32F);
     cv::Mat warped;
     const auto warp = [&](int level, cv::Rect area, cv::Mat& dst) {
-        const cv::Vec2d s = pyramid.scale[level];
+        const cv::Vec2d s = pyramid.scale(level);
         const cv::Matx33d area_to_level =
             translation(-0.5, -0.5) * scaling(s[0], s[1]) * fine_to_source * translation(area.x, area.y);
-        cv::warpPerspective(pyramid.levels[level], dst, area_to_level, area.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
+        cv::warpPerspective(pyramid.level(level), dst, area_to_level, area.size(), cv::INTER_LINEAR | cv::WARP_INVERSE_MAP,
                             cv::BORDER_CONSTANT, cv::Scalar(outside[0], outside[1], outside[2]));
     };
     for (int top = 0; top < fine.height; top += kStripRows) {
