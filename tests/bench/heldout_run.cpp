@@ -148,7 +148,9 @@ public:
             }
             if (opt_.video) {
                 Tracker tracker = m.tracker();
-                for (const auto& frame : field_frames) v.push_back(m.video(tracker, frame));
+                FrameClock clock(opt_.realtime, kHeldoutFps);
+                for (std::size_t i = 0; i < field_frames.size(); ++i)
+                    v.push_back(m.video(tracker, field_frames[i], clock, static_cast<int>(i)));
             }
             run.add(sim::to_string(content), std::move(u), std::move(v), std::move(a), minutes());
         }
@@ -176,7 +178,7 @@ private:
     void settings() {
         nlohmann::json& s = report_.settings;
         s["set"] = "heldout";
-        s["fps"] = 30;
+        s["fps"] = kHeldoutFps;
         s["frames_per_configuration"] = opt_.frames;
         s["pulse_frames_per_content"] = opt_.pulse_frames;
         for (HeldoutCategory c : opt_.categories) s["categories"].push_back(to_string(c));
@@ -196,6 +198,9 @@ private:
                                     {"width_mm", sc.geometry.width_mm}, {"layout", sim::to_string(sc.layout)}});
         s["success_radius_modules"] = kHeldoutRadiusModules;
         s["without"] = opt_.without;
+        s["umf_video_tracker"] = {{"spread_search", opt_.tracking.spread_search},
+                                  {"search_budget_ms", opt_.tracking.search_budget},
+                                  {"realtime_slowdown", opt_.realtime}};
     }
 
     void configuration(HeldoutCategory category, const std::vector<HeldoutRecipe>& rs, double opacity, cv::Size res,
@@ -228,8 +233,10 @@ private:
             // One tracker for the configuration; it only knows the field, so
             // the clips' cuts from one screen to another are cuts to it.
             Tracker tracker = methods_.front()->tracker();
+            FrameClock clock(opt_.realtime, kHeldoutFps);
             for (std::size_t i = 0; i < rs.size(); ++i)
-                outcomes.video.push_back(methods_[static_cast<std::size_t>(rs[i].screen)]->video(tracker, field_frames[i]));
+                outcomes.video.push_back(methods_[static_cast<std::size_t>(rs[i].screen)]->video(
+                    tracker, field_frames[i], clock, static_cast<int>(i)));
         }
         std::vector<std::string> kinds;
         for (const auto& r : rs) kinds.emplace_back(sim::to_string(r.content));

@@ -33,6 +33,7 @@ struct HeldoutOptions {
     std::string shown_field;               // on the screen, when another than `field`
     std::string command;
     TrackerOptions tracking;  // the trackers' (umf video)
+    double realtime = 0;      // umf video's device slowdown in real time (frame_clock.hpp); 0: offline
     // Effects of the second camera model left out of every frame, to see
     // what each costs (diagnosis only; the held-out numbers of record have
     // all of them): pixel_structure, rolling_shutter, curved_blur,

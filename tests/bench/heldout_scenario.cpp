@@ -10,7 +10,7 @@
 namespace umf::bench {
 namespace {
 
-constexpr double kFps = 30;
+constexpr double kFps = kHeldoutFps;
 constexpr int kClipFrames = 10;
 constexpr double kTwoPi = 2 * CV_PI;
 // Mixed into every held-out seed, so that no stream coincides with one of

@@ -81,6 +81,7 @@ std::vector<HeldoutRecipe> heldout_pulsing_recipes(sim::HeldoutContent content, 
 // The field's opacity in frame `frame` of that video: the provider's default
 // pulse (0.1 to 0.4 and back every 1.5 s) from a phase of the video's own.
 double heldout_pulsing_opacity(sim::HeldoutContent content, int frame, std::uint64_t seed);
+inline constexpr double kHeldoutFps = 30;  // every held-out video's frame rate
 inline constexpr double kHeldoutPulseMin = 0.1, kHeldoutPulseMax = 0.4, kHeldoutPulsePeriodS = 1.5;
 
 // Photographs the mixed screen (field or board blended in) at `resolution`.

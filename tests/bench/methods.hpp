@@ -18,6 +18,7 @@
 #include "shared/detect/tracker.hpp"
 #include "shared/field/field_io.hpp"
 #include "tests/bench/aruco_baseline.hpp"
+#include "tests/bench/frame_clock.hpp"
 #include "tests/bench/metrics.hpp"
 #include "tests/bench/scenario.hpp"
 #include "tests/sim/field_mix.hpp"
@@ -126,14 +127,30 @@ public:
             t.detection.failure = std::string("exception: ") + e.what();
         }
         const auto t1 = BenchClock::now();
+        o.ms = ms_between(t0, t1);  // also of a skipped frame: the real-time clock counts it
         if (!frame.centre_on_screen) {
             o.skipped = true;
             return o;
         }
-        o.ms = ms_between(t0, t1);
         o.found = t.state == TrackState::locked;
         if (!o.found) o.failure = t.detection.failure.empty() ? to_string(t.state) : t.detection.failure;
         fill_umf(o, frame, t.detection, t.aim_field);
+        return o;
+    }
+
+    // Frame `index` of a video watched in real time (frame_clock.hpp): the
+    // tracker's outcome, or a dropped frame the tracker never sees.
+    Outcome video(Tracker& tracker, const Frame& frame, FrameClock& clock, int index) const {
+        if (!clock.free_for(index)) {
+            Outcome o;
+            o.radius_modules = radius_;
+            o.skipped = !frame.centre_on_screen;
+            o.ms = kNaN;  // no call: not in the time statistics
+            o.failure = kDroppedFrame;
+            return o;
+        }
+        Outcome o = video(tracker, frame);
+        clock.took(index, o.ms);
         return o;
     }
 

@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 
+#include "tests/bench/frame_clock.hpp"
+
 namespace umf::bench {
 namespace {
 
@@ -273,7 +275,7 @@ Summary summarise(const std::vector<Outcome>& outcomes) {
             continue;
         }
         ++s.evaluated;
-        ms.push_back(o.ms);
+        if (std::isfinite(o.ms)) ms.push_back(o.ms);  // a dropped frame (frame_clock.hpp) made no call
         pixels.push_back(o.pixels_pct);
         for (std::size_t k = 0; k < stages.size(); ++k) stages[k].push_back(o.stage_ms[k]);
         if (o.found) {
@@ -477,6 +479,16 @@ std::string to_markdown(const Report& r) {
           "locked, its aim point is the tracker's (smoothed) one, its time is the whole `update()` call. Frames "
           "whose centre is off the screen are still fed to the tracker but left out of its statistics. **ArUco** is "
           "the single-frame baseline above.\n\n";
+    if (const auto tracker = r.settings.find("umf_video_tracker"); tracker != r.settings.end()) {
+        if (tracker->value("spread_search", false))
+            md << "umf video's tracker spreads its search over the frames without a lock (search budget "
+               << num(tracker->value("search_budget_ms", 0.0), 1) << ").\n\n";
+        if (const double slowdown = tracker->value("realtime_slowdown", 0.0); slowdown > 0)
+            md << "umf video in real time: a device " << num(slowdown, 1)
+               << " times slower than this machine; the frames arrive at the video's rate and one that arrives while "
+                  "the tracker is still on an earlier frame is dropped (not found, \"" << kDroppedFrame
+               << "\"; left out of the times).\n\n";
+    }
     if (r.success_radius_modules == kSuccessRadiusModules)
         md << "Success: located within " << num(kSuccessRadiusModules, 0) << " module (30 screen px)";
     else

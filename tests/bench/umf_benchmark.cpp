@@ -77,6 +77,10 @@ Usage: umf_benchmark [options]
   --threads N            threads making frames (default: all cores)
   --spread-search BUDGET "umf video": a tracker without a lock spreads its search over frames, each the first
                          scan's first piece and pieces within BUDGET (TrackerOptions::search_budget; default: off)
+  --realtime SLOWDOWN    "umf video" in real time on a device SLOWDOWN times slower than this machine: the
+                         frames arrive at the video's rate (25 a second; held-out 30) and one that arrives
+                         while the tracker is still on an earlier frame is dropped, counted as not found
+                         (default 0: every frame looked at, however long the tracker takes)
   --dump DIR             also save every frame as PNG there (for looking at them; use with few frames)
   --field NAME|FILE      the 64 x 36 field the detector looks for: a shipped one of shared/data/fields
                          (default b4-64x36.json) or a field file's path (one with a '/')
@@ -108,6 +112,7 @@ struct Options {
     std::string dump;
     std::string field = "b4-64x36.json";
     std::string shown_field;  // empty: field
+    double realtime = 0;      // umf video's device slowdown in real time (frame_clock.hpp); 0: offline
     TrackerOptions tracking;
 };
 
@@ -203,6 +208,15 @@ Options parse(int argc, char** argv) {
             if (used != v.size() || !(o.tracking.search_budget >= 0))
                 throw std::invalid_argument("--spread-search: not a number >= 0");
             o.tracking.spread_search = true;
+        } else if (a == "--realtime") {
+            const std::string v = value();
+            std::size_t used = 0;
+            try {
+                o.realtime = std::stod(v, &used);
+            } catch (const std::exception&) {
+                used = 0;
+            }
+            if (used != v.size() || !(o.realtime >= 0)) throw std::invalid_argument("--realtime: not a number >= 0");
         } else if (a == "--field") {
             o.field = value();
         } else if (a == "--shown-field") {
@@ -352,6 +366,9 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
     s["aruco_board"] = {{"dictionary", "DICT_4X4_250"}, {"markers", methods.board().marker_count()},
                         {"marker_px", 180}, {"gap_px", 60}};
     s["success_radius_modules"] = opt.radius;
+    s["umf_video_tracker"] = {{"spread_search", opt.tracking.spread_search},
+                              {"search_budget_ms", opt.tracking.search_budget},
+                              {"realtime_slowdown", opt.realtime}};
     return s;
 }
 
@@ -443,7 +460,9 @@ private:
         }
         if (!opt_.video) return;
         Tracker tracker = methods_.tracker();
-        for (const auto& frame : field_frames) video_out.push_back(methods_.video(tracker, frame));
+        FrameClock clock(opt_.realtime, sim::kFps);
+        for (std::size_t i = 0; i < field_frames.size(); ++i)
+            video_out.push_back(methods_.video(tracker, field_frames[i], clock, static_cast<int>(i)));
     }
 
     // Makes the frames on all threads, then runs the methods one frame at a
@@ -534,6 +553,7 @@ int run_heldout_set(const Options& opt, const std::string& command) {
     h.command = command;
     h.without = opt.without;
     h.tracking = opt.tracking;
+    h.realtime = opt.realtime;
     return run_heldout(h);
 }
 
