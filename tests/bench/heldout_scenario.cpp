@@ -10,7 +10,6 @@
 namespace umf::bench {
 namespace {
 
-constexpr double kFps = kHeldoutFps;
 constexpr int kClipFrames = 10;
 constexpr double kTwoPi = 2 * CV_PI;
 // Mixed into every held-out seed, so that no stream coincides with one of
@@ -129,7 +128,7 @@ Clip make_clip(cv::RNG& rng, HeldoutCategory category, int clip, const Spec& spe
 sim::CameraPose clip_pose(const Clip& c, double t) {
     const HeldoutScreen& s = heldout_screens()[static_cast<std::size_t>(c.screen)];
     const double module_mm = s.geometry.width_mm / 64.0;
-    const double clip_s = kClipFrames / kFps;
+    const double clip_s = kClipFrames / kHeldoutFps;
     const double m = c.module0 + (c.module1 - c.module0) * std::min(1.0, t / clip_s);
     sim::CameraPose p;
     p.distance_mm = focal_at_reference(c.hfov) * module_mm / m;
@@ -261,7 +260,7 @@ std::vector<HeldoutRecipe> heldout_recipes(HeldoutCategory category, int frames,
             cv::RNG clip_rng(mix(seed, cat, static_cast<std::uint64_t>(clip_index) + 1000));
             clip = make_clip(clip_rng, category, clip_index, spec);
         }
-        const double t = (i % kClipFrames) / kFps;
+        const double t = (i % kClipFrames) / kHeldoutFps;
         cv::RNG rng(mix(seed, cat, static_cast<std::uint64_t>(i)));
         HeldoutRecipe r;
         r.index = i;
@@ -270,7 +269,7 @@ std::vector<HeldoutRecipe> heldout_recipes(HeldoutCategory category, int frames,
         r.hfov_deg = clip.hfov;
         r.pose = clip_pose(clip, t);
         const HeldoutScreen& screen = heldout_screens()[static_cast<std::size_t>(clip.screen)];
-        r.shot = everyday(rng, screen, i / kFps, mix(seed, cat, 5));
+        r.shot = everyday(rng, screen, i / kHeldoutFps, mix(seed, cat, 5));
         r.shot.velocity = velocity_of([&](double at) { return clip_pose(clip, at); }, t);
         // Category-specific draws come after the everyday ones.
         const sim::CurvedBlur fast{rng.uniform(4.0, 14.0), rng.uniform(0.0, 360.0),
@@ -309,7 +308,7 @@ std::vector<HeldoutRecipe> heldout_pulsing_recipes(sim::HeldoutContent content, 
     const HeldoutScreen& screen = heldout_screens()[static_cast<std::size_t>(walk.screen)];
     std::vector<HeldoutRecipe> out;
     for (int i = 0; i < frames; ++i) {
-        const double t = i / kFps;
+        const double t = i / kHeldoutFps;
         cv::RNG rng(mix(seed, stream, static_cast<std::uint64_t>(i)));
         HeldoutRecipe r;
         r.index = i;
@@ -327,7 +326,8 @@ std::vector<HeldoutRecipe> heldout_pulsing_recipes(sim::HeldoutContent content, 
 double heldout_pulsing_opacity(sim::HeldoutContent content, int frame, std::uint64_t seed) {
     cv::RNG rng(mix(seed, kPulseStream + static_cast<std::uint64_t>(content), 2000));
     const double phase_s = rng.uniform(0.0, kHeldoutPulsePeriodS);
-    return sim::pulse_opacity(phase_s + frame / kFps, kHeldoutPulseMin, kHeldoutPulseMax, kHeldoutPulsePeriodS);
+    return sim::pulse_opacity(phase_s + frame / kHeldoutFps, kHeldoutPulseMin, kHeldoutPulseMax,
+                              kHeldoutPulsePeriodS);
 }
 
 Frame shoot_heldout(const HeldoutRecipe& r, const cv::Mat& mixed, cv::Size resolution, const sim::FieldPlacement& placement,

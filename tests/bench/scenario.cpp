@@ -249,7 +249,8 @@ Frame shoot(const Scene& scene, const FrameRecipe& recipe, const cv::Mat& mixed_
 }
 
 Frame shoot(const Scene& scene, const FrameRecipe& recipe, const sim::ScreenSource& mixed_screen, cv::Size resolution) {
-    CV_Assert(mixed_screen.geometry().pixels == scene.screen.pixels && mixed_screen.geometry().width_mm == scene.screen.width_mm);
+    const sim::ScreenGeometry& geometry = mixed_screen.geometry();
+    CV_Assert(geometry.pixels == scene.screen.pixels && geometry.width_mm == scene.screen.width_mm);
     sim::Degradation degradation = recipe.degradation;
     if (recipe.smear_scales_with_width) degradation.motion_blur_px *= resolution.width / 640.0;
     if (recipe.sensor) {

@@ -138,6 +138,18 @@ int positive_int(const std::string& text, const std::string& what, int min = 1) 
     return v;
 }
 
+double non_negative_number(const std::string& text, const std::string& what) {
+    std::size_t used = 0;
+    double v = -1;
+    try {
+        v = std::stod(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != text.size() || !(v >= 0)) throw std::invalid_argument(what + ": not a number >= 0");
+    return v;
+}
+
 Options parse(int argc, char** argv) {
     Options o;
     bool quick = false, frames_given = false, res_given = false, pulse_given = false;
@@ -198,25 +210,10 @@ Options parse(int argc, char** argv) {
         } else if (a == "--threads") {
             o.threads = positive_int(value(), a);
         } else if (a == "--spread-search") {
-            const std::string v = value();
-            std::size_t used = 0;
-            try {
-                o.tracking.search_budget = std::stod(v, &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            if (used != v.size() || !(o.tracking.search_budget >= 0))
-                throw std::invalid_argument("--spread-search: not a number >= 0");
+            o.tracking.search_budget = non_negative_number(value(), a);
             o.tracking.spread_search = true;
         } else if (a == "--realtime") {
-            const std::string v = value();
-            std::size_t used = 0;
-            try {
-                o.realtime = std::stod(v, &used);
-            } catch (const std::exception&) {
-                used = 0;
-            }
-            if (used != v.size() || !(o.realtime >= 0)) throw std::invalid_argument("--realtime: not a number >= 0");
+            o.realtime = non_negative_number(value(), a);
         } else if (a == "--field") {
             o.field = value();
         } else if (a == "--shown-field") {

@@ -81,8 +81,11 @@ Shot photograph(const ScreenSource& source, const CameraModel& camera, const Cam
     // positive exactly for image rays that meet the screen plane in front.
     shot.image_to_screen = s2i.inv();
 
-    const ScreenSource::Light& light_source = source.light(rendering_for(d));
-    const double aliasing = d.pixel_grid ? kGridAliasing : d.subpixels ? kStripeAliasing : 0.0;
+    const ScreenRendering rendering = rendering_for(d);
+    const ScreenSource::Light& light_source = source.light(rendering);
+    const double aliasing = rendering == ScreenRendering::pixel_grid ? kGridAliasing
+                            : rendering == ScreenRendering::subpixels ? kStripeAliasing
+                                                                      : 0.0;
     cv::Mat light = sample_perspective(light_source.mipmap, light_source.from_screen * shot.image_to_screen,
                                        camera.resolution, to_linear(kDeskBgr), aliasing);
 

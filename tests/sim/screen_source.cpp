@@ -48,7 +48,7 @@ ScreenSource::ScreenSource(cv::Mat screen_bgr, const ScreenGeometry& screen)
     : bgr_(std::move(screen_bgr)),
       screen_(screen),
       bezel_px_(static_cast<int>(std::lround(kBezelMm / screen_mm_per_px(screen)))),
-      made_(std::make_unique<std::once_flag[]>(3)) {
+      made_(std::make_unique<std::once_flag[]>(kScreenRenderings)) {
     CV_Assert(bgr_.type() == CV_8UC3 && bgr_.size() == screen.pixels);
 }
 

@@ -23,6 +23,7 @@
 namespace umf::sim {
 
 enum class ScreenRendering { plain, subpixels, pixel_grid };
+inline constexpr std::size_t kScreenRenderings = 3;
 
 ScreenRendering rendering_for(const Degradation& degradation);
 
@@ -43,7 +44,7 @@ private:
     cv::Mat bgr_;
     ScreenGeometry screen_;
     int bezel_px_ = 0;
-    mutable std::unique_ptr<Light> lights_[3];
+    mutable std::unique_ptr<Light> lights_[kScreenRenderings];
     std::unique_ptr<std::once_flag[]> made_;
 };
 
