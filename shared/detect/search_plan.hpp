@@ -7,7 +7,7 @@
 // field about 40 ms at 640 x 480 (median; 80 ms p95), where the first scan
 // alone costs about 1.3 ms. A video does not need every frame to try
 // everything: a tracker may give each frame without a lock a share of the
-// search (search_schedule; TrackerOptions::spread_search): the first scan's
+// search (search_share; TrackerOptions::spread_search): the first scan's
 // first pairs of labellings and as many pieces of the other parts as fit in
 // a budget, so that no frame stalls the camera and a field that only another
 // part finds is found within a round of frames.
@@ -189,48 +189,58 @@ constexpr std::array<SearchPiece, kRoundPieces> spread_round() {
 }
 inline constexpr std::array<SearchPiece, kRoundPieces> kSpreadRound = spread_round();
 
-// One frame's share of the spread search: spread_first(), then consecutive
-// pieces of the round.
+// What spread_first() costs a frame without the field, in kPieceCost's units.
+inline constexpr double kSpreadFirstCost = 1.1;
+
+// One frame's share of the spread search: spread_first(), then `pieces`
+// consecutive pieces of the round from `first_piece`.
 struct ScheduledSearch {
     std::array<SearchPlan, kRoundPieces + 1> plans{};
     std::size_t count = 0;
+    int first_piece = 0;
+    int pieces = 0;
+    double cost = 0;  // kSpreadFirstCost and the pieces' kPieceCost
 };
 
-// The round cut into consecutive groups, each as many pieces as fit in
-// `budget` (their costs summed, at least one piece a group). Returns the
-// number of groups; starts[g] is where group g begins in kSpreadRound,
-// starts[groups] its end.
-constexpr int schedule_groups(double budget, std::array<int, kRoundPieces + 1>& starts) {
-    int groups = 0, at = 0;
-    while (at < kRoundPieces) {
-        starts[static_cast<std::size_t>(groups++)] = at;
-        double spent = kSpreadRound[static_cast<std::size_t>(at++)].cost;
-        while (at < kRoundPieces && spent + kSpreadRound[static_cast<std::size_t>(at)].cost <= budget)
-            spent += kSpreadRound[static_cast<std::size_t>(at++)].cost;
-    }
-    starts[static_cast<std::size_t>(groups)] = kRoundPieces;
-    return groups;
-}
-
-// The frames of one round of the schedule with this budget.
-constexpr int schedule_frames(double budget) {
-    std::array<int, kRoundPieces + 1> starts{};
-    return schedule_groups(budget, starts);
-}
-
-// The search of the k-th consecutive frame without a lock: spread_first(),
-// then the k-th group of the round, round after round. A frame pays for
-// about 1.1 ms and `budget` at 640 x 480 (a piece costs less in a share
-// than alone, where it makes the scans and images it shares with others).
-constexpr ScheduledSearch search_schedule(int k, double budget) {
-    std::array<int, kRoundPieces + 1> starts{};
-    const int groups = schedule_groups(budget, starts);
-    const int g = ((k % groups) + groups) % groups;
+// The share from `first_piece` on: as many pieces as fit in `budget` (their
+// costs summed, at least one piece, at most `max_pieces`), never past the
+// round's end.
+constexpr ScheduledSearch search_share(int first_piece, double budget, int max_pieces = kRoundPieces) {
     ScheduledSearch out;
+    out.first_piece = ((first_piece % kRoundPieces) + kRoundPieces) % kRoundPieces;
     out.plans[out.count++] = spread_first();
-    for (int at = starts[static_cast<std::size_t>(g)]; at < starts[static_cast<std::size_t>(g) + 1]; ++at)
-        out.plans[out.count++] = kSpreadRound[static_cast<std::size_t>(at)].plan();
+    out.cost = kSpreadFirstCost;
+    double spent = 0;
+    for (int at = out.first_piece; at < kRoundPieces && out.pieces < max_pieces; ++at) {
+        const SearchPiece& piece = kSpreadRound[static_cast<std::size_t>(at)];
+        if (out.pieces > 0 && spent + piece.cost > budget) break;
+        spent += piece.cost;
+        out.plans[out.count++] = piece.plan();
+        ++out.pieces;
+    }
+    out.cost += spent;
     return out;
+}
+
+// The frames of one round with this budget: shares one after the other
+// from the round's start.
+constexpr int schedule_frames(double budget) {
+    int frames = 0;
+    for (int at = 0; at < kRoundPieces; at += search_share(at, budget).pieces) ++frames;
+    return frames;
+}
+
+// The search of the k-th consecutive frame without a lock with a budget
+// that stays the same: spread_first(), then the k-th share of the round,
+// round after round. A frame pays for about kSpreadFirstCost and `budget`
+// at 640 x 480 (a piece costs less in a share than alone, where it makes
+// the scans and images it shares with others).
+constexpr ScheduledSearch search_schedule(int k, double budget) {
+    const int frames = schedule_frames(budget);
+    const int g = ((k % frames) + frames) % frames;
+    int at = 0;
+    for (int i = 0; i < g; ++i) at += search_share(at, budget).pieces;
+    return search_share(at, budget);
 }
 
 }  // namespace umf

@@ -1,6 +1,8 @@
 #include "shared/detect/tracker.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
+#include <span>
 
 namespace umf {
 
@@ -13,13 +15,41 @@ const char* to_string(TrackState state) {
     return "?";
 }
 
-Tracker::Tracker(const Detector& detector, TrackerOptions options) : detector_(&detector), options_(options) {}
+Tracker::Tracker(const Detector& detector, TrackerOptions options)
+    : detector_(&detector), options_(options), budget_(options.search_budget) {}
 
 void Tracker::reset() {
     has_prior_ = false;
     frames_since_lock_ = 0;
     has_motion_ = false;
-    searches_without_lock_ = 0;
+    next_piece_ = 0;
+    finding_ = {};
+    budget_ = options_.search_budget;
+    ms_per_cost_ = 0;
+}
+
+Detection Tracker::spread_search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                 bool use_prior) {
+    // The round goes on where it stopped, across locks; while the prior
+    // holds, every other frame retries the share that found the last lock
+    // (a faint field that only a late piece finds is lost again at its
+    // pulse's faint phase, and a round starting over at every lock would
+    // take most of a round to reach that piece again).
+    const bool retry = finding_.pieces > 0 && use_prior && frames_since_lock_ % 2 == 0;
+    const ScheduledSearch share =
+        retry ? search_share(finding_.first_piece, budget_, finding_.pieces) : search_share(next_piece_, budget_);
+    if (!retry) next_piece_ = (share.first_piece + share.pieces) % kRoundPieces;
+    Detection d = detector_->detect(image, aim, prior, std::span<const SearchPlan>(share.plans.data(), share.count));
+    if (d.found) {
+        finding_ = share;
+    } else if (options_.frame_ms > 0) {
+        // What a unit of kPieceCost takes on this device, from the shares
+        // that ran whole; the next shares get what fits in frame_ms.
+        const double measured = d.times.total_ms / share.cost;
+        ms_per_cost_ = ms_per_cost_ > 0 ? 0.7 * ms_per_cost_ + 0.3 * measured : measured;
+        budget_ = std::max(0.0, options_.frame_ms / ms_per_cost_ - kSpreadFirstCost);
+    }
+    return d;
 }
 
 TrackResult Tracker::update(const GreyView& image) {
@@ -46,19 +76,12 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
     }
     if (!out.detection.found) {
         const double followed_ms = out.detection.times.total_ms;
-        // The camera's first frame gets every search, as a photo would; so
-        // do the frames just after a lock, when the field is most likely
-        // still in view (a smear, a faint phase of the pulse). Later frames
-        // without a lock get a share of the parts each.
-        const bool spread = options_.spread_search && !use_prior && searches_without_lock_ > 0;
         const DetectionPrior* p = use_prior ? &prior : nullptr;
-        if (spread) {
-            const ScheduledSearch share = search_schedule(searches_without_lock_ - 1, options_.search_budget);
-            out.detection = detector_->detect(image, aim, p, std::span<const SearchPlan>(share.plans.data(), share.count));
+        if (options_.spread_search) {
+            out.detection = spread_search(image, aim, p, use_prior);
         } else {
             out.detection = detector_->detect(image, aim, p);
         }
-        ++searches_without_lock_;
         out.detection.times.total_ms += followed_ms;
     }
     const Detection& d = out.detection;
@@ -94,7 +117,6 @@ TrackResult Tracker::update(const GreyView& image, const Eigen::Vector2d& aim) {
     last_image_to_field_ = d.image_to_field;
     has_prior_ = true;
     frames_since_lock_ = 0;
-    searches_without_lock_ = 0;
     return out;
 }
 

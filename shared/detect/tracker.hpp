@@ -31,19 +31,28 @@ struct TrackerOptions {
     double still_modules = 0.25;
     // The smoothed point never trails the measured one by more than this.
     double max_lag_modules = 0.02;
-    // A frame without a lock, after the first and more than prior_frames
-    // after the last lock, runs the first scan's first pairs over every
-    // edgel set and as many pieces of the other parts as fit in
-    // search_budget (search_plan.hpp's search_schedule), the next such frame
-    // the next pieces; false: every search on every frame without a lock, as
-    // for a photo on its own. Off while it loses tracked frames that only
-    // one part finds (docs/BENCHMARKS.md, "Detector speed: a search spread
-    // in pieces": the held-out far views at 640 x 480, 35 of 40 to 19).
+    // Every frame without a lock runs the first scan's first pairs over
+    // every edgel set and the next share of the other parts' pieces
+    // (search_plan.hpp's search_share), round after round; false: every
+    // search on every frame without a lock, as for a photo on its own. For
+    // a device that cannot search a whole frame between two camera frames
+    // (docs/BENCHMARKS.md, "Detector speed in real time"); offline, where
+    // every frame is looked at, it finds fewer, and a photo wants every
+    // search.
     bool spread_search = false;
-    // In search_plan.hpp's kPieceCost units (ms at 640 x 480 on the machine
-    // they were measured on).
+    // A share's pieces, in search_plan.hpp's kPieceCost units (ms at 640 x
+    // 480 on the machine they were measured on).
     double search_budget = 2;
+    // The time a frame's search may take on this device, in ms: when set,
+    // the budget follows the measured time of the shares so that one fits
+    // in it (search_budget is the first share's). 0: search_budget always.
+    double frame_ms = 0;
 };
+
+// The share of the time between two camera frames that a requester in real
+// time gives the spread search (TrackerOptions::frame_ms): the rest is for
+// taking the frame from the camera, the page's drawing and the follow.
+inline constexpr double kSpreadFrameShare = 0.5;
 
 enum class TrackState {
     searching,  // no lock yet (or not for a long time): full detection
@@ -69,8 +78,13 @@ public:
     TrackResult update(const GreyView& image);
     TrackResult update(const GreyView& image, const Eigen::Vector2d& aim);
     void reset();
+    // The spread search's budget for the next share, in kPieceCost units.
+    double search_budget() const { return budget_; }
 
 private:
+    Detection spread_search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                            bool use_prior);
+
     const Detector* detector_;
     TrackerOptions options_;
     bool has_prior_ = false;
@@ -81,7 +95,12 @@ private:
     Eigen::Vector2d last_raw_aim_ = Eigen::Vector2d::Zero();
     Eigen::Vector2d smoothed_ = Eigen::Vector2d::Zero();
     int frames_since_lock_ = 0;
-    int searches_without_lock_ = 0;  // the place in the search schedule
+    // The spread search: the round's next piece, the share that found the
+    // last lock (no pieces: none yet), the budget and the device's speed.
+    int next_piece_ = 0;
+    ScheduledSearch finding_{};
+    double budget_ = 2;
+    double ms_per_cost_ = 0;  // 0: not measured yet
 };
 
 }  // namespace umf

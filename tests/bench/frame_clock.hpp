@@ -15,6 +15,9 @@ public:
     // slowdown 0: offline, every frame looked at.
     FrameClock(double slowdown, double fps) : slowdown_(slowdown), frame_ms_(1000.0 / fps) {}
 
+    // This machine's time that is `share` of the time between two frames on
+    // the device (0 offline).
+    double machine_ms(double share) const { return slowdown_ > 0 ? share * frame_ms_ / slowdown_ : 0; }
     // Whether the tracker is free when frame `index` (counted from 0 at the
     // frame rate) arrives.
     bool free_for(int index) const { return !(slowdown_ > 0) || index * frame_ms_ >= busy_until_; }

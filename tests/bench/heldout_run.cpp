@@ -147,8 +147,8 @@ public:
                 if (opt_.aruco) a.push_back(m.aruco(board_frames[i]));
             }
             if (opt_.video) {
-                Tracker tracker = m.tracker();
                 FrameClock clock(opt_.realtime, kHeldoutFps);
+                Tracker tracker = m.tracker(clock.machine_ms(opt_.frame_share));
                 for (std::size_t i = 0; i < field_frames.size(); ++i)
                     v.push_back(m.video(tracker, field_frames[i], clock, static_cast<int>(i)));
             }
@@ -200,7 +200,8 @@ private:
         s["without"] = opt_.without;
         s["umf_video_tracker"] = {{"spread_search", opt_.tracking.spread_search},
                                   {"search_budget_ms", opt_.tracking.search_budget},
-                                  {"realtime_slowdown", opt_.realtime}};
+                                  {"realtime_slowdown", opt_.realtime},
+                                  {"frame_share", opt_.frame_share}};
     }
 
     void configuration(HeldoutCategory category, const std::vector<HeldoutRecipe>& rs, double opacity, cv::Size res,
@@ -232,8 +233,8 @@ private:
         if (opt_.video) {
             // One tracker for the configuration; it only knows the field, so
             // the clips' cuts from one screen to another are cuts to it.
-            Tracker tracker = methods_.front()->tracker();
             FrameClock clock(opt_.realtime, kHeldoutFps);
+            Tracker tracker = methods_.front()->tracker(clock.machine_ms(opt_.frame_share));
             for (std::size_t i = 0; i < rs.size(); ++i)
                 outcomes.video.push_back(methods_[static_cast<std::size_t>(rs[i].screen)]->video(
                     tracker, field_frames[i], clock, static_cast<int>(i)));

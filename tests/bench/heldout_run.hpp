@@ -34,6 +34,7 @@ struct HeldoutOptions {
     std::string command;
     TrackerOptions tracking;  // the trackers' (umf video)
     double realtime = 0;      // umf video's device slowdown in real time (frame_clock.hpp); 0: offline
+    double frame_share = 0;   // in real time, the share of a frame's time the spread search fits in (0: its budget)
     // Effects of the second camera model left out of every frame, to see
     // what each costs (diagnosis only; the held-out numbers of record have
     // all of them): pixel_structure, rolling_shutter, curved_blur,

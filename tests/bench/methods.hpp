@@ -109,7 +109,13 @@ public:
 
     // A fresh tracker on this detector: one per configuration and per
     // pulsing video.
-    Tracker tracker() const { return Tracker(detector_, tracking_); }
+    // `frame_ms` > 0: its spread search fits its shares in that time
+    // (TrackerOptions::frame_ms).
+    Tracker tracker(double frame_ms = 0) const {
+        TrackerOptions o = tracking_;
+        if (frame_ms > 0) o.frame_ms = frame_ms;
+        return Tracker(detector_, o);
+    }
 
     // One frame of a video: every frame goes to the tracker (a phone keeps
     // filming while the centre is off the screen), but such frames are

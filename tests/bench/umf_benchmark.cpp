@@ -75,8 +75,11 @@ Usage: umf_benchmark [options]
                          0 = skip)
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
-  --spread-search BUDGET "umf video": a tracker without a lock spreads its search over frames, each the first
-                         scan's first piece and pieces within BUDGET (TrackerOptions::search_budget; default: off)
+  --spread-search BUDGET|auto
+                         "umf video": a tracker without a lock spreads its search over frames, each the first
+                         scan's first piece and pieces within BUDGET (TrackerOptions::search_budget; default: off);
+                         auto, with --realtime: pieces that fit in half the device's time between two frames
+                         as the tracker measures them (TrackerOptions::frame_ms)
   --realtime SLOWDOWN    "umf video" in real time on a device SLOWDOWN times slower than this machine: the
                          frames arrive at the video's rate (25 a second; held-out 30) and one that arrives
                          while the tracker is still on an earlier frame is dropped, counted as not found
@@ -113,6 +116,7 @@ struct Options {
     std::string field = "b4-64x36.json";
     std::string shown_field;  // empty: field
     double realtime = 0;      // umf video's device slowdown in real time (frame_clock.hpp); 0: offline
+    double frame_share = 0;   // in real time, the share of a frame's time the spread search fits in (0: its budget)
     TrackerOptions tracking;
 };
 
@@ -210,7 +214,11 @@ Options parse(int argc, char** argv) {
         } else if (a == "--threads") {
             o.threads = positive_int(value(), a);
         } else if (a == "--spread-search") {
-            o.tracking.search_budget = non_negative_number(value(), a);
+            const std::string budget = value();
+            if (budget == "auto")
+                o.frame_share = kSpreadFrameShare;  // as the page gives it
+            else
+                o.tracking.search_budget = non_negative_number(budget, a);
             o.tracking.spread_search = true;
         } else if (a == "--realtime") {
             o.realtime = non_negative_number(value(), a);
@@ -234,6 +242,8 @@ Options parse(int argc, char** argv) {
             o.categories.push_back(*c);
         }
     }
+    if (o.frame_share > 0 && !(o.realtime > 0))
+        throw std::invalid_argument("--spread-search auto measures against the frames' time: give --realtime too");
     if (o.heldout && !pulse_given) o.pulse_frames = 90;
     if (quick) {
         if (!frames_given) o.frames = 10;
@@ -365,7 +375,8 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
     s["success_radius_modules"] = opt.radius;
     s["umf_video_tracker"] = {{"spread_search", opt.tracking.spread_search},
                               {"search_budget_ms", opt.tracking.search_budget},
-                              {"realtime_slowdown", opt.realtime}};
+                              {"realtime_slowdown", opt.realtime},
+                              {"frame_share", opt.frame_share}};
     return s;
 }
 
@@ -456,8 +467,8 @@ private:
             if (opt_.aruco) aruco_out.push_back(methods_.aruco(board_frames[i]));
         }
         if (!opt_.video) return;
-        Tracker tracker = methods_.tracker();
         FrameClock clock(opt_.realtime, sim::kFps);
+        Tracker tracker = methods_.tracker(clock.machine_ms(opt_.frame_share));
         for (std::size_t i = 0; i < field_frames.size(); ++i)
             video_out.push_back(methods_.video(tracker, field_frames[i], clock, static_cast<int>(i)));
     }
@@ -551,6 +562,7 @@ int run_heldout_set(const Options& opt, const std::string& command) {
     h.without = opt.without;
     h.tracking = opt.tracking;
     h.realtime = opt.realtime;
+    h.frame_share = opt.frame_share;
     return run_heldout(h);
 }
 

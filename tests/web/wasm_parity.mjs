@@ -91,6 +91,32 @@ for (const seq of doc.sequences) {
   if (r.state !== native.state || !(pointDiff(r.point, native.point) <= POINT_TOL))
     fail(`grey input: ${r.state} ${r.point} vs native ${native.state} ${native.point}`);
 }
+// A camera's frame rate spreads the tracker's search over the frames without
+// a lock; back at 0 (a photo's search) the tracker gives what the native one
+// gave on the same frame. Bad rates are refused with a message.
+{
+  const seq = doc.sequences[0];
+  const native = seq.frames[0];
+  const rgba = fs.readFileSync(path.join(parityDir, native.file));
+  detector.setFrameRate(30);
+  const spread = detector.track(new Uint8Array(rgba), seq.width, seq.height);
+  detector.setFrameRate(0);
+  const r = detector.track(new Uint8Array(rgba), seq.width, seq.height);
+  if (r.state !== native.state || !(pointDiff(r.point, native.point) <= POINT_TOL))
+    fail(`first frame at frame rate 0 again: ${r.state} ${r.point} vs native ${native.state} ${native.point}`);
+  console.log(`first frame at 30 frames a second: ${spread.state}, ${spread.ms.toFixed(2)} ms; at 0: ${r.state}, ` +
+              `${r.ms.toFixed(2)} ms`);
+  for (const bad of [-1, NaN, Infinity]) {
+    let refused = false;
+    try {
+      detector.setFrameRate(bad);
+    } catch (e) {
+      refused = /rate/.test(e.message);
+    }
+    if (!refused) fail(`frame rate ${bad} was not refused with a message`);
+  }
+  detector.setFrameRate(0);
+}
 detector.destroy();
 
 // Bad input must come back as an error, not abort the module.

@@ -244,7 +244,8 @@ const framesWanted = () => !busy && workerReady && !paused() && (!view || aiming
 function handFrame(frame) {
   busy = true;
   // Now and then, while another screen is seen, a frame for the screens nearby.
-  worker.postMessage({ type: nearby.takesFrame(view) ? 'identify' : 'frame', id: ++frameId, frame }, [frame]);
+  const frameRate = stream?.getVideoTracks()[0]?.getSettings().frameRate ?? 0;
+  worker.postMessage({ type: nearby.takesFrame(view) ? 'identify' : 'frame', id: ++frameId, frame, frameRate }, [frame]);
 }
 
 async function startCamera() {

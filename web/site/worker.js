@@ -8,6 +8,7 @@
 import { createDetector } from './detector.js';
 
 let detector = null;
+let frameRate = 0;  // the camera's, as the detector was last told (0: every search on every frame)
 let nearby = [];  // one detector per nearby screen's field, in the page's order
 let canvas = null;
 let context = null;
@@ -51,11 +52,18 @@ self.onmessage = async (event) => {
       detector?.destroy();
       detector = null;
       detector = await createDetector(message.field);
+      frameRate = 0;
       self.postMessage({ type: 'ready' });
     } else if (message.type === 'frame') {
       const frame = message.frame;
       try {
         if (!detector) throw new Error('no field yet');
+        // A frame without a lock searches what fits between two of the camera's.
+        const rate = message.frameRate > 0 ? message.frameRate : 0;
+        if (rate !== frameRate) {
+          detector.setFrameRate(rate);
+          frameRate = rate;
+        }
         const pixels = await pixelsOf(frame);
         self.postMessage({ type: 'result', id: message.id, result: track(pixels) });
       } finally {
@@ -66,7 +74,9 @@ self.onmessage = async (event) => {
       const bitmap = message.bitmap;
       try {
         if (!detector) throw new Error('no field yet');
-        detector.reset();
+        // Every search, not a camera frame's share.
+        detector.setFrameRate(0);
+        frameRate = 0;
         let result = null;
         for (const side of [1920, 1280, 960]) {
           result = track(await pixelsOf(bitmap, side));

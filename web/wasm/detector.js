@@ -66,6 +66,13 @@ export async function createDetector(fieldJson, { moduleOptions } = {}) {
       alive();
       M._umf_reset(handle);
     },
+    // The camera's frames a second: each frame without a lock then searches
+    // what fits in part of the time between two frames on this device (0:
+    // every search on every frame, the default). Forgets the lock.
+    setFrameRate(framesPerSecond) {
+      alive();
+      if (M._umf_set_frame_rate(handle, framesPerSecond) !== 0) throw new Error(cString(M, M._umf_last_error()));
+    },
     destroy() {
       if (handle) M._umf_destroy(handle);
       handle = 0;

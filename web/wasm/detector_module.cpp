@@ -217,6 +217,22 @@ EMSCRIPTEN_KEEPALIVE void umf_reset(void* handle) {
     if (Instance* in = instance(handle)) in->tracker.reset();
 }
 
+EMSCRIPTEN_KEEPALIVE int umf_set_frame_rate(void* handle, double frames_per_second) {
+    g_last_error.clear();
+    Instance* in = instance(handle);
+    if (!in || !std::isfinite(frames_per_second) || frames_per_second < 0) {
+        g_last_error = "umf_set_frame_rate: no handle, or a rate that is negative or not finite";
+        return -1;
+    }
+    umf::TrackerOptions options;
+    if (frames_per_second > 0) {
+        options.spread_search = true;
+        options.frame_ms = umf::kSpreadFrameShare * 1000 / frames_per_second;
+    }
+    in->tracker = umf::Tracker(in->detector, options);
+    return 0;
+}
+
 EMSCRIPTEN_KEEPALIVE const std::uint8_t* umf_grey_buffer(void* handle) {
     Instance* in = instance(handle);
     return in ? in->last_grey : nullptr;

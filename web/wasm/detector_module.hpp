@@ -78,6 +78,15 @@ const UmfTrackResult* umf_track(void* handle, int width, int height, int format,
 // Forgets the lock: the next frame is searched from scratch.
 void umf_reset(void* handle);
 
+// The camera's frame rate (frames a second), for a tracker that keeps up
+// with it: each frame without a lock then runs the share of the search that
+// fits in kSpreadFrameShare of the time between two frames, as measured on
+// this device (TrackerOptions::spread_search, frame_ms). 0: every search on
+// every frame without a lock (the default; what a photo wants). Forgets the
+// lock. Returns 0, or -1 for a rate that is
+// negative or not finite (umf_last_error()).
+int umf_set_frame_rate(void* handle, double frames_per_second);
+
 // The grey image of the last frame (width*height bytes), for tests and debugging.
 const std::uint8_t* umf_grey_buffer(void* handle);
 // The stage that ended the last frame's search ("" when found), NUL-terminated.
