@@ -82,8 +82,8 @@ Timing time_single(const Detector& detector, const Clip& clip, bool with_field, 
 // Each share of the spread search's round (search_schedule at the
 // tracker's default budget) on each frame without the field: what a frame
 // costs a tracker that has not found the field for a while, whichever share
-// it is at (the tracker's own row also holds each clip's first frame, which
-// gets the whole search).
+// it is at (the tracker's own row takes them in the order it runs them, at
+// the same fixed budget).
 Timing time_shares(const Detector& detector, const Clip& clip, int runs) {
     Timing t;
     const double budget = TrackerOptions{}.search_budget;
