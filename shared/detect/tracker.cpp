@@ -23,7 +23,8 @@ void Tracker::reset() {
     frames_since_lock_ = 0;
     has_motion_ = false;
     next_piece_ = 0;
-    finding_ = {};
+    finding_first_piece_ = 0;
+    finding_pieces_ = 0;
     budget_ = options_.search_budget;
     ms_per_cost_ = 0;
 }
@@ -35,13 +36,14 @@ Detection Tracker::spread_search(const GreyView& image, const Eigen::Vector2d& a
     // (a faint field that only a late piece finds is lost again at its
     // pulse's faint phase, and a round starting over at every lock would
     // take most of a round to reach that piece again).
-    const bool retry = finding_.pieces > 0 && use_prior && frames_since_lock_ % 2 == 0;
-    const ScheduledSearch share =
-        retry ? search_share(finding_.first_piece, budget_, finding_.pieces) : search_share(next_piece_, budget_);
+    const bool retry = finding_pieces_ > 0 && use_prior && frames_since_lock_ % 2 == 0;
+    const ScheduledSearch share = retry ? search_share(finding_first_piece_, budget_, finding_pieces_)
+                                        : search_share(next_piece_, budget_);
     if (!retry) next_piece_ = (share.first_piece + share.pieces) % kRoundPieces;
     Detection d = detector_->detect(image, aim, prior, std::span<const SearchPlan>(share.plans.data(), share.count));
     if (d.found) {
-        finding_ = share;
+        finding_first_piece_ = share.first_piece;
+        finding_pieces_ = share.pieces;
     } else if (options_.frame_ms > 0) {
         // What a unit of kPieceCost takes on this device, from the shares
         // that ran whole; the next shares get what fits in frame_ms.

@@ -98,7 +98,8 @@ private:
     // The spread search: the round's next piece, the share that found the
     // last lock (no pieces: none yet), the budget and the device's speed.
     int next_piece_ = 0;
-    ScheduledSearch finding_{};
+    int finding_first_piece_ = 0;
+    int finding_pieces_ = 0;
     double budget_ = 2;
     double ms_per_cost_ = 0;  // 0: not measured yet
 };

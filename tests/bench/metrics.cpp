@@ -480,13 +480,13 @@ std::string to_markdown(const Report& r) {
           "whose centre is off the screen are still fed to the tracker but left out of its statistics. **ArUco** is "
           "the single-frame baseline above.\n\n";
     if (const auto tracker = r.settings.find("umf_video_tracker"); tracker != r.settings.end()) {
-        if (!tracker->value("spread_search", false)) {
-        } else if (const double share = tracker->value("frame_share", 0.0); share > 0) {
-            md << "umf video's tracker spreads its search over the frames without a lock, each frame's share what "
-                  "fits in " << num(share, 2) << " of the device's time between two frames as it measures them.\n\n";
-        } else {
-            md << "umf video's tracker spreads its search over the frames without a lock (search budget "
-               << num(tracker->value("search_budget_ms", 0.0), 1) << ").\n\n";
+        if (tracker->value("spread_search", false)) {
+            md << "umf video's tracker spreads its search over the frames without a lock";
+            if (const double share = tracker->value("frame_share", 0.0); share > 0)
+                md << ", each frame's share what fits in " << num(share, 2)
+                   << " of the device's time between two frames as it measures them.\n\n";
+            else
+                md << " (search budget " << num(tracker->value("search_budget_ms", 0.0), 1) << ").\n\n";
         }
         if (const double slowdown = tracker->value("realtime_slowdown", 0.0); slowdown > 0)
             md << "umf video in real time: a device " << num(slowdown, 1)

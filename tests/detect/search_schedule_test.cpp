@@ -233,7 +233,7 @@ TEST(SearchSchedule, ATrackerWithoutALockSpreadsTheSearchAndStillFindsWhatOnlyAF
 
 // A device's own speed sets how much of the round a frame gets: one that
 // searches fast enough takes the whole round on one frame, a slow one a
-// piece a frame; either keeps its frames within the time it is given.
+// piece a frame.
 TEST(SearchSchedule, TheBudgetFollowsTheDevicesSpeed) {
     const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
     const Detector detector(field);
