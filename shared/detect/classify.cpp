@@ -13,47 +13,52 @@ namespace {
 
 constexpr double kUnread = std::numeric_limits<double>::quiet_NaN();  // a module not wholly in view
 
-// The median of nine values by the 19 exchanges of Paeth's network: no
-// branches, for the millions of modules read a second.
-std::uint8_t median_of_9(std::uint8_t* p) {
-    auto sort2 = [p](int a, int b) {
-        const std::uint8_t lo = std::min(p[a], p[b]), hi = std::max(p[a], p[b]);
-        p[a] = lo;
-        p[b] = hi;
+// The medians of nine values, for a row of `n` modules at once: `p` holds
+// the first value of each module, then the second, ... (n apart). Paeth's
+// network of 19 exchanges, each one over the whole row: no branches, and
+// loops the compiler vectorises, for the millions of modules read a second.
+// The medians end where the fifth values were.
+void medians_of_9(std::uint8_t* p, int n) {
+    auto sort2 = [p, n](int a, int b) {
+        std::uint8_t* __restrict x = p + static_cast<std::ptrdiff_t>(a) * n;
+        std::uint8_t* __restrict y = p + static_cast<std::ptrdiff_t>(b) * n;
+        for (int j = 0; j < n; ++j) {
+            const std::uint8_t lo = std::min(x[j], y[j]), hi = std::max(x[j], y[j]);
+            x[j] = lo;
+            y[j] = hi;
+        }
     };
     sort2(1, 2), sort2(4, 5), sort2(7, 8), sort2(0, 1), sort2(3, 4), sort2(6, 7), sort2(1, 2), sort2(4, 5);
     sort2(7, 8), sort2(0, 3), sort2(5, 8), sort2(4, 7), sort2(3, 6), sort2(1, 4), sort2(2, 5), sort2(4, 7);
     sort2(4, 2), sort2(6, 4), sort2(4, 2);
-    return p[4];
 }
 
-// A module's brightness: the median of nine pixels spread over its middle
-// half (a 3 x 3 pattern a quarter module apart). Text and thin lines under
-// the field darken or brighten a few of them, not the median. NaN when the
-// module is not wholly inside the image. `c` is the module's centre under
-// the grid's homography h (homogeneous), `qx` and `qy` a quarter module
-// along each axis (h's first and second columns over 4).
-double sample_module(const GreyView& im, const Eigen::Vector3d& c, const Eigen::Vector3d& qx,
-                     const Eigen::Vector3d& qy, long& visited) {
+// A module's nine pixels, spread over its middle half (a 3 x 3 pattern a
+// quarter module apart), whose median is its brightness: text and thin
+// lines under the field darken or brighten a few of them, not the median.
+// Written `stride` apart from `v`; false when the module is not wholly
+// inside the image. `c` is the module's centre under the grid's homography
+// h (homogeneous), `qx` and `qy` a quarter module along each axis (h's
+// first and second columns over 4).
+bool sample_module(const GreyView& im, const Eigen::Vector3d& c, const Eigen::Vector3d& qx, const Eigen::Vector3d& qy,
+                   std::uint8_t* v, int stride) {
     // The module is small enough for the homography to be affine across it:
     // a quarter module along each axis from its centre, step from there.
-    if (c.z() <= 0) return kUnread;
+    if (c.z() <= 0) return false;
     const Eigen::Vector3d ex = c + qx, ey = c + qy;
     const double px = c.x() / c.z(), py = c.y() / c.z();
     const double dxx = ex.x() / ex.z() - px, dxy = ex.y() / ex.z() - py;
     const double dyx = ey.x() / ey.z() - px, dyy = ey.y() / ey.z() - py;
     // The nine pixels lie within the centre's reach of |dx| + |dy|.
     const double reach = std::abs(dxx) + std::abs(dyx) + std::abs(dxy) + std::abs(dyy);
-    if (px - reach < 0 || py - reach < 0 || px + reach >= im.width || py + reach >= im.height) return kUnread;
-    std::uint8_t v[9];
+    if (px - reach < 0 || py - reach < 0 || px + reach >= im.width || py + reach >= im.height) return false;
     int n = 0;
     for (int a = -1; a <= 1; ++a)
         for (int b = -1; b <= 1; ++b) {
             const int x = static_cast<int>(px + b * dxx + a * dyx), y = static_cast<int>(py + b * dxy + a * dyy);
-            v[n++] = im.row(y)[x];
+            v[static_cast<std::ptrdiff_t>(n++) * stride] = im.row(y)[x];
         }
-    visited += 9;
-    return median_of_9(v);
+    return true;
 }
 
 // The values in ascending order. They are medians of pixels, whole grey
@@ -116,6 +121,21 @@ double field_step(const std::vector<double>& value, int rows, int cols) {
     return 255;
 }
 
+// To each module's sums of the levels near its own (within `within`), their
+// squares and their count, the level at one offset: `levels` (and their
+// `squares`) from that offset on, `centre` the modules' own levels, all
+// `cols` long.
+void add_near(const int* __restrict levels, const int* __restrict squares, const int* __restrict centre, int within,
+              int cols, int* __restrict sum, int* __restrict sq, int* __restrict n) {
+    for (int j = 0; j < cols; ++j) {
+        const int u = levels[j];
+        const int near = -static_cast<int>(std::abs(u - centre[j]) <= within);  // all ones or zero
+        sum[j] += u & near;
+        sq[j] += squares[j] & near;
+        n[j] -= near;
+    }
+}
+
 // Binary modules, each judged against the modules around it that lie over
 // the same content: pictures, text and cards change the brightness under
 // the field, and in a binary field about half of any 5 x 5 block is dark.
@@ -143,33 +163,39 @@ void classify_binary(const std::vector<double>& value, int rows, int cols, doubl
             if (std::isfinite(v))
                 level[static_cast<std::size_t>(i + kRadius) * padded_cols + j + kRadius] = static_cast<int>(v);
         }
-    for (int i = 0; i < rows; ++i)
+    std::vector<int> square(level.size());
+    for (std::size_t k = 0; k < level.size(); ++k) square[k] = level[k] * level[k];
+    // Each row's sums at once, one neighbour offset after the other: the
+    // same additions as module by module, in loops the compiler vectorises.
+    // An unread centre's sentinel is further than `within` from every level.
+    constexpr int kNoCentre = -(1 << 20);
+    std::vector<int> centre(static_cast<std::size_t>(cols)), sum(centre.size()), sq(centre.size()), n(centre.size());
+    for (int i = 0; i < rows; ++i) {
+        const int* own = &level[static_cast<std::size_t>(i + kRadius) * padded_cols + kRadius];
+        for (int j = 0; j < cols; ++j) centre[j] = own[j] == kUnreadLevel ? kNoCentre : own[j];
+        std::fill(sum.begin(), sum.end(), 0);
+        std::fill(sq.begin(), sq.end(), 0);
+        std::fill(n.begin(), n.end(), 0);
+        for (int a = 0; a <= 2 * kRadius; ++a)
+            for (int b = 0; b <= 2 * kRadius; ++b)
+                add_near(&level[static_cast<std::size_t>(i + a) * padded_cols + b],
+                         &square[static_cast<std::size_t>(i + a) * padded_cols + b], centre.data(), within, cols,
+                         sum.data(), sq.data(), n.data());
         for (int j = 0; j < cols; ++j) {
             const std::size_t k = static_cast<std::size_t>(i) * cols + j;
             const double v = value[k];
             if (!std::isfinite(v)) continue;
-            const int centre = static_cast<int>(v);
-            int sum = 0, sq = 0, n = 0;
-            for (int a = 0; a <= 2 * kRadius; ++a) {
-                const int* row = &level[static_cast<std::size_t>(i + a) * padded_cols + j];
-                for (int b = 0; b <= 2 * kRadius; ++b) {
-                    const int u = row[b];
-                    const bool near = std::abs(u - centre) <= within;
-                    sum += near ? u : 0;
-                    sq += near ? u * u : 0;
-                    n += near;
-                }
-            }
             double local = threshold, local_gap = gap;
-            if (n >= 8) {
-                local = static_cast<double>(sum) / n;
-                const double var = std::max(0.0, static_cast<double>(sq) / n - local * local);
+            if (n[j] >= 8) {
+                local = static_cast<double>(sum[j]) / n[j];
+                const double var = std::max(0.0, static_cast<double>(sq[j]) / n[j] - local * local);
                 // Two equal clusters sit one standard deviation from their middle.
                 local_gap = 2 * std::sqrt(var);
             }
             if (std::abs(v - local) < o.doubt * local_gap) continue;
             g.value[k] = v > local ? 1 : 0;
         }
+    }
 }
 
 }  // namespace
@@ -181,13 +207,25 @@ ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int ro
     std::vector<double> seen;
     // A quarter module along each axis is the same step everywhere in homogeneous coordinates.
     const Eigen::Vector3d qx = 0.25 * h.col(0), qy = 0.25 * h.col(1);
-    for (int i = 0; i < rows; ++i)
+    // A row of modules at a time: their pixels, then their medians.
+    std::vector<std::uint8_t> pixels(static_cast<std::size_t>(cols) * 9);
+    std::vector<char> inside(static_cast<std::size_t>(cols));
+    for (int i = 0; i < rows; ++i) {
         for (int j = 0; j < cols; ++j) {
             const Eigen::Vector3d c = h * Eigen::Vector3d(j + 0.5, i + 0.5, 1.0);
-            const double v = sample_module(im, c, qx, qy, visited);
-            value[static_cast<std::size_t>(i) * cols + j] = v;
-            if (std::isfinite(v)) seen.push_back(v);
+            inside[j] = sample_module(im, c, qx, qy, &pixels[j], cols);
+            if (!inside[j])
+                for (int k = 0; k < 9; ++k) pixels[static_cast<std::size_t>(k) * cols + j] = 0;
         }
+        medians_of_9(pixels.data(), cols);
+        const std::uint8_t* median = &pixels[static_cast<std::size_t>(4) * cols];
+        for (int j = 0; j < cols; ++j) {
+            if (!inside[j]) continue;
+            visited += 9;
+            value[static_cast<std::size_t>(i) * cols + j] = median[j];
+            seen.push_back(median[j]);
+        }
+    }
     if (seen.size() < 4) return g;
     double low = 0, high = 0;
     const double threshold = otsu(seen, low, high);
