@@ -31,6 +31,15 @@ double angle_between_mod_pi(double a, double b) {
     return std::min(d, kPi - d);
 }
 
+// An angle from atan2 taken into [0, pi): what fmod(a + 2 pi, pi) gives,
+// bit for bit (each subtraction is exact), without its division loop.
+double angle_mod_pi(double a) {
+    double r = a + 2 * kPi;
+    if (r >= 2 * kPi) r -= 2 * kPi;
+    if (r >= kPi) r -= kPi;
+    return r;
+}
+
 // Whether an edgel points at the vanishing point v within its tolerance:
 // alignment(e, v) >= e.cos_tol without the root and division, for the
 // thousands of tests a RANSAC makes.
@@ -166,7 +175,7 @@ VanishingPoints find_vanishing_points(const std::vector<Edgel>& edgels, int widt
         l.p = {(e.x - cx) / scale, (e.y - cy) / scale};
         l.d = {-e.gy / g, e.gx / g};
         l.l = Eigen::Vector3d(e.gx / g, e.gy / g, -(e.gx * l.p.x() + e.gy * l.p.y()) / g);
-        l.angle = std::fmod(std::atan2(l.d.y(), l.d.x()) + 2 * kPi, kPi);
+        l.angle = angle_mod_pi(std::atan2(l.d.y(), l.d.x()));
         l.weight = g;
         l.cos_tol = inlier_cos(g, noise_sigma, o, bounds);
         lines.push_back(l);
