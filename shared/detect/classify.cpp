@@ -218,7 +218,7 @@ ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int ro
                 for (int k = 0; k < 9; ++k) pixels[static_cast<std::size_t>(k) * cols + j] = 0;
         }
         medians_of_9(pixels.data(), cols);
-        const std::uint8_t* median = &pixels[static_cast<std::size_t>(4) * cols];
+        const std::uint8_t* median = pixels.data() + static_cast<std::size_t>(4) * cols;
         for (int j = 0; j < cols; ++j) {
             if (!inside[j]) continue;
             visited += 9;
