@@ -213,9 +213,7 @@ ModuleGrid classify_modules(const GreyView& im, const Eigen::Matrix3d& h, int ro
     for (int i = 0; i < rows; ++i) {
         for (int j = 0; j < cols; ++j) {
             const Eigen::Vector3d c = h * Eigen::Vector3d(j + 0.5, i + 0.5, 1.0);
-            inside[j] = sample_module(im, c, qx, qy, &pixels[j], cols);
-            if (!inside[j])
-                for (int k = 0; k < 9; ++k) pixels[static_cast<std::size_t>(k) * cols + j] = 0;
+            inside[j] = sample_module(im, c, qx, qy, &pixels[j], cols);  // outside: whatever was there, unused
         }
         medians_of_9(pixels.data(), cols);
         const std::uint8_t* median = pixels.data() + static_cast<std::size_t>(4) * cols;
