@@ -27,6 +27,40 @@ Eigen::Matrix3d normaliser(const std::vector<Point2>& pts) {
     return t;
 }
 
+using Matrix9 = Eigen::Matrix<double, 9, 9>;
+using Vector9 = Eigen::Matrix<double, 9, 1>;
+
+// The unit vector v minimising v^T M v for the normal matrix M of a linear
+// system, as a 3 x 3 matrix row by row; nothing when the system does not pin
+// it down.
+std::optional<Eigen::Matrix3d> smallest_eigenvector(const Matrix9& ata) {
+    // Inverse iteration: that eigenvalue is next to 0 and far below the
+    // others, so each step gains their ratio and three steps match a full
+    // eigen-decomposition to rounding, at a fifth of its cost. The shift
+    // keeps exact data solvable.
+    const Eigen::LDLT<Matrix9> ldlt(ata + 1e-12 * ata.trace() * Matrix9::Identity());
+    if (ldlt.info() != Eigen::Success) return std::nullopt;
+    // A unique solution has one (near) zero eigenvalue; a second one means the
+    // data do not pin the homography down. The pivots, largest first, of
+    // the decomposition of a semi-definite matrix show it in the last two.
+    Vector9 pivots = ldlt.vectorD().cwiseAbs();
+    std::sort(pivots.data(), pivots.data() + 9);
+    if (!(pivots(1) > 1e-9 * pivots(8))) return std::nullopt;
+    Vector9 v = Vector9::Ones().normalized();
+    for (int step = 0; step < 3; ++step) v = ldlt.solve(v).normalized();
+    if (!v.allFinite()) return std::nullopt;
+    Eigen::Matrix3d m;
+    m << v(0), v(1), v(2), v(3), v(4), v(5), v(6), v(7), v(8);
+    return m;
+}
+
+// A homography in its usual scale, or nothing when it is (nearly) singular.
+std::optional<Eigen::Matrix3d> scaled(Eigen::Matrix3d h) {
+    if (!h.allFinite() || std::abs(h.determinant()) < 1e-15 * cube(h.norm())) return std::nullopt;
+    if (std::abs(h(2, 2)) > 1e-12) h /= h(2, 2);
+    return h;
+}
+
 // The homography taking the projective basis (e1, e2, e3, e1 + e2 + e3) to
 // four points: their columns, each scaled so the fourth is their sum.
 // Nothing when three of the four are (nearly) on one line.
@@ -61,10 +95,7 @@ std::optional<Eigen::Matrix3d> homography_from_4(const Point2* from, const Point
     Eigen::Matrix3d tf, tt;
     tf << 1, 0, -of.x(), 0, 1, -of.y(), 0, 0, 1;
     tt << 1, 0, ot.x(), 0, 1, ot.y(), 0, 0, 1;
-    Eigen::Matrix3d h = tt * *b * a->inverse() * tf;
-    if (!h.allFinite() || std::abs(h.determinant()) < 1e-15 * cube(h.norm())) return std::nullopt;
-    if (std::abs(h(2, 2)) > 1e-12) h /= h(2, 2);
-    return h;
+    return scaled(tt * *b * a->inverse() * tf);
 }
 
 }  // namespace
@@ -93,34 +124,39 @@ std::optional<Eigen::Matrix3d> fit_homography(const std::vector<Point2>& from, c
         yz += b.y() * b.z() * aa;
         xy += (b.x() * b.x() + b.y() * b.y()) * aa;
     }
-    Eigen::Matrix<double, 9, 9> ata = Eigen::Matrix<double, 9, 9>::Zero();
+    Matrix9 ata = Matrix9::Zero();
     ata.block<3, 3>(0, 0) = zz;
     ata.block<3, 3>(3, 3) = zz;
     ata.block<3, 3>(0, 6) = ata.block<3, 3>(6, 0) = -xz;
     ata.block<3, 3>(3, 6) = ata.block<3, 3>(6, 3) = -yz;
     ata.block<3, 3>(6, 6) = xy;
-    // The eigenvector of the smallest eigenvalue by inverse iteration: that
-    // eigenvalue is next to 0 and far below the others, so each step gains
-    // their ratio and three steps match a full eigen-decomposition to
-    // rounding, at a fifth of its cost. The shift keeps exact data solvable.
-    using Vector9 = Eigen::Matrix<double, 9, 1>;
-    const Eigen::LDLT<Eigen::Matrix<double, 9, 9>> ldlt(ata + 1e-12 * ata.trace() * Eigen::Matrix<double, 9, 9>::Identity());
-    if (ldlt.info() != Eigen::Success) return std::nullopt;
-    // A unique solution has one (near) zero eigenvalue; a second one means the
-    // points do not pin the homography down. The pivots, largest first, of
-    // the decomposition of a semi-definite matrix show it in the last two.
-    Vector9 pivots = ldlt.vectorD().cwiseAbs();
-    std::sort(pivots.data(), pivots.data() + 9);
-    if (!(pivots(1) > 1e-9 * pivots(8))) return std::nullopt;
-    Vector9 v = Vector9::Ones().normalized();
-    for (int step = 0; step < 3; ++step) v = ldlt.solve(v).normalized();
-    if (!v.allFinite()) return std::nullopt;
-    Eigen::Matrix3d hn;
-    hn << v(0), v(1), v(2), v(3), v(4), v(5), v(6), v(7), v(8);
-    Eigen::Matrix3d h = tt.inverse() * hn * tf;
-    if (std::abs(h.determinant()) < 1e-15 * cube(h.norm())) return std::nullopt;
-    if (std::abs(h(2, 2)) > 1e-12) h /= h(2, 2);
-    return h;
+    const auto hn = smallest_eigenvector(ata);
+    if (!hn) return std::nullopt;
+    return scaled(tt.inverse() * *hn * tf);
+}
+
+std::optional<Eigen::Matrix3d> fit_homography_to_lines(const std::vector<Point2>& from, const std::vector<Point2>& to,
+                                                       const std::vector<Point2>& normal) {
+    const std::size_t n = from.size();
+    if (n < 8 || to.size() != n || normal.size() != n) return std::nullopt;
+    // Each row says H a lies on the line l through b across its normal:
+    // l^T H a = 0, the row l (x) a. A normaliser that only scales and
+    // shifts keeps a line's normal and moves its point.
+    const Eigen::Matrix3d tf = normaliser(from), tt = normaliser(to);
+    Matrix9 ata = Matrix9::Zero();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Eigen::Vector3d a = tf * Eigen::Vector3d(from[i].x(), from[i].y(), 1.0);
+        const Point2 b = (tt * Eigen::Vector3d(to[i].x(), to[i].y(), 1.0)).head<2>();
+        const Eigen::Vector3d l(normal[i].x(), normal[i].y(), -normal[i].dot(b));
+        const Eigen::Matrix3d aa = a * a.transpose();
+        for (int r = 0; r < 3; ++r)
+            for (int c = r; c < 3; ++c) ata.block<3, 3>(3 * r, 3 * c) += l(r) * l(c) * aa;
+    }
+    for (int r = 1; r < 3; ++r)
+        for (int c = 0; c < r; ++c) ata.block<3, 3>(3 * r, 3 * c) = ata.block<3, 3>(3 * c, 3 * r);
+    const auto hn = smallest_eigenvector(ata);
+    if (!hn) return std::nullopt;
+    return scaled(tt.inverse() * *hn * tf);
 }
 
 std::optional<RobustHomography> fit_homography_robust(const std::vector<Point2>& from, const std::vector<Point2>& to,

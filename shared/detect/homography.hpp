@@ -1,5 +1,6 @@
-// Plane-to-plane homographies from point correspondences: the normalised
-// direct linear transform, and a robust fit that ignores wrong matches.
+// Plane-to-plane homographies from point correspondences or from points
+// measured on lines: the normalised direct linear transform, and a robust
+// fit that ignores wrong matches.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,6 +16,15 @@ using Point2 = Eigen::Vector2d;
 // possible. Nothing when there are fewer than four points or they are
 // degenerate (three or more on one line among four, all coincident...).
 std::optional<Eigen::Matrix3d> fit_homography(const std::vector<Point2>& from, const std::vector<Point2>& to);
+
+// H maps each `from[i]` onto the line through `to[i]` across `normal[i]` (a
+// unit vector in `to`'s plane): an edge found by searching across it says
+// where the edge is, not where along it the search started. Minimises the
+// distances from those lines (times each point's homogeneous weight).
+// Nothing for fewer than eight points or lines that do not pin H down
+// (all parallel...).
+std::optional<Eigen::Matrix3d> fit_homography_to_lines(const std::vector<Point2>& from, const std::vector<Point2>& to,
+                                                       const std::vector<Point2>& normal);
 
 // Nothing when the point maps to infinity.
 std::optional<Point2> apply_homography(const Eigen::Matrix3d& h, const Point2& p);

@@ -28,6 +28,7 @@ double bilinear(const GreyView& im, double x, double y, long& visited) {
 
 struct FoundEdge {
     Point2 at;
+    Point2 across;  // the image direction it was searched along (unit)
     double gradient;
 };
 
@@ -74,7 +75,7 @@ std::optional<FoundEdge> find_edge(const GreyView& im, const Eigen::Matrix3d& h,
     const double gm = g[best + reach - 1], g0 = g[best + reach], gp = g[best + reach + 1];
     const double denom = gm - 2 * g0 + gp;
     const double offset = denom < 0 ? std::clamp(0.5 * (gm - gp) / denom, -0.5, 0.5) : 0.0;
-    return FoundEdge{*p + (best + offset) * dir, best_g};
+    return FoundEdge{*p + (best + offset) * dir, dir, best_g};
 }
 
 }  // namespace
@@ -112,9 +113,9 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
     std::vector<ExpectedEdge> edges;
     // The rounds' lists, made once: a frame runs a dozen rounds of up to
     // max_edges edges, and the tracker runs one every frame.
-    std::vector<Point2> from, to, kf, kt;
+    std::vector<Point2> from, to, across, kf, kt, ka;
     std::vector<double> strength, sorted;
-    for (auto* v : {&from, &to, &kf, &kt}) v->reserve(static_cast<std::size_t>(std::max(0, o.max_edges)));
+    for (auto* v : {&from, &to, &across, &kf, &kt, &ka}) v->reserve(static_cast<std::size_t>(std::max(0, o.max_edges)));
     for (auto* v : {&strength, &sorted}) v->reserve(static_cast<std::size_t>(std::max(0, o.max_edges)));
     for (double radius = 4;; radius = std::min(radius * 1.5, span)) {
         // The edges whose midpoints lie within `radius` (modules, Chebyshev)
@@ -126,6 +127,7 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
         const int r_hi = std::min(f.height - 1, static_cast<int>(std::ceil(std::min(v1, seed.y() + radius))));
         field_edges.spread_within(r_lo, r_hi, c_lo, c_hi, static_cast<std::size_t>(o.max_edges), edges);
         from.clear();
+        across.clear();
         to.clear();
         strength.clear();
         for (const ExpectedEdge& e : edges) {
@@ -133,6 +135,7 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
             if (auto q = find_edge(im, h, e, o, max_gradient, visited)) {
                 from.push_back(e.mid);
                 to.push_back(q->at);
+                across.push_back(q->across);
                 strength.push_back(q->gradient);
             }
         }
@@ -148,10 +151,12 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
             for (std::size_t i = 0; i < from.size(); ++i)
                 if (strength[i] <= limit) {
                     from[kept] = from[i];
+                    across[kept] = across[i];
                     to[kept] = to[i];
                     ++kept;
                 }
             from.resize(kept);
+            across.resize(kept);
             to.resize(kept);
         }
         out.edges_found += static_cast<int>(from.size());
@@ -170,24 +175,31 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
                 const double tol = here && next ? std::max(1.0, o.tolerance_modules * (*next - *here).norm()) : 1.0;
                 if (auto robust = fit_homography_robust(from, to, tol, 60, 7)) fit = robust->h;
             }
+            // Then least squares on the inliers, each edge a point on a
+            // line: a search across an edge says where the edge is, not
+            // where along it the prediction put the search.
             for (int round = 0; fit && round < 2; ++round) {
                 const auto here = apply_homography(*fit, seed), next = apply_homography(*fit, seed + Point2(1, 0));
                 if (!here || !next) break;
                 const double tol = std::max(1.0, o.tolerance_modules * (*next - *here).norm());
                 kf.clear();
                 kt.clear();
+                ka.clear();
                 double sq = 0;
                 for (std::size_t i = 0; i < from.size(); ++i) {
                     auto q = apply_homography(*fit, from[i]);
-                    if (!q || (*q - to[i]).norm() > tol) continue;
+                    if (!q) continue;
+                    const double off = across[i].dot(*q - to[i]);
+                    if (!(std::abs(off) <= tol)) continue;
                     kf.push_back(from[i]);
                     kt.push_back(to[i]);
-                    sq += (*q - to[i]).squaredNorm();
+                    ka.push_back(across[i]);
+                    sq += off * off;
                 }
                 if (static_cast<int>(kf.size()) < o.min_edges) break;
                 out.edges_fitted = static_cast<int>(kf.size());
                 out.rms_px = std::sqrt(sq / kf.size());
-                fit = fit_homography(kf, kt);
+                fit = fit_homography_to_lines(kf, kt, ka);
                 if (fit) {
                     h = *fit;
                     out.refined = true;

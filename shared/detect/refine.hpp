@@ -32,7 +32,7 @@ struct Refinement {
     int edges_searched = 0;
     int edges_found = 0;
     int edges_fitted = 0;  // inliers of the last round
-    double rms_px = 0;     // of the inliers of the last round
+    double rms_px = 0;     // of the inliers of the last round, across their edges
 };
 
 // `field_to_image` is the homography from the vote; `seed` the field point

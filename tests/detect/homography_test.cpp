@@ -126,4 +126,63 @@ TEST(Homography, RobustFitDrawsOnWhenMostMatchesAreWrong) {
     EXPECT_LT((*apply_homography(r->h, Point2(90, 90)) - *apply_homography(truth, Point2(90, 90))).norm(), 1e-6);
 }
 
+// Module edges as a search finds them: each field edge's midpoint, found in
+// the image somewhere along the edge's image (here: `slide` pixels from where
+// the truth puts the midpoint), with the image normal it was searched along.
+struct FoundEdges {
+    std::vector<Point2> from, to, normal;
+};
+
+FoundEdges edges_found(const Eigen::Matrix3d& truth, int n, double slide) {
+    FoundEdges e;
+    for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c)
+            for (const Point2& across : {Point2(1, 0), Point2(0, 1)}) {
+                const Point2 mid = Point2(c, r) * 10.0 + 5.0 * (Point2(1, 1) - across);
+                const Point2 a = *apply_homography(truth, mid - 0.5 * across);
+                const Point2 b = *apply_homography(truth, mid + 0.5 * across);
+                const Point2 normal = (b - a).normalized();
+                const Point2 along(-normal.y(), normal.x());
+                e.from.push_back(mid);
+                e.to.push_back(*apply_homography(truth, mid) + slide * along);
+                e.normal.push_back(normal);
+            }
+    return e;
+}
+
+TEST(Homography, LineFitTakesEachEdgeWhereverAlongItItWasFound) {
+    const Eigen::Matrix3d truth = some_perspective();
+    const FoundEdges exact = edges_found(truth, 6, 0.0);
+    auto h = fit_homography_to_lines(exact.from, exact.to, exact.normal);
+    ASSERT_TRUE(h);
+    EXPECT_LT((*h - truth).norm(), 1e-6 * truth.norm());
+    // Found a pixel and a half along their edges: the lines are the same, and
+    // so is the fit; a fit to the points is pulled off.
+    const FoundEdges slid = edges_found(truth, 6, 1.5);
+    h = fit_homography_to_lines(slid.from, slid.to, slid.normal);
+    ASSERT_TRUE(h);
+    const Point2 centre(30, 30);
+    EXPECT_LT((*apply_homography(*h, centre) - *apply_homography(truth, centre)).norm(), 1e-6);
+    auto by_points = fit_homography(slid.from, slid.to);
+    ASSERT_TRUE(by_points);
+    EXPECT_GT((*apply_homography(*by_points, centre) - *apply_homography(truth, centre)).norm(), 0.1);
+}
+
+TEST(Homography, LineFitRefusesTooFewOrParallelLines) {
+    const Eigen::Matrix3d truth = some_perspective();
+    const FoundEdges e = edges_found(truth, 6, 0.0);
+    const std::vector<Point2> f7(e.from.begin(), e.from.begin() + 7), t7(e.to.begin(), e.to.begin() + 7),
+        n7(e.normal.begin(), e.normal.begin() + 7);
+    EXPECT_FALSE(fit_homography_to_lines(f7, t7, n7));
+    // Only the edges across u: nothing says where anything is along them.
+    FoundEdges one_way;
+    for (std::size_t i = 0; i < e.from.size(); i += 2) {
+        one_way.from.push_back(e.from[i]);
+        one_way.to.push_back(e.to[i]);
+        one_way.normal.push_back(e.normal[i]);
+    }
+    EXPECT_FALSE(fit_homography_to_lines(one_way.from, one_way.to, one_way.normal));
+    EXPECT_FALSE(fit_homography_to_lines(e.from, e.to, f7));  // sizes differ
+}
+
 }  // namespace
