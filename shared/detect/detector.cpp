@@ -84,9 +84,15 @@ Detection Detector::detect(const ColourView& image) const {
 
 const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                 const Eigen::Matrix3d& g2i, int rows, int cols, Detection& out) const {
+    ++out.grids_read;
+    Eigen::Matrix3d field_to_image;
+    int edges_fitted = 0;
+    // Without a prior, the modules around the aim first: a grid whose vote
+    // they carry is placed without reading the rest of it.
+    if (!prior && place_near_aim(im, aim, g2i, rows, cols, out, field_to_image, edges_fitted))
+        return finish_place(im, aim, field_to_image, edges_fitted, false, out);
     // Step 5. Module values or edge signs.
     auto t = StageClock::now();
-    ++out.grids_read;
     const Field& f = index_.field();
     const ModuleGrid grid = classify_modules(im, g2i, rows, cols, f.colors, f.key == WindowKey::edges,
                                              options_.classify, out.pixels_visited);
@@ -102,8 +108,6 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
             near = vote_near(grid, index_, *predicted, prior->radius_modules, options_.vote);
     }
     out.times.vote_ms += ms_since(t);
-    Eigen::Matrix3d field_to_image;
-    int edges_fitted = 0;
     const char* refused = near.found ? place_from_vote(im, aim, g2i, near, out, field_to_image, edges_fitted) : nullptr;
     const bool near_prior = near.found && !refused;
     t = StageClock::now();
@@ -132,14 +136,48 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
         }
         if (weak || (near.found && near.placement == vote.placement)) return refused ? refused : "no agreeing windows";
         refused = place_from_vote(im, aim, g2i, vote, out, field_to_image, edges_fitted);
-        t = StageClock::now();
     }
     if (refused) return refused;
+    return finish_place(im, aim, field_to_image, edges_fitted, near_prior, out);
+}
+
+bool Detector::place_near_aim(const GreyView& im, const Eigen::Vector2d& aim, const Eigen::Matrix3d& g2i, int rows,
+                              int cols, Detection& out, Eigen::Matrix3d& field_to_image, int& edges_fitted) const {
+    const int reach = options_.vote_reach_modules;
+    if (reach <= 0) return false;
+    const auto at = apply_homography(g2i.inverse(), Point2(aim.x(), aim.y()));
+    if (!at) return false;
+    const int r = static_cast<int>(std::floor(at->y())), c = static_cast<int>(std::floor(at->x()));
+    const int r0 = std::max(0, r - reach), c0 = std::max(0, c - reach);
+    const int r1 = std::min(rows, r + reach + 1), c1 = std::min(cols, c + reach + 1);
+    // Only where it leaves out much of the grid, and holds windows enough.
+    const int side = index_.codec().window();
+    if (r1 - r0 < 2 * side || c1 - c0 < 2 * side || 2 * (r1 - r0) * (c1 - c0) > rows * cols) return false;
+    auto t = StageClock::now();
+    Eigen::Matrix3d shift;
+    shift << 1, 0, c0, 0, 1, r0, 0, 0, 1;
+    const Eigen::Matrix3d near_g2i = g2i * shift;
+    const Field& f = index_.field();
+    const ModuleGrid grid = classify_modules(im, near_g2i, r1 - r0, c1 - c0, f.colors, f.key == WindowKey::edges,
+                                             options_.classify, out.pixels_visited);
+    out.times.classify_ms += ms_since(t);
+    t = StageClock::now();
+    const VoteResult vote = vote_placement(grid, index_, options_.vote);
+    out.times.vote_ms += ms_since(t);
+    if (!vote.found) return false;
+    out.windows = vote.votes;
+    out.confidence = vote.agreement;
+    return place_from_vote(im, aim, near_g2i, vote, out, field_to_image, edges_fitted) == nullptr;
+}
+
+const char* Detector::finish_place(const GreyView& im, const Eigen::Vector2d& aim, const Eigen::Matrix3d& field_to_image,
+                                   int edges_fitted, bool from_prior, Detection& out) const {
+    auto t = StageClock::now();
     out.edges_fitted = edges_fitted;
     const bool placed = place_aim(im, field_to_image, aim, out);
     out.times.refine_ms += ms_since(t);
     if (!placed) return kAimAtInfinity;
-    out.from_prior = near_prior;
+    out.from_prior = from_prior;
     out.found = true;
     return nullptr;
 }
@@ -184,14 +222,13 @@ const char* Detector::place_from_vote(const GreyView& im, const Eigen::Vector2d&
 
 const char* Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
                                     Detection& out, double extra_bits) const {
-    // The modules of the field's visible box, read under the homography: the
-    // grid is the field itself, so the expected placement is a plain offset,
-    // and it must beat its neighbours one module away.
+    // The field's visible box: its modules under the homography.
     auto t = StageClock::now();
     const Field& f = index_.field();
     const Eigen::Matrix3d i2f = field_to_image.inverse();
     double u0 = f.width, v0 = f.height, u1 = 0, v1 = 0;
-    const double front = (i2f * Eigen::Vector3d(aim.x(), aim.y(), 1.0)).z();  // sign of points on the screen
+    const Eigen::Vector3d a = i2f * Eigen::Vector3d(aim.x(), aim.y(), 1.0);
+    const double front = a.z();  // sign of points on the screen
     for (const Point2& corner : {Point2(0, 0), Point2(im.width, 0), Point2(0, im.height), Point2(im.width, im.height)}) {
         auto q = apply_homography(i2f, corner);
         if (!q || (i2f * Eigen::Vector3d(corner.x(), corner.y(), 1.0)).z() * front <= 0) {
@@ -201,24 +238,46 @@ const char* Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& f
         u0 = std::min(u0, q->x()), u1 = std::max(u1, q->x());
         v0 = std::min(v0, q->y()), v1 = std::max(v1, q->y());
     }
-    const int c0 = std::max(0, static_cast<int>(std::floor(u0))), r0 = std::max(0, static_cast<int>(std::floor(v0)));
-    const int c1 = std::min(f.width, static_cast<int>(std::ceil(u1))), r1 = std::min(f.height, static_cast<int>(std::ceil(v1)));
-    if (c1 - c0 < 2 || r1 - r0 < 2) return "place not confirmed";
+    const ModuleBox visible{std::max(0, static_cast<int>(std::floor(v0))), std::max(0, static_cast<int>(std::floor(u0))),
+                            std::min(f.height, static_cast<int>(std::ceil(v1))),
+                            std::min(f.width, static_cast<int>(std::ceil(u1)))};
+    out.times.classify_ms += ms_since(t);
+    // The modules around the aim first: where they single out the place, the
+    // rest of the view adds nothing the aim depends on, and reading them is
+    // most of the check's cost. Refused there, the whole view decides.
+    const Eigen::Vector2d at = a.hnormalized();
+    if (options_.confirm_reach_modules > 0 && std::abs(front) > 1e-12 && at.allFinite()) {
+        const int reach = options_.confirm_reach_modules;
+        const int r = static_cast<int>(std::floor(at.y())), c = static_cast<int>(std::floor(at.x()));
+        const ModuleBox near{std::max(visible.r0, r - reach), std::max(visible.c0, c - reach),
+                             std::min(visible.r1, r + reach + 1), std::min(visible.c1, c + reach + 1)};
+        const bool smaller = near.r0 > visible.r0 || near.c0 > visible.c0 || near.r1 < visible.r1 || near.c1 < visible.c1;
+        if (smaller && confirm_in(im, field_to_image, near, at, out, extra_bits) == nullptr) return nullptr;
+    }
+    return confirm_in(im, field_to_image, visible, at, out, extra_bits);
+}
+
+const char* Detector::confirm_in(const GreyView& im, const Eigen::Matrix3d& field_to_image, const ModuleBox& box,
+                                 const Eigen::Vector2d& aim_field, Detection& out, double extra_bits) const {
+    // The grid is the field itself, so the expected placement is a plain
+    // offset, and it must beat its neighbours one module away.
+    if (box.c1 - box.c0 < 2 || box.r1 - box.r0 < 2) return "place not confirmed";
+    auto t = StageClock::now();
+    const Field& f = index_.field();
     Eigen::Matrix3d shift;
-    shift << 1, 0, c0, 0, 1, r0, 0, 0, 1;
-    const ModuleGrid grid = classify_modules(im, field_to_image * shift, r1 - r0, c1 - c0, f.colors,
+    shift << 1, 0, box.c0, 0, 1, box.r0, 0, 0, 1;
+    const ModuleGrid grid = classify_modules(im, field_to_image * shift, box.r1 - box.r0, box.c1 - box.c0, f.colors,
                                              f.key == WindowKey::edges, options_.classify, out.pixels_visited);
     out.times.classify_ms += ms_since(t);
     VoteOptions vote_options = options_.vote;
     vote_options.min_evidence_bits += extra_bits;
-    VoteResult vote = vote_near(grid, index_, GridPlacement{0, r0, c0}, 1, vote_options);
+    VoteResult vote = vote_near(grid, index_, GridPlacement{0, box.r0, box.c0}, 1, vote_options);
     out.times.vote_ms += ms_since(t);
     out.windows = vote.votes;
     out.confidence = vote.agreement;
-    if (!vote.found || vote.placement.row_offset != r0 || vote.placement.col_offset != c0)
+    if (!vote.found || vote.placement.row_offset != box.r0 || vote.placement.col_offset != box.c0)
         return "place not confirmed";
-    const Eigen::Vector3d a = i2f * Eigen::Vector3d(aim.x(), aim.y(), 1.0);
-    if (!aim_holds(grid, r0, c0, a.hnormalized(), index_, options_.vote, options_.aim))
+    if (!aim_holds(grid, box.r0, box.c0, aim_field, index_, options_.vote, options_.aim))
         return "place does not hold at the aim";
     return nullptr;
 }

@@ -57,6 +57,13 @@ struct DetectorOptions {
     // many modules of it: one homography for the whole view is off by a
     // tenth of a module or more at the aim under a rolling shutter.
     double aim_refit_modules = 4;
+    // A place is confirmed on the modules within this many of the aim first
+    // (0: the whole view at once), and on the whole view where they refuse it.
+    int confirm_reach_modules = 8;
+    // A grid found without a prior is read and voted on within this many
+    // modules of the aim first (0: never), and as a whole where that does
+    // not place the field.
+    int vote_reach_modules = 8;
     bool refine_enabled = true;
     // Windows that must agree, and outvote any other placement, for a grid
     // the vote does not accept as a whole to go on to the refit and checks.
@@ -299,6 +306,15 @@ private:
     // alone where too few are found). False when the aim maps to infinity.
     bool place_aim(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
                    Detection& out) const;
+    // Steps 5-7 for the modules of grid `g2i` within
+    // DetectorOptions::vote_reach_modules of the aim: whether their vote
+    // placed the field and the place was confirmed (its homography and edges
+    // fitted then in `field_to_image` and `edges_fitted`).
+    bool place_near_aim(const GreyView& image, const Eigen::Vector2d& aim, const Eigen::Matrix3d& g2i, int rows, int cols,
+                        Detection& out, Eigen::Matrix3d& field_to_image, int& edges_fitted) const;
+    // Step 8 for a confirmed place: the aim point, and the detection found.
+    const char* finish_place(const GreyView& image, const Eigen::Vector2d& aim, const Eigen::Matrix3d& field_to_image,
+                             int edges_fitted, bool from_prior, Detection& out) const;
     // Step 7 for one vote on the grid `g2i`: the refit around the voting
     // windows and the final checks (of the voted homography too, when the
     // refit's is refused). The reason for refusing, or null; the homography
@@ -316,6 +332,13 @@ private:
     // refusing, or null.
     const char* confirm_place(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
                              Detection& out, double extra_bits = 0) const;
+    // The field's modules from row r0 and column c0 up to, not including, r1 and c1.
+    struct ModuleBox {
+        int r0, c0, r1, c1;
+    };
+    // confirm_place's check over one box of the field's modules.
+    const char* confirm_in(const GreyView& image, const Eigen::Matrix3d& field_to_image, const ModuleBox& box,
+                           const Eigen::Vector2d& aim_field, Detection& out, double extra_bits) const;
 
     WindowIndex index_;
     ModuleEdges edges_;  // the field's, for every refit

@@ -225,7 +225,7 @@ TEST_F(BackgroundBlurCompose, TheFieldIsFoundFainterOnABlurredBusyScreen) {
     const QSize size(1920, 1080);
     const ScreenField field = screen_field_for(size.width(), size.height());
     const Detector detector(field.field);
-    const std::vector<double> opacities = {0.03, 0.04, 0.05, 0.06, 0.08, 0.10, 0.15, 0.2, 0.3, 0.4};
+    const std::vector<double> opacities = {0.015, 0.02, 0.025, 0.03, 0.04, 0.05, 0.06, 0.08, 0.10, 0.15, 0.2, 0.3, 0.4};
     const std::vector<Aim> aims = {{960, 540, 0, 0, 0}, {700, 400, 15, -10, 25}, {1250, 700, -10, 20, 160}};
     constexpr double kNever = 1.0;
     int fainter = 0;
