@@ -146,7 +146,10 @@ bool Detector::place_near_aim(const GreyView& im, const Eigen::Vector2d& aim, co
     const int reach = options_.vote_reach_modules;
     if (reach <= 0) return false;
     const auto at = apply_homography(g2i.inverse(), Point2(aim.x(), aim.y()));
-    if (!at) return false;
+    // Only an aim on (or next to) the grid: far off it, the cast below would overflow.
+    if (!at || reach >= rows + cols || !(at->x() > -reach && at->x() < cols + reach && at->y() > -reach &&
+                                         at->y() < rows + reach))
+        return false;
     const int r = static_cast<int>(std::floor(at->y())), c = static_cast<int>(std::floor(at->x()));
     const int r0 = std::max(0, r - reach), c0 = std::max(0, c - reach);
     const int r1 = std::min(rows, r + reach + 1), c1 = std::min(cols, c + reach + 1);
@@ -246,8 +249,10 @@ const char* Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& f
     // rest of the view adds nothing the aim depends on, and reading them is
     // most of the check's cost. Refused there, the whole view decides.
     const Eigen::Vector2d at = a.hnormalized();
-    if (options_.confirm_reach_modules > 0 && std::abs(front) > 1e-12 && at.allFinite()) {
-        const int reach = options_.confirm_reach_modules;
+    const int reach = options_.confirm_reach_modules;
+    // (An aim far off the field, or a reach too wide, leaves the whole view to decide.)
+    if (reach > 0 && reach < f.width + f.height && std::abs(front) > 1e-12 && at.x() > -reach &&
+        at.x() < f.width + reach && at.y() > -reach && at.y() < f.height + reach) {
         const int r = static_cast<int>(std::floor(at.y())), c = static_cast<int>(std::floor(at.x()));
         const ModuleBox near{std::max(visible.r0, r - reach), std::max(visible.c0, c - reach),
                              std::min(visible.r1, r + reach + 1), std::min(visible.c1, c + reach + 1)};

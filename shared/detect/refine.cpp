@@ -45,11 +45,13 @@ std::optional<FoundEdge> find_edge(const GreyView& im, const Eigen::Matrix3d& h,
     const double module_px = dir.norm();
     if (module_px < o.min_module_px) return std::nullopt;
     dir /= module_px;
-    const int reach = std::max(2, static_cast<int>(std::ceil(o.search_modules * module_px)));
+    // Wider than the profile holds (a homography gone wild): no edge of this field.
+    const double half_width = std::ceil(o.search_modules * module_px);
+    if (!(half_width <= 64)) return std::nullopt;
+    const int reach = std::max(2, static_cast<int>(half_width));
     // The profile one pixel apart across the edge, and its derivative
     // towards the expected brighter side.
     double profile[2 * 64 + 3];
-    if (reach > 64) return std::nullopt;
     for (int t = -reach - 1; t <= reach + 1; ++t) {
         const Point2 q = *p + t * dir;
         const double v = bilinear(im, q.x(), q.y(), visited);
