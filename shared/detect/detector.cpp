@@ -143,25 +143,18 @@ const char* Detector::read_grid(const GreyView& im, const Eigen::Vector2d& aim, 
 
 bool Detector::place_near_aim(const GreyView& im, const Eigen::Vector2d& aim, const Eigen::Matrix3d& g2i, int rows,
                               int cols, Detection& out, Eigen::Matrix3d& field_to_image, int& edges_fitted) const {
-    const int reach = options_.vote_reach_modules;
-    if (reach <= 0) return false;
     const auto at = apply_homography(g2i.inverse(), Point2(aim.x(), aim.y()));
-    // Only an aim on (or next to) the grid: far off it, the cast below would overflow.
-    if (!at || reach >= rows + cols || !(at->x() > -reach && at->x() < cols + reach && at->y() > -reach &&
-                                         at->y() < rows + reach))
-        return false;
-    const int r = static_cast<int>(std::floor(at->y())), c = static_cast<int>(std::floor(at->x()));
-    const int r0 = std::max(0, r - reach), c0 = std::max(0, c - reach);
-    const int r1 = std::min(rows, r + reach + 1), c1 = std::min(cols, c + reach + 1);
+    const auto near = at ? box_around(*at, options_.vote_reach_modules, {0, 0, rows, cols}) : std::nullopt;
+    if (!near) return false;
     // Only where it leaves out much of the grid, and holds windows enough.
-    const int side = index_.codec().window();
-    if (r1 - r0 < 2 * side || c1 - c0 < 2 * side || 2 * (r1 - r0) * (c1 - c0) > rows * cols) return false;
+    const int side = index_.codec().window(), near_rows = near->r1 - near->r0, near_cols = near->c1 - near->c0;
+    if (near_rows < 2 * side || near_cols < 2 * side || 2 * near_rows * near_cols > rows * cols) return false;
     auto t = StageClock::now();
     Eigen::Matrix3d shift;
-    shift << 1, 0, c0, 0, 1, r0, 0, 0, 1;
+    shift << 1, 0, near->c0, 0, 1, near->r0, 0, 0, 1;
     const Eigen::Matrix3d near_g2i = g2i * shift;
     const Field& f = index_.field();
-    const ModuleGrid grid = classify_modules(im, near_g2i, r1 - r0, c1 - c0, f.colors, f.key == WindowKey::edges,
+    const ModuleGrid grid = classify_modules(im, near_g2i, near_rows, near_cols, f.colors, f.key == WindowKey::edges,
                                              options_.classify, out.pixels_visited);
     out.times.classify_ms += ms_since(t);
     t = StageClock::now();
@@ -249,17 +242,21 @@ const char* Detector::confirm_place(const GreyView& im, const Eigen::Matrix3d& f
     // rest of the view adds nothing the aim depends on, and reading them is
     // most of the check's cost. Refused there, the whole view decides.
     const Eigen::Vector2d at = a.hnormalized();
-    const int reach = options_.confirm_reach_modules;
-    // (An aim far off the field, or a reach too wide, leaves the whole view to decide.)
-    if (reach > 0 && reach < f.width + f.height && std::abs(front) > 1e-12 && at.x() > -reach &&
-        at.x() < f.width + reach && at.y() > -reach && at.y() < f.height + reach) {
-        const int r = static_cast<int>(std::floor(at.y())), c = static_cast<int>(std::floor(at.x()));
-        const ModuleBox near{std::max(visible.r0, r - reach), std::max(visible.c0, c - reach),
-                             std::min(visible.r1, r + reach + 1), std::min(visible.c1, c + reach + 1)};
-        const bool smaller = near.r0 > visible.r0 || near.c0 > visible.c0 || near.r1 < visible.r1 || near.c1 < visible.c1;
-        if (smaller && confirm_in(im, field_to_image, near, at, out, extra_bits) == nullptr) return nullptr;
+    if (const auto near = box_around(at, options_.confirm_reach_modules, visible)) {
+        const bool smaller = near->r0 > visible.r0 || near->c0 > visible.c0 || near->r1 < visible.r1 || near->c1 < visible.c1;
+        if (smaller && confirm_in(im, field_to_image, *near, at, out, extra_bits) == nullptr) return nullptr;
     }
     return confirm_in(im, field_to_image, visible, at, out, extra_bits);
+}
+
+std::optional<Detector::ModuleBox> Detector::box_around(const Eigen::Vector2d& at, int reach, const ModuleBox& within) {
+    // The comparisons also refuse a point at infinity or NaN.
+    if (reach <= 0 || reach > (1 << 20) || !(at.x() > within.c0 - reach && at.x() < within.c1 + reach &&
+                                             at.y() > within.r0 - reach && at.y() < within.r1 + reach))
+        return std::nullopt;
+    const int r = static_cast<int>(std::floor(at.y())), c = static_cast<int>(std::floor(at.x()));
+    return ModuleBox{std::max(within.r0, r - reach), std::max(within.c0, c - reach), std::min(within.r1, r + reach + 1),
+                     std::min(within.c1, c + reach + 1)};
 }
 
 const char* Detector::confirm_in(const GreyView& im, const Eigen::Matrix3d& field_to_image, const ModuleBox& box,

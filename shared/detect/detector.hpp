@@ -332,10 +332,14 @@ private:
     // refusing, or null.
     const char* confirm_place(const GreyView& image, const Eigen::Matrix3d& field_to_image, const Eigen::Vector2d& aim,
                              Detection& out, double extra_bits = 0) const;
-    // The field's modules from row r0 and column c0 up to, not including, r1 and c1.
+    // Modules from row r0 and column c0 up to, not including, r1 and c1.
     struct ModuleBox {
         int r0, c0, r1, c1;
     };
+    // The modules within `reach` of the one under `at` (column x, row y),
+    // inside `within`; nothing for no reach (or one past a million) or a
+    // point farther off `within` than the reach (so nothing overflows an int).
+    static std::optional<ModuleBox> box_around(const Eigen::Vector2d& at, int reach, const ModuleBox& within);
     // confirm_place's check over one box of the field's modules.
     const char* confirm_in(const GreyView& image, const Eigen::Matrix3d& field_to_image, const ModuleBox& box,
                            const Eigen::Vector2d& aim_field, Detection& out, double extra_bits) const;
