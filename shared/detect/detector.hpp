@@ -40,6 +40,7 @@
 #include "shared/detect/refine.hpp"
 #include "shared/detect/search_cache.hpp"
 #include "shared/detect/search_plan.hpp"
+#include "shared/detect/stage_time.hpp"
 #include "shared/detect/vanishing_points.hpp"
 #include "shared/detect/window_index.hpp"
 
@@ -195,6 +196,10 @@ public:
     // them all (full_search() is a photo's search).
     Detection detect(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                      std::span<const SearchPlan> plans) const;
+    // The same held to `limit` (search_plan.hpp's SearchLimit), which says
+    // where it stopped: a video's frame without a lock.
+    Detection detect(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                     std::span<const SearchPlan> plans, SearchLimit& limit) const;
     // Colour frames are detected on their luma (image.hpp's to_luma).
     Detection detect(const ColourView& image) const;
 
@@ -238,10 +243,30 @@ private:
         const char* first_search_failure = nullptr;
         // The lattice at the frame's own size ran (SearchPlan::lattice_first_if_small).
         bool lattice_searched = false;
+        // The time limit (null: none) and when the call began, the steps
+        // run in the call, the plan running and its steps so far
+        // (SearchLimit), and whether the limit stopped the search.
+        SearchLimit* limit = nullptr;
+        StageClock::time_point start{};
+        int steps_run = 0;
+        int plan_index = 0;
+        int steps = 0;
+        bool stopped = false;
 
         bool first() const { return first_pair == 0; }
-        bool nothing_left() const { return !first() && search >= end_of_left; }
+        bool nothing_left() const { return stopped || (!first() && search >= end_of_left); }
+        // Whether the time limit stops the search before the plan's next
+        // step (and so before the images and scans made for it): whether
+        // that step would end past it, taken to cost what the call's steps
+        // have cost on average so far (the same frame's content).
+        bool out_of_time();
+        // Counts the plan's next step: whether to run it (false: searched
+        // on an earlier frame, or out of time).
+        bool take_step();
     };
+    // detect over the plans, held to `limit` when there is one.
+    Detection detect_plans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                           std::span<const SearchPlan> plans, SearchLimit* limit) const;
     // One pass over the plans in turn, until one finds the field: the
     // failure of the first search over edgels (else of the first plan), or
     // null when found.
@@ -294,7 +319,7 @@ private:
     // The same at half size and below (DetectorOptions::lattice_sizes): at
     // half size when bit 0 of `sizes` is set, a quarter with bit 1, and so on.
     const char* search_lattice_smaller(const GreyView& image, const Eigen::Vector2d& aim,
-                                       const DetectionPrior* prior, SearchCache& cache, Detection& out,
+                                       const DetectionPrior* prior, Pass& pass, Detection& out,
                                        unsigned sizes) const;
     // Steps 5 to 8 on one grid (`grid_to_image`, rows x cols cells): its
     // modules read, the vote (near the prior first), the refit and checks,

@@ -99,6 +99,39 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
 
 Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                            std::span<const SearchPlan> plans) const {
+    return detect_plans(im, aim, prior, plans, nullptr);
+}
+
+Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                           std::span<const SearchPlan> plans, SearchLimit& limit) const {
+    limit.plans_done = 0;
+    limit.steps_into_next = 0;
+    limit.steps_run = 0;
+    limit.found_plan = -1;
+    limit.found_step = -1;
+    return detect_plans(im, aim, prior, plans, &limit);
+}
+
+bool Detector::Pass::out_of_time() {
+    if (stopped) return true;
+    if (!limit || plan_index == 0 || limit->steps_run < limit->min_steps) return false;
+    const double elapsed = std::chrono::duration<double, std::milli>(StageClock::now() - start).count();
+    if (elapsed + elapsed / std::max(1, steps_run) <= limit->ms) return false;
+    stopped = true;
+    return true;
+}
+
+bool Detector::Pass::take_step() {
+    if (out_of_time()) return false;
+    const int step = steps++;
+    if (limit && plan_index == 1 && step < limit->skip_steps) return false;
+    ++steps_run;
+    if (limit && plan_index > 0) ++limit->steps_run;
+    return true;
+}
+
+Detection Detector::detect_plans(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                 std::span<const SearchPlan> plans, SearchLimit* limit) const {
     Detection out;
     out.aim_image = aim;
     const auto start = StageClock::now();
@@ -108,10 +141,14 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
     }
     Pass pass;
     pass.end_pair = options_.first_pass_pairs > 0 ? options_.first_pass_pairs : std::numeric_limits<int>::max();
+    pass.limit = limit;
+    pass.start = start;
     const char* failure = search_plans(im, aim, prior, plans, pass, out);
     for (std::size_t k = 0; k < pass.left.size(); ++k)
         if (!pass.left[k].family[0].empty()) pass.end_of_left = k + 1;
-    if (failure && failure != kAimAtInfinity && pass.end_of_left > 0) {
+    // A search held to a time limit has no second pass: its plans are a
+    // video's, which leave the later pairs out.
+    if (failure && failure != kAimAtInfinity && pass.end_of_left > 0 && !limit) {
         pass.first_pair = pass.end_pair;
         pass.end_pair = std::numeric_limits<int>::max();
         pass.search = 0;
@@ -130,11 +167,32 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
 const char* Detector::search_plans(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                    std::span<const SearchPlan> plans, Pass& pass, Detection& out) const {
     const char* first_failure = "no grid homography";
+    SearchLimit* const limit = pass.first() ? pass.limit : nullptr;
     for (std::size_t k = 0; k < plans.size(); ++k) {
         pass.plan = plans[k];
+        pass.plan_index = static_cast<int>(k);
+        pass.steps = 0;
         const char* failure = search_sizes(im, aim, prior, pass, out);
+        if (limit && (!failure || failure == kAimAtInfinity)) {
+            limit->found_plan = pass.plan_index;
+            limit->found_step = pass.steps - 1;
+        }
         if (!failure || failure == kAimAtInfinity) return failure;
         if (k == 0) first_failure = failure;
+        if (limit && pass.stopped) {
+            // The first plan, cut short for the round's step owed: on to it.
+            if (k == 0 && limit->min_steps > 0) {
+                pass.stopped = false;
+                continue;
+            }
+            // Taken up here on the next frame (a stop among the steps an
+            // earlier frame searched keeps their count).
+            limit->steps_into_next = k == 0   ? limit->skip_steps
+                                     : k == 1 ? std::max(pass.steps, limit->skip_steps)
+                                              : pass.steps;
+            break;
+        }
+        if (limit && k > 0) ++limit->plans_done;
         if (pass.nothing_left()) break;
     }
     return pass.first_search_failure ? pass.first_search_failure : first_failure;
@@ -146,8 +204,8 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     const char* failure = search_smaller(im, aim, prior, pass, out, plan.scans, plan.smaller_scans);
     if (!failure) return nullptr;
     if (pass.first() && options_.lattice_enabled && plan.lattices != 0 &&
-        (((plan.lattices & 1u) && !pass.lattice_searched && !search_lattice(im, aim, prior, out)) ||
-         ((plan.lattices & ~1u) && !search_lattice_smaller(im, aim, prior, pass.cache, out, plan.lattices >> 1))))
+        (((plan.lattices & 1u) && pass.take_step() && !pass.lattice_searched && !search_lattice(im, aim, prior, out)) ||
+         ((plan.lattices & ~1u) && !search_lattice_smaller(im, aim, prior, pass, out, plan.lattices >> 1))))
         return nullptr;
     const int max_side = options_.double_size_max_side;
     if (plan.double_scans != 0 && max_side > 0 && std::max(im.width, im.height) <= max_side) {
@@ -164,7 +222,7 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
         }
     }
     if ((plan.smoothed_scans | plan.smoothed_smaller_scans) != 0 && options_.smoothed_search &&
-        !pass.nothing_left()) {
+        !pass.nothing_left() && !pass.out_of_time()) {
         const GreyView soft = derived(im, SearchCache::Derived::smoothed, pass.cache, out);
         if (!search_smaller(soft, aim, prior, pass, out, plan.smoothed_scans, plan.smoothed_smaller_scans)) {
             out.from_smoothed = true;
@@ -190,16 +248,16 @@ const char* Detector::search_lattice(const GreyView& im, const Eigen::Vector2d& 
 }
 
 const char* Detector::search_lattice_smaller(const GreyView& im, const Eigen::Vector2d& aim,
-                                             const DetectionPrior* prior, SearchCache& cache, Detection& out,
+                                             const DetectionPrior* prior, Pass& pass, Detection& out,
                                              unsigned sizes) const {
     GreyView current = im;
     double scale = 1;
     const char* failure = "no lattice";
     for (int k = 0; k < options_.lattice_sizes && (sizes >> k) != 0; ++k) {
-        if (std::min(current.width, current.height) / 2 < options_.lattice.patch_px) break;
-        current = derived(current, SearchCache::Derived::half_size, cache, out);
+        if (std::min(current.width, current.height) / 2 < options_.lattice.patch_px || pass.out_of_time()) break;
+        current = derived(current, SearchCache::Derived::half_size, pass.cache, out);
         scale *= 0.5;
-        if (!((sizes >> k) & 1u)) continue;
+        if (!((sizes >> k) & 1u) || !pass.take_step()) continue;
         const Resizing resizing(scale, Eigen::Vector2d::Zero(), prior);
         failure = search_lattice(current, resizing.resized(aim), resizing.resized_prior(), out);
         if (failure == kAimAtInfinity) return failure;
@@ -225,7 +283,7 @@ const char* Detector::search_smaller(const GreyView& im, const Eigen::Vector2d& 
 const char* Detector::search_resized(const GreyView& part, double scale, const Eigen::Vector2d& origin,
                                      const Eigen::Vector2d& aim, const DetectionPrior* prior, Pass& pass,
                                      Detection& out, unsigned scans, unsigned smaller_scans) const {
-    if (pass.nothing_left()) return "no grid homography";
+    if (pass.nothing_left() || pass.out_of_time()) return "no grid homography";
     const GreyView resized = derived(
         part, scale < 1 ? SearchCache::Derived::half_size : SearchCache::Derived::double_size, pass.cache, out);
     const Resizing resizing(scale, origin, prior);
@@ -276,7 +334,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     EdgelOptions edgel_options = options_.edgels;
     const EdgelScan* scan = &scan_step([&] { return find_edgels(im, edgel_options); });
     if (pass.plan.lattice_first_if_small && pass.first() && options_.lattice_enabled && !pass.lattice_searched &&
-        modules_look_small(scan->edgels)) {
+        modules_look_small(scan->edgels) && pass.take_step()) {
         // A far screen: its grid lines would not be found, and the content's
         // would each be read in vain first (tuning set, single frames of the
         // tiny category at 640 x 480: 6.2 ms median).
@@ -287,7 +345,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     const char* failure = searched(kFirstScan, *scan);
     if ((scans & ~kFirstScan) == 0) return failure;
     if (failure && options_.rescan && scan->noise_sigma >= kNoisyImage && edgel_options.across < 3 &&
-        !pass.nothing_left()) {
+        !pass.nothing_left() && !pass.out_of_time()) {
         // A noisy image (low light): a faint field's edges drown in the
         // scanlines' noise; three pixels across each line hold them, and a
         // lower bar lets the weaker ones through (the chains and the window
@@ -299,7 +357,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     }
     int offset = edgel_options.offset >= 0 ? edgel_options.offset : scan->step / 2;  // of the scanlines so far
     for (unsigned denser = kFirstDenserScan; failure && options_.rescan && scan->step >= 8 && !pass.nothing_left() &&
-                                             (scans & ~(denser - 1)) != 0;
+                                             !pass.out_of_time() && (scans & ~(denser - 1)) != 0;
          denser <<= 1) {
         EdgelOptions between = edgel_options;
         between.step = scan->step;
@@ -348,16 +406,16 @@ const char* Detector::search_edgel_sets(const GreyView& im, const Eigen::Vector2
     // much as the right one (single frames with the field at 640 x 480,
     // median: tuning set 1.74 ms with all edgels first, 1.62 this way;
     // held-out set 5.2 and 2.1).
-    if (sets & kFieldLikeEdgels) {
+    if ((sets & kFieldLikeEdgels) && pass.take_step()) {
         auto t = StageClock::now();
         const EdgelScan field_like = subset(edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels)));
         out.times.edgels_ms += ms_since(t);
         if (worth_a_search(field_like) && searched(field_like)) return failure;
     }
-    if ((sets & kAllEdgels) && searched(scan)) return failure;
+    if ((sets & kAllEdgels) && pass.take_step() && searched(scan)) return failure;
     // A faint field under strong content: the edges less those of thin
     // lines (a spreadsheet's rules).
-    if (options_.thin_line_px <= 0 || !(sets & kOffThinLineEdgels)) return failure;
+    if (options_.thin_line_px <= 0 || !(sets & kOffThinLineEdgels) || !pass.take_step()) return failure;
     auto t = StageClock::now();
     const EdgelScan off_lines = subset(edgels_off_thin_lines(scan.edgels, options_.thin_line_px));
     out.times.edgels_ms += ms_since(t);

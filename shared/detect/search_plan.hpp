@@ -55,6 +55,34 @@ struct SearchPlan {
     bool lattice_first_if_small = false;
 };
 
+// A search held to a time limit (a tracker's spread search with
+// TrackerOptions::frame_ms), taken up on the next frame where it stopped.
+// A plan's steps are the searches of its scans' edgel sets and its
+// lattices, one per set or lattice it names, counted whether or not the
+// set has enough edgels to be searched, so that the same plan on the next
+// frame counts the same steps. The first plan (spread_first(), run on
+// every frame) runs whole; of the later plans' steps the first `min_steps`
+// run whatever the time, and after them no step starts that would end more
+// than `ms` after the call began, each taken to cost what the call's steps
+// so far cost on average (the same frame's content makes them dear or
+// cheap); the images and scans of a step not started are not made. The
+// first `skip_steps` of the second plan are not run again (an earlier
+// frame searched them). A step that has started runs to its end: a search
+// stopped half way would lose what its other half finds.
+struct SearchLimit {
+    double ms = 0;
+    int min_steps = 0;
+    int skip_steps = 0;
+    // What the call did: the later plans it ran to their end, the steps of
+    // the next one it reached (skipped ones included) when it stopped, the
+    // steps it ran, and the plan and step that found the field (-1: none).
+    int plans_done = 0;
+    int steps_into_next = 0;
+    int steps_run = 0;
+    int found_plan = -1;
+    int found_step = -1;
+};
+
 // The first scan at the frame's own size and nothing else.
 constexpr SearchPlan first_scan_only() { return {kFirstScan, 0, 0, 0, 0, 0}; }
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <span>
 
 namespace umf {
@@ -15,8 +16,7 @@ const char* to_string(TrackState state) {
     return "?";
 }
 
-Tracker::Tracker(const Detector& detector, TrackerOptions options)
-    : detector_(&detector), options_(options), budget_(options.search_budget) {}
+Tracker::Tracker(const Detector& detector, TrackerOptions options) : detector_(&detector), options_(options) {}
 
 void Tracker::reset() {
     has_prior_ = false;
@@ -25,8 +25,9 @@ void Tracker::reset() {
     next_piece_ = 0;
     finding_first_piece_ = 0;
     finding_pieces_ = 0;
-    budget_ = options_.search_budget;
-    ms_per_cost_ = 0;
+    next_step_ = 0;
+    finding_piece_ = -1;
+    finding_step_ = 0;
 }
 
 Detection Tracker::spread_search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
@@ -36,21 +37,48 @@ Detection Tracker::spread_search(const GreyView& image, const Eigen::Vector2d& a
     // (a faint field that only a late piece finds is lost again at its
     // pulse's faint phase, and a round starting over at every lock would
     // take most of a round to reach that piece again).
+    if (options_.frame_ms > 0) return timed_search(image, aim, prior, use_prior);
     const bool retry = finding_pieces_ > 0 && use_prior && frames_since_lock_ % 2 == 0;
-    const ScheduledSearch share = retry ? search_share(finding_first_piece_, budget_, finding_pieces_)
-                                        : search_share(next_piece_, budget_);
+    const double budget = options_.search_budget;
+    const ScheduledSearch share = retry ? search_share(finding_first_piece_, budget, finding_pieces_)
+                                        : search_share(next_piece_, budget);
     if (!retry) next_piece_ = (share.first_piece + share.pieces) % kRoundPieces;
     Detection d = detector_->detect(image, aim, prior, std::span<const SearchPlan>(share.plans.data(), share.count));
     if (d.found) {
         finding_first_piece_ = share.first_piece;
         finding_pieces_ = share.pieces;
-    } else if (options_.frame_ms > 0) {
-        // What a unit of kPieceCost takes on this device, from the shares
-        // that ran whole; the next shares get what fits in frame_ms.
-        const double measured = d.times.total_ms / share.cost;
-        ms_per_cost_ = ms_per_cost_ > 0 ? 0.7 * ms_per_cost_ + 0.3 * measured : measured;
-        budget_ = std::max(0.0, options_.frame_ms / ms_per_cost_ - kSpreadFirstCost);
     }
+    return d;
+}
+
+Detection Tracker::timed_search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                bool use_prior) {
+    // The first scan, then the round from where the last frame stopped to
+    // its end, held to frame_ms, a step of it at least (a first scan that
+    // alone takes the time, as on a page dense with text or rules, would
+    // otherwise stall the round); a retry (as above) runs the piece that
+    // found the last lock from the step that found it.
+    const bool retry = finding_piece_ >= 0 && use_prior && frames_since_lock_ % 2 == 0;
+    const int from = retry ? finding_piece_ : next_piece_;
+    const int to = retry ? finding_piece_ + 1 : kRoundPieces;
+    std::array<SearchPlan, kRoundPieces + 1> plans{};
+    std::size_t count = 0;
+    plans[count++] = spread_first();
+    for (int k = from; k < to; ++k) plans[count++] = kSpreadRound[static_cast<std::size_t>(k)].plan();
+    SearchLimit limit;
+    limit.ms = options_.frame_ms;
+    limit.skip_steps = retry ? finding_step_ : next_step_;
+    limit.min_steps = 1;
+    Detection d = detector_->detect(image, aim, prior, std::span<const SearchPlan>(plans.data(), count), limit);
+    if (d.found) {
+        finding_piece_ = limit.found_plan > 0 ? from + limit.found_plan - 1 : -1;
+        finding_step_ = std::max(0, limit.found_step);
+    }
+    // The first scan's find leaves the round where it was.
+    if (retry || limit.found_plan == 0) return d;
+    next_piece_ = from + limit.plans_done;
+    next_step_ = d.found && limit.found_plan > 0 ? limit.found_step + 1 : limit.steps_into_next;
+    if (next_piece_ >= kRoundPieces) next_piece_ = 0, next_step_ = 0;
     return d;
 }
 

@@ -44,8 +44,12 @@ struct TrackerOptions {
     // 480 on the machine they were measured on).
     double search_budget = 2;
     // The time a frame's search may take on this device, in ms: when set,
-    // the budget follows the measured time of the shares so that one fits
-    // in it (search_budget is the first share's). 0: search_budget always.
+    // each frame runs the first scan, the round's next step from where the
+    // last frame stopped, and the steps after it while they fit in that time
+    // (search_plan.hpp's SearchLimit), in place of shares of search_budget.
+    // So a frame without the field costs about this much (or its first scan
+    // and a step, where those alone take longer), and the round goes on at
+    // the device's own pace.
     double frame_ms = 0;
 };
 
@@ -78,12 +82,12 @@ public:
     TrackResult update(const GreyView& image);
     TrackResult update(const GreyView& image, const Eigen::Vector2d& aim);
     void reset();
-    // The spread search's budget for the next share, in kPieceCost units.
-    double search_budget() const { return budget_; }
 
 private:
     Detection spread_search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                             bool use_prior);
+    Detection timed_search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                           bool use_prior);
 
     const Detector* detector_;
     TrackerOptions options_;
@@ -96,12 +100,15 @@ private:
     Eigen::Vector2d smoothed_ = Eigen::Vector2d::Zero();
     int frames_since_lock_ = 0;
     // The spread search: the round's next piece, the share that found the
-    // last lock (no pieces: none yet), the budget and the device's speed.
+    // last lock (no pieces: none yet). Held to frame_ms: the next piece's
+    // steps already searched, the piece and step that found the last lock
+    // (-1: none, or the first scan).
     int next_piece_ = 0;
     int finding_first_piece_ = 0;
     int finding_pieces_ = 0;
-    double budget_ = 2;
-    double ms_per_cost_ = 0;  // 0: not measured yet
+    int next_step_ = 0;
+    int finding_piece_ = -1;
+    int finding_step_ = 0;
 };
 
 }  // namespace umf

@@ -483,8 +483,9 @@ std::string to_markdown(const Report& r) {
         if (tracker->value("spread_search", false)) {
             md << "umf video's tracker spreads its search over the frames without a lock";
             if (const double share = tracker->value("frame_share", 0.0); share > 0)
-                md << ", each frame's share what fits in " << num(share, 2)
-                   << " of the device's time between two frames as it measures them.\n\n";
+                md << ", each frame held to " << num(share, 2)
+                   << " of the device's time between two frames (the round's steps taken up where the last frame "
+                      "stopped).\n\n";
             else
                 md << " (search budget " << num(tracker->value("search_budget_ms", 0.0), 1) << ").\n\n";
         }

@@ -102,24 +102,32 @@ Timing time_shares(const Detector& detector, const Clip& clip, int runs) {
     return t;
 }
 
-// The tracker over the clip in order, once (its state moves on with every
-// frame); frames whose centre is off the field are given to it but not
-// counted, as a phone keeps filming then too.
-Timing time_tracker(const Detector& detector, const Clip& clip, bool with_field, bool spread_search) {
+// The tracker over the clip in order, `passes` times over with the same
+// tracker (its state moves on with every frame); frames whose centre is off
+// the field are given to it but not counted, as a phone keeps filming then
+// too.
+Timing time_tracker(const Detector& detector, const Clip& clip, bool with_field, const TrackerOptions& options,
+                    int passes = 1) {
     Timing t;
-    TrackerOptions options;
-    options.spread_search = spread_search;
     Tracker tracker(detector, options);
     const std::vector<Frame>& frames = with_field ? clip.field : clip.bare;
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-        const Frame& f = frames[i];
-        TrackResult r;
-        const double ms = timed(1, [&] { r = tracker.update(grey_view(f)); });
-        if (!f.centre_on_screen) continue;
-        t.ms.push_back(ms);
-        judge(t, f, r.state == TrackState::locked, r.aim_field, with_field ? &clip.truth[i] : nullptr);
-    }
+    for (int pass = 0; pass < passes; ++pass)
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            const Frame& f = frames[i];
+            TrackResult r;
+            const double ms = timed(1, [&] { r = tracker.update(grey_view(f)); });
+            if (!f.centre_on_screen) continue;
+            t.ms.push_back(ms);
+            judge(t, f, r.state == TrackState::locked, r.aim_field, with_field ? &clip.truth[i] : nullptr);
+        }
     return t;
+}
+
+TrackerOptions spreading(double frame_ms = 0) {
+    TrackerOptions o;
+    o.spread_search = true;
+    o.frame_ms = frame_ms;
+    return o;
 }
 
 Timing time_aruco(const Clip& clip, int runs) {
@@ -246,6 +254,7 @@ std::string schedule_parts(const Detector& detector, const std::vector<Clip>& cl
 // The tables of one resolution.
 std::string time_resolution(const Detector& detector, const std::vector<Clip>& clips, const SpeedOptions& opt) {
     Timing with_all, bare_all, video_all, video_bare_all, spread_all, spread_bare_all, shares_all, aruco_all;
+    Timing held_all, held_bare_all;
     std::string per_category;
     if (opt.profile) {
         for (const Clip& c : clips) merge(with_all, time_single(detector, c, true, opt.runs));
@@ -254,11 +263,15 @@ std::string time_resolution(const Detector& detector, const std::vector<Clip>& c
     for (const Clip& c : clips) {
         const Timing with = time_single(detector, c, true, opt.runs);
         const Timing bare = time_single(detector, c, false, opt.runs);
-        const Timing video = time_tracker(detector, c, true, false);
-        const Timing video_bare = time_tracker(detector, c, false, false);
-        merge(spread_all, time_tracker(detector, c, true, true));
-        merge(spread_bare_all, time_tracker(detector, c, false, true));
+        const Timing video = time_tracker(detector, c, true, TrackerOptions{});
+        const Timing video_bare = time_tracker(detector, c, false, TrackerOptions{});
+        merge(spread_all, time_tracker(detector, c, true, spreading()));
+        merge(spread_bare_all, time_tracker(detector, c, false, spreading()));
         merge(shares_all, time_shares(detector, c, 1));
+        // Three times over the frames without the field: a phone raised
+        // towards the screen films it for a while.
+        merge(held_all, time_tracker(detector, c, true, spreading(opt.frame_ms)));
+        merge(held_bare_all, time_tracker(detector, c, false, spreading(opt.frame_ms), 3));
         const Timing aruco = time_aruco(c, opt.runs);
         auto cell = [](const Timing& t) { return fixed(median_of(t.ms)) + " / " + fixed(percentile(t.ms, 95)); };
         per_category += "| " + c.category + " | " + cell(with) + " | " + cell(bare) + " | " + cell(video) + " | " +
@@ -276,6 +289,9 @@ std::string time_resolution(const Detector& detector, const std::vector<Clip>& c
         << row("without the field, each share of the spread search (" +
                    std::to_string(schedule_frames(TrackerOptions{}.search_budget)) + " a round) on each frame",
                shares_all)
+        << row("with the field, tracker held to " + fixed(opt.frame_ms, 1) + " ms a frame", held_all)
+        << row("without the field, tracker held to " + fixed(opt.frame_ms, 1) + " ms a frame (three times over)",
+               held_bare_all)
         << row("ArUco, its board in place of the field", aruco_all, false)
         << "\nArUco's median over umf's: single frame " << fixed(median_of(aruco_all.ms) / median_of(with_all.ms))
         << " x, tracker " << fixed(median_of(aruco_all.ms) / median_of(video_all.ms)) << " x.\n\n"
@@ -367,6 +383,8 @@ const char kUsage[] =
     "  --dump DIR             also write the 640 x 480 frames there as PGM (with the field and without)\n"
     "  --parts                instead: each part of the tracker's search schedule alone, its time on the frames\n"
     "                         without the field and the frames with it that it finds where the first scan does not\n"
+    "  --frame-ms MS          the time a frame's search is held to in the \"held\" rows: the tracker's spread\n"
+    "                         search as a phone runs it (TrackerOptions::frame_ms; default 2)\n"
     "  --profile              only single frames with the field (each --runs times), for a profiler\n"
     "  --help                 this text\n\n"
     "Progress goes to stderr, the tables to stdout.\n";
@@ -405,6 +423,9 @@ int main(int argc, char** argv) {
                 opt.threads = std::max(1, std::stoi(value()));
             } else if (a == "--original-field") {
                 opt.original_field = value();
+            } else if (a == "--frame-ms") {
+                opt.frame_ms = std::stod(value());
+                if (!(opt.frame_ms > 0)) throw std::invalid_argument("--frame-ms: a time above 0");
             } else if (a == "--profile") {
                 opt.profile = true;
             } else if (a == "--parts") {

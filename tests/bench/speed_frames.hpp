@@ -34,6 +34,7 @@ struct SpeedOptions {
     bool parts = false;  // the search schedule's parts instead
     bool heldout = false;  // the held-out set's scenes instead of the tuning set's
     bool profile = false;  // only single frames with the field, for a profiler's view of the detector
+    double frame_ms = 2;   // the time a frame's search is held to in the "held" rows (TrackerOptions::frame_ms)
 };
 
 // Where the field is on the screen, to judge a located point.

@@ -78,8 +78,8 @@ Usage: umf_benchmark [options]
   --spread-search BUDGET|auto
                          "umf video": a tracker without a lock spreads its search over frames, each the first
                          scan's first piece and pieces within BUDGET (TrackerOptions::search_budget; default: off);
-                         auto, with --realtime: pieces that fit in half the device's time between two frames
-                         as the tracker measures them (TrackerOptions::frame_ms)
+                         auto, with --realtime: the first scan and the round's steps from where the last frame
+                         stopped, held to half the device's time between two frames (TrackerOptions::frame_ms)
   --realtime SLOWDOWN    "umf video" in real time on a device SLOWDOWN times slower than this machine: the
                          frames arrive at the video's rate (25 a second; held-out 30) and one that arrives
                          while the tracker is still on an earlier frame is dropped, counted as not found

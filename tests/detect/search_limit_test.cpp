@@ -1,0 +1,119 @@
+// A search held to a time limit (search_plan.hpp's SearchLimit): without
+// the time running out it is the search it limits; with no time at all it
+// runs the first scan and the steps it owes; taken up again
+// where it stopped, it runs every step of the round once. Times here are 0
+// or 10 s, so that what runs does not depend on the machine's speed.
+#include <gtest/gtest.h>
+
+#include <iostream>
+#include <vector>
+
+#include "shared/detect/detector.hpp"
+#include "shared/field/field_io.hpp"
+#include "tests/bench/scenario.hpp"
+
+namespace {
+
+using namespace umf;
+
+constexpr double kNoTime = 0;
+constexpr double kAllTheTime = 1e4;
+
+GreyView view_of(const cv::Mat& grey) {
+    return {grey.data, grey.cols, grey.rows, static_cast<std::ptrdiff_t>(grey.step)};
+}
+
+// The first scan and the whole round from `first_piece` on.
+std::vector<SearchPlan> round_from(int first_piece) {
+    std::vector<SearchPlan> plans{spread_first()};
+    for (int k = first_piece; k < kRoundPieces; ++k) plans.push_back(kSpreadRound[static_cast<std::size_t>(k)].plan());
+    return plans;
+}
+
+class SearchLimitOnAScreen : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const bench::Scene scene;
+        const cv::Mat screen = sim::make_screen(sim::ScreenKind::document, scene.screen.pixels, 7);
+        const auto recipes = bench::category_recipes(scene, bench::Category::general, 1, 1);
+        frame_ = bench::shoot(scene, recipes.front(), screen, cv::Size(640, 480));
+    }
+    Detection detect(const std::vector<SearchPlan>& plans, SearchLimit* limit = nullptr) const {
+        const GreyView v = view_of(frame_.grey);
+        const Eigen::Vector2d centre(v.width / 2.0, v.height / 2.0);
+        const std::span<const SearchPlan> span(plans.data(), plans.size());
+        return limit ? detector_.detect(v, centre, nullptr, span, *limit) : detector_.detect(v, centre, nullptr, span);
+    }
+
+    Field field_ = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
+    Detector detector_{field_};
+    bench::Frame frame_;
+};
+
+TEST_F(SearchLimitOnAScreen, WithTimeEnoughItIsTheSearchItLimits) {
+    const std::vector<SearchPlan> plans = round_from(0);
+    const Detection whole = detect(plans);
+    SearchLimit limit;
+    limit.ms = kAllTheTime;
+    const Detection limited = detect(plans, &limit);
+    EXPECT_FALSE(whole.found) << "the screen without the field";
+    EXPECT_EQ(limited.found, whole.found);
+    EXPECT_EQ(limited.grids_read, whole.grids_read);
+    EXPECT_EQ(limited.pixels_visited, whole.pixels_visited);
+    EXPECT_EQ(limited.failure, whole.failure);
+    EXPECT_EQ(limit.plans_done, kRoundPieces) << "every piece of the round ran to its end";
+    EXPECT_GT(limit.steps_run, kRoundPieces) << "most pieces search more than one edgel set or scan";
+    EXPECT_EQ(limit.found_plan, -1);
+}
+
+TEST_F(SearchLimitOnAScreen, WithNoTimeOnlyTheFirstScanRuns) {
+    const std::vector<SearchPlan> plans = round_from(3);
+    SearchLimit limit;
+    limit.ms = kNoTime;
+    limit.skip_steps = 1;
+    const Detection limited = detect(plans, &limit);
+    const Detection first_scan = detect({spread_first()});
+    EXPECT_FALSE(limited.found);
+    EXPECT_EQ(limit.steps_run, 0) << "no step of the round";
+    EXPECT_EQ(limit.plans_done, 0);
+    EXPECT_EQ(limit.steps_into_next, 1) << "the round stays where it was";
+    EXPECT_EQ(limited.grids_read, first_scan.grids_read) << "the first scan whole";
+    EXPECT_EQ(limited.pixels_visited, first_scan.pixels_visited);
+}
+
+// A step owed a frame, again and again, each call taking the round up
+// where the last one stopped: each step of the round runs once, in order,
+// and the round ends after as many calls as it has steps.
+TEST_F(SearchLimitOnAScreen, TakenUpWhereItStoppedTheRoundRunsEveryStepOnce) {
+    SearchLimit all;
+    all.ms = kAllTheTime;
+    detect(round_from(0), &all);
+    const int round_steps = all.steps_run;
+
+    int piece = 0, step = 0, calls = 0, steps = 0;
+    long pixels = 0;
+    while (piece < kRoundPieces && calls < 10 * round_steps) {
+        SearchLimit owed;
+        owed.ms = kNoTime;
+        owed.min_steps = 1;
+        owed.skip_steps = step;
+        const Detection d = detect(round_from(piece), &owed);
+        ++calls;
+        ASSERT_LE(owed.steps_run, 1) << "one step owed, none more in no time";
+        steps += owed.steps_run;
+        pixels += d.pixels_visited;
+        if (owed.plans_done == 0) {
+            EXPECT_EQ(owed.steps_run, 1) << "piece " << piece << ": a step owed is a step run";
+            EXPECT_EQ(owed.steps_into_next, step + 1) << "piece " << piece << ": on from the step after it";
+        }
+        step = owed.steps_into_next;
+        piece += owed.plans_done;
+    }
+    EXPECT_EQ(piece, kRoundPieces) << "the round ended";
+    EXPECT_EQ(steps, round_steps) << "no step left out, none run twice";
+    EXPECT_EQ(calls, round_steps);
+    std::cout << "[ measure  ] a round of " << round_steps << " steps; " << pixels << " pixels read over its "
+              << calls << " calls\n";
+}
+
+}  // namespace
