@@ -10,7 +10,7 @@
 
 #include "shared/detect/detector.hpp"
 #include "shared/field/field_io.hpp"
-#include "tests/bench/scenario.hpp"
+#include "tests/detect/photo.hpp"
 
 namespace {
 
@@ -19,10 +19,6 @@ using namespace umf;
 constexpr double kNoTime = 0;
 constexpr double kAllTheTime = 1e4;
 
-GreyView view_of(const cv::Mat& grey) {
-    return {grey.data, grey.cols, grey.rows, static_cast<std::ptrdiff_t>(grey.step)};
-}
-
 // The first scan and the whole round from `first_piece` on.
 std::vector<SearchPlan> round_from(int first_piece) {
     std::vector<SearchPlan> plans{spread_first()};
@@ -30,24 +26,19 @@ std::vector<SearchPlan> round_from(int first_piece) {
     return plans;
 }
 
+// A document on the screen without the field, photographed at a slant.
 class SearchLimitOnAScreen : public ::testing::Test {
 protected:
-    void SetUp() override {
-        const bench::Scene scene;
-        const cv::Mat screen = sim::make_screen(sim::ScreenKind::document, scene.screen.pixels, 7);
-        const auto recipes = bench::category_recipes(scene, bench::Category::general, 1, 1);
-        frame_ = bench::shoot(scene, recipes.front(), screen, cv::Size(640, 480));
-    }
     Detection detect(const std::vector<SearchPlan>& plans, SearchLimit* limit = nullptr) const {
-        const GreyView v = view_of(frame_.grey);
+        const GreyView v = photo_.view();
         const Eigen::Vector2d centre(v.width / 2.0, v.height / 2.0);
         const std::span<const SearchPlan> span(plans.data(), plans.size());
         return limit ? detector_.detect(v, centre, nullptr, span, *limit) : detector_.detect(v, centre, nullptr, span);
     }
 
-    Field field_ = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
+    Field field_ = test::shipped_field("b4-64x36.json");
     Detector detector_{field_};
-    bench::Frame frame_;
+    test::Photo photo_ = test::photograph_field(field_, 0, 10, 5, 20, 300, sim::ScreenKind::document);
 };
 
 TEST_F(SearchLimitOnAScreen, WithTimeEnoughItIsTheSearchItLimits) {
