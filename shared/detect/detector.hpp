@@ -244,11 +244,12 @@ private:
         // The lattice at the frame's own size ran (SearchPlan::lattice_first_if_small).
         bool lattice_searched = false;
         // The time limit (null: none) and when the call began, the steps
-        // run in the call, the plan running and its steps so far
-        // (SearchLimit), and whether the limit stopped the search.
+        // run in the call over every plan (its average step), the plan
+        // running and its steps so far (SearchLimit), and whether the
+        // limit stopped the search.
         SearchLimit* limit = nullptr;
         StageClock::time_point start{};
-        int steps_run = 0;
+        int call_steps = 0;
         int plan_index = 0;
         int steps = 0;
         bool stopped = false;

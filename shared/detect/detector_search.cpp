@@ -116,7 +116,7 @@ bool Detector::Pass::out_of_time() {
     if (stopped) return true;
     if (!limit || plan_index == 0 || limit->steps_run < limit->min_steps) return false;
     const double elapsed = std::chrono::duration<double, std::milli>(StageClock::now() - start).count();
-    if (elapsed + elapsed / std::max(1, steps_run) <= limit->ms) return false;
+    if (elapsed + elapsed / std::max(1, call_steps) <= limit->ms) return false;
     stopped = true;
     return true;
 }
@@ -125,7 +125,7 @@ bool Detector::Pass::take_step() {
     if (out_of_time()) return false;
     const int step = steps++;
     if (limit && plan_index == 1 && step < limit->skip_steps) return false;
-    ++steps_run;
+    ++call_steps;
     if (limit && plan_index > 0) ++limit->steps_run;
     return true;
 }

@@ -217,9 +217,6 @@ constexpr std::array<SearchPiece, kRoundPieces> spread_round() {
 }
 inline constexpr std::array<SearchPiece, kRoundPieces> kSpreadRound = spread_round();
 
-// What spread_first() costs a frame without the field, in kPieceCost's units.
-inline constexpr double kSpreadFirstCost = 1.1;
-
 // One frame's share of the spread search: spread_first(), then `pieces`
 // consecutive pieces of the round from `first_piece`.
 struct ScheduledSearch {
@@ -227,7 +224,6 @@ struct ScheduledSearch {
     std::size_t count = 0;
     int first_piece = 0;
     int pieces = 0;
-    double cost = 0;  // kSpreadFirstCost and the pieces' kPieceCost
 };
 
 // The share from `first_piece` on: as many pieces as fit in `budget` (their
@@ -237,7 +233,6 @@ constexpr ScheduledSearch search_share(int first_piece, double budget, int max_p
     ScheduledSearch out;
     out.first_piece = ((first_piece % kRoundPieces) + kRoundPieces) % kRoundPieces;
     out.plans[out.count++] = spread_first();
-    out.cost = kSpreadFirstCost;
     double spent = 0;
     for (int at = out.first_piece; at < kRoundPieces && out.pieces < max_pieces; ++at) {
         const SearchPiece& piece = kSpreadRound[static_cast<std::size_t>(at)];
@@ -246,7 +241,6 @@ constexpr ScheduledSearch search_share(int first_piece, double budget, int max_p
         out.plans[out.count++] = piece.plan();
         ++out.pieces;
     }
-    out.cost += spent;
     return out;
 }
 
@@ -260,8 +254,8 @@ constexpr int schedule_frames(double budget) {
 
 // The search of the k-th consecutive frame without a lock with a budget
 // that stays the same: spread_first(), then the k-th share of the round,
-// round after round. A frame pays for about kSpreadFirstCost and `budget`
-// at 640 x 480 (a piece costs less in a share than alone, where it makes
+// round after round. A frame pays for spread_first() (about 1 ms) and
+// `budget` at 640 x 480 (a piece costs less in a share than alone, where it makes
 // the scans and images it shares with others).
 constexpr ScheduledSearch search_schedule(int k, double budget) {
     const int frames = schedule_frames(budget);
