@@ -105,6 +105,10 @@ struct DetectorOptions {
     // edgels' directions, span the lattice's 3-12 pixels at one of them,
     // and the spectrum gathers the evidence of every module in the patch.
     int lattice_sizes = 3;
+    // The part of the frame around the aim that a plan's first scan searches
+    // first (SearchPlan::near_aim_first), as a fraction of its width and
+    // height; 0 or 1: never.
+    double near_aim_part = 0.5;
     // The search at the frame's size and smaller ones also on the frame
     // smoothed (`smoothed` in image.hpp, a Gaussian of sigma 1.4 px). A screen's colour stripes under a scaler
     // that skips photosites fold into a hatch of 2-5 px, and a dim room's
@@ -154,6 +158,7 @@ struct Detection {
     double size_scale = 1;    // found on the frame at this many times its size (0.5: half size, 2: double)
     bool from_lattice = false;  // its grid came from the spectrum around the aim (lattice.hpp)
     bool from_smoothed = false;  // found on the frame smoothed (DetectorOptions::smoothed_search)
+    bool from_near_aim = false;  // found on the part of the frame around the aim (SearchPlan::near_aim_first)
     int edges_fitted = 0;     // module edges the final homography was fitted to (0: grid lines only)
     double confidence = 0;    // fraction of the read modules or edges the place explains
     int places_checked = 0;   // candidate places that reached the final check (each costs evidence)
@@ -299,6 +304,12 @@ private:
     const char* search_scans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                              const VanishingOptions& vanishing, Pass& pass, Detection& out,
                              unsigned scans = kEveryScan) const;
+    // The first scan and search_edgel_sets on the part of the image around
+    // the aim (DetectorOptions::near_aim_part), its scanlines as far apart
+    // as the whole image's; the detection is taken back to the image's
+    // coordinates.
+    const char* search_near_aim(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                const VanishingOptions& vanishing, Pass& pass, Detection& out) const;
     // search over a scan's field-like edgels alone, then, when that fails,
     // over all of them, then over those not on thin lines
     // (field_edgels.hpp; SearchPlan::edgel_sets names those searched).

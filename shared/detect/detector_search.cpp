@@ -332,6 +332,10 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         return steps[step++];
     };
     EdgelOptions edgel_options = options_.edgels;
+    if (pass.plan.near_aim_first && (scans & kFirstScan) && steps.empty()) {
+        const char* failure = search_near_aim(im, aim, prior, vanishing, pass, out);
+        if (!failure || failure == kAimAtInfinity) return failure;
+    }
     const EdgelScan* scan = &scan_step([&] { return find_edgels(im, edgel_options); });
     if (pass.plan.lattice_first_if_small && pass.first() && options_.lattice_enabled && !pass.lattice_searched &&
         modules_look_small(scan->edgels) && pass.take_step()) {
@@ -372,6 +376,32 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
             return whole;
         });
         failure = searched(denser, *scan);
+    }
+    return failure;
+}
+
+const char* Detector::search_near_aim(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
+                                      const VanishingOptions& vanishing, Pass& pass, Detection& out) const {
+    const char* const not_searched = "no grid homography";
+    const double part = options_.near_aim_part;
+    if (!(part > 0 && part < 1)) return not_searched;
+    const int w = std::max(8, static_cast<int>(std::lround(im.width * part)));
+    const int h = std::max(8, static_cast<int>(std::lround(im.height * part)));
+    const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
+    const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
+    const GreyView around{im.row(y0) + x0, w, h, im.stride};
+    EdgelOptions at_frame_step = options_.edgels;
+    at_frame_step.step = scanline_step(im.width, im.height, options_.edgels);
+    auto t = StageClock::now();
+    const EdgelScan near = find_edgels(around, at_frame_step);
+    out.times.edgels_ms += ms_since(t);
+    out.pixels_visited += near.pixels_visited;
+    const Resizing in_part(1, Eigen::Vector2d(x0, y0), prior);
+    const char* failure =
+        search_edgel_sets(around, in_part.resized(aim), in_part.resized_prior(), vanishing, near, pass, out);
+    if (!failure) {
+        in_part.carry_back(out, aim);
+        out.from_near_aim = true;
     }
     return failure;
 }

@@ -63,10 +63,14 @@ double scan_line(int n, Sample s, int floor, double deviations, std::vector<int>
 
 }  // namespace
 
+int scanline_step(int width, int height, const EdgelOptions& o) {
+    return o.step > 0 ? o.step : std::max(4, std::max(width, height) / 40);
+}
+
 EdgelScan find_edgels(const GreyView& im, const EdgelOptions& o) {
     EdgelScan out;
     if (!describe_invalid(im).empty() || im.width < 8 || im.height < 8) return out;
-    out.step = o.step > 0 ? o.step : std::max(4, std::max(im.width, im.height) / 40);
+    out.step = scanline_step(im.width, im.height, o);
     const int thr = std::max(1, o.min_contrast);
     std::vector<int> d, scratch;
     std::vector<double> noise;

@@ -41,4 +41,7 @@ struct EdgelScan {
 
 EdgelScan find_edgels(const GreyView& image, const EdgelOptions& options = {});
 
+// The pixels between scanlines find_edgels takes for an image this size.
+int scanline_step(int width, int height, const EdgelOptions& options = {});
+
 }  // namespace umf

@@ -53,6 +53,11 @@ struct SearchPlan {
     // when that scan's edgels say the modules are small
     // (modules_look_small); part 1 then does not run it again.
     bool lattice_first_if_small = false;
+    // The first scan's edgels in the part of the frame around the aim
+    // (DetectorOptions::near_aim_part) searched, on that part alone, before
+    // all of the frame's: a quarter of the edgels and of the modules to read
+    // and refit, where the field nearly always fills the middle of the view.
+    bool near_aim_first = false;
 };
 
 // A search held to a time limit (a tracker's spread search with
@@ -145,6 +150,7 @@ constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kP
     FullSearch plans{};
     plans[0] = first_scan_only();
     plans[0].lattice_first_if_small = true;
+    plans[0].near_aim_first = true;
     for (std::size_t k = 0; k < order.size(); ++k) plans[k + 1] = search_part(order[k]);
     return plans;
 }
@@ -195,6 +201,7 @@ constexpr SearchPlan spread_first() {
     SearchPlan p = first_scan_only();
     p.second_pass = false;
     p.lattice_first_if_small = true;
+    p.near_aim_first = true;
     return p;
 }
 

@@ -347,7 +347,11 @@ int run(const SpeedOptions& opt) {
         std::cerr << "making " << resolution_name(res) << " frames\n";
         const auto clips = heldout ? heldout->clips(res)
                                    : frames->tuning(res, field, {{0, 0}, frames->scene().module_px}, 1.0, categories);
-        if (!opt.dump.empty() && res == cv::Size(640, 480)) dump_clips(opt.dump, heldout ? "heldout" : "tuning", clips);
+        if (!opt.dump.empty())
+            dump_clips(opt.dump,
+                       std::string(heldout ? "heldout" : "tuning") + "-" + std::to_string(res.width) + "x" +
+                           std::to_string(res.height),
+                       clips);
         std::cerr << "timing " << resolution_name(res) << "\n";
         std::cout << "### " << resolution_name(res) << "\n\n"
                   << (opt.parts ? schedule_parts(detector, clips, finds) + "\n" : time_resolution(detector, clips, opt));
@@ -380,7 +384,8 @@ const char kUsage[] =
     "  --seed N               scenario seed (default 1)\n"
     "  --threads N            threads making frames (default: all cores)\n"
     "  --original-field FILE  the original authors' field (default tests/data/original-umf/sog5-19x31.json)\n"
-    "  --dump DIR             also write the 640 x 480 frames there as PGM (with the field and without)\n"
+    "  --dump DIR             also write the frames there as PGM (with the field and without), named\n"
+    "                         SET-WxH-CATEGORY-N-field.pgm and -bare.pgm\n"
     "  --parts                instead: each part of the tracker's search schedule alone, its time on the frames\n"
     "                         without the field and the frames with it that it finds where the first scan does not\n"
     "  --frame-ms MS          the time a frame's search is held to in the \"held\" rows: the tracker's spread\n"

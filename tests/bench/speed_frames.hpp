@@ -30,7 +30,7 @@ struct SpeedOptions {
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     std::vector<cv::Size> resolutions{{640, 480}, {1280, 720}};
     std::string original_field = UMF_ORIGINAL_FIELD;
-    std::string dump;  // also write the 640 x 480 frames as PGM here
+    std::string dump;  // also write the frames as PGM here
     bool parts = false;  // the search schedule's parts instead
     bool heldout = false;  // the held-out set's scenes instead of the tuning set's
     bool profile = false;  // only single frames with the field, for a profiler's view of the detector

@@ -19,10 +19,13 @@ using namespace umf;
 // 640 x 480, the field at opacity 0.3. (The order came from a diagnosis on
 // held-out frames, so those can no longer judge it.) Searched with all
 // edgels first, 34 of 40 were found on the first grid read; with the
-// field-like edgels first, 39.
+// field-like edgels first, 39. (The whole frame's scan: the part around the
+// aim, searched first by default, reads its own grids.)
 TEST(DetectorEdgelSets, TheFieldsOwnEdgelsFindItOnTheFirstGrid) {
     const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
-    const Detector detector(field);
+    DetectorOptions whole_frame;
+    whole_frame.near_aim_part = 0;
+    const Detector detector(field, whole_frame);
     const bench::Scene scene;
     const sim::FieldPlacement placement{{0, 0}, scene.module_px};
     int found = 0, first_grid = 0, frames = 0;

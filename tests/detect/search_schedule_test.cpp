@@ -79,9 +79,10 @@ TEST(SearchSchedule, ARoundCoversTheWholeSearchInSharesWithinTheBudget) {
 }
 
 // The first scan's two pieces in one call try the same pairs of the same
-// labellings in the same order as its first pass (spread_first); with the
-// second pass, as the first scan does: the same place, found or not, on any
-// frame.
+// labellings in the same order as its first pass (spread_first, less its
+// look near the aim first, which searches a part of the frame of its own);
+// with the second pass, as the first scan does: the same place, found or
+// not, on any frame.
 TEST(SearchSchedule, APartsPiecesTogetherAreThePart) {
     const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
     const Detector detector(field);
@@ -106,9 +107,11 @@ TEST(SearchSchedule, APartsPiecesTogetherAreThePart) {
                     p.second_pass = true;
                     p.lattice_first_if_small = false;
                 }
+                SearchPlan whole_frame_first = spread_first();
+                whole_frame_first.near_aim_first = false;
                 const Detection first_scan = detector.detect(v, centre, nullptr, first_scan_only());
                 for (const auto& [whole, pieced] :
-                     {std::pair(detector.detect(v, centre, nullptr, spread_first()),
+                     {std::pair(detector.detect(v, centre, nullptr, whole_frame_first),
                                 detector.detect(v, centre, nullptr, std::span<const SearchPlan>(pieces))),
                       std::pair(first_scan,
                                 detector.detect(v, centre, nullptr, std::span<const SearchPlan>(with_second_pass)))}) {

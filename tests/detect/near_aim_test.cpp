@@ -1,0 +1,81 @@
+// The first scan near the aim (SearchPlan::near_aim_first): the part of the
+// frame around the aim, half its width and height, searched on its own
+// before the whole frame. Where the field fills the middle of the view it is
+// found there, at the same place, for a fraction of the pixels; where the
+// middle holds too little of it, the whole frame's search still finds it.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "shared/detect/detector.hpp"
+#include "shared/detect/tracker.hpp"
+#include "tests/detect/photo.hpp"
+
+namespace {
+
+using namespace umf;
+
+DetectorOptions never_near_aim() {
+    DetectorOptions o;
+    o.near_aim_part = 0;
+    return o;
+}
+
+class NearAim : public ::testing::Test {
+protected:
+    Field field_ = test::shipped_field("b4-64x36.json");
+    Detector detector_{field_};
+    Detector whole_frame_{field_, never_near_aim()};
+    // A document under the field, photographed at a slant.
+    test::Photo photo_ = test::photograph_field(field_, 0.3, 10, 5, 20, 300, sim::ScreenKind::document);
+};
+
+TEST_F(NearAim, TheMiddleOfTheViewFindsTheSamePlaceForFewerPixels) {
+    const Detection near = detector_.detect(photo_.view());
+    const Detection whole = whole_frame_.detect(photo_.view());
+    ASSERT_TRUE(near.found) << near.failure;
+    ASSERT_TRUE(whole.found) << whole.failure;
+    EXPECT_TRUE(near.from_near_aim);
+    EXPECT_FALSE(whole.from_near_aim);
+    EXPECT_EQ(near.size_scale, 1);
+    EXPECT_NEAR(near.aim_image.x(), whole.aim_image.x(), 1e-9) << "the aim in the frame's coordinates";
+    EXPECT_NEAR(near.aim_image.y(), whole.aim_image.y(), 1e-9);
+    EXPECT_LT((near.aim_field - whole.aim_field).norm(), 0.05) << "modules";
+    // The homography carried back to the frame: a point far from the part
+    // maps where the whole frame's map takes it, within a module.
+    const Eigen::Vector3d corner(20, 20, 1);
+    const Eigen::Vector3d a = near.image_to_field * corner, b = whole.image_to_field * corner;
+    EXPECT_LT((a.hnormalized() - b.hnormalized()).norm(), 1.0) << "modules, at the frame's corner";
+    EXPECT_LT(near.pixels_visited, whole.pixels_visited / 2);
+}
+
+TEST_F(NearAim, ANearScreensLargeModulesAreLeftToTheWholeFrame) {
+    // At 9 cm the middle of the view holds too few modules for a place.
+    const test::Photo near_screen = test::photograph_field(field_, 0.3, 10, 5, 20, 90, sim::ScreenKind::document);
+    const Detection near = detector_.detect(near_screen.view());
+    const Detection whole = whole_frame_.detect(near_screen.view());
+    ASSERT_TRUE(whole.found) << whole.failure;
+    ASSERT_TRUE(near.found) << near.failure;
+    EXPECT_FALSE(near.from_near_aim);
+    EXPECT_LT((near.aim_field - whole.aim_field).norm(), 1e-9) << "the whole frame's own search";
+    EXPECT_GT(near.pixels_visited, whole.pixels_visited) << "the middle was scanned first";
+}
+
+TEST_F(NearAim, ATrackersFirstLockComesFromTheMiddle) {
+    TrackerOptions o;
+    o.spread_search = true;
+    o.frame_ms = 16;
+    Tracker tracker(detector_, o);
+    const TrackResult r = tracker.update(photo_.view());
+    ASSERT_EQ(r.state, TrackState::locked) << r.detection.failure;
+    EXPECT_TRUE(r.detection.from_near_aim);
+}
+
+TEST_F(NearAim, NotOnAScreenWithoutTheField) {
+    const test::Photo bare = test::photograph_field(field_, 0, 10, 5, 20, 300, sim::ScreenKind::document);
+    const Detection d = detector_.detect(bare.view());
+    EXPECT_FALSE(d.found);
+    EXPECT_FALSE(d.from_near_aim);
+}
+
+}  // namespace
