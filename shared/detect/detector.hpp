@@ -11,6 +11,8 @@
 //      then checked: the whole view must read as the field at that place,
 //      and so must the modules around the aim point (aim_check.hpp)
 //   8. the aim point from a refit to the module edges around it
+// The first scan looks at the part of the frame around the aim first (half
+// its width and height, as a frame of its own), then at the whole frame.
 // When the first scan finds nothing, the other parts of the search run in
 // turn (search_plan.hpp, kPartOrder: the order that finds the tuning
 // frames soonest for their cost): steps 1 to 8 on the frame at half size

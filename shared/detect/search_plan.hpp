@@ -1,5 +1,6 @@
 // Which of a frame's searches Detector::detect runs. A photo on its own gets
-// all of them (full_search): the first scan at the frame's own size, then,
+// all of them (full_search): the first scan at the frame's own size (the
+// part around the aim first, then the whole frame), then,
 // while nothing is found, the other parts in the order that finds a field
 // soonest for their cost (the rescans, the smaller sizes, the lattice,
 // double size and the frame smoothed), and a second pass over the grid-line
