@@ -387,6 +387,7 @@ const char* Detector::search_near_aim(const GreyView& im, const Eigen::Vector2d&
     if (!(part > 0 && part < 1)) return not_searched;
     const int w = std::max(8, static_cast<int>(std::lround(im.width * part)));
     const int h = std::max(8, static_cast<int>(std::lround(im.height * part)));
+    if (w > im.width || h > im.height) return not_searched;  // an image of a few pixels
     const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
     const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
     const GreyView around{im.row(y0) + x0, w, h, im.stride};

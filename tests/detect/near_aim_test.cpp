@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <cstdint>
+#include <vector>
 
 #include "shared/detect/detector.hpp"
 #include "shared/detect/tracker.hpp"
@@ -69,6 +71,24 @@ TEST_F(NearAim, ATrackersFirstLockComesFromTheMiddle) {
     const TrackResult r = tracker.update(photo_.view());
     ASSERT_EQ(r.state, TrackState::locked) << r.detection.failure;
     EXPECT_TRUE(r.detection.from_near_aim);
+}
+
+TEST_F(NearAim, ImagesOfAFewPixelsHaveNoPartToSearch) {
+    std::vector<std::uint8_t> px(32 * 32, 128);
+    for (int side = 1; side <= 32; ++side) {
+        const Detection d = detector_.detect(GreyView{px.data(), side, side, side});
+        EXPECT_FALSE(d.found) << side;
+        EXPECT_FALSE(d.from_near_aim) << side;
+    }
+    // An aim far off the frame: the part is the frame's corner nearest it,
+    // read within the frame (the sanitizer build checks the reads).
+    const Eigen::Vector2d off(-1e6, 1e6);
+    const Detection far_aim = detector_.detect(photo_.view(), off);
+    const Detection far_aim_whole = whole_frame_.detect(photo_.view(), off);
+    EXPECT_EQ(far_aim.found, far_aim_whole.found);
+    if (far_aim.found) {
+        EXPECT_EQ(far_aim.aim_image, off);
+    }
 }
 
 TEST_F(NearAim, NotOnAScreenWithoutTheField) {
