@@ -72,6 +72,22 @@ struct Resizing {
     }
 };
 
+// The part of `image` around `aim`, `fraction` of its width and height (8
+// pixels at least), kept within the image: a view of its pixels and its
+// corner. None where it does not fit (an image of a few pixels).
+struct ImagePart {
+    GreyView view;
+    Eigen::Vector2d origin;
+};
+std::optional<ImagePart> part_around(const GreyView& im, const Eigen::Vector2d& aim, double fraction) {
+    const int w = std::max(8, static_cast<int>(std::lround(im.width * fraction)));
+    const int h = std::max(8, static_cast<int>(std::lround(im.height * fraction)));
+    if (w > im.width || h > im.height) return std::nullopt;
+    const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
+    const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
+    return ImagePart{GreyView{im.row(y0) + x0, w, h, im.stride}, Eigen::Vector2d(x0, y0)};
+}
+
 // `source` made into `kind`, or what this call made of it before.
 GreyView derived(const GreyView& source, SearchCache::Derived kind, SearchCache& cache, Detection& out) {
     if (const GreyView* made = cache.find(source, kind)) return *made;
@@ -210,16 +226,9 @@ const char* Detector::search_sizes(const GreyView& im, const Eigen::Vector2d& ai
     const int max_side = options_.double_size_max_side;
     if (plan.double_scans != 0 && max_side > 0 && std::max(im.width, im.height) <= max_side) {
         // The part around the aim, at double size: as many pixels as the frame.
-        const double part = std::clamp(options_.double_size_part, 0.1, 1.0);
-        const int w = std::max(8, static_cast<int>(std::lround(im.width * part)));
-        const int h = std::max(8, static_cast<int>(std::lround(im.height * part)));
-        if (w <= im.width && h <= im.height) {
-            const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
-            const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
-            const GreyView around{im.row(y0) + x0, w, h, im.stride};
-            if (!search_resized(around, 2, Eigen::Vector2d(x0, y0), aim, prior, pass, out, plan.double_scans, 0))
-                return nullptr;
-        }
+        if (const auto around = part_around(im, aim, std::clamp(options_.double_size_part, 0.1, 1.0));
+            around && !search_resized(around->view, 2, around->origin, aim, prior, pass, out, plan.double_scans, 0))
+            return nullptr;
     }
     if ((plan.smoothed_scans | plan.smoothed_smaller_scans) != 0 && options_.smoothed_search &&
         !pass.nothing_left() && !pass.out_of_time()) {
@@ -385,21 +394,17 @@ const char* Detector::search_near_aim(const GreyView& im, const Eigen::Vector2d&
     const char* const not_searched = "no grid homography";
     const double part = options_.near_aim_part;
     if (!(part > 0 && part < 1)) return not_searched;
-    const int w = std::max(8, static_cast<int>(std::lround(im.width * part)));
-    const int h = std::max(8, static_cast<int>(std::lround(im.height * part)));
-    if (w > im.width || h > im.height) return not_searched;  // an image of a few pixels
-    const int x0 = std::clamp(static_cast<int>(std::lround(aim.x() - w / 2.0)), 0, im.width - w);
-    const int y0 = std::clamp(static_cast<int>(std::lround(aim.y() - h / 2.0)), 0, im.height - h);
-    const GreyView around{im.row(y0) + x0, w, h, im.stride};
+    const auto around = part_around(im, aim, part);
+    if (!around) return not_searched;
     EdgelOptions at_frame_step = options_.edgels;
     at_frame_step.step = scanline_step(im.width, im.height, options_.edgels);
     auto t = StageClock::now();
-    const EdgelScan near = find_edgels(around, at_frame_step);
+    const EdgelScan near = find_edgels(around->view, at_frame_step);
     out.times.edgels_ms += ms_since(t);
     out.pixels_visited += near.pixels_visited;
-    const Resizing in_part(1, Eigen::Vector2d(x0, y0), prior);
+    const Resizing in_part(1, around->origin, prior);
     const char* failure =
-        search_edgel_sets(around, in_part.resized(aim), in_part.resized_prior(), vanishing, near, pass, out);
+        search_edgel_sets(around->view, in_part.resized(aim), in_part.resized_prior(), vanishing, near, pass, out);
     if (!failure) {
         in_part.carry_back(out, aim);
         out.from_near_aim = true;

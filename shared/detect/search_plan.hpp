@@ -54,10 +54,11 @@ struct SearchPlan {
     // when that scan's edgels say the modules are small
     // (modules_look_small); part 1 then does not run it again.
     bool lattice_first_if_small = false;
-    // The first scan's edgels in the part of the frame around the aim
-    // (DetectorOptions::near_aim_part) searched, on that part alone, before
-    // all of the frame's: a quarter of the edgels and of the modules to read
-    // and refit, where the field nearly always fills the middle of the view.
+    // The first scan made and searched first on the part of the frame
+    // around the aim alone (DetectorOptions::near_aim_part), with the whole
+    // frame's scanline step, then on the whole frame: a quarter of the
+    // edgels and of the modules to read and refit, where the field nearly
+    // always fills the middle of the view.
     bool near_aim_first = false;
 };
 
