@@ -251,12 +251,15 @@ private:
         // The lattice at the frame's own size ran (SearchPlan::lattice_first_if_small).
         bool lattice_searched = false;
         // The time limit (null: none) and when the call began, the steps
-        // run in the call over every plan (its average step), the plan
-        // running and its steps so far (SearchLimit), and whether the
-        // limit stopped the search.
+        // run in the call over every plan (its average step), when the last
+        // one began and the dearest of the others, the plan running and its
+        // steps so far (SearchLimit), and whether the limit stopped the
+        // search.
         SearchLimit* limit = nullptr;
         StageClock::time_point start{};
         int call_steps = 0;
+        StageClock::time_point step_began{};
+        double dearest_step_ms = 0;
         int plan_index = 0;
         int steps = 0;
         bool stopped = false;
@@ -265,12 +268,13 @@ private:
         bool nothing_left() const { return stopped || (!first() && search >= end_of_left); }
         // Whether the time limit stops the search before the plan's next
         // step (and so before the images and scans made for it): whether
-        // that step would end past it, taken to cost what the call's steps
-        // have cost on average so far (the same frame's content).
+        // that step would end past it, taken to cost as much as the dearest
+        // of the call's steps so far, or their average where more (the same
+        // frame's content).
         bool out_of_time();
-        // Counts the plan's next step: whether to run it (false: searched
-        // on an earlier frame, or out of time).
-        bool take_step();
+        // Counts the plan's next step: whether to run it (false: not
+        // wanted on this frame, searched on an earlier one, or out of time).
+        bool take_step(bool wanted = true);
     };
     // detect over the plans, held to `limit` when there is one.
     Detection detect_plans(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,

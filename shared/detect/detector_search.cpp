@@ -125,24 +125,43 @@ Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const
     limit.steps_run = 0;
     limit.found_plan = -1;
     limit.found_step = -1;
+    limit.first_steps_into_next = 0;
+    limit.first_held_steps_run = 0;
     return detect_plans(im, aim, prior, plans, &limit);
 }
 
 bool Detector::Pass::out_of_time() {
     if (stopped) return true;
-    if (!limit || plan_index == 0 || limit->steps_run < limit->min_steps) return false;
+    if (!limit || (plan_index == 0 && steps < limit->first_min_steps) ||
+        limit->first_held_steps_run + limit->steps_run < limit->min_steps)
+        return false;
     const double elapsed = std::chrono::duration<double, std::milli>(StageClock::now() - start).count();
-    if (elapsed + elapsed / std::max(1, call_steps) <= limit->ms) return false;
+    if (elapsed + std::max(elapsed / std::max(1, call_steps), dearest_step_ms) <= limit->ms) return false;
     stopped = true;
     return true;
 }
 
-bool Detector::Pass::take_step() {
+bool Detector::Pass::take_step(bool wanted) {
+    if (!wanted) {
+        ++steps;
+        return false;
+    }
     if (out_of_time()) return false;
     const int step = steps++;
+    if (limit && plan_index == 0 && step >= limit->first_min_steps && step < limit->first_skip_steps) return false;
     if (limit && plan_index == 1 && step < limit->skip_steps) return false;
+    if (limit) {
+        // A step's cost: until the next one starts, with the images and
+        // scans made for that one.
+        const auto now = StageClock::now();
+        if (call_steps > 0)
+            dearest_step_ms =
+                std::max(dearest_step_ms, std::chrono::duration<double, std::milli>(now - step_began).count());
+        step_began = now;
+    }
     ++call_steps;
     if (limit && plan_index > 0) ++limit->steps_run;
+    if (limit && plan_index == 0 && step >= limit->first_min_steps) ++limit->first_held_steps_run;
     return true;
 }
 
@@ -196,13 +215,9 @@ const char* Detector::search_plans(const GreyView& im, const Eigen::Vector2d& ai
         if (!failure || failure == kAimAtInfinity) return failure;
         if (k == 0) first_failure = failure;
         if (limit && pass.stopped) {
-            // The first plan, cut short for the round's step owed: on to it.
-            if (k == 0 && limit->min_steps > 0) {
-                pass.stopped = false;
-                continue;
-            }
             // Taken up here on the next frame (a stop among the steps an
             // earlier frame searched keeps their count).
+            if (k == 0) limit->first_steps_into_next = std::max(pass.steps, limit->first_skip_steps);
             limit->steps_into_next = k == 0   ? limit->skip_steps
                                      : k == 1 ? std::max(pass.steps, limit->skip_steps)
                                               : pass.steps;
@@ -343,11 +358,14 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     EdgelOptions edgel_options = options_.edgels;
     if (pass.plan.near_aim_first && (scans & kFirstScan) && steps.empty()) {
         const char* failure = search_near_aim(im, aim, prior, vanishing, pass, out);
-        if (!failure || failure == kAimAtInfinity) return failure;
+        if (!failure || failure == kAimAtInfinity || pass.plan.near_aim_alone) return failure;
     }
+    if (pass.out_of_time()) return not_searched;
     const EdgelScan* scan = &scan_step([&] { return find_edgels(im, edgel_options); });
+    // Counted as a step whether or not it runs, so that a frame taking up
+    // the first scan where the last one stopped counts the same steps.
     if (pass.plan.lattice_first_if_small && pass.first() && options_.lattice_enabled && !pass.lattice_searched &&
-        modules_look_small(scan->edgels) && pass.take_step()) {
+        pass.take_step(modules_look_small(scan->edgels))) {
         // A far screen: its grid lines would not be found, and the content's
         // would each be read in vain first (tuning set, single frames of the
         // tiny category at 640 x 480: 6.2 ms median).

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <cstddef>
+#include <limits>
 
 namespace umf {
 
@@ -60,6 +61,9 @@ struct SearchPlan {
     // edgels and of the modules to read and refit, where the field nearly
     // always fills the middle of the view.
     bool near_aim_first = false;
+    // With near_aim_first: the first scan on that part alone, not on the
+    // whole frame (a frame whose time a held search gives to the round).
+    bool near_aim_alone = false;
 };
 
 // A search held to a time limit (a tracker's spread search with
@@ -68,26 +72,38 @@ struct SearchPlan {
 // lattices, one per set or lattice it names, counted whether or not the
 // set has enough edgels to be searched, so that the same plan on the next
 // frame counts the same steps. The first plan (spread_first(), run on
-// every frame) runs whole; of the later plans' steps the first `min_steps`
-// run whatever the time, and after them no step starts that would end more
-// than `ms` after the call began, each taken to cost what the call's steps
-// so far cost on average (the same frame's content makes them dear or
-// cheap); the images and scans of a step not started are not made. The
+// every frame) runs whole unless held (below); of the later plans' steps
+// the first `min_steps` run whatever the time, and after them no step starts that would end more
+// than `ms` after the call began, each taken to cost as much as the dearest
+// of the call's steps so far (the same frame's content makes them dear or
+// cheap; an average let one step in twenty end a millisecond late); the
+// images and scans of a step not started are not made. The
 // first `skip_steps` of the second plan are not run again (an earlier
 // frame searched them). A step that has started runs to its end: a search
 // stopped half way would lose what its other half finds.
+//
+// The first plan's steps after its first `first_min_steps` may be held too
+// (by default none are): they are then the first steps `min_steps` counts,
+// those before `first_skip_steps` are not run again (an earlier frame
+// searched them), and a first plan cut short ends the call.
 struct SearchLimit {
     double ms = 0;
     int min_steps = 0;
     int skip_steps = 0;
+    int first_min_steps = std::numeric_limits<int>::max();
+    int first_skip_steps = 0;
     // What the call did: the later plans it ran to their end, the steps of
     // the next one it reached (skipped ones included) when it stopped, the
-    // steps it ran, and the plan and step that found the field (-1: none).
+    // steps it ran, and the plan and step that found the field (-1: none);
+    // where the first plan stopped (skipped steps included; 0: it ran to
+    // its end) and the steps of it held to the time that ran.
     int plans_done = 0;
     int steps_into_next = 0;
     int steps_run = 0;
     int found_plan = -1;
     int found_step = -1;
+    int first_steps_into_next = 0;
+    int first_held_steps_run = 0;
 };
 
 // The first scan at the frame's own size and nothing else.

@@ -26,6 +26,7 @@ void Tracker::reset() {
     finding_first_piece_ = 0;
     finding_pieces_ = 0;
     next_step_ = 0;
+    first_scan_from_ = 0;
     finding_piece_ = -1;
     finding_step_ = 0;
 }
@@ -53,23 +54,35 @@ Detection Tracker::spread_search(const GreyView& image, const Eigen::Vector2d& a
 
 Detection Tracker::timed_search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                 bool use_prior) {
-    // The first scan, then the round from where the last frame stopped to
-    // its end, held to frame_ms, a step of it at least (a first scan that
-    // alone takes the time, as on a page dense with text or rules, would
-    // otherwise stall the round); a retry (as above) runs the piece that
-    // found the last lock from the step that found it.
+    // The first scan's search of the part around the aim whatever the
+    // time, then held to frame_ms, one step at least: the first scan's
+    // searches of the whole frame, taken up where the last frame stopped,
+    // and the round from where it stopped to its end. A frame that ends the
+    // whole frame's searches with no time for the round gives the next
+    // frame to the round (a first scan that alone takes the time, as on a
+    // page dense with text or rules, would otherwise stall it). A retry (as
+    // above) runs the piece that found the last lock from the step that
+    // found it, after the search around the aim alone.
     const bool retry = finding_piece_ >= 0 && use_prior && frames_since_lock_ % 2 == 0;
     const int from = retry ? finding_piece_ : next_piece_;
     const int to = retry ? finding_piece_ + 1 : kRoundPieces;
     std::array<SearchPlan, kRoundPieces + 1> plans{};
     std::size_t count = 0;
-    plans[count++] = spread_first();
+    plans[count] = spread_first();
+    plans[count++].near_aim_alone = retry || first_scan_from_ < 0;
     for (int k = from; k < to; ++k) plans[count++] = kSpreadRound[static_cast<std::size_t>(k)].plan();
     SearchLimit limit;
     limit.ms = options_.frame_ms;
     limit.skip_steps = retry ? finding_step_ : next_step_;
     limit.min_steps = 1;
+    limit.first_min_steps = kFirstStepsEveryFrame;
+    limit.first_skip_steps = std::max(0, first_scan_from_);
     Detection d = detector_->detect(image, aim, prior, std::span<const SearchPlan>(plans.data(), count), limit);
+    if (!retry)
+        first_scan_from_ = d.found                                                  ? 0
+                           : limit.first_steps_into_next > 0                        ? limit.first_steps_into_next
+                           : limit.first_held_steps_run > 0 && limit.steps_run == 0 ? -1
+                                                                                    : 0;
     if (d.found) {
         finding_piece_ = limit.found_plan > 0 ? from + limit.found_plan - 1 : -1;
         finding_step_ = std::max(0, limit.found_step);

@@ -44,12 +44,13 @@ struct TrackerOptions {
     // 480 on the machine they were measured on).
     double search_budget = 2;
     // The time a frame's search may take on this device, in ms: when set,
-    // each frame runs the first scan, the round's next step from where the
-    // last frame stopped, and the steps after it while they fit in that time
-    // (search_plan.hpp's SearchLimit), in place of shares of search_budget.
-    // So a frame without the field costs about this much (or its first scan
-    // and a step, where those alone take longer), and the round goes on at
-    // the device's own pace.
+    // each frame runs the first scan's search around the aim, the rest of
+    // the first scan from where the last frame stopped, then the round's
+    // next step from where it stopped and the steps after it, while they fit
+    // in that time (search_plan.hpp's SearchLimit), in place of shares of
+    // search_budget. So a frame without the field costs about this much (or
+    // the search around the aim and a step, where those alone take longer),
+    // and the first scan and the round go on at the device's own pace.
     double frame_ms = 0;
 };
 
@@ -57,6 +58,11 @@ struct TrackerOptions {
 // time gives the spread search (TrackerOptions::frame_ms): the rest is for
 // taking the frame from the camera, the page's drawing and the follow.
 inline constexpr double kSpreadFrameShare = 0.5;
+
+// The steps of spread_first() that a frame held to frame_ms runs whatever
+// the time: the search of the part around the aim (its three edgel sets),
+// which finds most fields for a quarter of the first scan's cost.
+inline constexpr int kFirstStepsEveryFrame = 3;
 
 enum class TrackState {
     searching,  // no lock yet (or not for a long time): full detection
@@ -107,6 +113,9 @@ private:
     int finding_first_piece_ = 0;
     int finding_pieces_ = 0;
     int next_step_ = 0;
+    // Held to frame_ms: the first scan's step on the whole frame to take up
+    // (0: its first; -1: the part around the aim alone, the round's frame).
+    int first_scan_from_ = 0;
     int finding_piece_ = -1;
     int finding_step_ = 0;
 };

@@ -1,7 +1,8 @@
 // A search held to a time limit (search_plan.hpp's SearchLimit): without
 // the time running out it is the search it limits; with no time at all it
 // runs the first scan and the steps it owes; taken up again
-// where it stopped, it runs every step of the round once. Times here are 0
+// where it stopped, it runs every step of the round once, and of the first
+// scan's whole frame where that is held too. Times here are 0
 // or 10 s, so that what runs does not depend on the machine's speed.
 #include <gtest/gtest.h>
 
@@ -105,6 +106,51 @@ TEST_F(SearchLimitOnAScreen, TakenUpWhereItStoppedTheRoundRunsEveryStepOnce) {
     EXPECT_EQ(calls, round_steps);
     std::cout << "[ measure  ] a round of " << round_steps << " steps; " << pixels << " pixels read over its "
               << calls << " calls\n";
+}
+
+// The first scan held too (a tracker held to its frame's time): the part
+// around the aim whatever the time, then the whole frame's searches a step
+// a call, each call taking them up where the last one stopped, each once;
+// a call with the part around the aim alone owes its step to the round.
+TEST_F(SearchLimitOnAScreen, TheFirstScanHeldTooRunsAroundTheAimThenAStepACall) {
+    constexpr int kAroundTheAim = 3;  // the part around the aim's edgel sets
+    SearchLimit all;
+    all.ms = kAllTheTime;
+    all.first_min_steps = kAroundTheAim;
+    const Detection whole_first_scan = detect(round_from(0), &all);
+    const int held = all.first_held_steps_run;
+    EXPECT_GE(held, 3) << "the whole frame's three edgel sets";
+
+    int from = 0, calls = 0, run = 0;
+    do {
+        SearchLimit owed;
+        owed.ms = kNoTime;
+        owed.min_steps = 1;
+        owed.first_min_steps = kAroundTheAim;
+        owed.first_skip_steps = from;
+        const Detection d = detect(round_from(0), &owed);
+        ++calls;
+        EXPECT_FALSE(d.found);
+        EXPECT_EQ(owed.first_held_steps_run, 1) << "call " << calls << ": the step owed is the first scan's";
+        EXPECT_EQ(owed.steps_run, 0) << "call " << calls << ": none of the round's";
+        EXPECT_EQ(owed.steps_into_next, 0) << "the round stays where it was";
+        run += owed.first_held_steps_run;
+        ASSERT_TRUE(owed.first_steps_into_next == 0 || owed.first_steps_into_next > from) << "on from where it stopped";
+        from = owed.first_steps_into_next;
+    } while (from > 0 && calls < 10);
+    EXPECT_EQ(run, held) << "every search of the whole frame once";
+    EXPECT_EQ(calls, held);
+
+    std::vector<SearchPlan> round_frame = round_from(0);
+    round_frame.front().near_aim_alone = true;
+    SearchLimit owed;
+    owed.ms = kNoTime;
+    owed.min_steps = 1;
+    owed.first_min_steps = kAroundTheAim;
+    const Detection d = detect(round_frame, &owed);
+    EXPECT_EQ(owed.first_held_steps_run, 0);
+    EXPECT_EQ(owed.steps_run, 1) << "the round's step";
+    EXPECT_LT(d.pixels_visited, whole_first_scan.pixels_visited);
 }
 
 }  // namespace
