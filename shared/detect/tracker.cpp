@@ -29,6 +29,7 @@ void Tracker::reset() {
     first_scan_from_ = 0;
     finding_piece_ = -1;
     finding_step_ = 0;
+    finding_first_step_ = 0;
 }
 
 Detection Tracker::spread_search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
@@ -62,21 +63,24 @@ Detection Tracker::timed_search(const GreyView& image, const Eigen::Vector2d& ai
     // frame to the round (a first scan that alone takes the time, as on a
     // page dense with text or rules, would otherwise stall it). A retry (as
     // above) runs the piece that found the last lock from the step that
-    // found it, after the search around the aim alone.
-    const bool retry = finding_piece_ >= 0 && use_prior && frames_since_lock_ % 2 == 0;
-    const int from = retry ? finding_piece_ : next_piece_;
-    const int to = retry ? finding_piece_ + 1 : kRoundPieces;
+    // found it, after the search around the aim alone, or the whole frame's
+    // first scan from the step that found it.
+    const bool retry =
+        (finding_piece_ >= 0 || finding_first_step_ > 0) && use_prior && frames_since_lock_ % 2 == 0;
+    const bool retry_piece = retry && finding_piece_ >= 0;
+    const int from = retry ? std::max(0, finding_piece_) : next_piece_;
+    const int to = retry ? (retry_piece ? finding_piece_ + 1 : 0) : kRoundPieces;
     std::array<SearchPlan, kRoundPieces + 1> plans{};
     std::size_t count = 0;
     plans[count] = spread_first();
-    plans[count++].near_aim_alone = retry || first_scan_from_ < 0;
+    plans[count++].near_aim_alone = retry_piece || (!retry && first_scan_from_ < 0);
     for (int k = from; k < to; ++k) plans[count++] = kSpreadRound[static_cast<std::size_t>(k)].plan();
     SearchLimit limit;
     limit.ms = options_.frame_ms;
     limit.skip_steps = retry ? finding_step_ : next_step_;
     limit.min_steps = 1;
     limit.first_min_steps = kFirstStepsEveryFrame;
-    limit.first_skip_steps = std::max(0, first_scan_from_);
+    limit.first_skip_steps = retry ? finding_first_step_ : std::max(0, first_scan_from_);
     Detection d = detector_->detect(image, aim, prior, std::span<const SearchPlan>(plans.data(), count), limit);
     if (!retry)
         first_scan_from_ = d.found                                                  ? 0
@@ -86,6 +90,10 @@ Detection Tracker::timed_search(const GreyView& image, const Eigen::Vector2d& ai
     if (d.found) {
         finding_piece_ = limit.found_plan > 0 ? from + limit.found_plan - 1 : -1;
         finding_step_ = std::max(0, limit.found_step);
+        // Found by the whole frame's first scan (a ruled page's field, off
+        // its rules: its last step): the retry takes it up there.
+        finding_first_step_ =
+            limit.found_plan == 0 && limit.found_step >= kFirstStepsEveryFrame ? limit.found_step : 0;
     }
     // The first scan's find leaves the round where it was.
     if (retry || limit.found_plan == 0) return d;

@@ -116,6 +116,7 @@ private:
     // Held to frame_ms: the first scan's step on the whole frame to take up
     // (0: its first; -1: the part around the aim alone, the round's frame).
     int first_scan_from_ = 0;
+    int finding_first_step_ = 0;  // the first scan's step on the whole frame that found the last lock (0: none)
     int finding_piece_ = -1;
     int finding_step_ = 0;
 };
