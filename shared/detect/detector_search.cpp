@@ -136,7 +136,9 @@ bool Detector::Pass::out_of_time() {
         limit->first_held_steps_run + limit->steps_run < limit->min_steps)
         return false;
     const double elapsed = std::chrono::duration<double, std::milli>(StageClock::now() - start).count();
-    if (elapsed + std::max(elapsed / std::max(1, call_steps), dearest_step_ms) <= limit->ms) return false;
+    const double average = elapsed / std::max(1, call_steps);
+    if (elapsed + (limit->as_dear_as_dearest ? std::max(average, dearest_step_ms) : average) <= limit->ms)
+        return false;
     stopped = true;
     return true;
 }
@@ -150,7 +152,7 @@ bool Detector::Pass::take_step(bool wanted) {
     const int step = steps++;
     if (limit && plan_index == 0 && step >= limit->first_min_steps && step < limit->first_skip_steps) return false;
     if (limit && plan_index == 1 && step < limit->skip_steps) return false;
-    if (limit) {
+    if (limit && limit->as_dear_as_dearest) {
         // A step's cost: until the next one starts, with the images and
         // scans made for that one.
         const auto now = StageClock::now();

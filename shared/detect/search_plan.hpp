@@ -73,14 +73,15 @@ struct SearchPlan {
 // set has enough edgels to be searched, so that the same plan on the next
 // frame counts the same steps. The first plan (spread_first(), run on
 // every frame) runs whole unless held (below); of the later plans' steps
-// the first `min_steps` run whatever the time, and after them no step starts that would end more
-// than `ms` after the call began, each taken to cost as much as the dearest
-// of the call's steps so far (the same frame's content makes them dear or
-// cheap; an average let one step in twenty end a millisecond late); the
-// images and scans of a step not started are not made. The
-// first `skip_steps` of the second plan are not run again (an earlier
-// frame searched them). A step that has started runs to its end: a search
-// stopped half way would lose what its other half finds.
+// the first `min_steps` run whatever the time, and after them no step
+// starts that would end more than `ms` after the call began, each taken to
+// cost what the call's steps so far cost on average, or with
+// `as_dear_as_dearest` as much as the dearest of them (the same frame's
+// content makes them dear or cheap; the average let one frame in twenty
+// end a millisecond late); the images and scans of a step not started are
+// not made. The first `skip_steps` of the second plan are not run again
+// (an earlier frame searched them). A step that has started runs to its
+// end: a search stopped half way would lose what its other half finds.
 //
 // The first plan's steps after its first `first_min_steps` may be held too
 // (by default none are): they are then the first steps `min_steps` counts,
@@ -92,6 +93,7 @@ struct SearchLimit {
     int skip_steps = 0;
     int first_min_steps = std::numeric_limits<int>::max();
     int first_skip_steps = 0;
+    bool as_dear_as_dearest = false;
     // What the call did: the later plans it ran to their end, the steps of
     // the next one it reached (skipped ones included) when it stopped, the
     // steps it ran, and the plan and step that found the field (-1: none);
@@ -214,7 +216,13 @@ inline constexpr double kPieceCost[kSearchParts][kPiecesOfAPart] = {
 // of 40 found with every search, 14 with them in the round). A far
 // screen's small modules send it to the lattice first, as in a photo's
 // search: the lattice's share is a round away (the held-out set's far views
-// at 640 x 480, tracked: 19 of 40 found without the cue, 31 with it).
+// at 640 x 480, tracked: 19 of 40 found without the cue, 31 with it). A
+// frame held to its time with the first scan held too runs its search of
+// the part around the aim whatever the time and its searches of the whole
+// frame while they fit, taken up on the next frame where they stopped
+// (SearchLimit's first_min_steps; TrackerOptions::hold_first_scan): on
+// content dense with edges they alone cost a frame without the field up to
+// 4 ms at 640 x 480.
 constexpr SearchPlan spread_first() {
     SearchPlan p = first_scan_only();
     p.second_pass = false;

@@ -55,16 +55,19 @@ Detection Tracker::spread_search(const GreyView& image, const Eigen::Vector2d& a
 
 Detection Tracker::timed_search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                 bool use_prior) {
-    // The first scan's search of the part around the aim whatever the
-    // time, then held to frame_ms, one step at least: the first scan's
+    // The first scan, then the round from where the last frame stopped to
+    // its end, held to frame_ms, a step of it at least (a first scan that
+    // alone takes the time, as on a page dense with text or rules, would
+    // otherwise stall the round); a retry (as above) runs the piece that
+    // found the last lock from the step that found it.
+    //
+    // With hold_first_scan: the first scan's search of the part around the
+    // aim whatever the time, then, one step at least, the first scan's
     // searches of the whole frame, taken up where the last frame stopped,
-    // and the round from where it stopped to its end. A frame that ends the
-    // whole frame's searches with no time for the round gives the next
-    // frame to the round (a first scan that alone takes the time, as on a
-    // page dense with text or rules, would otherwise stall it). A retry (as
-    // above) runs the piece that found the last lock from the step that
-    // found it, after the search around the aim alone, or the whole frame's
-    // first scan from the step that found it.
+    // and the round. A frame that ends the whole frame's searches with no
+    // time for the round gives the next frame to the round. A retry runs
+    // the piece that found the last lock after the search around the aim
+    // alone, or the whole frame's first scan from the step that found it.
     const bool retry =
         (finding_piece_ >= 0 || finding_first_step_ > 0) && use_prior && frames_since_lock_ % 2 == 0;
     const bool retry_piece = retry && finding_piece_ >= 0;
@@ -73,14 +76,17 @@ Detection Tracker::timed_search(const GreyView& image, const Eigen::Vector2d& ai
     std::array<SearchPlan, kRoundPieces + 1> plans{};
     std::size_t count = 0;
     plans[count] = spread_first();
-    plans[count++].near_aim_alone = retry_piece || (!retry && first_scan_from_ < 0);
+    plans[count++].near_aim_alone = options_.hold_first_scan && (retry_piece || (!retry && first_scan_from_ < 0));
     for (int k = from; k < to; ++k) plans[count++] = kSpreadRound[static_cast<std::size_t>(k)].plan();
     SearchLimit limit;
     limit.ms = options_.frame_ms;
     limit.skip_steps = retry ? finding_step_ : next_step_;
     limit.min_steps = 1;
-    limit.first_min_steps = kFirstStepsEveryFrame;
-    limit.first_skip_steps = retry ? finding_first_step_ : std::max(0, first_scan_from_);
+    if (options_.hold_first_scan) {
+        limit.first_min_steps = kFirstStepsEveryFrame;
+        limit.first_skip_steps = retry ? finding_first_step_ : std::max(0, first_scan_from_);
+        limit.as_dear_as_dearest = true;
+    }
     Detection d = detector_->detect(image, aim, prior, std::span<const SearchPlan>(plans.data(), count), limit);
     if (!retry)
         first_scan_from_ = d.found                                                  ? 0
@@ -92,8 +98,10 @@ Detection Tracker::timed_search(const GreyView& image, const Eigen::Vector2d& ai
         finding_step_ = std::max(0, limit.found_step);
         // Found by the whole frame's first scan (a ruled page's field, off
         // its rules: its last step): the retry takes it up there.
-        finding_first_step_ =
-            limit.found_plan == 0 && limit.found_step >= kFirstStepsEveryFrame ? limit.found_step : 0;
+        finding_first_step_ = options_.hold_first_scan && limit.found_plan == 0 &&
+                                      limit.found_step >= kFirstStepsEveryFrame
+                                  ? limit.found_step
+                                  : 0;
     }
     // The first scan's find leaves the round where it was.
     if (retry || limit.found_plan == 0) return d;

@@ -44,14 +44,23 @@ struct TrackerOptions {
     // 480 on the machine they were measured on).
     double search_budget = 2;
     // The time a frame's search may take on this device, in ms: when set,
-    // each frame runs the first scan's search around the aim, the rest of
-    // the first scan from where the last frame stopped, then the round's
-    // next step from where it stopped and the steps after it, while they fit
-    // in that time (search_plan.hpp's SearchLimit), in place of shares of
-    // search_budget. So a frame without the field costs about this much (or
-    // the search around the aim and a step, where those alone take longer),
-    // and the first scan and the round go on at the device's own pace.
+    // each frame runs the first scan, the round's next step from where the
+    // last frame stopped, and the steps after it while they fit in that time
+    // (search_plan.hpp's SearchLimit), in place of shares of search_budget.
+    // So a frame without the field costs about this much (or its first scan
+    // and a step, where those alone take longer), and the round goes on at
+    // the device's own pace.
     double frame_ms = 0;
+    // With frame_ms: the first scan held to the time too. Its search of the
+    // part around the aim runs whatever the time, its searches of the whole
+    // frame while they fit, taken up on the next frame where they stopped,
+    // each next step taken to cost as much as the dearest so far: a frame
+    // without the field then costs about frame_ms (the first scan alone
+    // costs up to 4 ms at 640 x 480 on content dense with edges), for fewer
+    // searches a frame (docs/BENCHMARKS.md, "the first scan held to the
+    // frame's time too": 2 % fewer frames tracked in real time on the
+    // tuning set, more on the held-out set). Not yet the default.
+    bool hold_first_scan = false;
 };
 
 // The share of the time between two camera frames that a requester in real
@@ -59,9 +68,10 @@ struct TrackerOptions {
 // taking the frame from the camera, the page's drawing and the follow.
 inline constexpr double kSpreadFrameShare = 0.5;
 
-// The steps of spread_first() that a frame held to frame_ms runs whatever
-// the time: the search of the part around the aim (its three edgel sets),
-// which finds most fields for a quarter of the first scan's cost.
+// The steps of spread_first() that a frame held to frame_ms with
+// hold_first_scan runs whatever the time: the search of the part around the
+// aim (its three edgel sets), which finds most fields for a quarter of the
+// first scan's cost.
 inline constexpr int kFirstStepsEveryFrame = 3;
 
 enum class TrackState {
@@ -113,8 +123,9 @@ private:
     int finding_first_piece_ = 0;
     int finding_pieces_ = 0;
     int next_step_ = 0;
-    // Held to frame_ms: the first scan's step on the whole frame to take up
-    // (0: its first; -1: the part around the aim alone, the round's frame).
+    // Held to frame_ms with hold_first_scan: the first scan's step on the
+    // whole frame to take up (0: its first; -1: the part around the aim
+    // alone, the round's frame).
     int first_scan_from_ = 0;
     int finding_first_step_ = 0;  // the first scan's step on the whole frame that found the last lock (0: none)
     int finding_piece_ = -1;

@@ -201,7 +201,8 @@ private:
         s["umf_video_tracker"] = {{"spread_search", opt_.tracking.spread_search},
                                   {"search_budget_ms", opt_.tracking.search_budget},
                                   {"realtime_slowdown", opt_.realtime},
-                                  {"frame_share", opt_.frame_share}};
+                                  {"frame_share", opt_.frame_share},
+                                  {"hold_first_scan", opt_.tracking.hold_first_scan}};
     }
 
     void configuration(HeldoutCategory category, const std::vector<HeldoutRecipe>& rs, double opacity, cv::Size res,

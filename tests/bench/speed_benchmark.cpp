@@ -123,10 +123,11 @@ Timing time_tracker(const Detector& detector, const Clip& clip, bool with_field,
     return t;
 }
 
-TrackerOptions spreading(double frame_ms = 0) {
+TrackerOptions spreading(double frame_ms = 0, bool hold_first_scan = false) {
     TrackerOptions o;
     o.spread_search = true;
     o.frame_ms = frame_ms;
+    o.hold_first_scan = hold_first_scan;
     return o;
 }
 
@@ -254,7 +255,7 @@ std::string schedule_parts(const Detector& detector, const std::vector<Clip>& cl
 // The tables of one resolution.
 std::string time_resolution(const Detector& detector, const std::vector<Clip>& clips, const SpeedOptions& opt) {
     Timing with_all, bare_all, video_all, video_bare_all, spread_all, spread_bare_all, shares_all, aruco_all;
-    Timing held_all, held_bare_all;
+    Timing held_all, held_bare_all, held_first_all, held_first_bare_all;
     std::string per_category;
     if (opt.profile) {
         for (const Clip& c : clips) merge(with_all, time_single(detector, c, true, opt.runs));
@@ -272,6 +273,8 @@ std::string time_resolution(const Detector& detector, const std::vector<Clip>& c
         // towards the screen films it for a while.
         merge(held_all, time_tracker(detector, c, true, spreading(opt.frame_ms)));
         merge(held_bare_all, time_tracker(detector, c, false, spreading(opt.frame_ms), 3));
+        merge(held_first_all, time_tracker(detector, c, true, spreading(opt.frame_ms, true)));
+        merge(held_first_bare_all, time_tracker(detector, c, false, spreading(opt.frame_ms, true), 3));
         const Timing aruco = time_aruco(c, opt.runs);
         auto cell = [](const Timing& t) { return fixed(median_of(t.ms)) + " / " + fixed(percentile(t.ms, 95)); };
         per_category += "| " + c.category + " | " + cell(with) + " | " + cell(bare) + " | " + cell(video) + " | " +
@@ -292,6 +295,8 @@ std::string time_resolution(const Detector& detector, const std::vector<Clip>& c
         << row("with the field, tracker held to " + fixed(opt.frame_ms, 1) + " ms a frame", held_all)
         << row("without the field, tracker held to " + fixed(opt.frame_ms, 1) + " ms a frame (three times over)",
                held_bare_all)
+        << row("with the field, the first scan held too (TrackerOptions::hold_first_scan)", held_first_all)
+        << row("without the field, the first scan held too (three times over)", held_first_bare_all)
         << row("ArUco, its board in place of the field", aruco_all, false)
         << "\nArUco's median over umf's: single frame " << fixed(median_of(aruco_all.ms) / median_of(with_all.ms))
         << " x, tracker " << fixed(median_of(aruco_all.ms) / median_of(video_all.ms)) << " x.\n\n"

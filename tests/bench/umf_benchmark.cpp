@@ -80,6 +80,8 @@ Usage: umf_benchmark [options]
                          scan's first piece and pieces within BUDGET (TrackerOptions::search_budget; default: off);
                          auto, with --realtime: the first scan and the round's steps from where the last frame
                          stopped, held to half the device's time between two frames (TrackerOptions::frame_ms)
+  --hold-first-scan      with --spread-search auto: the first scan held to that time too, all but its search
+                         around the aim (TrackerOptions::hold_first_scan)
   --realtime SLOWDOWN    "umf video" in real time on a device SLOWDOWN times slower than this machine: the
                          frames arrive at the video's rate (25 a second; held-out 30) and one that arrives
                          while the tracker is still on an earlier frame is dropped, counted as not found
@@ -220,6 +222,8 @@ Options parse(int argc, char** argv) {
             else
                 o.tracking.search_budget = non_negative_number(budget, a);
             o.tracking.spread_search = true;
+        } else if (a == "--hold-first-scan") {
+            o.tracking.hold_first_scan = true;
         } else if (a == "--realtime") {
             o.realtime = non_negative_number(value(), a);
         } else if (a == "--field") {
@@ -242,6 +246,8 @@ Options parse(int argc, char** argv) {
             o.categories.push_back(*c);
         }
     }
+    if (o.tracking.hold_first_scan && !(o.frame_share > 0))
+        throw std::invalid_argument("--hold-first-scan holds the search to the frames' time: give --spread-search auto");
     if (o.frame_share > 0 && !(o.realtime > 0))
         throw std::invalid_argument("--spread-search auto measures against the frames' time: give --realtime too");
     if (o.heldout && !pulse_given) o.pulse_frames = 90;
@@ -376,7 +382,8 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
     s["umf_video_tracker"] = {{"spread_search", opt.tracking.spread_search},
                               {"search_budget_ms", opt.tracking.search_budget},
                               {"realtime_slowdown", opt.realtime},
-                              {"frame_share", opt.frame_share}};
+                              {"frame_share", opt.frame_share},
+                              {"hold_first_scan", opt.tracking.hold_first_scan}};
     return s;
 }
 

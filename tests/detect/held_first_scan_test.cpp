@@ -65,6 +65,7 @@ TEST(HeldFirstScan, ALockTheWholeFramesLaterSearchFoundIsRetriedThere) {
     TrackerOptions held;
     held.spread_search = true;
     held.frame_ms = 1e-3;
+    held.hold_first_scan = true;
     Tracker tracker(detector, held);
     const GreyView field_view = view_of(frame.grey), empty_view = view_of(empty.grey);
     auto lock_within = [&](int frames_at_most) {
