@@ -11,7 +11,7 @@
 #include "shared/detect/tracker.hpp"
 #include "shared/field/field_io.hpp"
 #include "tests/bench/scenario.hpp"
-#include "tests/sim/field_mix.hpp"
+#include "tests/detect/scene_screens.hpp"
 
 namespace {
 
@@ -30,18 +30,12 @@ TEST(HeldFirstScan, ALockTheWholeFramesLaterSearchFoundIsRetriedThere) {
     const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
     const Detector detector(field);
     const bench::Scene scene;
-    const sim::FieldPlacement placement{{0, 0}, scene.module_px};
-    std::vector<cv::Mat> bare;
-    std::vector<sim::ScreenSource> with_field;
-    for (auto kind : sim::kAllScreenKinds) {
-        bare.push_back(sim::make_screen(kind, scene.screen.pixels, 7));
-        with_field.emplace_back(sim::mix_field(bare.back(), field, placement, 0.3), scene.screen);
-    }
+    const test::SceneScreens screens(scene, field, 0.3);
     const cv::Size vga(640, 480);
     bench::Frame frame, empty;
     int found_step = -1;
     for (const auto& r : bench::category_recipes(scene, bench::Category::pixel_grid, 20, 1)) {
-        frame = bench::shoot(scene, r, with_field[static_cast<std::size_t>(r.screen)], vga);
+        frame = bench::shoot(scene, r, screens.with_field_of(r.screen), vga);
         if (!frame.centre_on_screen) continue;
         const GreyView v = view_of(frame.grey);
         SearchLimit all;
@@ -54,7 +48,7 @@ TEST(HeldFirstScan, ALockTheWholeFramesLaterSearchFoundIsRetriedThere) {
         // where it does not run, and the field-like edgels').
         if (d.found && all.found_plan == 0 && all.found_step >= kFirstStepsEveryFrame + 2) {
             found_step = all.found_step;
-            empty = bench::shoot(scene, r, bare[static_cast<std::size_t>(r.screen)], vga);
+            empty = bench::shoot(scene, r, screens.bare_of(r.screen), vga);
             break;
         }
     }

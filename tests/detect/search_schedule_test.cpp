@@ -10,7 +10,7 @@
 #include "shared/detect/tracker.hpp"
 #include "shared/field/field_io.hpp"
 #include "tests/bench/scenario.hpp"
-#include "tests/sim/field_mix.hpp"
+#include "tests/detect/scene_screens.hpp"
 
 namespace {
 
@@ -155,20 +155,14 @@ TEST(SearchSchedule, ATrackerWithoutALockSpreadsTheSearchAndStillFindsWhatOnlyAF
     const Field field = load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json");
     const Detector detector(field);
     const bench::Scene scene;
-    const sim::FieldPlacement placement{{0, 0}, scene.module_px};
-    std::vector<cv::Mat> bare;
-    std::vector<sim::ScreenSource> with_field;
-    for (auto kind : sim::kAllScreenKinds) {
-        bare.push_back(sim::make_screen(kind, scene.screen.pixels, 7));
-        with_field.emplace_back(sim::mix_field(bare.back(), field, placement, 0.3), scene.screen);
-    }
+    const test::SceneScreens screens(scene, field, 0.3);
     const auto recipes = bench::category_recipes(scene, bench::Category::tiny, 20, 1);
     const cv::Size vga(640, 480);
     const bench::FrameRecipe* chosen = nullptr;
     bench::Frame frame;
     Detection full;
     for (const auto& r : recipes) {
-        frame = bench::shoot(scene, r, with_field[static_cast<std::size_t>(r.screen)], vga);
+        frame = bench::shoot(scene, r, screens.with_field_of(r.screen), vga);
         if (!frame.centre_on_screen) continue;
         const GreyView v = view_of(frame.grey);
         const Eigen::Vector2d centre(v.width / 2.0, v.height / 2.0);
@@ -188,7 +182,7 @@ TEST(SearchSchedule, ATrackerWithoutALockSpreadsTheSearchAndStillFindsWhatOnlyAF
         break;
     }
     ASSERT_NE(chosen, nullptr) << "no tiny frame that one share of the round alone finds";
-    const bench::Frame empty = bench::shoot(scene, *chosen, bare[static_cast<std::size_t>(chosen->screen)], vga);
+    const bench::Frame empty = bench::shoot(scene, *chosen, screens.bare_of(chosen->screen), vga);
 
     // The camera starts on the screen without the field and sees it for a
     // round without a lock: a share a frame, every one of them less than
