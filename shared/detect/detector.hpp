@@ -268,9 +268,10 @@ private:
         bool nothing_left() const { return stopped || (!first() && search >= end_of_left); }
         // Whether the time limit stops the search before the plan's next
         // step (and so before the images and scans made for it): whether
-        // that step would end past it, taken to cost as much as the dearest
-        // of the call's steps so far, or their average where more (the same
-        // frame's content).
+        // that step would end past it, taken to cost what the call's steps
+        // have cost on average so far, or with SearchLimit's
+        // as_dear_as_dearest as much as the dearest of them where more (the
+        // same frame's content).
         bool out_of_time();
         // Counts the plan's next step: whether to run it (false: not
         // wanted on this frame, searched on an earlier one, or out of time).

@@ -79,10 +79,9 @@ const UmfTrackResult* umf_track(void* handle, int width, int height, int format,
 void umf_reset(void* handle);
 
 // The camera's frame rate (frames a second), for a tracker that keeps up
-// with it: each frame without a lock then runs the first scan around the
-// aim and the search's next steps (the whole frame's first scan among
-// them), held to kSpreadFrameShare of the time between two frames on this
-// device (TrackerOptions::spread_search, frame_ms). 0: every search on
+// with it: each frame without a lock then runs the first scan and the
+// search's next steps, held to kSpreadFrameShare of the time between two
+// frames on this device (TrackerOptions::spread_search, frame_ms). 0: every search on
 // every frame without a lock (the default; what a photo wants). Forgets the
 // lock. Returns 0, or -1 for a rate that is
 // negative or not finite (umf_last_error()).
