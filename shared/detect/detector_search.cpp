@@ -137,8 +137,8 @@ bool Detector::Pass::out_of_time() {
         return false;
     const double elapsed = std::chrono::duration<double, std::milli>(StageClock::now() - start).count();
     const double average = elapsed / std::max(1, call_steps);
-    if (elapsed + (limit->as_dear_as_dearest ? std::max(average, dearest_step_ms) : average) <= limit->ms)
-        return false;
+    const double ms = plan_index == 0 && limit->first_ms > 0 ? limit->first_ms : limit->ms;
+    if (elapsed + (limit->as_dear_as_dearest ? std::max(average, dearest_step_ms) : average) <= ms) return false;
     stopped = true;
     return true;
 }

@@ -84,15 +84,18 @@ struct SearchPlan {
 // end: a search stopped half way would lose what its other half finds.
 //
 // The first plan's steps after its first `first_min_steps` may be held too
-// (by default none are): they are then the first steps `min_steps` counts,
-// those before `first_skip_steps` are not run again (an earlier frame
-// searched them), and a first plan cut short ends the call.
+// (by default none are), to `first_ms` where that is given (a tracker's
+// whole time between two camera frames, where `ms` is its search's share):
+// they are then the first steps `min_steps` counts, those before
+// `first_skip_steps` are not run again (an earlier frame searched them), and
+// a first plan cut short ends the call.
 struct SearchLimit {
     double ms = 0;
     int min_steps = 0;
     int skip_steps = 0;
     int first_min_steps = std::numeric_limits<int>::max();
     int first_skip_steps = 0;
+    double first_ms = 0;
     bool as_dear_as_dearest = false;
     // What the call did: the later plans it ran to their end, the steps of
     // the next one it reached (skipped ones included) when it stopped, the

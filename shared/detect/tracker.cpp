@@ -84,6 +84,7 @@ Detection Tracker::timed_search(const GreyView& image, const Eigen::Vector2d& ai
     limit.min_steps = 1;
     if (options_.hold_first_scan) {
         limit.first_min_steps = kFirstStepsEveryFrame;
+        limit.first_ms = options_.frame_ms * options_.first_scan_times;
         limit.first_skip_steps = retry ? finding_first_step_ : std::max(0, first_scan_from_);
         limit.as_dear_as_dearest = true;
     }

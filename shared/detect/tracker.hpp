@@ -15,6 +15,17 @@
 
 namespace umf {
 
+// The share of the time between two camera frames that a requester in real
+// time gives the spread search (TrackerOptions::frame_ms): the rest is for
+// taking the frame from the camera, the page's drawing and the follow.
+inline constexpr double kSpreadFrameShare = 0.5;
+
+// The steps of spread_first() that a frame held to frame_ms with
+// hold_first_scan runs whatever the time: the search of the part around the
+// aim (its three edgel sets), which finds most fields for a quarter of the
+// first scan's cost.
+inline constexpr int kFirstStepsEveryFrame = 3;
+
 struct TrackerOptions {
     // Frames after the last lock during which the prior is still used.
     int prior_frames = 12;
@@ -48,32 +59,26 @@ struct TrackerOptions {
     // last frame stopped, and the steps after it while they fit in that time
     // (search_plan.hpp's SearchLimit), in place of shares of search_budget.
     // So a frame without the field costs about this much (or its first scan
-    // and a step, where those alone take longer), and the round goes on at
-    // the device's own pace.
+    // and a step, where those alone take longer; see hold_first_scan), and
+    // the round goes on at the device's own pace.
     double frame_ms = 0;
-    // With frame_ms: the first scan held to the time too. Its search of the
-    // part around the aim runs whatever the time, its searches of the whole
-    // frame while they fit, taken up on the next frame where they stopped,
-    // each next step taken to cost as much as the dearest so far: a frame
-    // without the field then costs about frame_ms (the first scan alone
-    // costs up to 4 ms at 640 x 480 on content dense with edges), for fewer
-    // searches a frame (docs/BENCHMARKS.md, "the first scan held to the
-    // frame's time too": 2 % fewer frames tracked in real time on the
-    // tuning set, 1-2 % on the held-out set, and 5-9 % fewer held-out
-    // frames found by a tracker held to 2 ms). Not yet the default.
+    // With frame_ms: the first scan held to a time too, first_scan_times
+    // frame_ms, by default the whole time between two camera frames (as
+    // frame_ms is kSpreadFrameShare of it). Its search of the part around
+    // the aim runs whatever the time, its searches of the whole frame while
+    // they fit, taken up on the next frame where they stopped, each next
+    // step taken to cost as much as the dearest so far: a frame without the
+    // field then keeps to about that time (the first scan alone costs up to
+    // 4 ms at 640 x 480 on content dense with edges; on a device four times
+    // slower, more than its half of a frame's time at 25 frames a second),
+    // and drops fewer frames in real time for about as many found
+    // (docs/BENCHMARKS.md, "the first scan held to the frame's whole time":
+    // as many on the tuning set, 1 % fewer on the held-out set in one run).
+    // Held to frame_ms itself (first_scan_times 1) it finds fewer. Not yet
+    // the default.
     bool hold_first_scan = false;
+    double first_scan_times = 1 / kSpreadFrameShare;
 };
-
-// The share of the time between two camera frames that a requester in real
-// time gives the spread search (TrackerOptions::frame_ms): the rest is for
-// taking the frame from the camera, the page's drawing and the follow.
-inline constexpr double kSpreadFrameShare = 0.5;
-
-// The steps of spread_first() that a frame held to frame_ms with
-// hold_first_scan runs whatever the time: the search of the part around the
-// aim (its three edgel sets), which finds most fields for a quarter of the
-// first scan's cost.
-inline constexpr int kFirstStepsEveryFrame = 3;
 
 enum class TrackState {
     searching,  // no lock yet (or not for a long time): full detection

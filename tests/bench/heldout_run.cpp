@@ -202,7 +202,8 @@ private:
                                   {"search_budget_ms", opt_.tracking.search_budget},
                                   {"realtime_slowdown", opt_.realtime},
                                   {"frame_share", opt_.frame_share},
-                                  {"hold_first_scan", opt_.tracking.hold_first_scan}};
+                                  {"hold_first_scan", opt_.tracking.hold_first_scan},
+                              {"first_scan_times", opt_.tracking.first_scan_times}};
     }
 
     void configuration(HeldoutCategory category, const std::vector<HeldoutRecipe>& rs, double opacity, cv::Size res,

@@ -482,12 +482,19 @@ std::string to_markdown(const Report& r) {
     if (const auto tracker = r.settings.find("umf_video_tracker"); tracker != r.settings.end()) {
         if (tracker->value("spread_search", false)) {
             md << "umf video's tracker spreads its search over the frames without a lock";
-            if (const double share = tracker->value("frame_share", 0.0); share > 0)
+            if (const double share = tracker->value("frame_share", 0.0); share > 0) {
                 md << ", each frame held to " << num(share, 2)
                    << " of the device's time between two frames (the round's steps taken up where the last frame "
-                      "stopped).\n\n";
-            else
+                      "stopped)";
+                if (tracker->value("hold_first_scan", false))
+                    md << ", its first scan after the part around the aim to "
+                       << num(share * tracker->value("first_scan_times", 1.0), 2) << " of it";
+                else
+                    md << ", its first scan whole on every frame";
+                md << ".\n\n";
+            } else {
                 md << " (search budget " << num(tracker->value("search_budget_ms", 0.0), 1) << ").\n\n";
+            }
         }
         if (const double slowdown = tracker->value("realtime_slowdown", 0.0); slowdown > 0)
             md << "umf video in real time: a device " << num(slowdown, 1)

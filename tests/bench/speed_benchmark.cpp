@@ -123,11 +123,13 @@ Timing time_tracker(const Detector& detector, const Clip& clip, bool with_field,
     return t;
 }
 
-TrackerOptions spreading(double frame_ms = 0, bool hold_first_scan = false) {
+TrackerOptions spreading(double frame_ms = 0, bool hold_first_scan = false,
+                         double first_scan_times = TrackerOptions{}.first_scan_times) {
     TrackerOptions o;
     o.spread_search = true;
     o.frame_ms = frame_ms;
     o.hold_first_scan = hold_first_scan;
+    o.first_scan_times = first_scan_times;
     return o;
 }
 
@@ -252,14 +254,44 @@ std::string schedule_parts(const Detector& detector, const std::vector<Clip>& cl
     return out;
 }
 
+// The rows of a tracker held to opt.frame_ms (its first scan whole, and
+// held too), over each clip with the field and three times over it without
+// (a phone raised towards the screen films it for a while).
+struct HeldTimings {
+    Timing whole_first, whole_first_bare, held_first, held_first_bare;
+
+    void add(const Detector& detector, const Clip& c, const SpeedOptions& opt) {
+        merge(whole_first, time_tracker(detector, c, true, spreading(opt.frame_ms)));
+        merge(whole_first_bare, time_tracker(detector, c, false, spreading(opt.frame_ms), 3));
+        merge(held_first, time_tracker(detector, c, true, spreading(opt.frame_ms, true, opt.first_scan_times)));
+        merge(held_first_bare,
+              time_tracker(detector, c, false, spreading(opt.frame_ms, true, opt.first_scan_times), 3));
+    }
+
+    std::string rows(const SpeedOptions& opt) const {
+        const std::string ms = fixed(opt.frame_ms, 1), times = fixed(opt.first_scan_times, 1);
+        return row("with the field, tracker held to " + ms + " ms a frame", whole_first) +
+               row("without the field, tracker held to " + ms + " ms a frame (three times over)", whole_first_bare) +
+               row("with the field, the first scan held too, to " + times +
+                       " times that (TrackerOptions::hold_first_scan)",
+                   held_first) +
+               row("without the field, the first scan held too (three times over)", held_first_bare);
+    }
+};
+
 // The tables of one resolution.
 std::string time_resolution(const Detector& detector, const std::vector<Clip>& clips, const SpeedOptions& opt) {
     Timing with_all, bare_all, video_all, video_bare_all, spread_all, spread_bare_all, shares_all, aruco_all;
-    Timing held_all, held_bare_all, held_first_all, held_first_bare_all;
+    HeldTimings held;
     std::string per_category;
     if (opt.profile) {
         for (const Clip& c : clips) merge(with_all, time_single(detector, c, true, opt.runs));
         return row("with the field, single frame", with_all) + "\n";
+    }
+    const std::string header = "| frames | found | median ms | p95 ms | max ms |\n|---|---|---|---|---|\n";
+    if (opt.held_only) {
+        for (const Clip& c : clips) held.add(detector, c, opt);
+        return header + held.rows(opt) + "\n";
     }
     for (const Clip& c : clips) {
         const Timing with = time_single(detector, c, true, opt.runs);
@@ -269,12 +301,7 @@ std::string time_resolution(const Detector& detector, const std::vector<Clip>& c
         merge(spread_all, time_tracker(detector, c, true, spreading()));
         merge(spread_bare_all, time_tracker(detector, c, false, spreading()));
         merge(shares_all, time_shares(detector, c, 1));
-        // Three times over the frames without the field: a phone raised
-        // towards the screen films it for a while.
-        merge(held_all, time_tracker(detector, c, true, spreading(opt.frame_ms)));
-        merge(held_bare_all, time_tracker(detector, c, false, spreading(opt.frame_ms), 3));
-        merge(held_first_all, time_tracker(detector, c, true, spreading(opt.frame_ms, true)));
-        merge(held_first_bare_all, time_tracker(detector, c, false, spreading(opt.frame_ms, true), 3));
+        held.add(detector, c, opt);
         const Timing aruco = time_aruco(c, opt.runs);
         auto cell = [](const Timing& t) { return fixed(median_of(t.ms)) + " / " + fixed(percentile(t.ms, 95)); };
         per_category += "| " + c.category + " | " + cell(with) + " | " + cell(bare) + " | " + cell(video) + " | " +
@@ -284,19 +311,14 @@ std::string time_resolution(const Detector& detector, const std::vector<Clip>& c
         merge(aruco_all, aruco);
     }
     std::ostringstream out;
-    out << "| frames | found | median ms | p95 ms | max ms |\n|---|---|---|---|---|\n"
-        << row("with the field, single frame", with_all) << row("without the field, single frame", bare_all)
+    out << header << row("with the field, single frame", with_all) << row("without the field, single frame", bare_all)
         << row("with the field, tracker", video_all) << row("without the field, tracker", video_bare_all)
         << row("with the field, tracker spreading its search", spread_all)
         << row("without the field, tracker spreading its search", spread_bare_all)
         << row("without the field, each share of the spread search (" +
                    std::to_string(schedule_frames(TrackerOptions{}.search_budget)) + " a round) on each frame",
                shares_all)
-        << row("with the field, tracker held to " + fixed(opt.frame_ms, 1) + " ms a frame", held_all)
-        << row("without the field, tracker held to " + fixed(opt.frame_ms, 1) + " ms a frame (three times over)",
-               held_bare_all)
-        << row("with the field, the first scan held too (TrackerOptions::hold_first_scan)", held_first_all)
-        << row("without the field, the first scan held too (three times over)", held_first_bare_all)
+        << held.rows(opt)
         << row("ArUco, its board in place of the field", aruco_all, false)
         << "\nArUco's median over umf's: single frame " << fixed(median_of(aruco_all.ms) / median_of(with_all.ms))
         << " x, tracker " << fixed(median_of(aruco_all.ms) / median_of(video_all.ms)) << " x.\n\n"
@@ -395,6 +417,9 @@ const char kUsage[] =
     "                         without the field and the frames with it that it finds where the first scan does not\n"
     "  --frame-ms MS          the time a frame's search is held to in the \"held\" rows: the tracker's spread\n"
     "                         search as a phone runs it (TrackerOptions::frame_ms; default 2)\n"
+    "  --first-scan-times X   in the \"first scan held too\" rows its time, X times --frame-ms\n"
+    "                         (TrackerOptions::first_scan_times; default 2)\n"
+    "  --held                 only the rows of a tracker held to --frame-ms\n"
     "  --profile              only single frames with the field (each --runs times), for a profiler\n"
     "  --help                 this text\n\n"
     "Progress goes to stderr, the tables to stdout.\n";
@@ -436,6 +461,11 @@ int main(int argc, char** argv) {
             } else if (a == "--frame-ms") {
                 opt.frame_ms = std::stod(value());
                 if (!(opt.frame_ms > 0)) throw std::invalid_argument("--frame-ms: a time above 0");
+            } else if (a == "--first-scan-times") {
+                opt.first_scan_times = std::stod(value());
+                if (!(opt.first_scan_times > 0)) throw std::invalid_argument("--first-scan-times: a number above 0");
+            } else if (a == "--held") {
+                opt.held_only = true;
             } else if (a == "--profile") {
                 opt.profile = true;
             } else if (a == "--parts") {

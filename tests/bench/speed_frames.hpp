@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "shared/detect/tracker.hpp"
 #include "tests/bench/aruco_baseline.hpp"
 #include "tests/bench/heldout_run.hpp"
 #include "tests/bench/heldout_scenario.hpp"
@@ -35,6 +36,8 @@ struct SpeedOptions {
     bool heldout = false;  // the held-out set's scenes instead of the tuning set's
     bool profile = false;  // only single frames with the field, for a profiler's view of the detector
     double frame_ms = 2;   // the time a frame's search is held to in the "held" rows (TrackerOptions::frame_ms)
+    double first_scan_times = umf::TrackerOptions{}.first_scan_times;  // in the "held" rows
+    bool held_only = false;  // only the rows of a tracker held to frame_ms
 };
 
 // Where the field is on the screen, to judge a located point.

@@ -80,8 +80,10 @@ Usage: umf_benchmark [options]
                          scan's first piece and pieces within BUDGET (TrackerOptions::search_budget; default: off);
                          auto, with --realtime: the first scan and the round's steps from where the last frame
                          stopped, held to half the device's time between two frames (TrackerOptions::frame_ms)
-  --hold-first-scan      with --spread-search auto: the first scan held to that time too, all but its search
+  --hold-first-scan      with --spread-search auto: the first scan held to a time too, all but its search
                          around the aim (TrackerOptions::hold_first_scan)
+  --first-scan-times X   --hold-first-scan, its time X times the spread search's (TrackerOptions::
+                         first_scan_times; default 2, the device's whole time between two frames)
   --realtime SLOWDOWN    "umf video" in real time on a device SLOWDOWN times slower than this machine: the
                          frames arrive at the video's rate (25 a second; held-out 30) and one that arrives
                          while the tracker is still on an earlier frame is dropped, counted as not found
@@ -223,6 +225,10 @@ Options parse(int argc, char** argv) {
                 o.tracking.search_budget = non_negative_number(budget, a);
             o.tracking.spread_search = true;
         } else if (a == "--hold-first-scan") {
+            o.tracking.hold_first_scan = true;
+        } else if (a == "--first-scan-times") {
+            o.tracking.first_scan_times = non_negative_number(value(), a);
+            if (!(o.tracking.first_scan_times > 0)) throw std::invalid_argument("--first-scan-times must be > 0");
             o.tracking.hold_first_scan = true;
         } else if (a == "--realtime") {
             o.realtime = non_negative_number(value(), a);
@@ -383,7 +389,8 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
                               {"search_budget_ms", opt.tracking.search_budget},
                               {"realtime_slowdown", opt.realtime},
                               {"frame_share", opt.frame_share},
-                              {"hold_first_scan", opt.tracking.hold_first_scan}};
+                              {"hold_first_scan", opt.tracking.hold_first_scan},
+                              {"first_scan_times", opt.tracking.first_scan_times}};
     return s;
 }
 

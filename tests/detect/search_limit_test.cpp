@@ -153,4 +153,26 @@ TEST_F(SearchLimitOnAScreen, TheFirstScanHeldTooRunsAroundTheAimThenAStepACall) 
     EXPECT_LT(d.pixels_visited, whole_first_scan.pixels_visited);
 }
 
+// The first scan held to a time of its own (SearchLimit::first_ms, a
+// tracker's whole time between two camera frames) where the round has none:
+// the whole first scan runs, and the step owed is its own, not the round's.
+TEST_F(SearchLimitOnAScreen, TheFirstScanHeldToItsOwnTimeRunsWholeWhereTheRoundHasNone) {
+    constexpr int kAroundTheAim = 3;
+    SearchLimit all;
+    all.ms = kAllTheTime;
+    all.first_min_steps = kAroundTheAim;
+    detect(round_from(0), &all);
+
+    SearchLimit own;
+    own.ms = kNoTime;
+    own.first_ms = kAllTheTime;
+    own.min_steps = 1;
+    own.first_min_steps = kAroundTheAim;
+    const Detection d = detect(round_from(0), &own);
+    EXPECT_FALSE(d.found);
+    EXPECT_EQ(own.first_held_steps_run, all.first_held_steps_run) << "every search of the whole frame";
+    EXPECT_EQ(own.first_steps_into_next, 0) << "the first scan ran to its end";
+    EXPECT_EQ(own.steps_run, 0) << "no time for the round";
+}
+
 }  // namespace
