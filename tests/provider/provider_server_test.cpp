@@ -9,18 +9,6 @@
 #include <stdlib.h>
 #include <sys/stat.h>
 
-#include <boost/asio/connect.hpp>
-#include <boost/asio/executor_work_guard.hpp>
-#include <boost/asio/io_context.hpp>
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/asio/post.hpp>
-#include <boost/asio/ssl.hpp>
-#include <boost/asio/strand.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
-#include <boost/beast/ssl.hpp>
-#include <boost/beast/websocket.hpp>
-#include <boost/beast/websocket/ssl.hpp>
 #include <chrono>
 #include <filesystem>
 #include <future>
@@ -34,18 +22,15 @@
 #include "provider/service/service_server.hpp"
 #include "provider/trust/tls_identity_store.hpp"
 #include "shared/protocol/messages.hpp"
-#include "tests/support/pinned_client.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/tls_websocket_client.hpp"
 
 namespace {
 
 using umf::test::TempDir;
 
 namespace fs = std::filesystem;
-namespace net = boost::asio;
-namespace ssl = boost::asio::ssl;
 namespace beast = boost::beast;
-namespace http = beast::http;
 namespace websocket = beast::websocket;
 namespace p = umf::protocol;
 using namespace umf::provider;
@@ -66,53 +51,16 @@ std::string hello(const std::string& token, int id = 1) {
     return p::encode(p::Hello{p::RequestId{std::int64_t{id}}, token, "provider_server_test"});
 }
 
-// A TLS WebSocket client on its own io_context thread. Every operation is
-// started on that thread and waited for with a timeout.
-class Client {
+// The server tests' requester (tests/support/tls_websocket_client.hpp) with
+// the protocol's first steps.
+class Client : public umf::test::TlsWebSocketClient {
 public:
-    Client(unsigned short port, const std::string& fingerprint)
-        : port_(port), tls_(make_context(fingerprint)), ws_(net::make_strand(io_), tls_), work_(io_.get_executor()) {
-        ws_.read_message_max(p::kMaxReplyBytes);
-        thread_ = std::thread([this] { io_.run(); });
-    }
-    ~Client() {
-        net::post(ws_.get_executor(), [this] { beast::get_lowest_layer(ws_).close(); });
-        work_.reset();
-        thread_.join();
-    }
+    using TlsWebSocketClient::TlsWebSocketClient;
 
-    // TCP, TLS with the pinned certificate, then the WebSocket handshake.
-    beast::error_code connect(const std::string& path = "/ws") {
-        const net::ip::tcp::endpoint endpoint(net::ip::make_address("127.0.0.1"), port_);
-        if (auto ec = run([&](auto h) { beast::get_lowest_layer(ws_).async_connect(endpoint, h); })) return ec;
-        if (auto ec = run([&](auto h) { ws_.next_layer().async_handshake(ssl::stream_base::client, h); })) return ec;
-        return run([&](auto h) { ws_.async_handshake("127.0.0.1:" + std::to_string(port_), path, h); });
-    }
-    beast::error_code send(const std::string& text, bool binary = false) {
-        return run([&](auto h) {
-            ws_.binary(binary);
-            ws_.async_write(net::buffer(text), h);
-        });
-    }
-    // The next message, or the error that ended the session.
-    std::pair<beast::error_code, std::string> read() {
-        beast::flat_buffer buffer;
-        auto ec = run([&](auto h) { ws_.async_read(buffer, h); });
-        return {ec, beast::buffers_to_string(buffer.data())};
-    }
     p::Message read_message() {
         auto [ec, text] = read();
         EXPECT_FALSE(ec) << ec.message();
         return parse_reply(text);
-    }
-    // Reads until the session ends; the close code the provider sent.
-    std::optional<websocket::close_code> read_close() {
-        for (int i = 0; i < 8; ++i) {
-            auto [ec, text] = read();
-            if (ec == websocket::error::closed) return static_cast<websocket::close_code>(ws_.reason().code);
-            if (ec) return std::nullopt;
-        }
-        return std::nullopt;
     }
     // The welcome for a good token.
     void connect_and_hello(const std::string& token) {
@@ -121,45 +69,6 @@ public:
         const p::Message m = read_message();
         ASSERT_TRUE(std::holds_alternative<p::Welcome>(m)) << p::type_name(m);
     }
-    // Raw HTTP over TLS, for the non-WebSocket paths.
-    std::pair<beast::error_code, unsigned> http_get(const std::string& target) {
-        const net::ip::tcp::endpoint endpoint(net::ip::make_address("127.0.0.1"), port_);
-        if (auto ec = run([&](auto h) { beast::get_lowest_layer(ws_).async_connect(endpoint, h); })) return {ec, 0};
-        if (auto ec = run([&](auto h) { ws_.next_layer().async_handshake(ssl::stream_base::client, h); }))
-            return {ec, 0};
-        http::request<http::empty_body> req(http::verb::get, target, 11);
-        req.set(http::field::host, "127.0.0.1");
-        if (auto ec = run([&](auto h) { http::async_write(ws_.next_layer(), req, h); })) return {ec, 0};
-        beast::flat_buffer buffer;
-        http::response<http::string_body> res;
-        auto ec = run([&](auto h) { http::async_read(ws_.next_layer(), buffer, res, h); });
-        return {ec, res.result_int()};
-    }
-
-private:
-    static ssl::context make_context(const std::string& fingerprint) { return umf::test::pinned_client_context(fingerprint); }
-
-    template <class Init>
-    beast::error_code run(Init init) {
-        auto promise = std::make_shared<std::promise<beast::error_code>>();
-        auto future = promise->get_future();
-        net::post(ws_.get_executor(), [&, promise] {
-            init([promise](beast::error_code ec, auto&&...) { promise->set_value(ec); });
-        });
-        if (future.wait_for(kOpTimeout) != std::future_status::ready) {
-            ADD_FAILURE() << "operation timed out";
-            net::post(ws_.get_executor(), [this] { beast::get_lowest_layer(ws_).close(); });
-            future.wait();
-        }
-        return future.get();
-    }
-
-    unsigned short port_;
-    net::io_context io_;
-    ssl::context tls_;
-    websocket::stream<beast::ssl_stream<beast::tcp_stream>> ws_;
-    net::executor_work_guard<net::io_context::executor_type> work_;
-    std::thread thread_;
 };
 
 // ---- pairing and identity ------------------------------------------------

@@ -10,19 +10,12 @@
 #include <sys/socket.h>
 #include <sys/time.h>
 
-#include <boost/asio/connect.hpp>
-#include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
-#include <boost/asio/post.hpp>
 #include <boost/asio/ssl.hpp>
-#include <boost/asio/strand.hpp>
 #include <boost/asio/write.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
-#include <boost/beast/ssl.hpp>
-#include <boost/beast/websocket.hpp>
-#include <boost/beast/websocket/ssl.hpp>
 #include <cctype>
 #include <future>
 #include <nlohmann/json.hpp>
@@ -40,6 +33,7 @@
 #include "tests/support/pinned_client.hpp"
 #include "tests/support/process.hpp"
 #include "tests/support/temp_dir.hpp"
+#include "tests/support/tls_websocket_client.hpp"
 
 namespace {
 
@@ -48,7 +42,6 @@ namespace net = boost::asio;
 namespace ssl = boost::asio::ssl;
 namespace beast = boost::beast;
 namespace http = beast::http;
-namespace websocket = beast::websocket;
 namespace p = umf::protocol;
 using namespace umf::provider;
 using umf::test::FakeXdgOpen;
@@ -59,41 +52,20 @@ using umf::test::TempDir;
 using umf::test::file_put;
 
 constexpr const char* kToken = "put-server-token-0123456789ab";
-constexpr auto kOpTimeout = std::chrono::seconds(5);
 
-// A TLS WebSocket requester on its own io_context thread; every operation
-// waited for with a timeout.
-class Requester {
+// The server tests' requester (tests/support/tls_websocket_client.hpp)
+// speaking the protocol's messages.
+class Requester : public umf::test::TlsWebSocketClient {
 public:
-    Requester(unsigned short port, const std::string& fingerprint)
-        : port_(port),
-          tls_(umf::test::pinned_client_context(fingerprint)),
-          ws_(net::make_strand(io_), tls_),
-          work_(io_.get_executor()) {
-        ws_.read_message_max(p::kMaxReplyBytes);
-        thread_ = std::thread([this] { io_.run(); });
-    }
-    ~Requester() {
-        net::post(ws_.get_executor(), [this] { beast::get_lowest_layer(ws_).close(); });
-        work_.reset();
-        thread_.join();
-    }
-    beast::error_code connect() {
-        const net::ip::tcp::endpoint endpoint(net::ip::make_address("127.0.0.1"), port_);
-        if (auto ec = run([&](auto h) { beast::get_lowest_layer(ws_).async_connect(endpoint, h); })) return ec;
-        if (auto ec = run([&](auto h) { ws_.next_layer().async_handshake(ssl::stream_base::client, h); })) return ec;
-        return run([&](auto h) { ws_.async_handshake("127.0.0.1:" + std::to_string(port_), "/ws", h); });
-    }
-    beast::error_code send(const std::string& text) {
-        return run([&](auto h) { ws_.async_write(net::buffer(text), h); });
-    }
+    using TlsWebSocketClient::TlsWebSocketClient;
+    using TlsWebSocketClient::send;
+
     beast::error_code send(const p::Message& m) { return send(p::encode(m)); }
     p::Message read() {
-        beast::flat_buffer buffer;
-        auto ec = run([&](auto h) { ws_.async_read(buffer, h); });
+        auto [ec, text] = TlsWebSocketClient::read();
         EXPECT_FALSE(ec) << ec.message();
         if (ec) return p::Error{std::nullopt, p::ErrorCode::internal, "read failed: " + ec.message()};
-        auto parsed = p::parse_message(beast::buffers_to_string(buffer.data()), p::kRequesterLimits);
+        auto parsed = p::parse_message(text, p::kRequesterLimits);
         if (const auto* e = std::get_if<p::ProtocolError>(&parsed)) {
             ADD_FAILURE() << "does not parse: " << e->message;
             return p::Error{};
@@ -109,29 +81,6 @@ public:
         EXPECT_NE(w, nullptr) << p::type_name(m);
         return w ? *w : p::Welcome{};
     }
-
-private:
-    template <class Init>
-    beast::error_code run(Init init) {
-        auto promise = std::make_shared<std::promise<beast::error_code>>();
-        auto future = promise->get_future();
-        net::post(ws_.get_executor(), [&, promise] {
-            init([promise](beast::error_code ec, auto&&...) { promise->set_value(ec); });
-        });
-        if (future.wait_for(kOpTimeout) != std::future_status::ready) {
-            ADD_FAILURE() << "operation timed out";
-            net::post(ws_.get_executor(), [this] { beast::get_lowest_layer(ws_).close(); });
-            future.wait();
-        }
-        return future.get();
-    }
-
-    unsigned short port_;
-    net::io_context io_;
-    ssl::context tls_;
-    websocket::stream<beast::ssl_stream<beast::tcp_stream>> ws_;
-    net::executor_work_guard<net::io_context::executor_type> work_;
-    std::thread thread_;
 };
 
 // Raw HTTP over TLS, blocking with a receive timeout: for what curl will not
