@@ -776,6 +776,8 @@ public:
         }
         http::request<http::empty_body> req(http::verb::get, path, 11);
         req.set(http::field::host, "127.0.0.1");
+        // The link is bound to the pairing token of the session that grabbed it.
+        req.set(http::field::authorization, "Bearer " + token_);
         const auto t0 = Clock::now();
         if (auto ec = step([&](auto h) { http::async_write(stream, req, h); }, deadline, cancel)) {
             d.error = "request: " + ec.message();
@@ -830,6 +832,17 @@ public:
     const std::optional<Points>& points() const { return points_; }
 
 private:
+    // One completion handler type for every step, so that each of Beast's
+    // operations is instantiated once however many steps start it.
+    struct StepDone {
+        bool* done;
+        beast::error_code* result;
+        void operator()(beast::error_code ec, std::size_t = 0) const {
+            *done = true;
+            *result = ec;
+        }
+    };
+
     template <class Init>
     beast::error_code step(Init init, Clock::time_point deadline) {
         return step(init, deadline, [this] {
@@ -841,10 +854,7 @@ private:
         bool done = false;
         beast::error_code result;
         io_.restart();
-        init([&done, &result](beast::error_code ec, auto&&...) {
-            done = true;
-            result = ec;
-        });
+        init(StepDone{&done, &result});
         while (!done && Clock::now() < deadline) io_.run_one_until(deadline);
         if (!done) {
             cancel();
