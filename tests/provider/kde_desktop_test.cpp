@@ -276,6 +276,60 @@ TEST_F(KdeDesktop, SnapshotsNeedKWinsScreenshotInterfaceAndSaySoWhenItIsMissing)
     }
 }
 
+// KWin compositing with OpenGL (llvmpipe), as on a desktop with a GPU:
+// its screenshot interface is there; it refuses a program no installed
+// desktop file grants it to, and gives the pixels as shown once one does
+// (here the test program itself, its entry written into the session's data
+// folder while KWin runs, as `umf-provider kde install` does).
+TEST_F(KdeDesktop, SnapshotsComeThroughKWinsScreenshotOnceADesktopFileGrantsThem) {
+    if (const auto missing = kwin_missing()) GTEST_SKIP() << *missing;
+    if (!find_program("xterm")) GTEST_SKIP() << "xterm is not installed (Debian: apt-get install -y xterm)";
+    ensure_gui_application();
+    session = std::make_unique<KWinSession>(start_kwin({.opengl = true}));
+    EXPECT_NE(session->log().find("OpenGL renderer"), std::string::npos) << session->log();
+
+    auto xterm = start({"xterm", "-title", "umf-blue", "-bg", "#336699", "-fg", "#336699", "-geometry", "60x20+80+60"},
+                       "xterm.log");
+    auto kde = desktop();
+    std::optional<WindowInfo> window;
+    ASSERT_TRUE(wait_until([&] { return (window = kde->window_at(150, 150, {})) && window->title == "umf-blue"; }, 15s))
+        << session->log();
+    // The middle of the window, away from its borders: its background as
+    // shown (the text in the same colour, so nothing else is drawn there).
+    const WindowRect& r = window->rect;
+    const WindowRect middle{r.x + r.width / 4, r.y + r.height / 4, r.width / 2, r.height / 2};
+
+    EXPECT_FALSE(kde->abilities().snapshots);
+    try {
+        kde->capture(middle);
+        ADD_FAILURE() << "KWin gave a screenshot to a program no desktop file grants it to";
+    } catch (const DesktopError& e) {
+        EXPECT_NE(std::string(e.what()).find("umf-provider kde install"), std::string::npos) << e.what();
+    }
+
+    install_application(*session, "umf-tests", "/proc/self/exe", "org.kde.KWin.ScreenShot2");
+    Capture capture;
+    std::string refusal;
+    // KWin reads the new entry within a few seconds.
+    ASSERT_TRUE(wait_until(
+        [&] {
+            try {
+                capture = kde->capture(middle);
+            } catch (const DesktopError& e) {
+                refusal = e.what();
+                return false;
+            }
+            return !capture.pixels.empty() && capture.pixels[capture.pixels.size() / 2] == 0xff336699u;
+        },
+        30s))
+        << "the window's colour did not come through: " << refusal;
+    ASSERT_EQ(capture.width, middle.width);
+    ASSERT_EQ(capture.height, middle.height);
+    const auto blue = std::count(capture.pixels.begin(), capture.pixels.end(), 0xff336699u);
+    EXPECT_EQ(blue, static_cast<long>(capture.pixels.size())) << "of " << capture.pixels.size() << " pixels";
+    EXPECT_TRUE(desktop()->abilities().snapshots);
+}
+
 TEST_F(KdeDesktop, KWinOffersTheLayerShellTheFieldNeeds) {
     UMF_NEEDS_KWIN();
     const WaylandFacts facts =

@@ -1,7 +1,11 @@
-// A KWin of the test's own: kwin_wayland --virtual (no GPU: QPainter
-// compositing) with Xwayland, on a private session bus (dbus-daemon) and a
-// private XDG_RUNTIME_DIR and config. KWin runs as the test's user (it does
-// not refuse root).
+// A KWin of the test's own: kwin_wayland --virtual with Xwayland, on a
+// private session bus (dbus-daemon) and a private XDG_RUNTIME_DIR, config,
+// data and cache. KWin runs as the test's user (it does not refuse root).
+// It composites with QPainter, or with OpenGL on Mesa's software renderer
+// (llvmpipe; KWinOptions::opengl), as a desktop with a GPU does: only then
+// does KWin 5.27 load its screenshot effect (org.kde.KWin.ScreenShot2).
+// KWin finds the applications it lets use that interface in the session's
+// data folder (`applications` below `data`; install_application).
 //
 // Debian gives /usr/bin/kwin_wayland the file capability cap_sys_resource
 // (for real-time scheduling); in a container whose bounding set lacks it,
@@ -23,6 +27,12 @@
 
 namespace umf::test {
 
+struct KWinOptions {
+    int width = 1920;
+    int height = 1080;
+    bool opengl = false;
+};
+
 struct KWinSession {
     std::unique_ptr<TempDir> dir;
     fs::path runtime;
@@ -41,10 +51,13 @@ struct KWinSession {
                                                 {"XDG_SESSION_TYPE", "wayland"},
                                                 {"XDG_CURRENT_DESKTOP", "KDE"},
                                                 {"XDG_CONFIG_HOME", (dir->path / "config").string()},
+                                                {"XDG_DATA_HOME", data_home().string()},
+                                                {"XDG_CACHE_HOME", (dir->path / "cache").string()},
                                                 {"QT_QPA_PLATFORM", "wayland"}};
         for (const auto& [k, v] : more) vars[k] = v;
         return environment_with(vars);
     }
+    fs::path data_home() const { return dir->path / "data"; }
     std::string log() const {
         std::ifstream in(dir->path / "kwin.log");
         return {std::istreambuf_iterator<char>(in), {}};
@@ -76,16 +89,35 @@ inline std::optional<std::string> kwin_missing() {
     return std::nullopt;
 }
 
-// Throws std::runtime_error (with KWin's log) when it does not come up.
-inline KWinSession start_kwin(int width = 1920, int height = 1080) {
+// An application entry in the session's data folder, as a package installs
+// one, for the program at `executable` (the first word of Exec=, which
+// KWin compares with a D-Bus caller's /proc/PID/exe), granting it KWin's
+// restricted D-Bus interfaces named. KWin reads the folder when it starts.
+inline void install_application(const KWinSession& s, const std::string& id, const fs::path& executable,
+                                const std::string& restricted_interfaces) {
+    const fs::path applications = s.data_home() / "applications";
+    fs::create_directories(applications);
+    std::ofstream(applications / (id + ".desktop"))
+        << "[Desktop Entry]\nType=Application\nName=" << id << "\nExec=" << fs::canonical(executable).string()
+        << "\nNoDisplay=true\nX-KDE-DBUS-Restricted-Interfaces=" << restricted_interfaces << "\n";
+}
+
+// A folder of the session made before KWin starts, so that what the test
+// puts there (install_application) is there when KWin first looks.
+inline KWinSession prepare_kwin_session() {
     KWinSession s;
     s.dir = std::make_unique<TempDir>("umf-kwin");
     s.runtime = s.dir->path / "runtime";
     fs::create_directories(s.runtime);
-    fs::create_directories(s.dir->path / "config");
+    for (const char* sub : {"config", "data", "cache"}) fs::create_directories(s.dir->path / sub);
     ::chmod(s.runtime.c_str(), 0700);
     s.bus_address = "unix:path=" + (s.dir->path / "bus").string();
+    return s;
+}
 
+// Starts KWin in a prepared session. Throws std::runtime_error (with KWin's
+// log) when it does not come up.
+inline KWinSession start_kwin(KWinSession s, const KWinOptions& kwin_options = {}) {
     Process::Options options;
     options.log = s.dir->path / "dbus.log";
     s.bus = std::make_unique<Process>(
@@ -96,13 +128,16 @@ inline KWinSession start_kwin(int width = 1920, int height = 1080) {
     const fs::path kwin = s.dir->path / "kwin_wayland";
     fs::copy_file(*find_program("kwin_wayland"), kwin);  // without the file capability, see above
     ::chmod(kwin.c_str(), 0755);
-    auto env = s.env({{"KWIN_COMPOSE", "Q"}});
+    // Software OpenGL for the compositing: Mesa's llvmpipe, whatever GPU
+    // the machine has or lacks.
+    auto env = kwin_options.opengl ? s.env({{"KWIN_COMPOSE", "O2"}, {"LIBGL_ALWAYS_SOFTWARE", "1"}})
+                                   : s.env({{"KWIN_COMPOSE", "Q"}});
     std::erase_if(env, [](const std::string& e) { return e.rfind("QT_QPA_PLATFORM=", 0) == 0 || e.rfind("DISPLAY=", 0) == 0; });
     options.env = env;
     options.log = s.dir->path / "kwin.log";
     s.kwin = std::make_unique<Process>(
-        std::vector<std::string>{kwin.string(), "--virtual", "--xwayland", "--width", std::to_string(width), "--height",
-                                 std::to_string(height), "--socket", s.wayland_display},
+        std::vector<std::string>{kwin.string(), "--virtual", "--xwayland", "--width", std::to_string(kwin_options.width),
+                                 "--height", std::to_string(kwin_options.height), "--socket", s.wayland_display},
         options);
     const auto has_kwin = [&] {
         try {
@@ -122,5 +157,7 @@ inline KWinSession start_kwin(int width = 1920, int height = 1080) {
     if (!wait_until([&] { return fs::exists(socket); }, 10s)) throw std::runtime_error("Xwayland made no socket");
     return s;
 }
+
+inline KWinSession start_kwin(const KWinOptions& options = {}) { return start_kwin(prepare_kwin_session(), options); }
 
 }  // namespace umf::test

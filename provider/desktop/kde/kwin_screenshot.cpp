@@ -87,7 +87,7 @@ Capture kwin_capture_area(QDBusConnection& bus, const WindowRect& rect, std::chr
         if (why == "org.kde.KWin.ScreenShot2.Error.NoAuthorized")
             throw DesktopError("KWin refused the screenshot: umf-provider's desktop file (with "
                                "X-KDE-DBUS-Restricted-Interfaces=org.kde.KWin.ScreenShot2) is not installed for "
-                               "this executable");
+                               "this executable (umf-provider kde install writes it)");
         throw DesktopError("KWin's screenshot failed (" + why + ": " + reply.errorMessage().toStdString() + ")");
     }
     const QVariantMap layout = qdbus_cast<QVariantMap>(reply.arguments().at(0));
