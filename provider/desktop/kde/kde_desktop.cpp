@@ -63,6 +63,9 @@ public:
     }
     ~KdeDesktop() override {
         scripting_.reset();
+        // The connection is the backend's own (kde_bus_connection): a desktop
+        // opened again after KWin restarts makes a new one.
+        QDBusConnection::disconnectFromBus(bus_.name());
         std::error_code ec;
         fs::remove_all(folder_, ec);
     }

@@ -77,11 +77,16 @@ private:
     std::map<std::string, Waiter> waiters_;
 };
 
+// A connection of the backend's own, also to the session bus: on Qt's
+// shared session-bus connection the scripts' answers were handled on the
+// main thread, which the window probe blocks while it waits for one, so
+// every provider started in a KWin session timed out its probe and ran
+// without windows (KdeProvider.*).
 QDBusConnection kde_bus_connection(const std::string& address) {
-    if (address.empty()) return QDBusConnection::sessionBus();
     static std::atomic<int> count{0};
-    return QDBusConnection::connectToBus(QString::fromStdString(address),
-                                         QStringLiteral("umf-kde-%1").arg(count.fetch_add(1)));
+    const QString name = QStringLiteral("umf-kde-%1").arg(count.fetch_add(1));
+    if (address.empty()) return QDBusConnection::connectToBus(QDBusConnection::SessionBus, name);
+    return QDBusConnection::connectToBus(QString::fromStdString(address), name);
 }
 
 KWinScripting::KWinScripting(QDBusConnection bus, std::filesystem::path script_dir)
