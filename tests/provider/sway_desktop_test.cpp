@@ -28,6 +28,7 @@
 #include "provider/screen/aim_mark.hpp"
 #include "provider/screen/board_window.hpp"
 #include "provider/screen/screen_field.hpp"
+#include "tests/provider/field_on_screen.hpp"
 #include "tests/provider/gui_test_app.hpp"
 #include "tests/support/sway_session.hpp"
 
@@ -320,37 +321,15 @@ TEST_F(SwayDesktop, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {
     ASSERT_NO_FATAL_FAILURE(show_field(0.1, made));
     auto& surface = dynamic_cast<LayerFieldSurface&>(*made);
     const QPointF point(700, 500);
-    // White on a dark outline: somewhere on the ring's circle a pixel is white
-    // and one is dark, which a field at 0.1 over the windows never makes.
-    const auto ring_extremes = [&](const QImage& shot) {
-        int brightest = 0, darkest = 255;
-        for (int k = 0; k < 360; k += 3) {
-            const double a = k * M_PI / 180.0;
-            for (const double r : {kAimRingRadius - 1, kAimRingRadius, kAimRingRadius + 1}) {
-                const QRgb p = shot.pixel(static_cast<int>(std::lround(point.x() + r * std::cos(a))),
-                                          static_cast<int>(std::lround(point.y() + r * std::sin(a))));
-                const int v = std::min({qRed(p), qGreen(p), qBlue(p)});
-                brightest = std::max(brightest, v);
-                darkest = std::min(darkest, std::max({qRed(p), qGreen(p), qBlue(p)}));
-            }
-        }
-        return std::pair(brightest, darkest);
-    };
     const QImage before = grim(*sway_, screen);
     surface.set_aim_mark(point, "Report");
     pump(surface, 300ms);
     const QImage with = grim(*sway_, screen);
-    const auto [bright, dark] = ring_extremes(with);
+    const auto [bright, dark] = test::ring_extremes(with, point);
     EXPECT_GE(bright, 235) << "no white ring at full strength";
     EXPECT_LE(dark, 60) << "no dark outline";
     // Away from the ring and title the field stays as faint as it was.
-    int worst = 0;
-    for (int y = 800; y < 1000; ++y)
-        for (int x = 100; x < 1800; x += 7) {
-            const QRgb a = before.pixel(x, y), b = with.pixel(x, y);
-            worst = std::max({worst, std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)), std::abs(qBlue(a) - qBlue(b))});
-        }
-    EXPECT_LE(worst, 2) << "the ring changed the field elsewhere";
+    EXPECT_LE(test::largest_change(before, with, QRect(100, 800, 1700, 200), 7), 2) << "the ring changed the field elsewhere";
 
     // Moved, then gone: nothing of it stays behind.
     surface.set_aim_mark(QPointF(1300, 400), "Report");
@@ -358,14 +337,7 @@ TEST_F(SwayDesktop, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {
     surface.set_aim_mark(std::nullopt, {});
     pump(surface, 300ms);
     const QImage after = grim(*sway_, screen);
-    int left_behind = 0;
-    for (int y = 380; y < 520; ++y)
-        for (int x = 660; x < 1500; ++x) {
-            const QRgb a = before.pixel(x, y), b = after.pixel(x, y);
-            left_behind = std::max({left_behind, std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)),
-                                    std::abs(qBlue(a) - qBlue(b))});
-        }
-    EXPECT_LE(left_behind, 2) << "the ring left pixels behind";
+    EXPECT_LE(test::largest_change(before, after, QRect(660, 380, 840, 140)), 2) << "the ring left pixels behind";
     surface.hide();
 }
 
@@ -381,23 +353,14 @@ TEST_F(SwayDesktop, FieldShowsAtItsOpacityAndClicksGoThrough) {
     EXPECT_EQ(surface.output_name(), "HEADLESS-1");
     const QImage with = grim(*sway_, screen);
     const QImage layer = field_layer(surface.screen_field(), {});
-    int worst = 0;
-    long changed = 0, field_pixels = 0;
-    for (int y = 0; y < 1080; ++y)
-        for (int x = 0; x < 1920; ++x) {
-            const QRgb a = before.pixel(x, y), b = with.pixel(x, y);
-            const int d = std::max({std::abs(qRed(a) - qRed(b)), std::abs(qGreen(a) - qGreen(b)), std::abs(qBlue(a) - qBlue(b))});
-            worst = std::max(worst, d);
-            if (qAlpha(layer.pixel(x, y)) != 0) {
-                ++field_pixels;
-                changed += d >= 8;
-            }
-        }
-    std::cout << "field at " << kOpacity << ": largest change " << worst << ", " << changed << " of " << field_pixels
-              << " field pixels changed by 8 or more\n";
+    const QRect all(0, 0, 1920, 1080);
+    const int worst = test::largest_change(before, with, all);
+    const test::FieldChange change = test::field_change(before, with, layer, all);
+    std::cout << "field at " << kOpacity << ": largest change " << worst << ", " << change.changed << " of "
+              << change.field_pixels << " field pixels changed by 8 or more\n";
     // A pixel moves by opacity * (module - under) at most, plus rounding.
     EXPECT_LE(worst, static_cast<int>(std::ceil(kOpacity * 255)) + 2);
-    EXPECT_GT(changed, field_pixels / 4) << "the field should show over most of its modules";
+    EXPECT_GT(change.changed, change.field_pixels / 4) << "the field should show over most of its modules";
 
     // Clicks go through the field: xterm focused, a click on foot moves the focus.
     const auto foot = window_titled(*desktop_, "umf-foot");

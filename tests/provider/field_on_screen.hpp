@@ -1,0 +1,68 @@
+// What the tests of the field's layer surface on a real compositor (Sway,
+// KWin) check in screenshots of the desktop taken before and with it: how
+// far the field moved the pixels under it, and the pointer ring's extremes.
+#pragma once
+
+#include <QImage>
+#include <QPointF>
+#include <QRect>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <utility>
+
+#include "provider/screen/aim_mark.hpp"
+
+namespace umf::test {
+
+// The largest change of one channel between two screenshots within `area`
+// (every `step`-th pixel of a row).
+inline int largest_change(const QImage& a, const QImage& b, const QRect& area, int step = 1) {
+    int worst = 0;
+    for (int y = area.top(); y <= area.bottom(); ++y)
+        for (int x = area.left(); x <= area.right(); x += step) {
+            const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
+            worst = std::max({worst, std::abs(qRed(p) - qRed(q)), std::abs(qGreen(p) - qGreen(q)),
+                              std::abs(qBlue(p) - qBlue(q))});
+        }
+    return worst;
+}
+
+// Of the pixels the field's layer covers (opaque in `layer`, from
+// field_layer()) within `area`: how many, and how many the field moved by
+// `by` or more between the screenshots.
+struct FieldChange {
+    long field_pixels = 0;
+    long changed = 0;
+};
+inline FieldChange field_change(const QImage& before, const QImage& with, const QImage& layer, const QRect& area,
+                                int by = 8) {
+    FieldChange out;
+    for (int y = area.top(); y <= area.bottom(); ++y)
+        for (int x = area.left(); x <= area.right(); ++x) {
+            if (qAlpha(layer.pixel(x, y)) == 0) continue;
+            ++out.field_pixels;
+            out.changed += largest_change(before, with, QRect(x, y, 1, 1)) >= by;
+        }
+    return out;
+}
+
+// Around the ring drawn at `point`: the brightest of its pixels' darkest
+// channel and the darkest of their brightest channel. The ring is white on
+// a dark outline: one near 255 and one near 0, which a faint field over
+// windows never makes.
+inline std::pair<int, int> ring_extremes(const QImage& shot, const QPointF& point) {
+    int brightest = 0, darkest = 255;
+    for (int k = 0; k < 360; k += 3) {
+        const double a = k * M_PI / 180.0;
+        for (const double r : {provider::kAimRingRadius - 1, provider::kAimRingRadius, provider::kAimRingRadius + 1}) {
+            const QRgb p = shot.pixel(static_cast<int>(std::lround(point.x() + r * std::cos(a))),
+                                      static_cast<int>(std::lround(point.y() + r * std::sin(a))));
+            brightest = std::max(brightest, std::min({qRed(p), qGreen(p), qBlue(p)}));
+            darkest = std::min(darkest, std::max({qRed(p), qGreen(p), qBlue(p)}));
+        }
+    }
+    return {brightest, darkest};
+}
+
+}  // namespace umf::test
