@@ -1,8 +1,9 @@
 // The field's layer surface (the one the wlroots backend makes; KWin offers
 // the same layer shell) on a real KWin compositing with OpenGL (llvmpipe),
 // as the provider shows it there: over a native Wayland window (weston-image)
-// and an Xwayland one (xterm), seen through KWin's screenshot interface,
-// which the test program's desktop file lets it use.
+// and an Xwayland one (xterm), seen through KWin's screenshot interface and
+// clicked through with KWin's fake input, both of which the test program's
+// desktop file lets it use.
 #if defined(UMF_PROVIDER_TESTS)
 
 #include <gtest/gtest.h>
@@ -15,11 +16,13 @@
 #include <thread>
 
 #include "provider/desktop/kde/kde_desktop.hpp"
+#include "provider/desktop/kde/kwin_scripting.hpp"
 #include "provider/screen/board_window.hpp"
 #include "provider/desktop/wlroots/layer_field_surface.hpp"
 #include "provider/screen/screen_field.hpp"
 #include "tests/provider/field_on_screen.hpp"
 #include "tests/provider/gui_test_app.hpp"
+#include "tests/support/kwin_fake_pointer.hpp"
 #include "tests/support/kwin_session.hpp"
 
 namespace umf::provider {
@@ -48,7 +51,8 @@ protected:
                 GTEST_SKIP() << program << " is not installed (Debian: apt-get install -y xterm weston)";
         test::ensure_gui_application();
         session_ = std::make_unique<test::KWinSession>(test::start_kwin({.opengl = true}));
-        test::install_application(*session_, "umf-tests", "/proc/self/exe", "org.kde.KWin.ScreenShot2");
+        test::install_application(*session_, "umf-tests", "/proc/self/exe", "org.kde.KWin.ScreenShot2",
+                                  "org_kde_kwin_fake_input");
         KdeDesktopOptions options;
         options.bus_address = session_->bus_address;
         options.wayland_display = (session_->runtime / session_->wayland_display).string();
@@ -118,7 +122,21 @@ protected:
         pump(surface, 300ms);
     }
 
+    // The caption of KWin's active window (KWin 5.27 names it
+    // activeClient, KWin 6 activeWindow).
+    std::string active_caption() {
+        if (!scripting_) {
+            const fs::path folder = session_->dir->path / "test-scripts";
+            fs::create_directories(folder);
+            scripting_ = std::make_unique<KWinScripting>(kde_bus_connection(session_->bus_address), folder);
+        }
+        return scripting_->run("var w = workspace.activeWindow || workspace.activeClient;\n"
+                               "umfAnswer(w ? w.caption : \"\");\n",
+                               2000ms);
+    }
+
     std::unique_ptr<test::KWinSession> session_;
+    std::unique_ptr<KWinScripting> scripting_;
     std::unique_ptr<Desktop> desktop_;
     std::vector<std::unique_ptr<test::Process>> clients_;
     std::vector<WindowRect> windows_;  // the picture's, the xterm's
@@ -150,6 +168,33 @@ TEST_F(KdeField, ShowsAtItsOpacityOverNativeAndXwaylandWindowsAndGoesWhenHidden)
     pump(surface, 300ms);
     ASSERT_TRUE(test::wait_until([&] { return test::largest_change(before, shot(), QRect(0, 0, kWidth, kHeight), 3) <= 2; }, 3s))
         << "hidden, the field stays on the screen";
+}
+
+TEST_F(KdeField, ClicksGoThroughTheFieldToTheWindowsBelow) {
+    std::unique_ptr<FieldSurface> made;
+    ASSERT_NO_FATAL_FAILURE(show_field(0.25, made));
+    auto& surface = dynamic_cast<LayerFieldSurface&>(*made);
+    const std::string display = (session_->runtime / session_->wayland_display).string();
+    std::unique_ptr<test::KWinFakePointer> pointer;
+    ASSERT_TRUE(test::wait_until(
+        [&] {
+            pointer = std::make_unique<test::KWinFakePointer>(display);
+            return pointer->available();
+        },
+        30s))
+        << "KWin offers the test program no fake input";
+    // A click on each window in turn makes it the active one: the field
+    // above both takes none of them.
+    const std::pair<WindowRect, std::string> clicks[] = {
+        {windows_[1], "umf-xterm"}, {windows_[0], "Wayland Image - picture.png"}, {windows_[1], "umf-xterm"}};
+    for (const auto& [window, caption] : clicks) {
+        pointer->click(window.x + window.width / 2.0, window.y + window.height / 2.0);
+        pump(surface, 50ms);
+        std::string active;
+        EXPECT_TRUE(test::wait_until([&] { return (active = active_caption()) == caption; }, 3s))
+            << "a click on " << caption << " left " << active << " active";
+    }
+    surface.hide();
 }
 
 TEST_F(KdeField, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {

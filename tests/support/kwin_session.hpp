@@ -91,15 +91,17 @@ inline std::optional<std::string> kwin_missing() {
 
 // An application entry in the session's data folder, as a package installs
 // one, for the program at `executable` (the first word of Exec=, which
-// KWin compares with a D-Bus caller's /proc/PID/exe), granting it KWin's
-// restricted D-Bus interfaces named. KWin reads the folder when it starts.
+// KWin compares with a client's /proc/PID/exe), granting it KWin's
+// restricted D-Bus interfaces and Wayland interfaces named (comma
+// separated). KWin reads the folder within seconds, even while it runs.
 inline void install_application(const KWinSession& s, const std::string& id, const fs::path& executable,
-                                const std::string& restricted_interfaces) {
+                                const std::string& restricted_interfaces, const std::string& wayland_interfaces = "") {
     const fs::path applications = s.data_home() / "applications";
     fs::create_directories(applications);
-    std::ofstream(applications / (id + ".desktop"))
-        << "[Desktop Entry]\nType=Application\nName=" << id << "\nExec=" << fs::canonical(executable).string()
-        << "\nNoDisplay=true\nX-KDE-DBUS-Restricted-Interfaces=" << restricted_interfaces << "\n";
+    std::ofstream entry(applications / (id + ".desktop"));
+    entry << "[Desktop Entry]\nType=Application\nName=" << id << "\nExec=" << fs::canonical(executable).string()
+          << "\nNoDisplay=true\nX-KDE-DBUS-Restricted-Interfaces=" << restricted_interfaces << "\n";
+    if (!wayland_interfaces.empty()) entry << "X-KDE-Wayland-Interfaces=" << wayland_interfaces << "\n";
 }
 
 // A folder of the session made before KWin starts, so that what the test
