@@ -1,11 +1,14 @@
 // What the tests of the field's layer surface on a real compositor (Sway,
 // KWin) check in screenshots of the desktop taken before and with it: how
-// far the field moved the pixels under it, and the pointer ring's extremes.
+// far the field moved the pixels under it, the pointer ring's extremes and
+// its title.
 #pragma once
 
 #include <QImage>
 #include <QPointF>
 #include <QRect>
+#include <QSize>
+#include <QString>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -63,6 +66,24 @@ inline std::pair<int, int> ring_extremes(const QImage& shot, const QPointF& poin
         }
     }
     return {brightest, darkest};
+}
+
+// The pixels of the title drawn beside a ring at `point` that are white
+// (every channel 235 or more), which a faint field over windows of middle
+// tones never makes.
+inline long white_title_pixels(const QImage& shot, const QPointF& point, const QString& title) {
+    const QSize size = provider::aim_mark_size(title);
+    const double ring = provider::kAimMargin + provider::kAimRingRadius;
+    const QRect box(static_cast<int>(point.x() + provider::kAimRingRadius + 2),
+                    static_cast<int>(point.y() - size.height() / 2.0),
+                    static_cast<int>(size.width() - 2 * ring), size.height());
+    long white = 0;
+    for (int y = box.top(); y <= box.bottom(); ++y)
+        for (int x = box.left(); x <= box.right(); ++x) {
+            const QRgb p = shot.pixel(x, y);
+            white += std::min({qRed(p), qGreen(p), qBlue(p)}) >= 235;
+        }
+    return white;
 }
 
 }  // namespace umf::test

@@ -197,7 +197,7 @@ TEST_F(KdeField, ClicksGoThroughTheFieldToTheWindowsBelow) {
     surface.hide();
 }
 
-TEST_F(KdeField, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {
+TEST_F(KdeField, ThePointerRingAndTitleAreDrawnAtFullStrengthOverAFaintField) {
     std::unique_ptr<FieldSurface> made;
     ASSERT_NO_FATAL_FAILURE(show_field(0.1, made));
     auto& surface = dynamic_cast<LayerFieldSurface&>(*made);
@@ -209,6 +209,9 @@ TEST_F(KdeField, ThePointerRingIsDrawnAtFullStrengthOverAFaintField) {
     const auto [bright, dark] = test::ring_extremes(with, point);
     EXPECT_GE(bright, 235) << "no white ring at full strength";
     EXPECT_LE(dark, 60) << "no dark outline";
+    // The title beside it, white on its outline; none before.
+    EXPECT_GE(test::white_title_pixels(with, point, "Report"), 20) << "no title beside the ring";
+    EXPECT_EQ(test::white_title_pixels(before, point, "Report"), 0);
     // Away from the ring and title the field stays as faint as it was.
     EXPECT_LE(test::largest_change(before, with, QRect(100, 850, 1700, 200), 7), 2) << "the ring changed the field elsewhere";
 
