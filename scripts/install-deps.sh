@@ -22,8 +22,10 @@ packages=(
   xvfb xauth x11-utils x11-xserver-utils xdotool openbox mupdf xterm xcompmgr picom libxext-dev
   # Wayland desktops: the client library and scanner for the layer-shell field,
   # and the compositors the desktop tests run headless (Sway with foot and
-  # Xwayland, GNOME Shell with the umf extension, KWin, weston), grim, D-Bus
+  # Xwayland, GNOME Shell with the umf extension, KWin, weston), grim, D-Bus;
+  # Mesa's software OpenGL (llvmpipe) for KWin compositing with OpenGL
   libwayland-dev wayland-protocols sway grim foot xwayland weston dbus dbus-daemon gnome-shell kwin-wayland
+  libgl1-mesa-dri libegl-mesa0
   # the provider announces itself over DNS-SD through Avahi, umf-requester discover browses
   # with libavahi-client, and requesters resolve .local names through nss-mdns; the tests run
   # a daemon and its tools in network namespaces of their own (iproute2)
