@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <thread>
 #include <vector>
@@ -22,11 +23,14 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "provider/desktop/desktop.hpp"
 #include "shared/detect/detector.hpp"
+#include "shared/overlay/placement.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/process.hpp"
+#include "tests/support/x11_session.hpp"
 
 namespace umf::test {
 
@@ -164,6 +168,43 @@ inline cv::Mat expect_documents_and_a_snapshot(const std::string& url, const cv:
         EXPECT_GT(grey_share(snapshot), 0.95) << "the snapshot holds the field";
     }
     return snapshot;
+}
+
+// The field found in a photo of the whole desktop places its centre, the
+// screen point (x, y), where the provider's placement puts it.
+inline void expect_aim_at(const umf::Detection& detection, const umf::overlay::FieldPlacement& placement, double x,
+                          double y) {
+    double u = 0, v = 0;
+    umf::overlay::screen_to_field(placement, x, y, u, v);
+    EXPECT_NEAR(detection.aim_field.x(), u, 0.05);
+    EXPECT_NEAR(detection.aim_field.y(), v, 0.05);
+}
+
+// The README's picture of a desktop (scripts/screenshots-wayland.sh): `bgr`
+// at half size as `name` in $UMF_SCREENSHOT_DIR, when that is set.
+inline void keep_screenshot(const cv::Mat& bgr, const std::string& name) {
+    const char* keep = std::getenv("UMF_SCREENSHOT_DIR");
+    if (!keep || !*keep) return;
+    cv::Mat half;
+    cv::resize(bgr, half, cv::Size(bgr.cols / 2, bgr.rows / 2), 0, 0, cv::INTER_AREA);
+    cv::imwrite((std::filesystem::path(keep) / name).string(), half);
+}
+
+// After the desktop went away under a provider whose console is `log`: its
+// keeper says it serves on without a desktop, at the same pairing URL, and
+// its web page answers there.
+inline void expect_serving_on_without_a_desktop(const std::filesystem::path& log, const std::string& url) {
+    const std::string listening = url.substr(0, url.find('/', 8));
+    ASSERT_TRUE(wait_until(
+        [&] {
+            const std::string text = read_file(log);
+            const auto at = text.find("Serving on without a desktop");
+            return at != std::string::npos && pairing_url_in(text.substr(at)) == url;
+        },
+        std::chrono::seconds(20)))
+        << read_file(log);
+    EXPECT_EQ(run_command("curl -s -k --max-time 10 -o /dev/null -w '%{http_code}' " + listening + "/").out, "200")
+        << read_file(log);
 }
 
 }  // namespace umf::test

@@ -4,6 +4,7 @@
 // its title.
 #pragma once
 
+#include <QCoreApplication>
 #include <QImage>
 #include <QPointF>
 #include <QRect>
@@ -12,11 +13,25 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <chrono>
+#include <thread>
 #include <utility>
 
+#include "provider/desktop/wlroots/layer_field_surface.hpp"
 #include "provider/screen/aim_mark.hpp"
 
 namespace umf::test {
+
+// Turns Qt's events and the surface's own Wayland connection for a while:
+// the tests have no event loop running.
+inline void pump(provider::LayerFieldSurface& surface, std::chrono::milliseconds how_long) {
+    const auto end = std::chrono::steady_clock::now() + how_long;
+    while (std::chrono::steady_clock::now() < end) {
+        QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
+        surface.dispatch_pending();
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+}
 
 // The largest change of one channel between two screenshots within `area`
 // (every `step`-th pixel of a row).

@@ -117,15 +117,8 @@ TEST(GnomeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWi
         },
         detector, 1920, 1080, 20s);
     ASSERT_TRUE(photo.detection.found) << "no field on the screen: " << photo.detection.failure << "\n" << test::read_file(log);
-    double u = 0, v = 0;
-    overlay::screen_to_field(field.placement, 960, 540, u, v);
-    EXPECT_NEAR(photo.detection.aim_field.x(), u, 0.05);
-    EXPECT_NEAR(photo.detection.aim_field.y(), v, 0.05);
-    if (const char* keep = std::getenv("UMF_SCREENSHOT_DIR"); keep && *keep) {
-        cv::Mat half;
-        cv::resize(photo.bgr, half, cv::Size(960, 540), 0, 0, cv::INTER_AREA);
-        cv::imwrite((fs::path(keep) / "gnome-desktop.png").string(), half);
-    }
+    test::expect_aim_at(photo.detection, field.placement, 960, 540);
+    test::keep_screenshot(photo.bgr, "gnome-desktop.png");
 
     test::expect_documents_and_a_snapshot(url, photo.bgr, windows, notes, report, work);
     EXPECT_NE(test::read_file(log).find("took \"notes.txt\""), std::string::npos) << test::read_file(log);

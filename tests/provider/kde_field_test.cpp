@@ -33,14 +33,7 @@ namespace fs = std::filesystem;
 
 constexpr int kWidth = 1920, kHeight = 1080;
 
-void pump(LayerFieldSurface& surface, std::chrono::milliseconds how_long) {
-    const auto end = std::chrono::steady_clock::now() + how_long;
-    while (std::chrono::steady_clock::now() < end) {
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
-        surface.dispatch_pending();
-        std::this_thread::sleep_for(2ms);
-    }
-}
+using test::pump;
 
 class KdeField : public ::testing::Test {
 protected:

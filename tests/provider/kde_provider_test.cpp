@@ -129,15 +129,8 @@ TEST(KdeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWind
     const test::DesktopPhoto photo = test::capture_until_field(*desktop, detector, 1920, 1080, 20s);
     ASSERT_TRUE(photo.detection.found) << "no field on the screen: " << photo.detection.failure << "\n"
                                        << test::read_file(log);
-    double u = 0, v = 0;
-    overlay::screen_to_field(field.placement, 960, 540, u, v);
-    EXPECT_NEAR(photo.detection.aim_field.x(), u, 0.05);
-    EXPECT_NEAR(photo.detection.aim_field.y(), v, 0.05);
-    if (const char* keep = std::getenv("UMF_SCREENSHOT_DIR"); keep && *keep) {
-        cv::Mat half;
-        cv::resize(photo.bgr, half, cv::Size(960, 540), 0, 0, cv::INTER_AREA);
-        cv::imwrite((fs::path(keep) / "kde-desktop.png").string(), half);
-    }
+    test::expect_aim_at(photo.detection, field.placement, 960, 540);
+    test::keep_screenshot(photo.bgr, "kde-desktop.png");
 
     test::expect_documents_and_a_snapshot(url, photo.bgr, windows, notes, report, work);
     EXPECT_NE(test::read_file(log).find("took \"Wayland Image - notes.png\""), std::string::npos) << test::read_file(log);
@@ -145,17 +138,7 @@ TEST(KdeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWind
     // KWin dies: the provider's keeper serves on without a desktop, at the
     // same place (commands/desktop_keeper.hpp).
     ::kill(session.kwin->pid(), SIGKILL);
-    const std::string listening = url.substr(0, url.find('/', 8));
-    ASSERT_TRUE(test::wait_until(
-        [&] {
-            const std::string text = test::read_file(log);
-            const auto at = text.find("Serving on without a desktop");
-            return at != std::string::npos && test::pairing_url_in(text.substr(at)) == url;
-        },
-        20s))
-        << test::read_file(log);
-    EXPECT_EQ(test::run_command("curl -s -k --max-time 10 -o /dev/null -w '%{http_code}' " + listening + "/").out, "200")
-        << test::read_file(log);
+    test::expect_serving_on_without_a_desktop(log, url);
 }
 
 }  // namespace

@@ -198,14 +198,7 @@ std::optional<WindowInfo> window_titled(const WlrootsDesktop& desktop, const std
     return std::nullopt;
 }
 
-void pump(LayerFieldSurface& surface, std::chrono::milliseconds how_long) {
-    const auto end = std::chrono::steady_clock::now() + how_long;
-    while (std::chrono::steady_clock::now() < end) {
-        QCoreApplication::processEvents(QEventLoop::AllEvents, 5);
-        surface.dispatch_pending();
-        std::this_thread::sleep_for(2ms);
-    }
-}
+using test::pump;
 
 class SwayDesktop : public ::testing::Test {
 protected:

@@ -85,11 +85,7 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     const cv::Mat& bgr = photo.bgr;
 
     // The README's picture of the provider on Sway (scripts/screenshots-wayland.sh).
-    if (const char* keep = std::getenv("UMF_SCREENSHOT_DIR"); keep && *keep) {
-        cv::Mat half;
-        cv::resize(bgr, half, cv::Size(960, 540), 0, 0, cv::INTER_AREA);
-        cv::imwrite((fs::path(keep) / "sway-desktop.png").string(), half);
-    }
+    test::keep_screenshot(bgr, "sway-desktop.png");
 
     // Each window in the middle of a photo of its own.
     const cv::Mat snapshot = test::expect_documents_and_a_snapshot(url, bgr, windows, notes, report, work);
@@ -106,17 +102,7 @@ TEST(SwayProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWin
     EXPECT_TRUE(test::wait_until(
         [&] { return test::read_file(log).find("the connection to the Wayland compositor broke") != std::string::npos; }, 5s))
         << test::read_file(log);
-    const std::string listening = url.substr(0, url.find('/', 8));
-    ASSERT_TRUE(test::wait_until(
-        [&] {
-            const std::string text = test::read_file(log);
-            return text.find("Serving on without a desktop") != std::string::npos &&
-                   test::pairing_url_in(text.substr(text.find("Serving on without a desktop"))) == url;
-        },
-        20s))
-        << test::read_file(log);
-    EXPECT_EQ(test::run_command("curl -s -k --max-time 10 -o /dev/null -w '%{http_code}' " + listening + "/").out, "200")
-        << test::read_file(log);
+    test::expect_serving_on_without_a_desktop(log, url);
 }
 
 }  // namespace
