@@ -29,8 +29,12 @@ cut_done = False
 
 
 def write_counts():
-    with open(count_file, "w") as f:
+    """Whole or not at all: a test may read the file while the relay still
+    counts (a truncated file read as empty once failed a test)."""
+    part = f"{count_file}.{threading.get_ident()}.part"
+    with open(part, "w") as f:
         f.write(f"{carried['down']} {carried['up']}\n")
+    os.replace(part, count_file)
 
 
 def reset(sock):
