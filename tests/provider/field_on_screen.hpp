@@ -33,16 +33,18 @@ inline void pump(provider::LayerFieldSurface& surface, std::chrono::milliseconds
     }
 }
 
+// The largest change of one channel between two pixels.
+inline int channel_change(QRgb p, QRgb q) {
+    return std::max({std::abs(qRed(p) - qRed(q)), std::abs(qGreen(p) - qGreen(q)), std::abs(qBlue(p) - qBlue(q))});
+}
+
 // The largest change of one channel between two screenshots within `area`
 // (every `step`-th pixel of a row).
 inline int largest_change(const QImage& a, const QImage& b, const QRect& area, int step = 1) {
     int worst = 0;
     for (int y = area.top(); y <= area.bottom(); ++y)
-        for (int x = area.left(); x <= area.right(); x += step) {
-            const QRgb p = a.pixel(x, y), q = b.pixel(x, y);
-            worst = std::max({worst, std::abs(qRed(p) - qRed(q)), std::abs(qGreen(p) - qGreen(q)),
-                              std::abs(qBlue(p) - qBlue(q))});
-        }
+        for (int x = area.left(); x <= area.right(); x += step)
+            worst = std::max(worst, channel_change(a.pixel(x, y), b.pixel(x, y)));
     return worst;
 }
 
@@ -60,7 +62,7 @@ inline FieldChange field_change(const QImage& before, const QImage& with, const 
         for (int x = area.left(); x <= area.right(); ++x) {
             if (qAlpha(layer.pixel(x, y)) == 0) continue;
             ++out.field_pixels;
-            out.changed += largest_change(before, with, QRect(x, y, 1, 1)) >= by;
+            out.changed += channel_change(before.pixel(x, y), with.pixel(x, y)) >= by;
         }
     return out;
 }

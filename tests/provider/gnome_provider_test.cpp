@@ -24,7 +24,6 @@
 #include "provider/screen/field_source.hpp"
 #include "provider/screen/screen_field.hpp"
 #include "shared/detect/detector.hpp"
-#include "shared/overlay/placement.hpp"
 #include "tests/provider/desktop_photo.hpp"
 #include "tests/provider/gui_test_app.hpp"
 #include "tests/support/files.hpp"

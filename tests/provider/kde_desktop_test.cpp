@@ -51,10 +51,7 @@ struct KdeDesktop : ::testing::Test {
         return make_kde_desktop(options);
     }
     std::unique_ptr<Process> start(const std::vector<std::string>& argv, const std::string& log) {
-        Process::Options options;
-        options.env = session->env();
-        options.log = session->dir->path / log;
-        return std::make_unique<Process>(argv, options);
+        return session->start_client(argv, log);
     }
     std::unique_ptr<KWinSession> session;
 };

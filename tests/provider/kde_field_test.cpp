@@ -83,10 +83,7 @@ protected:
     void open(const std::vector<std::string>& argv, double x, const std::string& log) {
         auto watch = desktop_->watch_new_window(WindowPlacement{x, 540, {0, 0, kWidth, kHeight}});
         ASSERT_TRUE(watch);
-        test::Process::Options options;
-        options.env = session_->env();
-        options.log = session_->dir->path / log;
-        clients_.push_back(std::make_unique<test::Process>(argv, options));
+        clients_.push_back(session_->start_client(argv, log));
         const auto id = watch->place(clients_.back()->pid(), 10000ms);
         ASSERT_TRUE(id) << argv[0] << " was not placed:\n" << session_->log();
         const auto window = desktop_->window_at(x, 540, {});

@@ -26,7 +26,6 @@
 #include "provider/screen/field_source.hpp"
 #include "provider/screen/screen_field.hpp"
 #include "shared/detect/detector.hpp"
-#include "shared/overlay/placement.hpp"
 #include "tests/provider/desktop_photo.hpp"
 #include "tests/provider/gui_test_app.hpp"
 #include "tests/support/files.hpp"
@@ -48,13 +47,8 @@ TEST(KdeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWind
     // The test looks at the screen through KWin's screenshot interface, as
     // the provider does once its own entry is installed.
     test::install_application(session, "umf-tests", "/proc/self/exe", "org.kde.KWin.ScreenShot2");
-    const auto install = test::run_command("env " + [&] {
-        std::string vars;
-        for (const auto& v : session.env()) vars += "'" + v + "' ";
-        return vars;
-    }() + UMF_PROVIDER_TOOL + " kde install 2>&1");
-    ASSERT_EQ(install.exit_code, 0) << install.out;
-    ASSERT_TRUE(fs::exists(session.data_home() / "applications" / "umf-provider.desktop")) << install.out;
+    ASSERT_NO_THROW(test::run({UMF_PROVIDER_TOOL, "kde", "install"}, session.env()));
+    ASSERT_TRUE(fs::exists(session.data_home() / "applications" / "umf-provider.desktop"));
 
     const fs::path work = session.dir->path / "work";
     fs::create_directories(work);
@@ -70,19 +64,13 @@ TEST(KdeProvider, TheProviderTakesDocumentsAndSnapshotsFromNativeAndXwaylandWind
     options.wayland_display = (session.runtime / session.wayland_display).string();
     options.script_dir = session.dir->path / "scripts";
     const auto desktop = make_kde_desktop(options);
-    const auto start = [&](const std::vector<std::string>& argv, const std::string& log) {
-        test::Process::Options o;
-        o.env = session.env();
-        o.log = session.dir->path / log;
-        return std::make_unique<test::Process>(argv, o);
-    };
     // Side by side, each moved centred on its place as soon as it shows.
     const std::map<std::string, double> centres = {{"Wayland Image - notes.png", 330}, {"report.txt", 960}, {"plain grey", 1590}};
     std::vector<std::unique_ptr<test::Process>> clients;
     const auto open = [&](const std::string& title, const std::vector<std::string>& argv) {
         auto watch = desktop->watch_new_window(WindowPlacement{centres.at(title), 540, {0, 0, 1920, 1080}});
         ASSERT_TRUE(watch);
-        clients.push_back(start(argv, title + ".log"));
+        clients.push_back(session.start_client(argv, title + ".log"));
         ASSERT_TRUE(watch->place(clients.back()->pid(), 10000ms)) << title << " was not placed:\n" << session.log();
     };
     open("Wayland Image - notes.png", {"weston-image", notes.string()});

@@ -58,6 +58,14 @@ struct KWinSession {
         return environment_with(vars);
     }
     fs::path data_home() const { return dir->path / "data"; }
+    // A client in the session's environment, its output in `log` in the
+    // session's folder.
+    std::unique_ptr<Process> start_client(const std::vector<std::string>& argv, const std::string& log) const {
+        Process::Options options;
+        options.env = env();
+        options.log = dir->path / log;
+        return std::make_unique<Process>(argv, options);
+    }
     std::string log() const {
         std::ifstream in(dir->path / "kwin.log");
         return {std::istreambuf_iterator<char>(in), {}};
