@@ -63,6 +63,11 @@ PutAnswerers put_answerers(const PutChoice& puts, bool headless, OverlayManager*
                 });
             out.decider = std::make_shared<FirstAnswerDecider>(
                 std::vector<std::shared_ptr<PutDecider>>{out.prompt, out.control});
+            // The cards stay over the field, which raises itself over new windows.
+            if (overlay)
+                overlay->on_raised([cards = std::weak_ptr<PutPromptDecider>(out.prompt)] {
+                    if (const auto c = cards.lock()) c->raise_cards();
+                });
         }
     }
     return out;

@@ -88,6 +88,7 @@ OverlayManager::OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> 
             if (entry->window->is_visible()) entry->window->raise();
             if (entry->aim_window && entry->aim_window->isVisible()) entry->aim_window->raise();
         }
+        if (raised_) raised_();
     });
     raise_timer_.start(kRaiseIntervalMs);
     // Only an X server can be asked for the desktop under the overlay.
@@ -266,6 +267,7 @@ void OverlayManager::apply_shown(double opacity) {
     applied_opacity_ = opacity;
     // An invisible field is unmapped rather than composited at opacity 0.
     const bool shown = visible_ && snapshot_depth_ == 0 && opacity > 0;
+    bool raised = false;
     for (auto& entry : entries_) {
         FieldSurface& window = *entry->window;
         if (shown) {
@@ -273,12 +275,14 @@ void OverlayManager::apply_shown(double opacity) {
             if (!window.is_visible()) {
                 window.show();
                 window.raise();
+                raised = true;
             }
         } else if (window.is_visible()) {
             window.hide();
         }
         show_aim_mark(*entry);
     }
+    if (raised && raised_) raised_();
 }
 
 OverlayManager::Entry* OverlayManager::entry_for(int index) {

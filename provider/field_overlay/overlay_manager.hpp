@@ -112,6 +112,11 @@ public:
     // Called after screens() or layout() changed: a screen came, went or
     // changed size or density, or the preset's module size changed.
     void on_screens_changed(std::function<void()> callback) { screens_changed_ = std::move(callback); }
+    // Called each time the field's windows were raised (when they come up,
+    // and every kRaiseIntervalMs to stay over windows mapped since): the
+    // provider's own windows that belong over the field (the put cards)
+    // raise themselves again.
+    void on_raised(std::function<void()> callback) { raised_ = std::move(callback); }
 
     // The screen in `root_rect` (root-window pixels, within one screen) as it
     // is without the overlay; a null image when it cannot be had. The default
@@ -182,6 +187,7 @@ private:
     bool visible_ = true;
     int snapshot_depth_ = 0;
     std::function<void()> screens_changed_;
+    std::function<void()> raised_;
     GrabFunction grab_;
     enum class GrabState { idle, scheduled, settling };
     GrabState grab_state_ = GrabState::idle;

@@ -422,6 +422,11 @@ void PutPromptDecider::show_after_snapshot() {
     for (auto& [id, s] : shown_) map_card(s.card);
 }
 
+void PutPromptDecider::raise_cards() {
+    if (snapshot_depth_ > 0 || QGuiApplication::platformName() == QLatin1String("offscreen")) return;
+    for (auto& [id, s] : shown_) s.card->raise();
+}
+
 void PutPromptDecider::finish(std::uint64_t id, std::optional<PutReply> reply) {
     const auto it = shown_.find(id);
     if (it == shown_.end()) return;
