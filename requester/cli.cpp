@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <sstream>
+
+#include "shared/overlay/preset.hpp"
 
 namespace umf::requester {
 
@@ -23,6 +26,17 @@ double parse_seconds(const std::string& text) {
     const auto s = to_number(text);
     if (!s || *s <= 0 || *s > 86400)
         throw UsageError("--timeout must be a number of seconds within (0, 86400], not '" + text + "'");
+    return *s;
+}
+
+double parse_pulse_period(const std::string& text) {
+    const auto s = to_number(text);
+    if (!s || *s < overlay::kMinPeriodS || *s > overlay::kMaxPeriodS) {
+        std::ostringstream m;
+        m << "--pulse-period must be a number of seconds within [" << overlay::kMinPeriodS << ", "
+          << overlay::kMaxPeriodS << "], not '" << text << "'";
+        throw UsageError(m.str());
+    }
     return *s;
 }
 

@@ -37,6 +37,10 @@ using cli::has_flag;
 using cli::parse_args;
 using cli::UsageError;
 
+// "--pulse-period S": a number of seconds within the presets' range
+// (overlay::kMinPeriodS..kMaxPeriodS); throws UsageError.
+double parse_pulse_period(const std::string& text);
+
 // "X,Y" as two finite numbers; throws UsageError naming the option.
 std::pair<double, double> parse_point(const std::string& option, const std::string& text);
 

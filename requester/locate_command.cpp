@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <chrono>
 #include <cstring>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -13,8 +14,10 @@
 #include "requester/grey_frame.hpp"
 #include "shared/detect/detector.hpp"
 #include "shared/detect/image.hpp"
+#include "shared/detect/pulse_search.hpp"
 #include "shared/detect/tracker.hpp"
 #include "shared/field/field_io.hpp"
+#include "shared/overlay/pulse.hpp"
 
 namespace umf::requester {
 
@@ -23,6 +26,7 @@ const char* const kLocateUsage = R"(umf-requester locate: which field point a ca
 usage:
   umf-requester locate --field F.json [--sequence] [--aim X,Y] IMAGE...
   umf-requester locate --field F.json [--sequence] [--aim X,Y] --video FILE
+  umf-requester locate --field F.json --sequence [--pulse-period S --waveform sine|triangle] IMAGE...
 
 Finds the field of F.json in each IMAGE (any format OpenCV decodes) or in every
 frame of the video FILE, and prints one JSON object per line and frame, each line
@@ -55,6 +59,17 @@ options:
                   frame's own point); "point" is then the smoothed aim point and
                   "found" is true exactly when locked. Without --sequence every
                   frame, a video's too, is detected on its own.
+                  A field too faint for any one frame is looked for in the last 24
+                  frames together while nothing is locked: its pulse is found in
+                  them and the field demodulated out of the content. The camera
+                  must be at rest (on a stand or a table). Such a line is
+                  "state": "locked" with "demodulated": true and "pulse_frames": n
+                  after the keys above; "ms" includes that search.
+  --pulse-period S  with --sequence: the period of the field's pulse in seconds, as
+                  the provider's welcome gives it; the pulse found in the frames
+                  is fitted to it (at 24, 25, 30, 50 or 60 frames a second, or the
+                  video's rate). Without it the pulse is taken as the frames show it.
+  --waveform W    with --pulse-period: sine (the default) or triangle
 
 exit codes: 0 the frames were read (frames without the field and unreadable images
             are reported in their lines); 2 wrong usage; 3 the field file or the
@@ -109,6 +124,31 @@ Json tracked_json(int frame, const TrackResult& t) {
     return j;
 }
 
+// A frame the tracker holds no lock on, found in the frames kept with it.
+Json demodulated_json(int frame, const PulseSearchResult& r, double ms) {
+    Json j = detection_json(frame, r.detection, r.detection.aim_field);
+    j["ms"] = round_ms(ms);
+    j["state"] = to_string(TrackState::locked);
+    j["prior"] = false;
+    j["raw_point"] = point_json(r.detection.aim_field);
+    j["demodulated"] = true;
+    j["pulse_frames"] = r.frames;
+    return j;
+}
+
+PulseSearchOptions pulse_search_options(const LocateOptions& o, double video_fps) {
+    PulseSearchOptions options;
+    if (!o.pulse_period_s) return options;
+    overlay::Preset unit;  // the waveform over one period, 0 to 1
+    unit.opacity_min = 0;
+    unit.opacity_max = 1;
+    unit.period_s = 1;
+    unit.waveform = o.waveform;
+    options.shape = PulseShape{[unit](double phase) { return overlay::opacity_at(unit, phase); }, *o.pulse_period_s};
+    if (video_fps > 0) options.frame_rates = {video_fps};
+    return options;
+}
+
 void write_line(std::FILE* out, const Json& j) {
     const std::string line = j.dump() + "\n";
     if (std::fwrite(line.data(), 1, line.size(), out) != line.size() || std::fflush(out) != 0)
@@ -118,7 +158,7 @@ void write_line(std::FILE* out, const Json& j) {
 }  // namespace
 
 LocateOptions parse_locate_args(int argc, char** argv, int first) {
-    const Args a = parse_args(argc, argv, first, {"field", "aim", "video"}, {"sequence"});
+    const Args a = parse_args(argc, argv, first, {"field", "aim", "video", "pulse-period", "waveform"}, {"sequence"});
     LocateOptions o;
     auto field = get(a, "field");
     if (!field) throw UsageError("locate needs --field F.json");
@@ -127,6 +167,16 @@ LocateOptions parse_locate_args(int argc, char** argv, int first) {
     if (auto aim = get(a, "aim")) {
         auto [x, y] = parse_point("aim", *aim);
         o.aim = Eigen::Vector2d(x, y);
+    }
+    if (auto period = get(a, "pulse-period")) {
+        if (!o.sequence) throw UsageError("--pulse-period needs --sequence: a pulse is seen over frames");
+        o.pulse_period_s = parse_pulse_period(*period);
+    }
+    if (auto waveform = get(a, "waveform")) {
+        if (!o.pulse_period_s) throw UsageError("--waveform goes with --pulse-period");
+        const auto w = overlay::waveform_from_string(*waveform);
+        if (!w) throw UsageError("--waveform must be sine or triangle, not '" + *waveform + "'");
+        o.waveform = *w;
     }
     o.video = get(a, "video");
     o.images = a.positional;
@@ -145,7 +195,11 @@ int run_locate(const LocateOptions& o, std::FILE* out) {
     }
     std::unique_ptr<FrameSource> source = o.video ? video_file(*o.video) : image_files(o.images);
     std::optional<Tracker> tracker;
-    if (o.sequence) tracker.emplace(*detector);
+    std::optional<PulseSearch> pulse;
+    if (o.sequence) {
+        tracker.emplace(*detector);
+        pulse.emplace(pulse_search_options(o, source->fps()));
+    }
 
     std::vector<std::uint8_t> luma;  // reused between frames
     int frames = 0, found = 0, unreadable = 0;
@@ -169,7 +223,19 @@ int run_locate(const LocateOptions& o, std::FILE* out) {
         const Eigen::Vector2d aim = o.aim.value_or(Eigen::Vector2d(view.width / 2.0, view.height / 2.0));
         Json j;
         if (tracker) {
-            j = tracked_json(frame->index, tracker->update(view, aim));
+            const TrackResult t = tracker->update(view, aim);
+            j = tracked_json(frame->index, t);
+            pulse->add(view);
+            if (t.state != TrackState::locked && pulse->due()) {
+                const auto start = std::chrono::steady_clock::now();
+                const PulseSearchResult r = pulse->search(*detector, aim);
+                const double ms = t.detection.times.total_ms +
+                                  std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                if (r.detection.found)
+                    j = demodulated_json(frame->index, r, ms);
+                else
+                    j["ms"] = round_ms(ms);
+            }
         } else {
             const Detection d = detector->detect(view, aim);
             j = detection_json(frame->index, d, d.aim_field);

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "requester/cli.hpp"
+#include "shared/overlay/preset.hpp"
 
 namespace umf::requester {
 
@@ -24,6 +25,10 @@ struct LocateOptions {
     std::optional<Eigen::Vector2d> aim;    // image pixels; the image centre when empty
     std::vector<std::string> images;
     std::optional<std::string> video;
+    // With sequence: the pulse the provider announces (its welcome's
+    // overlay period and waveform), for the frames of a faint field at rest.
+    std::optional<double> pulse_period_s;
+    overlay::Waveform waveform = overlay::Waveform::sine;
 };
 
 // argv[first..] of "umf-requester locate ...". Throws UsageError.

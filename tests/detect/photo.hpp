@@ -3,10 +3,13 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "shared/detect/image.hpp"
 #include "shared/field/field.hpp"
 #include "shared/field/field_io.hpp"
+#include "shared/overlay/preset.hpp"
+#include "shared/overlay/pulse.hpp"
 #include "tests/sim/camera.hpp"
 #include "tests/sim/field_mix.hpp"
 #include "tests/sim/screen_content.hpp"
@@ -50,6 +53,35 @@ inline Photo photograph_field(const Field& shown, double opacity, double pitch, 
     degradation.noise_sigma = 2;
     p.shot = sim::photograph(mixed, p.geometry, p.camera, p.pose, degradation);
     return p;
+}
+
+// A sine pulse between `lo` and `hi` over `period_s` (opacity_at's).
+inline overlay::Preset sine_pulse(double lo, double hi, double period_s) {
+    overlay::Preset pulse;
+    pulse.opacity_min = lo;
+    pulse.opacity_max = hi;
+    pulse.period_s = period_s;
+    return pulse;
+}
+
+// `count` grey frames at 25 a second of a camera at rest (`p`'s camera,
+// pose and placement) before a screen of `kind` whose field follows
+// `pulse` from `start_s` on; each frame has its own noise (sigma 2).
+// p.shot is the last frame.
+inline std::vector<cv::Mat> film_pulse(const Field& shown, Photo& p, sim::ScreenKind kind,
+                                       const overlay::Preset& pulse, int count, double start_s = 0) {
+    const cv::Mat screen = sim::make_screen(kind, {1920, 1080}, 5);
+    std::vector<cv::Mat> frames;
+    for (int i = 0; i < count; ++i) {
+        sim::Degradation degradation;
+        degradation.noise_sigma = 2;
+        degradation.seed = 100 + static_cast<std::uint64_t>(i);
+        const double a = overlay::opacity_at(pulse, start_s + i / 25.0);
+        p.shot = sim::photograph(sim::mix_field(screen, shown, p.placement, a), p.geometry, p.camera, p.pose,
+                                 degradation);
+        frames.push_back(p.shot.grey.clone());
+    }
+    return frames;
 }
 
 }  // namespace umf::test

@@ -108,10 +108,7 @@ TEST_P(PulseDemodulatorOnBusyScreens, FindsTheFieldOfAFaintPulse) {
     const PulseCase c = GetParam();
     const Field f = test::shipped_field("b4-64x36.json");
     const Detector detector(f);
-    overlay::Preset pulse;
-    pulse.opacity_min = 0.01;
-    pulse.opacity_max = 0.04;
-    pulse.period_s = 1.5;
+    const overlay::Preset pulse = test::sine_pulse(0.01, 0.04, 1.5);
     test::Photo p;
     p.camera.resolution = {640, 480};
     p.pose.distance_mm = 300;
@@ -119,19 +116,13 @@ TEST_P(PulseDemodulatorOnBusyScreens, FindsTheFieldOfAFaintPulse) {
     p.pose.yaw_deg = -8;
     p.pose.roll_deg = 15;
     p.pose.aim_screen_px = {950, 520};
-    const cv::Mat screen = sim::make_screen(c.screen, {1920, 1080}, 5);
+    const std::vector<cv::Mat> shots = test::film_pulse(f, p, c.screen, pulse, 19);
     PulseDemodulator demodulator;
-    std::vector<cv::Mat> shots;
     std::vector<double> opacities;
-    for (int frame = 0; frame < 19; ++frame) {
-        const double a = overlay::opacity_at(pulse, frame / 25.0);
-        sim::Degradation degradation;
-        degradation.noise_sigma = 2;
-        degradation.seed = 100 + frame;  // each frame its own noise
-        p.shot = sim::photograph(sim::mix_field(screen, f, p.placement, a), p.geometry, p.camera, p.pose, degradation);
-        demodulator.add(p.view(), a);
-        shots.push_back(p.shot.grey.clone());
-        opacities.push_back(a);
+    for (std::size_t i = 0; i < shots.size(); ++i) {
+        opacities.push_back(overlay::opacity_at(pulse, static_cast<double>(i) / 25.0));
+        demodulator.add({shots[i].data, shots[i].cols, shots[i].rows, static_cast<std::ptrdiff_t>(shots[i].step)},
+                        opacities.back());
     }
     const GreyView field = demodulator.field_image();
     ASSERT_NE(field.data, nullptr);
