@@ -61,6 +61,31 @@ bool PulseSearch::due() const {
                                                added_since_search_ == frames());
 }
 
+namespace {
+
+// The 90th percentile of |a - b| over every 4th pixel of every 4th row.
+double change_p90(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int width, int height) {
+    std::vector<int> change;
+    change.reserve(static_cast<std::size_t>((width / 4 + 1) * (height / 4 + 1)));
+    for (int y = 0; y < height; y += 4)
+        for (int x = 0; x < width; x += 4) {
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            change.push_back(std::abs(static_cast<int>(a[i]) - b[i]));
+        }
+    const auto p90 = change.begin() + static_cast<std::ptrdiff_t>(change.size() * 9 / 10);
+    std::nth_element(change.begin(), p90, change.end());
+    return *p90;
+}
+
+}  // namespace
+
+bool PulseSearch::at_rest() const {
+    const auto& last = kept_.back();
+    const double near = change_p90(last, kept_[kept_.size() - 2], width_, height_);
+    const double far = change_p90(last, kept_.front(), width_, height_);
+    return far <= options_.rest_factor * near + options_.rest_levels;
+}
+
 // The shape at the rate and phase that follow the course best, scaled to
 // [-1, 1] with its sign; empty when none follows it well enough.
 std::vector<double> PulseSearch::fit_shape(const std::vector<double>& course) const {
@@ -98,6 +123,10 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         out.detection.failure = "too few frames for the pulse";
         return out;
     }
+    if (!at_rest()) {
+        out.detection.failure = "the view moved";
+        return out;
+    }
     std::vector<GreyView> views;
     for (const auto& f : kept_) views.push_back({f.data(), width_, height_, width_});
     const PulseCourse course = find_pulse_course(views);
@@ -116,7 +145,7 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
     // The course's sign is not known: the field shows in one of the two.
     for (const double sign : {1.0, -1.0}) {
         PulseDemodulator demodulator;
-        for (std::size_t i = 0; i < views.size(); ++i) demodulator.add(views[i], 0.5 + 0.5 * sign * level[i]);
+        for (std::size_t i = 0; i < views.size(); ++i) demodulator.add(views[i], std::clamp(0.5 + 0.5 * sign * level[i], 0.0, 1.0));
         const GreyView field = demodulator.field_image(PulseDemodulator::SlopeScale::spread);
         if (!field.data) continue;
         Detection d = detector.detect(field, aim, nullptr, std::span<const SearchPlan>(options_.plans));

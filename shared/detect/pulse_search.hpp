@@ -4,8 +4,10 @@
 // known (the welcome's period and waveform), fitted to that shape, and the
 // detector reads the demodulated image. The frames must show the screen in
 // the same place: a camera at rest (a kiosk's, a phone laid down or held on
-// a stand). A hand-held phone's frames would first have to be registered
-// onto each other, which this does not do.
+// a stand); the frames of a view that moves are not searched (a cheap
+// look at how much the frames changed, PulseSearchOptions::rest_factor). A
+// hand-held phone's frames would first have to be registered onto each
+// other, which this does not do yet.
 #pragma once
 
 #include <Eigen/Core>
@@ -39,9 +41,16 @@ struct PulseSearchOptions {
     // A fit below this correlation with the course is not taken; the
     // course itself is used.
     double min_fit = 0.8;
+    // The view at rest: the 90th percentile of the grey level's change from
+    // the first frame kept to the last at most `rest_factor` times that
+    // from the last but one to the last, plus `rest_levels` (a pulse of a
+    // few percent changes a pixel by a few levels; a view that moves, by
+    // tens at every edge, more the longer it moves).
+    double rest_factor = 2;
+    double rest_levels = 6;
     // A search that found nothing is not tried again until this many more
     // frames are kept (one that found the field is tried on every frame).
-    int search_every = 8;
+    int search_every = 4;
     // What the detector runs on a demodulated image: the first scan of a
     // video's frame, then the scan three pixels across and the image
     // smoothed (search_plan.hpp's parts 2 and 5): the demodulated image's
@@ -76,6 +85,7 @@ public:
 
 private:
     std::vector<double> fit_shape(const std::vector<double>& course) const;
+    bool at_rest() const;
 
     PulseSearchOptions options_;
     int width_ = 0, height_ = 0;

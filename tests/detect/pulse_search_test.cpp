@@ -115,4 +115,27 @@ TEST_F(PulseSearchOnAWebPage, AFieldThatDoesNotPulseIsNotSearched) {
     EXPECT_EQ(search.frames(), 1);
 }
 
+TEST(PulseSearch, AViewThatMovesIsNotSearched) {
+    // A phone turning slowly over a web page with a steady field (each frame
+    // a third of a degree on): its frames hold no still pulse to demodulate,
+    // and demodulating them would cost a frame 70 ms for nothing.
+    const Field f = test::shipped_field("b4-64x36.json");
+    const Detector detector(f);
+    std::vector<cv::Mat> frames;
+    for (int i = 0; i < 10; ++i) {
+        const test::Photo p = test::photograph_field(f, 0.03, 10 + i * 0.3, 5 - i * 0.2, 20 + i * 0.5, 300,
+                                                     sim::ScreenKind::web_page);
+        frames.push_back(p.shot.grey.clone());
+    }
+    PulseSearch search;
+    for (const cv::Mat& frame : frames) search.add(view(frame));
+    EXPECT_TRUE(search.due());
+    const PulseSearchResult r = search.search(detector, {320, 240});
+    EXPECT_FALSE(r.detection.found);
+    EXPECT_EQ(r.detection.failure, "the view moved");
+    EXPECT_FALSE(search.due()) << "not again before search_every more frames";
+    for (int i = 0; i < 4; ++i) search.add(view(frames[static_cast<std::size_t>(i)]));
+    EXPECT_TRUE(search.due());
+}
+
 }  // namespace

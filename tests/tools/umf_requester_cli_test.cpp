@@ -199,6 +199,51 @@ TEST_F(Requester, AVideoWithSequenceIsTracked) {
     EXPECT_EQ(plain.lines[4]["frame"], 4);
 }
 
+// Frames of a camera at rest before a web page whose field pulses between
+// opacity 0.01 and 0.04 (sine, 1.5 s, 25 frames a second, from 0.3 s into
+// its rise): once enough
+// frames are kept, those the tracker has no lock on are found in the kept
+// frames together, with and without the pulse announced.
+TEST_F(Requester, AFaintPulseAtRestIsFoundInItsFramesTogether) {
+    const umf::Field field = umf::test::shipped_field("b4-64x36.json");
+    umf::test::Photo p;
+    p.camera.resolution = {640, 480};
+    p.pose.distance_mm = 300;
+    p.pose.pitch_deg = 8;
+    p.pose.roll_deg = 10;
+    p.pose.aim_screen_px = {950, 520};
+    const auto frames = umf::test::film_pulse(field, p, umf::sim::ScreenKind::web_page,
+                                              umf::test::sine_pulse(0.01, 0.04, 1.5), 14, 0.3);
+    std::string images;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const std::string name = path("frame" + std::to_string(100 + i) + ".png");
+        ASSERT_TRUE(cv::imwrite(name, frames[i]));
+        images += " " + name;
+    }
+    const cv::Point2d truth = umf::sim::image_to_field(p.shot, p.placement, {320, 240});
+    for (const std::string announced : {"", "--pulse-period 1.5 --waveform sine "}) {
+        Outcome r = locate("--sequence " + announced + images);
+        ASSERT_EQ(r.code, 0) << r.err;
+        ASSERT_EQ(r.lines.size(), frames.size()) << r.out;
+        int demodulated = 0;
+        for (const Json& j : r.lines) {
+            if (!j.value("demodulated", false)) continue;
+            ++demodulated;
+            EXPECT_TRUE(j["found"].get<bool>()) << j.dump();
+            EXPECT_EQ(j["state"], "locked") << j.dump();
+            EXPECT_GE(j["pulse_frames"].get<int>(), 8) << j.dump();
+            EXPECT_GE(j["frame"].get<int>(), 7) << j.dump();
+            EXPECT_LT(distance(j["point"], truth), 0.1) << announced << j.dump();
+            EXPECT_EQ(keys(j)[3], "H");
+        }
+        // From the eighth frame on (the tracker may find some frames itself).
+        int found = 0;
+        for (std::size_t i = 7; i < r.lines.size(); ++i) found += r.lines[i]["found"].get<bool>();
+        EXPECT_EQ(found, static_cast<int>(r.lines.size()) - 7) << announced << r.out;
+        EXPECT_GT(demodulated, 0) << announced << r.out;
+    }
+}
+
 TEST_F(Requester, WrongUsageExitsWithTwo) {
     EXPECT_EQ(run("", dir_).code, 2);
     Outcome unknown = run("frobnicate", dir_);
@@ -211,6 +256,11 @@ TEST_F(Requester, WrongUsageExitsWithTwo) {
     EXPECT_EQ(locate("--aim 10,y " + shared("photo.png")).code, 2);
     EXPECT_EQ(locate("--sharpen " + shared("photo.png")).code, 2);
     EXPECT_EQ(locate("--field " + kField + " " + shared("photo.png")).code, 2);  // twice
+    EXPECT_EQ(locate("--pulse-period 1.5 " + shared("photo.png")).code, 2);       // without --sequence
+    EXPECT_EQ(locate("--sequence --pulse-period 0.1 " + shared("photo.png")).code, 2);
+    EXPECT_EQ(locate("--sequence --pulse-period x " + shared("photo.png")).code, 2);
+    EXPECT_EQ(locate("--sequence --waveform sine " + shared("photo.png")).code, 2);  // without a period
+    EXPECT_EQ(locate("--sequence --pulse-period 1.5 --waveform square " + shared("photo.png")).code, 2);
     for (const char* help : {"--help", "help", "locate --help", "help locate"}) {
         Outcome h = run(help, dir_);
         EXPECT_EQ(h.code, 0) << help;
