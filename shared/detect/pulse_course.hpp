@@ -5,7 +5,8 @@
 // so the frames less their mean are one course a(t) times one image, and
 // that course is the leading eigenvector of the frames' covariance over
 // time (an N x N matrix for N frames, read on a sample of the pixels).
-// Its sign is not known: the caller demodulates with both and keeps the
+// Its sign is not known: the caller reads the demodulated image and its
+// inverse (what the other sign gives) and keeps the
 // one the detector finds the field in (a field seen inverted matches none
 // of its own windows).
 #pragma once

@@ -37,16 +37,9 @@ void PulseDemodulator::add(const GreyView& frame, double opacity) {
         const std::uint8_t* in = frame.row(y);
         float* si = sum_i_.data() + static_cast<std::size_t>(y) * width_;
         float* sai = sum_ai_.data() + static_cast<std::size_t>(y) * width_;
-        if (forget_ > 0) {
-            for (int x = 0; x < width_; ++x) {
-                si[x] = si[x] * keep + in[x];
-                sai[x] = sai[x] * keep + a * in[x];
-            }
-        } else {
-            for (int x = 0; x < width_; ++x) {
-                si[x] += in[x];
-                sai[x] += a * in[x];
-            }
+        for (int x = 0; x < width_; ++x) {
+            si[x] = si[x] * keep + in[x];
+            sai[x] = sai[x] * keep + a * in[x];
         }
     }
 }

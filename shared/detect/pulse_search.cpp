@@ -24,6 +24,20 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
     return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0;
 }
 
+// The 90th percentile of |a - b| over every 4th pixel of every 4th row.
+double change_p90(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int width, int height) {
+    std::vector<int> change;
+    change.reserve(static_cast<std::size_t>((width / 4 + 1) * (height / 4 + 1)));
+    for (int y = 0; y < height; y += 4)
+        for (int x = 0; x < width; x += 4) {
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            change.push_back(std::abs(static_cast<int>(a[i]) - b[i]));
+        }
+    const auto p90 = change.begin() + static_cast<std::ptrdiff_t>(change.size() * 9 / 10);
+    std::nth_element(change.begin(), p90, change.end());
+    return *p90;
+}
+
 }  // namespace
 
 PulseSearch::PulseSearch(PulseSearchOptions options) : options_(std::move(options)) {
@@ -60,24 +74,6 @@ bool PulseSearch::due() const {
     return frames() >= options_.min_frames && (last_found_ || added_since_search_ >= options_.search_every ||
                                                added_since_search_ == frames());
 }
-
-namespace {
-
-// The 90th percentile of |a - b| over every 4th pixel of every 4th row.
-double change_p90(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int width, int height) {
-    std::vector<int> change;
-    change.reserve(static_cast<std::size_t>((width / 4 + 1) * (height / 4 + 1)));
-    for (int y = 0; y < height; y += 4)
-        for (int x = 0; x < width; x += 4) {
-            const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            change.push_back(std::abs(static_cast<int>(a[i]) - b[i]));
-        }
-    const auto p90 = change.begin() + static_cast<std::ptrdiff_t>(change.size() * 9 / 10);
-    std::nth_element(change.begin(), p90, change.end());
-    return *p90;
-}
-
-}  // namespace
 
 bool PulseSearch::at_rest() const {
     const auto& last = kept_.back();
@@ -142,15 +138,22 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
             out.fitted = true;
         }
     }
-    // The course's sign is not known: the field shows in one of the two.
-    for (const double sign : {1.0, -1.0}) {
-        PulseDemodulator demodulator;
-        for (std::size_t i = 0; i < views.size(); ++i) demodulator.add(views[i], std::clamp(0.5 + 0.5 * sign * level[i], 0.0, 1.0));
-        const GreyView field = demodulator.field_image(PulseDemodulator::SlopeScale::spread);
-        if (!field.data) continue;
-        Detection d = detector.detect(field, aim, nullptr, std::span<const SearchPlan>(options_.plans));
-        if (d.found || sign > 0) out.detection = std::move(d);
-        if (out.detection.found) break;
+    PulseDemodulator demodulator;
+    for (std::size_t i = 0; i < views.size(); ++i) demodulator.add(views[i], std::clamp(0.5 + 0.5 * level[i], 0.0, 1.0));
+    const GreyView field = demodulator.field_image(PulseDemodulator::SlopeScale::spread);
+    if (!field.data) {
+        out.detection.failure = "no pulse in the frames";
+        return out;
+    }
+    // The course's sign is not known: the field shows in the image or in
+    // its inverse, which the course of the other sign would give.
+    const std::span<const SearchPlan> plans(options_.plans);
+    out.detection = detector.detect(field, aim, nullptr, plans);
+    if (!out.detection.found) {
+        std::vector<std::uint8_t> inverse(field.data, field.data + static_cast<std::size_t>(field.width) * field.height);
+        for (auto& v : inverse) v = static_cast<std::uint8_t>(255 - v);
+        Detection d = detector.detect(GreyView{inverse.data(), field.width, field.height, field.width}, aim, nullptr, plans);
+        if (d.found) out.detection = std::move(d);
     }
     last_found_ = out.detection.found;
     return out;
