@@ -67,12 +67,6 @@ Json point_json(const p::FieldPoint& pt) {
     return Json::array({std::round(pt.u * 1000) / 1000, std::round(pt.v * 1000) / 1000});
 }
 
-void write_line(std::FILE* out, const Json& j) {
-    const std::string line = j.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
-    std::fwrite(line.data(), 1, line.size(), out);
-    std::fflush(out);
-}
-
 Json failure_json(const std::string& code, const std::string& message) {
     Json j;
     j["ok"] = false;

@@ -14,6 +14,7 @@
 
 #include "requester/frame_source.hpp"
 #include "requester/grab_failure.hpp"
+#include "requester/json_lines.hpp"
 #include "requester/pointing_options.hpp"
 #include "requester/preview.hpp"
 #include "requester/provider_connection.hpp"
@@ -23,8 +24,6 @@
 #include "shared/requester_core/pointer.hpp"
 
 namespace umf::requester {
-
-using Json = nlohmann::ordered_json;
 
 // What to do once aimed. The requester core (requester_core/pointer.hpp)
 // decides when and what to send; the command carries out what it asks for
@@ -115,8 +114,6 @@ private:
 // "[u, v]" rounded to thousandths of a module: the detector is not better.
 Json point_json(const protocol::FieldPoint& point);
 
-// The command's one line on stdout.
-void write_line(std::FILE* out, const Json& j);
 Json failure_json(const std::string& code, const std::string& message);
 
 // Runs `body` and writes its JSON line, or the failure's line with the

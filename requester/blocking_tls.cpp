@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "native/record_buffer.hpp"
+#include "requester/transfer_text.hpp"
 
 namespace umf::requester {
 
@@ -36,8 +37,6 @@ int verify_against_pin(int, X509_STORE_CTX* store) {
     auto* pin = static_cast<PinCheck*>(SSL_get_app_data(ssl));
     return pin && pin_verdict(store, *pin) ? 1 : 0;
 }
-
-std::string seconds_text(std::chrono::milliseconds ms) { return std::to_string(ms.count() / 1000) + " s"; }
 
 }  // namespace
 

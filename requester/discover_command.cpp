@@ -48,7 +48,7 @@ exit codes: 0 screens were found; 2 wrong usage; 3 built without Avahi support;
 
 namespace {
 
-void write_line(std::FILE* out, const std::string& line) {
+void write_text_line(std::FILE* out, const std::string& line) {
     if (std::fprintf(out, "%s\n", line.c_str()) < 0 || std::fflush(out) != 0)
         throw InputError(std::string("cannot write the output: ") + std::strerror(errno));
 }
@@ -94,7 +94,7 @@ int run_discover(const DiscoverOptions& o, std::FILE* out) {
         std::fprintf(stderr, "discover: no screen answered within %g s\n", o.timeout_s);
         return kNothing;
     }
-    for (const auto& s : screens) write_line(out, o.json ? screen_json(s, !o.paired_fingerprints.empty()) : screen_line(s));
+    for (const auto& s : screens) write_text_line(out, o.json ? screen_json(s, !o.paired_fingerprints.empty()) : screen_line(s));
     return kOk;
 #else
     (void)o;

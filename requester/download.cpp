@@ -86,7 +86,6 @@ private:
     bool kept_ = false;
 };
 
-std::string seconds(std::chrono::milliseconds ms) { return std::to_string(ms.count() / 1000) + " s"; }
 
 }  // namespace
 
@@ -201,7 +200,7 @@ bool Transfer::attempt(std::string& why) {
     std::string head;
     std::size_t used = 0;
     if (!read_message(*tls, parser, [](const auto& p) { return p.is_header_done(); }, head, used, why)) {
-        if (tls->timed_out()) why = "the provider sent no answer within " + seconds(timeouts.download_idle);
+        if (tls->timed_out()) why = "the provider sent no answer within " + seconds_text(timeouts.download_idle);
         return false;
     }
     const unsigned status = parser.get().result_int();
@@ -260,7 +259,7 @@ bool Transfer::attempt(std::string& why) {
         received += filled;
         left -= filled;
         if (n > 0) continue;
-        why = tls->timed_out() ? "nothing arrived for " + seconds(timeouts.download_idle)
+        why = tls->timed_out() ? "nothing arrived for " + seconds_text(timeouts.download_idle)
                                : n == 0 ? std::string("the provider closed the connection") : tls->error();
         return false;
     }
@@ -292,7 +291,7 @@ SavedFile download_file(const protocol::PairingUrl& provider, const DownloadRequ
         if (pacing.given_up())
             throw download_failure("the download broke off after " + std::to_string(transfer.received) + " of " +
                                    std::to_string(request.size) + " bytes (" + why + ") and brought nothing more for " +
-                                   seconds(timeouts.download_idle) + " of asking again (" + std::to_string(resumes + 1) +
+                                   seconds_text(timeouts.download_idle) + " of asking again (" + std::to_string(resumes + 1) +
                                    " times), so its SHA-256 could not be checked and nothing was kept");
         if (progress)
             progress("the connection was lost at " + megabytes(transfer.received) + " of " + megabytes(transfer.expected()) +

@@ -11,6 +11,7 @@
 
 #include "requester/cli.hpp"
 #include "requester/grab_failure.hpp"
+#include "requester/transfer_text.hpp"
 
 namespace umf::requester {
 
@@ -23,10 +24,6 @@ namespace websocket = beast::websocket;
 namespace p = protocol;
 using Clock = std::chrono::steady_clock;
 
-std::string seconds(std::chrono::milliseconds ms) {
-    return std::to_string(ms.count() / 1000) + (ms.count() % 1000 ? "." + std::to_string(ms.count() % 1000 / 100) : "") +
-           " s";
-}
 
 std::optional<p::RequestId> reply_id(const p::Message& m) {
     if (const auto* t = std::get_if<p::Target>(&m)) return t->id;
@@ -76,7 +73,7 @@ p::Welcome ProviderConnection::open(const std::string& client, const std::option
         ec == beast::error::timeout)
         throw GrabFailure("connection",
                           "the WebSocket handshake with " + url_.authority() + " did not finish within " +
-                              seconds(timeouts_.handshake),
+                              seconds_text(timeouts_.handshake),
                           kConnection);
     if (ec)
         throw GrabFailure("connection",
@@ -93,7 +90,7 @@ p::Welcome ProviderConnection::open(const std::string& client, const std::option
     while (inbox_.empty() && failure_code_.empty() && Clock::now() < deadline) io_.run_one_until(deadline);
     if (inbox_.empty()) {
         check_alive();
-        throw GrabFailure("timeout", "the provider did not answer the hello within " + seconds(timeouts_.reply),
+        throw GrabFailure("timeout", "the provider did not answer the hello within " + seconds_text(timeouts_.reply),
                           kConnection);
     }
     p::Message first = std::move(inbox_.front());
@@ -227,7 +224,7 @@ p::Message ProviderConnection::wait_reply(const p::RequestId& id, const char* wh
         if (Clock::now() >= deadline)
             throw GrabFailure("timeout",
                               std::string("the provider did not answer the ") + what + " within " +
-                                  seconds(timeout),
+                                  seconds_text(timeout),
                               kConnection);
         if (io_.stopped()) io_.restart();
         io_.run_one_until(deadline);

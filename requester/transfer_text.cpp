@@ -18,4 +18,9 @@ std::string transfer_rate(std::uint64_t bytes, std::chrono::steady_clock::durati
     return megabytes(bytes) + text;
 }
 
+std::string seconds_text(std::chrono::milliseconds ms) {
+    return std::to_string(ms.count() / 1000) + (ms.count() % 1000 ? "." + std::to_string(ms.count() % 1000 / 100) : "") +
+           " s";
+}
+
 }  // namespace umf::requester

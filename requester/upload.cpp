@@ -93,7 +93,6 @@ private:
     int fd_ = -1;
 };
 
-std::string seconds(std::chrono::milliseconds ms) { return std::to_string(ms.count() / 1000) + " s"; }
 
 p::PutStatus interpret(const http::response<http::string_body>& answer) {
     const auto parsed = p::parse_message(answer.body(), p::kRequesterLimits);
@@ -319,7 +318,7 @@ Sent send_from(const p::PairingUrl& provider, const UploadRequest& request, Read
     tls->set_idle(written ? idle + std::chrono::seconds(30) : kLateAnswerWait);
     const auto answer = read_answer(*tls, carried, used, read_why);
     if (answer) return answered(*answer);
-    if (write_timed_out) return {std::nullopt, false, "the provider took nothing for " + seconds(idle)};
+    if (write_timed_out) return {std::nullopt, false, "the provider took nothing for " + seconds_text(idle)};
     if (!written) return {std::nullopt, false, write_error};
     if (tls->timed_out()) return {std::nullopt, false, "the provider did not answer the upload"};
     return {std::nullopt, false, read_why};
@@ -366,7 +365,7 @@ Uploaded upload_file(const protocol::PairingUrl& provider, const UploadRequest& 
             if (pacing.given_up())
                 throw upload_failure("the upload broke off after " + std::to_string(pacing.furthest()) + " of " +
                                      std::to_string(request.size) + " bytes (" + sent.why +
-                                     ") and could not go on for " + seconds(timeouts.download_idle) + " (" +
+                                     ") and could not go on for " + seconds_text(timeouts.download_idle) + " (" +
                                      std::to_string(resumes + 1) + " tries)");
         }
         from = *held;

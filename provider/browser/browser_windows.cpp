@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "provider/common/json_fields.hpp"
 #include "provider/put/put_text.hpp"
 #include "shared/protocol/json_checks.hpp"
 #include "shared/protocol/messages.hpp"
@@ -19,11 +20,6 @@ constexpr std::size_t kMaxWindows = 256;
 // Bounds a desktop reports include its frame; the browser's may not.
 constexpr double kMinOverlap = 0.8;
 constexpr std::size_t kLongTitleBytes = 64;
-
-std::string text_of(const json& object, const char* key) {
-    const auto it = object.find(key);
-    return it != object.end() && it->is_string() ? it->get<std::string>() : std::string();
-}
 
 int int_of(const json& object, const char* key) {
     const auto it = object.find(key);
@@ -42,9 +38,9 @@ BrowserTab tab_of(const json& j) {
     if (!j.is_object()) throw std::invalid_argument("a window's \"tab\" must be an object");
     BrowserTab tab;
     if (j.contains("id") && j["id"].is_number_integer()) tab.id = j["id"].get<long>();
-    const std::string url = text_of(j, "url");
+    const std::string url = json_text(j, "url");
     if (is_shareable_url(url)) tab.url = url;
-    tab.title = browser_text(text_of(j, "title"));
+    tab.title = browser_text(json_text(j, "title"));
     if (j.contains("zoom") && j["zoom"].is_number()) {
         const double zoom = j["zoom"].get<double>();
         if (std::isfinite(zoom) && zoom > 0.05 && zoom < 20) tab.zoom = zoom;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "provider/common/json_fields.hpp"
 #include "provider/put/put_text.hpp"
 #include "shared/protocol/json_checks.hpp"
 
@@ -13,12 +14,6 @@ namespace {
 
 using json = nlohmann::json;
 constexpr std::size_t kMaxTermBytes = 200;
-
-std::string text_of(const json& j, const char* key) {
-    if (!j.is_object()) return {};
-    const auto it = j.find(key);
-    return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
-}
 
 std::string without_fragment(const std::string& url) { return url.substr(0, url.find('#')); }
 
@@ -100,12 +95,12 @@ std::string media_time(double seconds) {
 Resolved content_of_element(const json& element, const BrowserTab& tab) {
     Resolved r;
     r.kind = protocol::ContentKind::url;
-    const std::string answered_page = text_of(element, "page");
+    const std::string answered_page = json_text(element, "page");
     const std::string page = is_shareable_url(answered_page) ? answered_page : tab.url;
-    const std::string page_title = browser_text(text_of(element, "title").empty() ? tab.title : text_of(element, "title"));
-    const std::string kind = text_of(element, "kind");
-    const std::string url = text_of(element, "url");
-    const std::string text = text_of(element, "text");
+    const std::string page_title = browser_text(json_text(element, "title").empty() ? tab.title : json_text(element, "title"));
+    const std::string kind = json_text(element, "kind");
+    const std::string url = json_text(element, "url");
+    const std::string text = json_text(element, "text");
     if (kind == "link" && is_shareable_url(url)) {
         r.url = url;
         r.title = "Link: " + browser_text(text.empty() ? url : text);
@@ -126,12 +121,12 @@ Resolved content_of_element(const json& element, const BrowserTab& tab) {
         return r;
     }
     r.url = page;
-    const std::string start = text_of(element, "start");
+    const std::string start = json_text(element, "start");
     if (kind == "text" && !start.empty()) {
         // After the page's own fragment, if any (a route in a web app), as
         // the text fragment syntax allows.
         std::string url = page + (page.find('#') == std::string::npos ? "#" : "") + ":~:text=" + text_fragment_term(start);
-        const std::string end = text_of(element, "end");
+        const std::string end = json_text(element, "end");
         if (!end.empty()) url += "," + text_fragment_term(end);
         if (url.size() <= protocol::kMaxUrlBytes) r.url = url;
     }

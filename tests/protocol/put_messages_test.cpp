@@ -21,7 +21,7 @@ std::string file_put(const std::string& extra = "", const std::string& without =
     return text + extra + "}";
 }
 
-ProtocolError refused(const std::string& text) {
+ProtocolError put_refused(const std::string& text) {
     auto r = parse_message(text);
     if (const auto* e = std::get_if<ProtocolError>(&r)) return *e;
     ADD_FAILURE() << "accepted: " << text;
@@ -29,7 +29,7 @@ ProtocolError refused(const std::string& text) {
 }
 
 void expect_bad(const std::string& text, const std::string& words) {
-    const ProtocolError e = refused(text);
+    const ProtocolError e = put_refused(text);
     EXPECT_EQ(e.code, ErrorCode::bad_request) << text;
     EXPECT_NE(e.message.find(words), std::string::npos) << e.message << "\nexpected: " << words << "\n" << text;
 }
@@ -119,10 +119,10 @@ TEST(PutMessages, RefusesMalformedPuts) {
     expect_bad(with("sha256", "\"" + std::string(64, 'A') + "\""), "\"sha256\"");
     expect_bad(with("sha256", "\"" + std::string(64, 'g') + "\""), "\"sha256\"");
     // The id comes back with the error whenever it could be read.
-    EXPECT_EQ(refused(with("size", "-1")).id, RequestId{std::string("p2")});
+    EXPECT_EQ(put_refused(with("size", "-1")).id, RequestId{std::string("p2")});
     // Limits and version as for every message.
-    EXPECT_EQ(refused(file_put(",\"pad\":\"" + std::string(kMaxRequestBytes, 'x') + "\"")).code, ErrorCode::too_large);
-    EXPECT_EQ(refused(R"({"type":"put","v":2,"id":"p","point":[1,1],"kind":"url","url":"https://a.example/"})").code,
+    EXPECT_EQ(put_refused(file_put(",\"pad\":\"" + std::string(kMaxRequestBytes, 'x') + "\"")).code, ErrorCode::too_large);
+    EXPECT_EQ(put_refused(R"({"type":"put","v":2,"id":"p","point":[1,1],"kind":"url","url":"https://a.example/"})").code,
               ErrorCode::unsupported_version);
 }
 

@@ -27,7 +27,7 @@ using namespace umf::provider;
 using Paths = std::vector<fs::path>;
 
 // A temporary folder that also makes files with some content.
-struct TempDir : umf::test::TempDir {
+struct DocumentsDir : umf::test::TempDir {
     fs::path file(const fs::path& relative) const {
         fs::create_directories((path / relative).parent_path());
         std::ofstream(path / relative) << "content";
@@ -85,7 +85,7 @@ private:
 
 // A /proc of one process, 4242, in a temporary directory.
 struct FakeProc {
-    TempDir dir;
+    DocumentsDir dir;
     fs::path root = dir.path / "proc";
     fs::path home = dir.path / "home";
     fs::path process = root / "4242";
@@ -126,7 +126,7 @@ TEST(ProcessDocuments, TakesExistingFilesAmongTheArguments) {
 }
 
 TEST(ProcessDocuments, SkipsAnInterpretersScript) {
-    TempDir dir;
+    DocumentsDir dir;
     const fs::path tool = dir.file("tool.py"), report = dir.file("report.pdf");
     EXPECT_EQ(documents_in_arguments({"/usr/bin/python3", "-u", tool.string(), report.string()}, dir.path),
               Paths{report});
@@ -191,7 +191,7 @@ TEST(ProcessDocuments, GoneOrForeignProcessesHaveNone) {
 }
 
 TEST(ProcessDocuments, RealProcessArgumentsAndOpenFiles) {
-    TempDir dir;
+    DocumentsDir dir;
     const fs::path log = dir.file("watched.txt");
     Child tail({"tail", "-f", "watched.txt"}, dir.path);
     tail.wait_for("tail", "watched.txt");

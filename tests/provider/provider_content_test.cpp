@@ -32,7 +32,7 @@ namespace p = umf::protocol;
 using namespace umf::provider;
 using namespace std::chrono_literals;
 
-constexpr const char* kToken = "content-test-token-0123456789";
+constexpr const char* kContentToken = "content-test-token-0123456789";
 
 std::string grab_text(const std::string& id, double u, double v) {
     return p::encode(p::Grab{p::RequestId{id}, {u, v}});
@@ -65,10 +65,10 @@ protected:
         config.public_mode = public_mode;
         std::vector<std::shared_ptr<const Resolver>> resolvers{std::move(board)};
         if (!public_mode) resolvers.push_back(shared);
-        service = std::make_unique<Service>(config, kToken, resolvers);
+        service = std::make_unique<Service>(config, kContentToken, resolvers);
         state = SessionState{};
         state.peer = "192.0.2.1";
-        auto out = service->handle_text(state, p::encode(p::Hello{std::nullopt, kToken, "test"}), now);
+        auto out = service->handle_text(state, p::encode(p::Hello{std::nullopt, kContentToken, "test"}), now);
         ASSERT_TRUE(state.welcomed);
     }
     p::Message one(const std::string& text) {
@@ -109,7 +109,7 @@ TEST_F(ProviderContent, AimsPreviewAndGrabsTakeWithDownloadLinks) {
     const auto checkout = service->downloads().begin(*content.download);
     ASSERT_TRUE(checkout);
     EXPECT_EQ(checkout->entry->file, report);
-    EXPECT_EQ(checkout->entry->token, kToken) << "the link is bound to the session's token";
+    EXPECT_EQ(checkout->entry->token, kContentToken) << "the link is bound to the session's token";
     service->downloads().end(*checkout, true);
     EXPECT_FALSE(service->downloads().begin(*content.download)) << "a link ends when its download completes";
 
@@ -207,15 +207,15 @@ TEST_F(ProviderContent, WrongTokensAreLimitedPerAddress) {
     // Even the right token is refused from that address for the rest of the minute...
     SessionState s;
     s.peer = "198.51.100.7";
-    auto limited = service->handle_text(s, p::encode(p::Hello{std::nullopt, kToken, "x"}), now);
+    auto limited = service->handle_text(s, p::encode(p::Hello{std::nullopt, kContentToken, "x"}), now);
     EXPECT_EQ(std::get<p::Error>(limited.replies[0]).code, p::ErrorCode::rate_limited);
     EXPECT_FALSE(s.welcomed);
     // ...but not from another one, and not after the minute.
     SessionState other;
     other.peer = "198.51.100.8";
-    service->handle_text(other, p::encode(p::Hello{std::nullopt, kToken, "x"}), now);
+    service->handle_text(other, p::encode(p::Hello{std::nullopt, kContentToken, "x"}), now);
     EXPECT_TRUE(other.welcomed);
-    service->handle_text(s, p::encode(p::Hello{std::nullopt, kToken, "x"}), now + kWrongTokenWindow);
+    service->handle_text(s, p::encode(p::Hello{std::nullopt, kContentToken, "x"}), now + kWrongTokenWindow);
     EXPECT_TRUE(s.welcomed);
 }
 
@@ -229,7 +229,7 @@ TEST_F(ProviderContent, RefusedHellosAreToldToTheActivityListenerOnceAFlood) {
         void refused(const RefusedActivity& r) override { seen.push_back(r); }
     };
     auto refusals = std::make_shared<Refusals>();
-    service = std::make_unique<Service>(default_service_config(1920, 1080), kToken,
+    service = std::make_unique<Service>(default_service_config(1920, 1080), kContentToken,
                                         std::vector<std::shared_ptr<const Resolver>>{}, nullptr, refusals);
     p::Hello hello{std::nullopt, "wrong-token-0123456789abc", "umf-web/0.1 (Android)"};
     hello.device = "Pixel 7";
@@ -247,7 +247,7 @@ TEST_F(ProviderContent, RefusedHellosAreToldToTheActivityListenerOnceAFlood) {
     // The right token is no refusal.
     SessionState good;
     good.peer = "198.51.100.8";
-    service->handle_text(good, p::encode(p::Hello{std::nullopt, kToken, "x"}), now);
+    service->handle_text(good, p::encode(p::Hello{std::nullopt, kContentToken, "x"}), now);
     EXPECT_TRUE(good.welcomed);
     EXPECT_EQ(refusals->seen.size(), static_cast<std::size_t>(kMaxWrongTokens) + 1);
 }
@@ -291,11 +291,11 @@ TEST_F(ProviderContent, TheOverlayHearsWhoSeeksAimsAndLeaves) {
     auto listener = std::make_shared<RecordingListener>();
     Board board;
     board.items.push_back({"Report", report, std::nullopt, std::nullopt, std::nullopt});
-    Service s(default_service_config(1920, 1080), kToken,
+    Service s(default_service_config(1920, 1080), kContentToken,
               {std::make_shared<BoardResolver>(board, std::vector<PixelRect>{{0, 0, 960, 1080}})}, nullptr, listener);
     SessionState a, b, stranger;
-    s.handle_text(a, p::encode(p::Hello{std::nullopt, kToken, "a"}), now);
-    s.handle_text(b, p::encode(p::Hello{std::nullopt, kToken, "b"}), now);
+    s.handle_text(a, p::encode(p::Hello{std::nullopt, kContentToken, "a"}), now);
+    s.handle_text(b, p::encode(p::Hello{std::nullopt, kContentToken, "b"}), now);
     s.handle_text(stranger, p::encode(p::Hello{std::nullopt, "wrong-token-0123456789abcdef", "x"}), now);
     ASSERT_NE(a.id, b.id);
     s.handle_text(a, R"({"type":"seeking","v":1})", now);
@@ -355,7 +355,7 @@ TEST_F(ProviderContent, ALargeFileIsAnsweredWithItsHashOnceHashed) {
         pushed.push_back(std::move(message));
         arrived.notify_all();
     };
-    service->handle_text(pushing, p::encode(p::Hello{std::nullopt, kToken, "test"}), now);
+    service->handle_text(pushing, p::encode(p::Hello{std::nullopt, kContentToken, "test"}), now);
     ASSERT_TRUE(pushing.welcomed);
     const auto out = service->handle_text(pushing, grab_text("big", 50, 30), now);
     EXPECT_TRUE(out.replies.empty()) << "the grab did not wait on the server's thread";

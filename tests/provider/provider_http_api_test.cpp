@@ -35,7 +35,7 @@ using namespace umf::provider;
 using json = nlohmann::json;
 using namespace std::chrono_literals;
 
-constexpr const char* kToken = "http-api-test-token-0123456789";
+constexpr const char* kApiToken = "http-api-test-token-0123456789";
 
 struct Call {
     std::string method = "POST";
@@ -44,7 +44,7 @@ struct Call {
     std::string content_type = "application/json";  // empty: no Content-Type at all
 };
 
-struct Response {
+struct ApiResponse {
     int status = 0;
     std::string raw;
     std::string headers;
@@ -67,7 +67,7 @@ struct Response {
     }
 };
 
-class Recorder : public ActivityListener {
+class ApiRecorder : public ActivityListener {
 public:
     void seeking(std::uint64_t) override {}
     void aimed(const AimActivity&) override {}
@@ -85,7 +85,7 @@ private:
     std::vector<std::uint64_t> left_;
 };
 
-std::string hello(const std::string& token = kToken) {
+std::string api_hello(const std::string& token = kApiToken) {
     return p::encode(p::Hello{p::RequestId{std::int64_t{1}}, token, "provider_http_api_test"});
 }
 
@@ -93,7 +93,7 @@ class ProviderHttpApi : public ::testing::Test {
 protected:
     TempDir dir;
     fs::path doc;
-    std::shared_ptr<Recorder> recorder = std::make_shared<Recorder>();
+    std::shared_ptr<ApiRecorder> recorder = std::make_shared<ApiRecorder>();
     std::shared_ptr<Service> service;
     std::unique_ptr<Server> server;
     std::atomic<int> calls{0};
@@ -107,7 +107,7 @@ protected:
         Board board;
         board.items.push_back({"Report", doc, std::nullopt, std::nullopt, std::nullopt});
         auto resolver = std::make_shared<BoardResolver>(board, std::vector<PixelRect>{{0, 0, 1920, 1080}});
-        service = std::make_shared<Service>(default_service_config(), kToken,
+        service = std::make_shared<Service>(default_service_config(), kApiToken,
                                             std::vector<std::shared_ptr<const Resolver>>{resolver}, nullptr, recorder);
         ServerOptions server_options;
         server_options.api_sessions = options;
@@ -118,7 +118,7 @@ protected:
         return "https://127.0.0.1:" + std::to_string(server->port()) + path;
     }
     // One curl for all calls (--next), so they share a kept-alive connection.
-    std::vector<Response> curl_many(const std::vector<Call>& list, const std::string& options = "") {
+    std::vector<ApiResponse> curl_many(const std::vector<Call>& list, const std::string& options = "") {
         std::string command = "curl";
         const int batch = calls++;
         for (std::size_t i = 0; i < list.size(); ++i) {
@@ -135,11 +135,11 @@ protected:
             command += " '" + url(c.path) + "'";
         }
         const auto r = run_command(command);
-        std::vector<Response> out;
+        std::vector<ApiResponse> out;
         std::size_t at = 0;
         for (std::size_t i = 0; i < list.size(); ++i) {
             const std::string stem = (dir.path / ("c" + std::to_string(batch) + "-" + std::to_string(i))).string();
-            Response res;
+            ApiResponse res;
             const auto end = r.out.find('\n', at);
             if (end != std::string::npos) {
                 res.status = std::atoi(r.out.substr(at, end - at).c_str());
@@ -154,13 +154,13 @@ protected:
         }
         return out;
     }
-    Response call(const Call& c, const std::string& options = "") { return curl_many({c}, options).at(0); }
-    Response post(const std::string& path, const std::string& body) { return call({"POST", path, body}); }
-    Response poll(const std::string& session, const std::string& options = "") {
+    ApiResponse call(const Call& c, const std::string& options = "") { return curl_many({c}, options).at(0); }
+    ApiResponse post(const std::string& path, const std::string& body) { return call({"POST", path, body}); }
+    ApiResponse poll(const std::string& session, const std::string& options = "") {
         return call({"GET", "/api/session/" + session + "/events", ""}, options);
     }
     std::string welcome() {
-        const Response r = post("/api/hello", hello());
+        const ApiResponse r = post("/api/hello", api_hello());
         EXPECT_EQ(r.status, 200) << r.raw;
         const auto messages = r.messages();
         EXPECT_TRUE(messages.size() == 1 && std::holds_alternative<p::Welcome>(messages[0])) << r.raw;
@@ -180,7 +180,7 @@ protected:
 
 TEST_F(ProviderHttpApi, HelloAimGrabAndTheDownload) {
     start();
-    const Response r = post("/api/hello", hello());
+    const ApiResponse r = post("/api/hello", api_hello());
     ASSERT_EQ(r.status, 200) << r.raw;
     const std::string session = r.session();
     ASSERT_EQ(session.size(), 32u) << r.raw;
@@ -211,12 +211,12 @@ TEST_F(ProviderHttpApi, HelloAimGrabAndTheDownload) {
     const auto content = std::get<p::Content>(replies[2].messages()[0]);
     EXPECT_EQ(content.id, p::RequestId{std::string("g1")});
     ASSERT_TRUE(content.download);
-    const Response download = call({"GET", *content.download, ""}, "-H 'Authorization: Bearer " + std::string(kToken) + "'");
+    const ApiResponse download = call({"GET", *content.download, ""}, "-H 'Authorization: Bearer " + std::string(kApiToken) + "'");
     EXPECT_EQ(download.status, 200);
     EXPECT_EQ(download.raw, "the report\n");
 
     // A bad message is answered and keeps the session, as over the WebSocket.
-    const Response bad = post("/api/session/" + session, R"({"type":"grab","v":1,"id":"g2","point":"here"})");
+    const ApiResponse bad = post("/api/session/" + session, R"({"type":"grab","v":1,"id":"g2","point":"here"})");
     EXPECT_EQ(bad.status, 200);
     ASSERT_EQ(bad.messages().size(), 1u);
     EXPECT_EQ(std::get<p::Error>(bad.messages()[0]).code, p::ErrorCode::bad_request);
@@ -226,17 +226,17 @@ TEST_F(ProviderHttpApi, HelloAimGrabAndTheDownload) {
 
 TEST_F(ProviderHttpApi, ARefusedHelloIsClosedWithoutASession) {
     start();
-    const Response wrong = post("/api/hello", hello("not-the-token-0123456789abcdef"));
+    const ApiResponse wrong = post("/api/hello", api_hello("not-the-token-0123456789abcdef"));
     EXPECT_EQ(wrong.status, 200);
     ASSERT_EQ(wrong.messages().size(), 1u) << wrong.raw;
     EXPECT_EQ(std::get<p::Error>(wrong.messages()[0]).code, p::ErrorCode::unauthorized);
     EXPECT_EQ(wrong.closed(), 1008);
     EXPECT_FALSE(wrong.body.contains("session"));
 
-    const Response not_hello = post("/api/hello", R"({"type":"aim","v":1,"point":[1,1],"confidence":1})");
+    const ApiResponse not_hello = post("/api/hello", R"({"type":"aim","v":1,"point":[1,1],"confidence":1})");
     EXPECT_EQ(not_hello.closed(), 1008);
     EXPECT_EQ(std::get<p::Error>(not_hello.messages().at(0)).code, p::ErrorCode::unauthorized);
-    const Response version = post("/api/hello", R"({"type":"hello","v":2,"id":1,"token":"x","client":""})");
+    const ApiResponse version = post("/api/hello", R"({"type":"hello","v":2,"id":1,"token":"x","client":""})");
     EXPECT_EQ(version.closed(), 1008);
     EXPECT_EQ(std::get<p::Error>(version.messages().at(0)).code, p::ErrorCode::unsupported_version);
     EXPECT_EQ(server->api_sessions().size(), 0u);
@@ -250,21 +250,21 @@ TEST_F(ProviderHttpApi, UnknownSessionsPathsAndMethods) {
     other[0] = other[0] == 'a' ? 'b' : 'a';
     for (const std::string& path : {"/api/session/" + other, "/api/session/" + other + "/close",
                                     "/api/session/" + session.substr(0, 31), "/api/session/" + session + "0"}) {
-        const Response r = post(path, R"({"type":"seeking","v":1})");
+        const ApiResponse r = post(path, R"({"type":"seeking","v":1})");
         EXPECT_EQ(r.status, 404) << path;
         EXPECT_EQ(r.closed(), 1008) << path;
         ASSERT_EQ(r.messages().size(), 1u) << r.raw;
         EXPECT_EQ(std::get<p::Error>(r.messages()[0]).code, p::ErrorCode::not_found);
     }
-    const Response events = poll(other);
+    const ApiResponse events = poll(other);
     EXPECT_EQ(events.status, 404);
     EXPECT_EQ(events.closed(), 1008);
 
-    const Response unknown_path = post("/api/sessions", "{}");
+    const ApiResponse unknown_path = post("/api/sessions", "{}");
     EXPECT_EQ(unknown_path.status, 404);
     EXPECT_EQ(unknown_path.closed(), 0) << "no session is concerned";
     EXPECT_EQ(post("/api/session/" + session + "/events", "{}").status, 405);
-    const Response get_hello = call({"GET", "/api/hello", ""});
+    const ApiResponse get_hello = call({"GET", "/api/hello", ""});
     EXPECT_EQ(get_hello.status, 405);
     EXPECT_NE(get_hello.headers.find("Allow: POST"), std::string::npos) << get_hello.headers;
     EXPECT_EQ(call({"OPTIONS", "/api/hello", ""}).status, 405) << "no CORS preflight is ever answered";
@@ -276,13 +276,13 @@ TEST_F(ProviderHttpApi, PostsMustBeJson) {
     start();
     for (const char* type : {"", "text/plain", "application/x-www-form-urlencoded", "multipart/form-data",
                                     "application/jsonp", "application/json-patch+json"}) {
-        const Response r = call({"POST", "/api/hello", hello(), type});
+        const ApiResponse r = call({"POST", "/api/hello", api_hello(), type});
         EXPECT_EQ(r.status, 415) << type;
         ASSERT_EQ(r.messages().size(), 1u) << r.raw;
         EXPECT_EQ(std::get<p::Error>(r.messages()[0]).code, p::ErrorCode::bad_request);
     }
     EXPECT_EQ(server->api_sessions().size(), 0u);
-    EXPECT_EQ(call({"POST", "/api/hello", hello(), "Application/JSON; charset=utf-8"}).status, 200);
+    EXPECT_EQ(call({"POST", "/api/hello", api_hello(), "Application/JSON; charset=utf-8"}).status, 200);
     const std::string session = welcome();
     EXPECT_EQ(call({"POST", "/api/session/" + session, R"({"type":"seeking","v":1})", "text/plain"}).status, 415);
     EXPECT_EQ(call({"POST", "/api/session/" + session + "/close", "", "text/plain"}).status, 415);
@@ -293,7 +293,7 @@ TEST_F(ProviderHttpApi, BodiesAboveTheLimitAre413) {
     start();
     const std::string session = welcome();
     const std::string big = R"({"type":"seeking","v":1,"pad":")" + std::string(16 * 1024, 'x') + "\"}";
-    const Response r = post("/api/session/" + session, big);
+    const ApiResponse r = post("/api/session/" + session, big);
     EXPECT_EQ(r.status, 413);
     ASSERT_EQ(r.messages().size(), 1u) << r.raw;
     EXPECT_EQ(std::get<p::Error>(r.messages()[0]).code, p::ErrorCode::too_large);
@@ -322,7 +322,7 @@ TEST_F(ProviderHttpApi, ALongPollIsAnsweredEmptyAtItsTimeout) {
     start(options);
     const std::string session = welcome();
     const auto t0 = std::chrono::steady_clock::now();
-    const Response r = poll(session);
+    const ApiResponse r = poll(session);
     const auto took = std::chrono::steady_clock::now() - t0;
     EXPECT_EQ(r.status, 200);
     EXPECT_EQ(r.raw, R"({"messages":[]})");
@@ -351,14 +351,14 @@ TEST_F(ProviderHttpApi, AnOpenPollHearsThatTheScreensChanged) {
     service->set_screens(lay_out_desktop({{"left", 0, 0, 1920, 1080}, {"right", 1920, 0, 1920, 1080}}));
     ASSERT_EQ(pending.wait_for(5s), std::future_status::ready);
     EXPECT_LT(std::chrono::steady_clock::now() - t0, 2s) << "at once, not at the poll's timeout";
-    const Response r = pending.get();
+    const ApiResponse r = pending.get();
     EXPECT_EQ(r.status, 200);
     EXPECT_EQ(r.raw, R"({"messages":[],"closed":1012})");
     EXPECT_EQ(server->api_sessions().size(), 1u) << "the polled session ended";
     EXPECT_EQ(recorder->left_count(), 1u);
 
     // The other, welcomed before too, hears it at its next request.
-    const Response stale = post("/api/session/" + idle, R"({"type":"aim","v":1,"point":[1,1],"confidence":1})");
+    const ApiResponse stale = post("/api/session/" + idle, R"({"type":"aim","v":1,"point":[1,1],"confidence":1})");
     EXPECT_EQ(stale.status, 200);
     EXPECT_EQ(stale.raw, R"({"messages":[],"closed":1012})");
     EXPECT_EQ(server->api_sessions().size(), 0u);
@@ -367,7 +367,7 @@ TEST_F(ProviderHttpApi, AnOpenPollHearsThatTheScreensChanged) {
 
     // A new session gets the new field; a poll starting on a stale session is
     // answered at once.
-    const Response fresh = post("/api/hello", hello());
+    const ApiResponse fresh = post("/api/hello", api_hello());
     EXPECT_EQ(std::get<p::Welcome>(fresh.messages().at(0)).field.screens.size(), 2u);
     const std::string newer = fresh.session();
     service->set_screens(lay_out_desktop({{"one", 0, 0, 1920, 1080}}));
@@ -401,14 +401,14 @@ TEST_F(ProviderHttpApi, IdleSessionsExpireAndTheListenerHearsIt) {
 TEST_F(ProviderHttpApi, The257thSessionIsRefused) {
     start();
     ASSERT_EQ(ApiSessionOptions{}.max_sessions, 256u);
-    std::vector<Call> hellos(256, Call{"POST", "/api/hello", hello()});
+    std::vector<Call> hellos(256, Call{"POST", "/api/hello", api_hello()});
     std::vector<std::string> sessions;
     for (const auto& r : curl_many(hellos)) {
         EXPECT_EQ(r.status, 200);
         sessions.push_back(r.session());
     }
     EXPECT_EQ(server->api_sessions().size(), 256u);
-    const Response refused = post("/api/hello", hello());
+    const ApiResponse refused = post("/api/hello", api_hello());
     EXPECT_EQ(refused.status, 503);
     EXPECT_FALSE(refused.body.contains("session"));
     EXPECT_EQ(refused.closed(), 1013);
@@ -418,7 +418,7 @@ TEST_F(ProviderHttpApi, The257thSessionIsRefused) {
     EXPECT_NE(error.message.find("256 HTTPS sessions"), std::string::npos) << error.message;
     // One ends: room again.
     EXPECT_EQ(post("/api/session/" + sessions[7] + "/close", "").closed(), 1000);
-    EXPECT_EQ(post("/api/hello", hello()).status, 200);
+    EXPECT_EQ(post("/api/hello", api_hello()).status, 200);
 }
 
 TEST_F(ProviderHttpApi, AClientLeavingMidPollLeavesNothingBehind) {
@@ -427,7 +427,7 @@ TEST_F(ProviderHttpApi, AClientLeavingMidPollLeavesNothingBehind) {
     start(options);
     const std::string session = welcome();
     const auto t0 = std::chrono::steady_clock::now();
-    const Response cut = poll(session, "--max-time 0.5");
+    const ApiResponse cut = poll(session, "--max-time 0.5");
     EXPECT_EQ(cut.status, 0) << "curl gave up";
     EXPECT_LT(std::chrono::steady_clock::now() - t0, 5s);
     // The connection, its timer and the waiter are gone at once, not after 20 s.
@@ -446,7 +446,7 @@ TEST_F(ProviderHttpApi, CloseEndsTheSessionAndAnswersItsPoll) {
     const std::string session = welcome();
     auto pending = std::async(std::launch::async, [&] { return poll(session); });
     ASSERT_TRUE(eventually([&] { return server->api_sessions().polls_waiting() == 1; }));
-    const Response closed = post("/api/session/" + session + "/close", "");
+    const ApiResponse closed = post("/api/session/" + session + "/close", "");
     EXPECT_EQ(closed.status, 200);
     EXPECT_EQ(closed.raw, R"({"messages":[],"closed":1000})");
     ASSERT_EQ(pending.wait_for(5s), std::future_status::ready);

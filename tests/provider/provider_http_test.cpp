@@ -31,9 +31,9 @@ namespace p = umf::protocol;
 using namespace umf::provider;
 using umf::test::run_command;
 
-constexpr const char* kToken = "http-test-token-0123456789ab";
+constexpr const char* kHttpToken = "http-test-token-0123456789ab";
 
-struct Response {
+struct HttpResponse {
     int status = 0;
     std::string body;
     std::string headers;
@@ -61,7 +61,7 @@ protected:
         Board board;
         board.items.push_back({"Big", big, std::nullopt, std::nullopt, std::nullopt});
         auto resolver = std::make_shared<BoardResolver>(board, std::vector<PixelRect>{{0, 0, 1920, 1080}});
-        service = std::make_shared<Service>(default_service_config(), kToken,
+        service = std::make_shared<Service>(default_service_config(), kHttpToken,
                                             std::vector<std::shared_ptr<const Resolver>>{resolver});
         const TlsIdentity identity = load_or_create_tls_identity(dir.path / "cfg");
         server = make_server(service, identity);
@@ -70,7 +70,7 @@ protected:
     // The content a grab over the WebSocket would get, and its link.
     p::Content grab_content() {
         SessionState state;
-        service->handle_text(state, p::encode(p::Hello{std::nullopt, kToken, "t"}));
+        service->handle_text(state, p::encode(p::Hello{std::nullopt, kHttpToken, "t"}));
         const auto out = service->handle_text(state, p::encode(p::Grab{p::RequestId{std::string("g")}, {5, 5}}));
         return std::get<p::Content>(out.replies.at(0));
     }
@@ -79,13 +79,13 @@ protected:
         std::ifstream in(big, std::ios::binary);
         return {std::istreambuf_iterator<char>(in), {}};
     }
-    Response curl(const std::string& target, const std::string& options = "") {
+    HttpResponse curl(const std::string& target, const std::string& options = "") {
         const fs::path body = dir.path / "body", headers = dir.path / "headers";
         fs::remove(body);
         const auto r = run_command("curl -s -k --path-as-is --max-time 20 " + options + " -o '" + body.string() +
                                    "' -D '" + headers.string() + "' -w '%{http_code}' 'https://127.0.0.1:" +
                                    std::to_string(server->port()) + target + "'");
-        Response out;
+        HttpResponse out;
         out.status = std::atoi(r.out.c_str());
         std::ifstream b(body, std::ios::binary), h(headers);
         out.body.assign(std::istreambuf_iterator<char>(b), {});
@@ -93,8 +93,8 @@ protected:
         return out;
     }
     // A download link's request, with the grabbing session's token.
-    Response download(const std::string& link, const std::string& options = "") {
-        return curl(link, "-H 'Authorization: Bearer " + std::string(kToken) + "' " + options);
+    HttpResponse download(const std::string& link, const std::string& options = "") {
+        return curl(link, "-H 'Authorization: Bearer " + std::string(kHttpToken) + "' " + options);
     }
     bool sessions_drain() {
         for (int i = 0; i < 200 && server->connection_count() > 0; ++i)
@@ -110,22 +110,22 @@ TEST_F(ProviderHttp, ADownloadLinkAsksForTheGrabbingSessionsToken) {
     const std::string link = grab_link();
     for (const std::string& options : std::vector<std::string>
          {std::string(), std::string("-H 'Authorization: Bearer wrong-token-0123456789abcdef'"),
-          "-H 'Authorization: Basic " + std::string(kToken) + "'", std::string("-H 'Authorization: Bearer'")}) {
-        const Response refused = curl(link, options);
+          "-H 'Authorization: Basic " + std::string(kHttpToken) + "'", std::string("-H 'Authorization: Bearer'")}) {
+        const HttpResponse refused = curl(link, options);
         EXPECT_EQ(refused.status, 401) << options;
         const auto error = p::parse_error_body(refused.body);
         ASSERT_TRUE(error) << refused.body;
         EXPECT_EQ(error->code, p::ErrorCode::unauthorized);
         EXPECT_NE(refused.body.find("Authorization: Bearer"), std::string::npos) << refused.body;
     }
-    const Response owner = curl(link, "-H 'authorization: bearer " + std::string(kToken) + "'");
+    const HttpResponse owner = curl(link, "-H 'authorization: bearer " + std::string(kHttpToken) + "'");
     EXPECT_EQ(owner.status, 200) << "the scheme is case-insensitive, and the link outlived the refusals";
     EXPECT_EQ(owner.body.size(), fs::file_size(big));
 }
 
 TEST_F(ProviderHttp, ADownloadLinkEndsWhenItsDownloadCompletes) {
     const std::string link = grab_link();
-    const Response first = download(link);
+    const HttpResponse first = download(link);
     EXPECT_EQ(first.status, 200);
     EXPECT_EQ(first.body.size(), fs::file_size(big));
     std::ifstream in(big, std::ios::binary);
@@ -137,7 +137,7 @@ TEST_F(ProviderHttp, ADownloadLinkEndsWhenItsDownloadCompletes) {
     EXPECT_NE(first.headers.find("Content-Type: application/octet-stream"), std::string::npos);
     EXPECT_NE(first.headers.find("Cache-Control: no-store"), std::string::npos);
 
-    const Response second = download(link);
+    const HttpResponse second = download(link);
     EXPECT_EQ(second.status, 404);
     const auto error = p::parse_error_body(second.body);
     ASSERT_TRUE(error) << second.body;
@@ -149,7 +149,7 @@ TEST_F(ProviderHttp, NoClientPathReachesTheFileSystem) {
     for (const std::string& target : std::vector<std::string>{"/../../../../etc/passwd", "/%2e%2e/%2e%2e/%2e%2e/etc/passwd", "//etc/passwd", "/dl/../index.html",
           "/dl/..%2f..%2fetc%2fpasswd", "/dl/" + (dir.path / "secret.txt").string(), "/secret.txt",
           "/provider-key.pem", "/dl/AAAAAAAAAAAAAAAAAAAAAA", "/index.html/..", "/\\..\\etc\\passwd"}) {
-        const Response r = curl(target);
+        const HttpResponse r = curl(target);
         EXPECT_EQ(r.status, 404) << target;
         EXPECT_EQ(r.body.find("not for requesters"), std::string::npos) << target;
         EXPECT_EQ(r.body.find("root:"), std::string::npos) << target;
@@ -161,7 +161,7 @@ TEST_F(ProviderHttp, NoClientPathReachesTheFileSystem) {
 }
 
 TEST_F(ProviderHttp, PagesCarryAContentSecurityPolicyForAWasmWorker) {
-    const Response page = curl("/");
+    const HttpResponse page = curl("/");
     EXPECT_EQ(page.status, 200);
     const auto at = page.headers.find("Content-Security-Policy: ");
     ASSERT_NE(at, std::string::npos) << page.headers;
@@ -174,11 +174,11 @@ TEST_F(ProviderHttp, PagesCarryAContentSecurityPolicyForAWasmWorker) {
           std::string("style-src 'self';"), std::string("frame-ancestors 'none'")})
         EXPECT_NE(csp.find(part), std::string::npos) << part << "\n" << csp;
     EXPECT_EQ(page.body.find("style="), std::string::npos) << "no inline style under style-src 'self'";
-    const Response style = curl("/umf-provider.css");
+    const HttpResponse style = curl("/umf-provider.css");
     EXPECT_EQ(style.status, 200);
     EXPECT_NE(style.headers.find("Content-Type: text/css; charset=utf-8"), std::string::npos) << style.headers;
     // A Host that is not a plain host:port adds nothing to the policy.
-    const Response odd = curl("/", "-H 'Host: a b;script-src *'");
+    const HttpResponse odd = curl("/", "-H 'Host: a b;script-src *'");
     EXPECT_EQ(odd.headers.find("script-src *"), std::string::npos) << odd.headers;
 }
 
@@ -186,14 +186,14 @@ TEST_F(ProviderHttp, PagesCarryAContentSecurityPolicyForAWasmWorker) {
 // screens"): its own screen's list of the others, and their fields, which
 // pages of any origin may read; neither needs the token.
 TEST_F(ProviderHttp, NearbyScreensAndTheFieldAreServedWithoutAToken) {
-    const Response none = curl("/nearby.json");
+    const HttpResponse none = curl("/nearby.json");
     EXPECT_EQ(none.status, 200);
     EXPECT_EQ(none.body, R"({"screens":[]})");
     EXPECT_NE(none.headers.find("Content-Type: application/json"), std::string::npos) << none.headers;
     EXPECT_NE(none.headers.find("Cache-Control: no-store"), std::string::npos) << none.headers;
     EXPECT_EQ(none.headers.find("Access-Control-Allow-Origin"), std::string::npos) << "the list is for its own page";
 
-    const Response field = curl("/field.json", "-H 'Origin: https://other.local:8443'");
+    const HttpResponse field = curl("/field.json", "-H 'Origin: https://other.local:8443'");
     EXPECT_EQ(field.status, 200);
     EXPECT_NE(field.headers.find("Access-Control-Allow-Origin: *"), std::string::npos) << field.headers;
     EXPECT_EQ(umf::field_to_json(umf::parse_field(field.body)), umf::field_to_json(service->screens()->field.definition));
@@ -207,10 +207,10 @@ TEST_F(ProviderHttp, NearbyScreensAndTheFieldAreServedWithoutAToken) {
     ServiceConfig config = default_service_config();
     config.nearby = nearby;
     server->stop();
-    service = std::make_shared<Service>(std::move(config), kToken);
+    service = std::make_shared<Service>(std::move(config), kHttpToken);
     server = make_server(service, load_or_create_tls_identity(dir.path / "cfg"));
     server->start();
-    const Response two = curl("/nearby.json");
+    const HttpResponse two = curl("/nearby.json");
     EXPECT_EQ(two.status, 200);
     EXPECT_EQ(two.body, R"({"screens":[{"name":"umf on b","origin":"https://b.local:9443","fingerprint":")" +
                             std::string(64, 'b') + R"("},{"name":"umf on \"a\"","origin":"https://a.local:8443",)"
@@ -266,7 +266,7 @@ TEST_F(ProviderHttp, ADownloadCutOffResumesWhereItStopped) {
     // 24 MiB read at 1 MiB/s, abandoned after half a second.
     const p::Content offered = grab_content();
     const std::string link = *offered.download;
-    const Response cut = download(link, "--limit-rate 1M --max-time 0.5");
+    const HttpResponse cut = download(link, "--limit-rate 1M --max-time 0.5");
     ASSERT_LT(cut.body.size(), fs::file_size(big));
     const std::string etag = "\"sha256-" + *offered.sha256 + "\"";
     EXPECT_NE(cut.headers.find("ETag: " + etag), std::string::npos) << cut.headers;
@@ -274,7 +274,7 @@ TEST_F(ProviderHttp, ADownloadCutOffResumesWhereItStopped) {
     EXPECT_TRUE(sessions_drain()) << server->connection_count() << " connections still open";
 
     const std::size_t have = cut.body.size();
-    const Response rest =
+    const HttpResponse rest =
         download(link, "-H 'Range: bytes=" + std::to_string(have) + "-' -H 'If-Range: " + etag + "'");
     EXPECT_EQ(rest.status, 206);
     EXPECT_NE(rest.headers.find("Content-Range: bytes " + std::to_string(have) + "-" +
@@ -292,12 +292,12 @@ TEST_F(ProviderHttp, ResumeRequestsThatCannotBeMetGetTheWholeOrAReason) {
     const p::Content offered = grab_content();
     const std::string link = *offered.download;
     EXPECT_EQ(download(link, "-I").status, 200);
-    const Response other = download(link, "-H 'Range: bytes=100-' -H 'If-Range: \"sha256-0000\"'");
+    const HttpResponse other = download(link, "-H 'Range: bytes=100-' -H 'If-Range: \"sha256-0000\"'");
     EXPECT_EQ(other.status, 200);
     EXPECT_TRUE(other.body == read_big()) << "another version's resume gets the whole file";
 
     const p::Content again = grab_content();
-    const Response past = download(*again.download, "-H 'Range: bytes=" + std::to_string(fs::file_size(big)) + "-'");
+    const HttpResponse past = download(*again.download, "-H 'Range: bytes=" + std::to_string(fs::file_size(big)) + "-'");
     EXPECT_EQ(past.status, 416);
     EXPECT_NE(past.headers.find("Content-Range: bytes */" + std::to_string(fs::file_size(big))), std::string::npos)
         << past.headers;
@@ -318,7 +318,7 @@ TEST_F(ProviderHttp, AFileChangedInPlaceAfterTheGrabIsCutNotSent) {
     }
     fs::last_write_time(big, mtime);
     const std::string changed = read_big();
-    const Response cut = download(*offered.download);
+    const HttpResponse cut = download(*offered.download);
     EXPECT_LT(cut.body.size(), changed.size()) << "the changed file went out whole";
     EXPECT_TRUE(sessions_drain());
 
@@ -328,7 +328,7 @@ TEST_F(ProviderHttp, AFileChangedInPlaceAfterTheGrabIsCutNotSent) {
     const std::string now = sha.hex();
     EXPECT_NE(*offered.sha256, now);
     EXPECT_EQ(*again.sha256, now) << "the next grab hashed the file again";
-    const Response whole = download(*again.download);
+    const HttpResponse whole = download(*again.download);
     EXPECT_EQ(whole.status, 200);
     EXPECT_TRUE(whole.body == changed) << "the file as it is now, whole";
 }
@@ -341,7 +341,7 @@ TEST_F(ProviderHttp, AFileRewrittenAfterTheGrabIsRefusedWithItsReason) {
     const fs::path next = dir.path / "next.bin";
     std::ofstream(next, std::ios::binary) << bytes;
     fs::rename(next, big);
-    const Response r = download(*offered.download);
+    const HttpResponse r = download(*offered.download);
     EXPECT_EQ(r.status, 409);
     const auto error = p::parse_error_body(r.body);
     ASSERT_TRUE(error) << r.body;

@@ -47,7 +47,7 @@ p::Message parse_reply(const std::string& text) {
     return std::get<p::Message>(parsed);
 }
 
-std::string hello(const std::string& token, int id = 1) {
+std::string server_hello(const std::string& token, int id = 1) {
     return p::encode(p::Hello{p::RequestId{std::int64_t{id}}, token, "provider_server_test"});
 }
 
@@ -65,7 +65,7 @@ public:
     // The welcome for a good token.
     void connect_and_hello(const std::string& token) {
         ASSERT_FALSE(connect());
-        ASSERT_FALSE(send(hello(token)));
+        ASSERT_FALSE(send(server_hello(token)));
         const p::Message m = read_message();
         ASSERT_TRUE(std::holds_alternative<p::Welcome>(m)) << p::type_name(m);
     }
@@ -136,7 +136,7 @@ protected:
     Service service{default_service_config(), "good-token-0123456789abcdef"};
     SessionState state;
     void welcome() {
-        auto out = service.handle_text(state, hello("good-token-0123456789abcdef"));
+        auto out = service.handle_text(state, server_hello("good-token-0123456789abcdef"));
         ASSERT_EQ(out.replies.size(), 1u);
         ASSERT_TRUE(std::holds_alternative<p::Welcome>(out.replies[0]));
         ASSERT_FALSE(out.close);
@@ -151,7 +151,7 @@ protected:
 };
 
 TEST_F(ProviderService, WelcomeCarriesTheDefaultFieldAndBalancedPreset) {
-    auto out = service.handle_text(state, hello("good-token-0123456789abcdef", 42));
+    auto out = service.handle_text(state, server_hello("good-token-0123456789abcdef", 42));
     ASSERT_EQ(out.replies.size(), 1u);
     const auto& w = std::get<p::Welcome>(out.replies[0]);
     EXPECT_EQ(w.id, p::RequestId{std::int64_t{42}});
@@ -187,7 +187,7 @@ TEST_F(ProviderService, ScreensThatChangeMoveTheFieldAndRestartOlderSessions) {
 
     // A new session gets the new field and is served.
     SessionState fresh;
-    auto out = service.handle_text(fresh, hello("good-token-0123456789abcdef"));
+    auto out = service.handle_text(fresh, server_hello("good-token-0123456789abcdef"));
     ASSERT_EQ(out.replies.size(), 1u);
     EXPECT_EQ(std::get<p::Welcome>(out.replies[0]).field.screens.size(), 2u);
     auto aim = service.handle_text(fresh, R"({"type":"aim","v":1,"id":4,"point":[100,30],"confidence":0.9})");
@@ -204,7 +204,7 @@ TEST_F(ProviderService, ScreensThatChangeMoveTheFieldAndRestartOlderSessions) {
 }
 
 TEST_F(ProviderService, BeforeWelcomeEverythingElseCloses) {
-    auto wrong = service.handle_text(state, hello("wrong-token-0123456789abcdef"));
+    auto wrong = service.handle_text(state, server_hello("wrong-token-0123456789abcdef"));
     EXPECT_EQ(code_of(wrong), p::ErrorCode::unauthorized);
     EXPECT_TRUE(wrong.close);
     EXPECT_FALSE(state.welcomed);
@@ -250,7 +250,7 @@ TEST_F(ProviderService, AfterWelcomeRequestsAreAnsweredAndNothingCloses) {
     }
     auto id_kept = service.handle_text(state, R"({"type":"grab","v":1,"id":"g2","point":"here"})");
     EXPECT_EQ(std::get<p::Error>(id_kept.replies[0]).id, p::RequestId{std::string("g2")});
-    auto again = service.handle_text(state, hello("good-token-0123456789abcdef"));
+    auto again = service.handle_text(state, server_hello("good-token-0123456789abcdef"));
     EXPECT_EQ(code_of(again), p::ErrorCode::bad_request);
     EXPECT_FALSE(again.close);
     EXPECT_EQ(code_of(service.handle_binary(state)), p::ErrorCode::bad_request);
@@ -260,10 +260,10 @@ TEST_F(ProviderService, AfterWelcomeRequestsAreAnsweredAndNothingCloses) {
 
 TEST_F(ProviderService, TokenCanBeReplaced) {
     service.set_token("new-token-0123456789abcdefgh");
-    auto old = service.handle_text(state, hello("good-token-0123456789abcdef"));
+    auto old = service.handle_text(state, server_hello("good-token-0123456789abcdef"));
     EXPECT_EQ(code_of(old), p::ErrorCode::unauthorized);
     SessionState fresh;
-    service.handle_text(fresh, hello("new-token-0123456789abcdefgh"));
+    service.handle_text(fresh, server_hello("new-token-0123456789abcdefgh"));
     EXPECT_TRUE(fresh.welcomed);
 }
 
@@ -294,7 +294,7 @@ protected:
 TEST_F(ProviderServer, HelloWithTheTokenIsWelcomed) {
     auto c = client();
     ASSERT_FALSE(c->connect());
-    ASSERT_FALSE(c->send(hello(token, 1)));
+    ASSERT_FALSE(c->send(server_hello(token, 1)));
     const p::Message m = c->read_message();
     const auto* w = std::get_if<p::Welcome>(&m);
     ASSERT_NE(w, nullptr) << p::type_name(m);
@@ -306,7 +306,7 @@ TEST_F(ProviderServer, HelloWithTheTokenIsWelcomed) {
 TEST_F(ProviderServer, WrongTokenIsUnauthorizedThenClosed) {
     auto c = client();
     ASSERT_FALSE(c->connect());
-    ASSERT_FALSE(c->send(hello("not-the-token-0123456789abc")));
+    ASSERT_FALSE(c->send(server_hello("not-the-token-0123456789abc")));
     const p::Message m = c->read_message();
     ASSERT_TRUE(std::holds_alternative<p::Error>(m));
     EXPECT_EQ(std::get<p::Error>(m).code, p::ErrorCode::unauthorized);
@@ -317,12 +317,12 @@ TEST_F(ProviderServer, AnAddressGuessingTokensIsStopped) {
     for (int i = 0; i < kMaxWrongTokens; ++i) {
         auto c = client();
         ASSERT_FALSE(c->connect());
-        ASSERT_FALSE(c->send(hello("guess-" + std::to_string(i) + "-0123456789abcdefgh")));
+        ASSERT_FALSE(c->send(server_hello("guess-" + std::to_string(i) + "-0123456789abcdefgh")));
         EXPECT_EQ(std::get<p::Error>(c->read_message()).code, p::ErrorCode::unauthorized);
     }
     auto c = client();
     ASSERT_FALSE(c->connect());
-    ASSERT_FALSE(c->send(hello(token)));
+    ASSERT_FALSE(c->send(server_hello(token)));
     const p::Message m = c->read_message();
     ASSERT_TRUE(std::holds_alternative<p::Error>(m)) << p::type_name(m);
     EXPECT_EQ(std::get<p::Error>(m).code, p::ErrorCode::rate_limited) << "even the right token, for a minute";
@@ -434,7 +434,7 @@ TEST_F(ProviderServer, ASessionFromBeforeTheScreensChangedIsRestarted) {
     // Connecting again gives the new field.
     auto again = client();
     ASSERT_FALSE(again->connect());
-    ASSERT_FALSE(again->send(hello(token)));
+    ASSERT_FALSE(again->send(server_hello(token)));
     const p::Message m = again->read_message();
     ASSERT_TRUE(std::holds_alternative<p::Welcome>(m));
     EXPECT_EQ(std::get<p::Welcome>(m).field.screens.size(), 2u);

@@ -35,10 +35,10 @@ using umf::test::ScriptedDecider;
 using umf::test::TempDir;
 using umf::test::file_put;
 
-constexpr const char* kToken = "put-activity-token-0123456789";
+constexpr const char* kActivityToken = "put-activity-token-0123456789";
 
 // Every put step heard, in order, from whichever thread.
-class Recorder : public ActivityListener {
+class ActivityRecorder : public ActivityListener {
 public:
     void seeking(std::uint64_t) override {}
     void aimed(const AimActivity&) override {}
@@ -83,7 +83,7 @@ protected:
     fs::path trusted_file = dir.path / "cfg" / kTrustedDevicesFile;
     FakeXdgOpen xdg{dir.path / "bin"};
     std::shared_ptr<ScriptedDecider> decider = std::make_shared<ScriptedDecider>();
-    std::shared_ptr<Recorder> recorder = std::make_shared<Recorder>();
+    std::shared_ptr<ActivityRecorder> recorder = std::make_shared<ActivityRecorder>();
     std::ostringstream console_text;
     std::unique_ptr<Service> service;
     std::mutex mutex;
@@ -98,7 +98,7 @@ protected:
         config.puts.max_bytes = max_bytes;
         config.puts.trusted_devices = trusted_file;
         // The console in front, as `serve` has it, the recorder behind.
-        service = std::make_unique<Service>(std::move(config), kToken, std::vector<std::shared_ptr<const Resolver>>{},
+        service = std::make_unique<Service>(std::move(config), kActivityToken, std::vector<std::shared_ptr<const Resolver>>{},
                                             nullptr, std::make_shared<ConsoleActivity>(console_text, recorder));
     }
     void SetUp() override { make(); }
@@ -109,7 +109,7 @@ protected:
             pushed.push_back(std::move(message));
             pushed_cv.notify_all();
         };
-        const auto out = service->handle_text(s, p::encode(p::Hello{p::RequestId{std::int64_t{1}}, kToken,
+        const auto out = service->handle_text(s, p::encode(p::Hello{p::RequestId{std::int64_t{1}}, kActivityToken,
                                                                      "Pixel 7", device}));
         ASSERT_EQ(out.replies.size(), 1u);
         ASSERT_TRUE(std::holds_alternative<p::Welcome>(out.replies[0]));

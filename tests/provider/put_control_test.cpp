@@ -32,7 +32,7 @@ using namespace umf::provider;
 using umf::test::TempDir;
 namespace fs = std::filesystem;
 
-PutOffer file_offer(std::uint64_t id) {
+PutOffer control_file_offer(std::uint64_t id) {
     PutOffer o;
     o.id = id;
     o.client = "Pixel 7";
@@ -44,7 +44,7 @@ PutOffer file_offer(std::uint64_t id) {
     return o;
 }
 
-PutOffer url_offer(std::uint64_t id) {
+PutOffer control_url_offer(std::uint64_t id) {
     PutOffer o;
     o.id = id;
     o.client = "umf-web/0.1 (Android; Chrome 120)";
@@ -54,7 +54,7 @@ PutOffer url_offer(std::uint64_t id) {
     return o;
 }
 
-struct Answers {
+struct ControlAnswers {
     std::mutex mutex;
     std::vector<PutReply> replies;
     std::function<void(PutReply)> callback() {
@@ -105,10 +105,10 @@ TEST(PutControl, ThePutsCommandListsAcceptsAndDismissesOverTheSocket) {
     EXPECT_EQ(none.code, 0) << none.err;
     EXPECT_EQ(none.out, "no puts are waiting for an answer\n");
 
-    Answers a7, a8, a9;
-    puts->ask(file_offer(7), a7.callback());
-    puts->ask(url_offer(8), a8.callback());
-    puts->ask(file_offer(9), a9.callback());
+    ControlAnswers a7, a8, a9;
+    puts->ask(control_file_offer(7), a7.callback());
+    puts->ask(control_url_offer(8), a8.callback());
+    puts->ask(control_file_offer(9), a9.callback());
     const Outcome list = run(puts_args());
     ASSERT_EQ(list.code, 0) << list.err;
     std::istringstream lines(list.out);
@@ -163,8 +163,8 @@ TEST(PutControl, ThePutsCommandListsAcceptsAndDismissesOverTheSocket) {
     EXPECT_NE(unknown.err.find("no put 42 is waiting"), std::string::npos) << unknown.err;
 
     // A withdrawn offer is gone from the list and cannot be answered.
-    Answers a10;
-    puts->ask(file_offer(10), a10.callback());
+    ControlAnswers a10;
+    puts->ask(control_file_offer(10), a10.callback());
     puts->withdraw(10);
     EXPECT_EQ(run(puts_args()).out, "no puts are waiting for an answer\n");
     EXPECT_EQ(run(puts_args({{"accept", "10"}})).code, 3);
@@ -203,8 +203,8 @@ TEST(PutControl, RequestsWithoutPutsOrSharesAndMalformedAnswers) {
     EXPECT_EQ(handle_control_request(R"({"cmd":"puts"})", nullptr, &puts), R"({"ok":true,"puts":[]})");
     EXPECT_NE(handle_control_request(R"({"cmd":"list"})", nullptr, &puts).find("shares nothing"), std::string::npos);
 
-    Answers answers;
-    puts.ask(file_offer(3), answers.callback());
+    ControlAnswers answers;
+    puts.ask(control_file_offer(3), answers.callback());
     for (const char* bad : {R"({"cmd":"put_answer","id":3})", R"({"cmd":"put_answer","id":3,"answer":"burn"})",
                             R"({"cmd":"put_answer","id":"3","answer":"save"})", R"({"cmd":"put_answer","id":-3,"answer":"save"})",
                             R"({"cmd":"put_answer","answer":"save"})", R"({"cmd":"put_answer","id":3,"answer":"save","always":1})",
@@ -230,8 +230,8 @@ TEST(PutDeciders, TheFirstAnswerWinsAndTheOthersAreWithdrawn) {
     auto prompt = std::make_shared<ControlPutDecider>();  // stands in for the desktop prompt
     auto control = std::make_shared<ControlPutDecider>();
     FirstAnswerDecider first({prompt, control});
-    Answers answers;
-    first.ask(file_offer(1), answers.callback());
+    ControlAnswers answers;
+    first.ask(control_file_offer(1), answers.callback());
     ASSERT_EQ(prompt->pending().size(), 1u);
     ASSERT_EQ(control->pending().size(), 1u);
     ASSERT_TRUE(control->answer(1, PutReply{PutAnswer::open, true}));
@@ -243,7 +243,7 @@ TEST(PutDeciders, TheFirstAnswerWinsAndTheOthersAreWithdrawn) {
     EXPECT_EQ(answers.count(), 1u);
 
     // withdraw reaches every decider.
-    first.ask(file_offer(2), answers.callback());
+    first.ask(control_file_offer(2), answers.callback());
     first.withdraw(2);
     EXPECT_TRUE(prompt->pending().empty());
     EXPECT_TRUE(control->pending().empty());
@@ -251,23 +251,23 @@ TEST(PutDeciders, TheFirstAnswerWinsAndTheOthersAreWithdrawn) {
 }
 
 TEST(PutDeciders, AFixedAnswerWinsAtOnce) {
-    Answers always;
+    ControlAnswers always;
     FixedPutDecider yes(PutAnswer::save);
-    yes.ask(file_offer(1), always.callback());
+    yes.ask(control_file_offer(1), always.callback());
     ASSERT_EQ(always.count(), 1u);
     EXPECT_EQ(always.replies[0].answer, PutAnswer::save);
     EXPECT_FALSE(always.replies[0].always_from_device);
 
     // First: the later deciders are never asked. Last: the earlier ones are withdrawn.
     auto control = std::make_shared<ControlPutDecider>();
-    Answers a, b;
+    ControlAnswers a, b;
     FirstAnswerDecider fixed_first({std::make_shared<FixedPutDecider>(PutAnswer::dismiss), control});
-    fixed_first.ask(file_offer(2), a.callback());
+    fixed_first.ask(control_file_offer(2), a.callback());
     ASSERT_EQ(a.count(), 1u);
     EXPECT_EQ(a.replies[0].answer, PutAnswer::dismiss);
     EXPECT_TRUE(control->pending().empty());
     FirstAnswerDecider fixed_last({control, std::make_shared<FixedPutDecider>(PutAnswer::save)});
-    fixed_last.ask(file_offer(3), b.callback());
+    fixed_last.ask(control_file_offer(3), b.callback());
     ASSERT_EQ(b.count(), 1u);
     EXPECT_EQ(b.replies[0].answer, PutAnswer::save);
     EXPECT_TRUE(control->pending().empty());
@@ -283,7 +283,7 @@ TEST(PutDeciders, RacingAnswersPassOnExactlyOne) {
         }
         auto first = std::make_shared<FirstAnswerDecider>(deciders);
         std::atomic<int> answered{0};
-        first->ask(file_offer(1), [&](PutReply) { ++answered; });
+        first->ask(control_file_offer(1), [&](PutReply) { ++answered; });
         std::vector<std::thread> threads;
         std::atomic<int> taken{0};
         for (int i = 0; i < 4; ++i)
@@ -336,8 +336,8 @@ TEST(PutText, SizesHostsSummariesAndPrintableText) {
     EXPECT_EQ(put_url_host("https://example.org"), "example.org");
     EXPECT_EQ(put_url_host("not a url"), "not a url");
 
-    EXPECT_EQ(put_offer_summary(file_offer(1)), "Incoming: report.pdf, 2.3 MB, from Pixel 7");
-    PutOffer u = url_offer(2);
+    EXPECT_EQ(put_offer_summary(control_file_offer(1)), "Incoming: report.pdf, 2.3 MB, from Pixel 7");
+    PutOffer u = control_url_offer(2);
     EXPECT_EQ(put_offer_summary(u), "Incoming: Talk page (https://example.org/talk), from umf-web/0.1 (Android; Chrome 120)");
     u.title.clear();
     u.client.clear();

@@ -92,7 +92,7 @@ void click_at(PutCard* card, QPointF at, Qt::MouseButton button = Qt::LeftButton
 void click(PutCard* card, Part part) { click_at(card, QRectF(card->part_rect(part)).center()); }
 
 // The answers a decider gave, as the service would receive them.
-struct Answers {
+struct PromptAnswers {
     std::mutex mutex;
     std::vector<PutReply> replies;
     std::vector<std::thread::id> threads;
@@ -204,7 +204,7 @@ TEST(PutPrompt, RequesterTextCannotSpoofTheCard) {
 TEST(PutPrompt, ClicksOnTheButtonsAnswerOnce) {
     umf::test::ensure_gui_application();
     PutPromptDecider decider(std::chrono::seconds(30));
-    Answers save, dismiss, open;
+    PromptAnswers save, dismiss, open;
     decider.ask(file_offer(1), save.callback());
     decider.ask(file_offer(2), dismiss.callback());
     decider.ask(file_offer(3), open.callback());
@@ -242,7 +242,7 @@ TEST(PutPrompt, ClicksOnTheButtonsAnswerOnce) {
 TEST(PutPrompt, TheToggleAcceptsTheDeviceFromNowOn) {
     umf::test::ensure_gui_application();
     PutPromptDecider decider(std::chrono::seconds(30));
-    Answers always, twice, refused;
+    PromptAnswers always, twice, refused;
     decider.ask(file_offer(1), always.callback());
     decider.ask(file_offer(2), twice.callback());
     decider.ask(file_offer(3), refused.callback());
@@ -275,7 +275,7 @@ TEST(PutPrompt, TheToggleAcceptsTheDeviceFromNowOn) {
 TEST(PutPrompt, WithdrawTakesTheCardDownWithoutAnAnswer) {
     umf::test::ensure_gui_application();
     PutPromptDecider decider(std::chrono::seconds(30));
-    Answers answers;
+    PromptAnswers answers;
     decider.ask(file_offer(5), answers.callback());
     decider.ask(url_offer(6), answers.callback());
     ASSERT_TRUE(pump_until([&] { return decider.cards().size() == 2; }, 3000));
@@ -291,7 +291,7 @@ TEST(PutPrompt, WithdrawTakesTheCardDownWithoutAnAnswer) {
 TEST(PutPrompt, TheCountdownRunsDownAndTheCardDismissesItself) {
     umf::test::ensure_gui_application();
     PutPromptDecider decider(std::chrono::seconds(2));
-    Answers answers;
+    PromptAnswers answers;
     decider.ask(file_offer(1), answers.callback());
     ASSERT_TRUE(pump_until([&] { return decider.card(1) != nullptr; }, 3000));
     PutCard* card = decider.card(1);
@@ -312,7 +312,7 @@ TEST(PutPrompt, CardsSitBesideThePointInsideTheScreenAndStackWithoutOverlap) {
     const QRect area = screen->geometry();
     const double dpr = screen->devicePixelRatio();
     PutPromptDecider decider(std::chrono::seconds(30));
-    Answers answers;
+    PromptAnswers answers;
     // Three offers at one point, one at the bottom-right corner, one without a point.
     const QPointF point(120 * dpr, 90 * dpr), corner((area.width() - 5) * dpr, (area.height() - 5) * dpr);
     for (std::uint64_t id = 1; id <= 5; ++id) {
@@ -370,7 +370,7 @@ TEST(PutPrompt, PlacementKeepsToTheScreenAndFallsBackToACascade) {
 TEST(PutPrompt, OffersFromAServerThreadReachTheQtThread) {
     umf::test::ensure_gui_application();
     PutPromptDecider decider(std::chrono::seconds(30));
-    Answers answers;
+    PromptAnswers answers;
     std::vector<std::thread> threads;
     for (std::uint64_t id = 1; id <= 4; ++id)
         threads.emplace_back([&, id] { decider.ask(file_offer(id), answers.callback()); });
@@ -386,7 +386,7 @@ TEST(PutPrompt, OffersFromAServerThreadReachTheQtThread) {
 TEST(PutPrompt, CardsStepAsideForASnapshotAndComeBack) {
     umf::test::ensure_gui_application();
     PutPromptDecider decider(std::chrono::seconds(2));
-    Answers answers;
+    PromptAnswers answers;
     decider.ask(file_offer(1), answers.callback());
     ASSERT_TRUE(pump_until([&] { return decider.card(1) != nullptr; }, 3000));
     EXPECT_TRUE(decider.card(1)->isVisible());

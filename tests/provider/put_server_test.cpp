@@ -51,7 +51,7 @@ using umf::test::ScriptedDecider;
 using umf::test::TempDir;
 using umf::test::file_put;
 
-constexpr const char* kToken = "put-server-token-0123456789ab";
+constexpr const char* kPutServerToken = "put-server-token-0123456789ab";
 
 // The server tests' requester (tests/support/tls_websocket_client.hpp)
 // speaking the protocol's messages.
@@ -73,7 +73,7 @@ public:
         return std::get<p::Message>(parsed);
     }
     // Hello (with a device when given); the welcome.
-    p::Welcome hello(const std::optional<std::string>& device = std::nullopt, const std::string& token = kToken) {
+    p::Welcome hello(const std::optional<std::string>& device = std::nullopt, const std::string& token = kPutServerToken) {
         EXPECT_FALSE(connect());
         EXPECT_FALSE(send(p::Hello{p::RequestId{std::int64_t{1}}, token, "put_server_test", device}));
         const p::Message m = read();
@@ -121,7 +121,7 @@ std::string random_bytes(std::size_t n, unsigned seed) {
     return s;
 }
 
-struct Response {
+struct PutResponse {
     int status = 0;
     std::string body;
     std::string headers;  // curl_upload's
@@ -155,7 +155,7 @@ protected:
         config.puts.max_bytes = max_bytes;
         config.puts.upload_ttl = upload_ttl;
         config.puts.trusted_devices = dir.path / "cfg" / "trusted-devices.json";
-        service = std::make_shared<Service>(std::move(config), kToken);
+        service = std::make_shared<Service>(std::move(config), kPutServerToken);
         server = make_server(service, identity);
         server->start();
     }
@@ -187,7 +187,7 @@ protected:
         return s && s->upload ? *s->upload : "";
     }
     // `options`: more of curl's ("-H 'Expect: 100-continue'", or "-H 'Expect:'" for none).
-    Response curl_upload(const std::string& path, const std::string& bytes, const std::string& options = "") {
+    PutResponse curl_upload(const std::string& path, const std::string& bytes, const std::string& options = "") {
         const fs::path source = dir.path / "upload.bin", body = dir.path / "answer.json",
                        headers = dir.path / "answer.headers";
         std::ofstream(source, std::ios::binary) << bytes;
@@ -256,7 +256,7 @@ TEST_F(PutServer, AnAcceptedFileIsUploadedAndSavedAndNeverOverwrites) {
     auto r = requester();
     const std::string bytes = random_bytes(3 * 1024 * 1024 + 17, 1);  // above every 16 KiB and 1 MiB limit
     const std::string path = accepted_upload(*r, bytes, "p2");
-    const Response answer = curl_upload(path, bytes);
+    const PutResponse answer = curl_upload(path, bytes);
     EXPECT_EQ(answer.status, 200) << answer.body;
     const auto json = nlohmann::json::parse(answer.body, nullptr, false);
     EXPECT_EQ(json.value("type", ""), "put_status");
@@ -272,7 +272,7 @@ TEST_F(PutServer, AnAcceptedFileIsUploadedAndSavedAndNeverOverwrites) {
 
     // The same name again: stored beside it, the first untouched.
     const std::string other = random_bytes(1000, 2);
-    const Response second = curl_upload(accepted_upload(*r, other, "p3"), other);
+    const PutResponse second = curl_upload(accepted_upload(*r, other, "p3"), other);
     EXPECT_EQ(second.status, 200);
     EXPECT_EQ(std::get<p::PutStatus>(r->read()).name, "report (1).pdf");
     EXPECT_EQ(folder_names(folder), (std::vector<std::string>{"report (1).pdf", "report.pdf"}));
@@ -292,7 +292,7 @@ TEST_F(PutServer, ALargeBodyArrivesWithAndWithoutWaitingFor100Continue) {
     for (const std::string options : {"-H 'Expect: 100-continue' --expect100-timeout 20", "-H 'Expect:'"}) {
         const std::string bytes = random_bytes(5 * 1024 * 1024 + 3, 10 + n);
         const std::string name = "big-" + std::to_string(n) + ".bin";
-        const Response answer =
+        const PutResponse answer =
             curl_upload(accepted_upload(*r, bytes, "q" + std::to_string(n), PutAnswer::save, name), bytes, options);
         EXPECT_EQ(answer.status, 200) << options << ": " << answer.body;
         EXPECT_EQ(std::get<p::PutStatus>(r->read()).name, name) << options;
@@ -306,7 +306,7 @@ TEST_F(PutServer, ALargeBodyArrivesWithAndWithoutWaitingFor100Continue) {
 TEST_F(PutServer, AnOpenAnswerSavesThenOpensTheFile) {
     auto r = requester();
     const std::string bytes = "a small file\n";
-    const Response answer = curl_upload(accepted_upload(*r, bytes, "p4", PutAnswer::open, "notes.txt"), bytes);
+    const PutResponse answer = curl_upload(accepted_upload(*r, bytes, "p4", PutAnswer::open, "notes.txt"), bytes);
     EXPECT_EQ(answer.status, 200);
     const p::PutStatus s = std::get<p::PutStatus>(r->read());
     EXPECT_EQ(s.outcome, p::PutOutcome::opened);
@@ -348,7 +348,7 @@ TEST_F(PutServer, BytesThatDoNotMatchAreInterruptedAndNothingIsLeft) {
     const std::string promised = random_bytes(100'000, 3);
     std::string sent = promised;
     sent[50'000] ^= 1;
-    const Response answer = curl_upload(accepted_upload(*r, promised, "p8"), sent);
+    const PutResponse answer = curl_upload(accepted_upload(*r, promised, "p8"), sent);
     EXPECT_EQ(answer.status, 400);
     // The same error body as every other HTTP error (a 404 below).
     const auto error = p::parse_error_body(answer.body);
@@ -565,7 +565,7 @@ TEST_F(PutServer, AWrongOrMissingLengthIsRefusedAndUsesTheLink) {
 }
 
 TEST_F(PutServer, UnknownLinksAreNotFoundAndOtherMethodsRefused) {
-    const Response unknown = curl_upload("/up/AAAAAAAAAAAAAAAAAAAAAA", "x");
+    const PutResponse unknown = curl_upload("/up/AAAAAAAAAAAAAAAAAAAAAA", "x");
     EXPECT_EQ(unknown.status, 404);
     const auto error = p::parse_error_body(unknown.body);
     ASSERT_TRUE(error) << unknown.body;

@@ -34,10 +34,10 @@ using umf::test::ScriptedDecider;
 using umf::test::TempDir;
 using umf::test::file_put;
 
-constexpr const char* kToken = "put-token-0123456789abcdefgh";
+constexpr const char* kPutServiceToken = "put-token-0123456789abcdefgh";
 
-std::string hello(const std::optional<std::string>& device = std::nullopt) {
-    return p::encode(p::Hello{p::RequestId{std::int64_t{1}}, kToken, "Pixel 7", device});
+std::string put_hello(const std::optional<std::string>& device = std::nullopt) {
+    return p::encode(p::Hello{p::RequestId{std::int64_t{1}}, kPutServiceToken, "Pixel 7", device});
 }
 
 p::Put url_put(const std::string& id = "p1", p::FieldPoint at = {10, 10}) {
@@ -73,7 +73,7 @@ protected:
         config.puts.answer_timeout = timeout;
         config.puts.max_bytes = max_bytes;
         config.puts.trusted_devices = dir.path / "cfg" / kTrustedDevicesFile;
-        service = std::make_unique<Service>(std::move(config), kToken);
+        service = std::make_unique<Service>(std::move(config), kPutServiceToken);
     }
     void SetUp() override { make(decider); }
     p::Welcome welcome(SessionState& s, const std::optional<std::string>& device = std::nullopt) {
@@ -82,7 +82,7 @@ protected:
             pushed.push_back(std::move(message));
             pushed_cv.notify_all();
         };
-        auto out = service->handle_text(s, hello(device));
+        auto out = service->handle_text(s, put_hello(device));
         EXPECT_EQ(out.replies.size(), 1u);
         return std::get<p::Welcome>(out.replies.at(0));
     }
@@ -463,10 +463,10 @@ TEST(PutApiSessions, APushedAnswerReachesTheLongPoll) {
     ServiceConfig config = default_service_config();
     config.put_decider = decider;
     config.puts.folder = dir.path;
-    auto service = std::make_shared<Service>(std::move(config), kToken);
+    auto service = std::make_shared<Service>(std::move(config), kPutServiceToken);
     boost::asio::io_context io;
     auto sessions = ApiSessions::create(io.get_executor(), service);
-    const auto welcomed = sessions->hello(hello(), "127.0.0.1");
+    const auto welcomed = sessions->hello(put_hello(), "127.0.0.1");
     ASSERT_EQ(welcomed.status, 200);
     const auto body = nlohmann::json::parse(welcomed.body);
     const std::string id = body["session"];

@@ -17,7 +17,7 @@
 namespace {
 
 // A temporary folder that also makes files with some content.
-struct TempDir : umf::test::TempDir {
+struct FilesDir : umf::test::TempDir {
     std::filesystem::path touch(const std::string& name) const {
         std::ofstream(path / name) << "content";
         return path / name;
@@ -103,7 +103,7 @@ TEST(RecentFiles, MalformedDocumentsGiveNothing) {
 }
 
 TEST(RecentFiles, ReadsFilesWithinTheCap) {
-    TempDir dir;
+    FilesDir dir;
     const fs::path file = dir.path / "recently-used.xbel";
     std::ofstream(file) << xbel(bookmark("file:///a.pdf", "2024-01-01T00:00:00Z"));
     EXPECT_EQ(read_recent_files(file).size(), 1u);
@@ -155,7 +155,7 @@ TEST(RecentFiles, TitlesMentionWholeNames) {
 }
 
 TEST(RecentFiles, MatchesTheMostRecentExistingFileByTitle) {
-    TempDir dir;
+    FilesDir dir;
     fs::create_directory(dir.path / "old");
     const fs::path recent = dir.touch("report.pdf");
     const fs::path older = dir.path / "old" / "report.pdf";
@@ -177,7 +177,7 @@ TEST(RecentFiles, MatchesTheMostRecentExistingFileByTitle) {
 }
 
 TEST(RecentFiles, CacheRereadsAChangedFile) {
-    TempDir dir;
+    FilesDir dir;
     const fs::path file = dir.path / "recently-used.xbel";
     RecentFilesCache cache(file);
     EXPECT_TRUE(cache.entries()->empty());

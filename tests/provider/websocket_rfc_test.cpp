@@ -54,7 +54,7 @@ std::string quote(const std::string& s) {
 }
 
 // Runs a shell command; its standard output and exit status.
-std::pair<int, std::string> run_command(const std::string& command) {
+std::pair<int, std::string> run_shell(const std::string& command) {
     FILE* pipe = popen(command.c_str(), "r");
     if (!pipe) return {-1, ""};
     std::string out;
@@ -66,10 +66,10 @@ std::pair<int, std::string> run_command(const std::string& command) {
 
 std::string why_skip() {
     if (access(kPython, X_OK) != 0) return std::string(kPython) + " is missing (apt-get install python3)";
-    if (run_command(std::string(kPython) + " -c 'import websockets' 2>/dev/null").first != 0)
+    if (run_shell(std::string(kPython) + " -c 'import websockets' 2>/dev/null").first != 0)
         return "python3-websockets is missing (apt-get install python3-websockets)";
     if (!fs::exists(script_path())) return "websocket_rfc_client.py not found at " + script_path().string();
-    if (run_command("command -v timeout >/dev/null 2>&1").first != 0) return "coreutils' timeout is missing";
+    if (run_shell("command -v timeout >/dev/null 2>&1").first != 0) return "coreutils' timeout is missing";
     return {};
 }
 
@@ -99,7 +99,7 @@ protected:
         const std::string command = "timeout -k 2 " + std::to_string(timeout_s) + " " + kPython + " " +
                                     quote(script_path().string()) + " --port " + std::to_string(server_->port()) +
                                     " --token=" + quote(token_) + " --case " + quote(names);
-        const auto [status, out] = run_command(command);
+        const auto [status, out] = run_shell(command);
         EXPECT_EQ(status, 0) << command << "\n" << out;
         std::vector<json> results;
         std::istringstream lines(out);

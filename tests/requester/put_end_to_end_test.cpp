@@ -39,7 +39,7 @@ using umf::test::read_file;
 using umf::test::seeded_bytes;
 using umf::test::write_file;
 
-std::vector<fs::path> files_in(const fs::path& dir) {
+std::vector<fs::path> paths_in(const fs::path& dir) {
     std::vector<fs::path> out;
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(dir, ec)) out.push_back(e.path());
@@ -247,7 +247,7 @@ TEST_F(PutEndToEnd, ALinkGrabbedFromOneScreenOpensOnAnother) {
 }
 
 TEST_F(PutEndToEnd, ADismissedPutLeavesNothing) {
-    const auto before = files_in(b_folder());
+    const auto before = paths_in(b_folder());
     write_file(dir_->path / "phone" / "holiday.jpg", seeded_bytes(11, 40'000));
     ChildProcess phone(requester({"put", (dir_->path / "phone" / "holiday.jpg").string(), "--url", b_->url,
                                   "--image", photo(*b_, 900, 700, "b-dismiss").string()}));
@@ -256,14 +256,14 @@ TEST_F(PutEndToEnd, ADismissedPutLeavesNothing) {
     ASSERT_EQ(answer(*b_, put, "--dismiss"), 0);
     EXPECT_EQ(phone.wait(), 5) << phone.output();
     EXPECT_NE(phone.output().find("\"code\":\"refused\""), std::string::npos) << phone.output();
-    EXPECT_EQ(files_in(b_folder()), before);
+    EXPECT_EQ(paths_in(b_folder()), before);
 }
 
 // A phone that dies mid-upload leaves only the hidden temporary file, which
 // waits for the rest for the link's lifetime (PutServer tests its end):
 // nothing appears under a real name.
 TEST_F(PutEndToEnd, AnUploadCutHalfwayLeavesNothingUnderARealName) {
-    const auto before = files_in(b_folder());
+    const auto before = paths_in(b_folder());
     const fs::path big = dir_->path / "phone" / "recording.webm";
     write_file(big, seeded_bytes(13, 60'000'000));
     ChildProcess phone(requester({"put", big.string(), "--url", b_->url, "--image",
@@ -277,7 +277,7 @@ TEST_F(PutEndToEnd, AnUploadCutHalfwayLeavesNothingUnderARealName) {
     std::uintmax_t arrived = 0;
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
     while (!stopped && std::chrono::steady_clock::now() < deadline) {
-        for (const auto& f : files_in(b_folder())) {
+        for (const auto& f : paths_in(b_folder())) {
             if (std::find(before.begin(), before.end(), f) != before.end()) continue;
             std::error_code ec;
             const auto size = fs::file_size(f, ec);
@@ -296,14 +296,14 @@ TEST_F(PutEndToEnd, AnUploadCutHalfwayLeavesNothingUnderARealName) {
     ::kill(phone.pid(), SIGKILL);
     EXPECT_EQ(phone.wait(), -1);
     std::this_thread::sleep_for(std::chrono::milliseconds(300));
-    for (const auto& f : files_in(b_folder()))
+    for (const auto& f : paths_in(b_folder()))
         if (std::find(before.begin(), before.end(), f) == before.end()) {
             EXPECT_EQ(f.filename().string().rfind(".umf-put-", 0), 0u) << f << " appeared under a real name";
         }
 }
 
 TEST_F(PutEndToEnd, AFileAboveTheScreensLimitIsRefusedBeforeAnyoneIsAsked) {
-    const auto before = files_in(b_folder());
+    const auto before = paths_in(b_folder());
     const fs::path big = dir_->path / "phone" / "too-big.bin";
     {
         std::ofstream out(big, std::ios::binary);
@@ -314,7 +314,7 @@ TEST_F(PutEndToEnd, AFileAboveTheScreensLimitIsRefusedBeforeAnyoneIsAsked) {
                                              photo(*b_, 960, 400, "b-big").string()});
     EXPECT_EQ(code, 5) << line.dump();
     EXPECT_EQ(line["error"].value("code", ""), "too_large") << line.dump();
-    EXPECT_EQ(files_in(b_folder()), before);
+    EXPECT_EQ(paths_in(b_folder()), before);
 }
 
 TEST_F(PutEndToEnd, AWrongTokenIsRefusedAndAScreenWithoutPutsSaysSo) {
@@ -322,12 +322,12 @@ TEST_F(PutEndToEnd, AWrongTokenIsRefusedAndAScreenWithoutPutsSaysSo) {
     const auto t = wrong.find("#t=") + 3;
     wrong[t] = wrong[t] == 'A' ? 'B' : 'A';
     write_file(dir_->path / "phone" / "note.txt", "a note\n");
-    const auto before = files_in(b_folder());
+    const auto before = paths_in(b_folder());
     const auto [line, code] = run_requester({"put", (dir_->path / "phone" / "note.txt").string(), "--url", wrong,
                                              "--image", photo(*b_, 960, 540, "b-token").string()});
     EXPECT_EQ(code, 4) << line.dump();
     EXPECT_EQ(line["error"].value("code", ""), "unauthorized") << line.dump();
-    EXPECT_EQ(files_in(b_folder()), before);
+    EXPECT_EQ(paths_in(b_folder()), before);
 
     const auto [no_puts, no_puts_code] = run_requester({"put", "https://example.org/x", "--url", a_->url, "--image",
                                                         photo_of_tile(*a_, 0, "a-no-puts").string()});

@@ -31,10 +31,14 @@
 #include "provider/trust/tls_identity_store.hpp"
 #include "tests/detect/photo.hpp"
 #include "tests/requester/fake_provider.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/process.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
+using umf::test::read_file;
+using umf::test::shell_quoted;
 using Json = nlohmann::ordered_json;
 using namespace umf::provider;
 
@@ -76,8 +80,6 @@ std::string code_of(const Result& r) {
     return r.line["error"].value("code", "");
 }
 
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
 std::string sha256_hex(const std::string& data) {
     unsigned char md[EVP_MAX_MD_SIZE];
     unsigned int len = 0;
@@ -95,11 +97,6 @@ std::vector<std::string> files_in(const fs::path& dir) {
     for (const auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
     std::sort(names.begin(), names.end());
     return names;
-}
-
-std::string read_file(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
 }
 
 // Photos and videos of the default field (what the provider's welcome
@@ -144,7 +141,7 @@ protected:
         ASSERT_NE(server_->port(), 0);
     }
     std::string url(unsigned short port, const std::string& fingerprint, const std::string& token) const {
-        return quoted(pairing_url("127.0.0.1", port, token, fingerprint));
+        return shell_quoted(pairing_url("127.0.0.1", port, token, fingerprint));
     }
     std::string server_url() const { return url(server_->port(), identity_.fingerprint, token_); }
     Result grab(const std::string& url, const std::string& args) const {

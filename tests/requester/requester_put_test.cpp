@@ -30,26 +30,23 @@
 #include "provider/trust/tls_identity_store.hpp"
 #include "tests/detect/photo.hpp"
 #include "tests/requester/fake_provider.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/process.hpp"
 #include "tests/support/temp_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-using Json = nlohmann::json;
+using umf::test::read_file;
+using umf::test::shell_quoted;
+using PutJson = nlohmann::json;
 using namespace umf::provider;
 
 struct Outcome {
     int code = -1;
-    Json line;
+    PutJson line;
     std::string err;
 };
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-std::string read_file(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 // Accepts every put (saving files) and says "always from this device";
 // counts how often it was asked.
@@ -103,7 +100,7 @@ protected:
         ASSERT_NE(server_->port(), 0);
     }
     std::string url(unsigned short port, const std::string& fingerprint) const {
-        return quoted(pairing_url("127.0.0.1", port, token_, fingerprint));
+        return shell_quoted(pairing_url("127.0.0.1", port, token_, fingerprint));
     }
     std::string server_url() const { return url(server_->port(), identity_.fingerprint); }
 
@@ -122,7 +119,7 @@ protected:
         o.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
         o.err = read_file(err_file);
         EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << "stdout: " << out << "\nstderr: " << o.err;
-        o.line = Json::parse(out.substr(0, out.find('\n')), nullptr, false);
+        o.line = PutJson::parse(out.substr(0, out.find('\n')), nullptr, false);
         return o;
     }
     static std::string code_of(const Outcome& o) {
@@ -201,7 +198,7 @@ TEST_F(RequesterPut, AnUnreadableFileIsAnInputErrorBeforeAnyConnection) {
     umf::test::FakeProvider fake(identity_, token_);
     const std::string u = url(fake.port(), fake.fingerprint());
     for (const std::string& what : {(dir_.path / "missing.pdf").string(), dir_.path.string()}) {
-        const Outcome o = run("put " + quoted(what) + " --url " + u + " --image " + shared("photo.png"));
+        const Outcome o = run("put " + shell_quoted(what) + " --url " + u + " --image " + shared("photo.png"));
         EXPECT_EQ(o.code, 3) << o.err;
         EXPECT_EQ(code_of(o), "input") << o.line.dump();
     }

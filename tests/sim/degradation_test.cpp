@@ -14,12 +14,12 @@ namespace {
 using namespace umf::sim;
 
 // A quarter-size setup: the effects do not need full resolution.
-const ScreenGeometry kScreen{{960, 540}, 527};
-const CameraModel kCamera{{640, 360}, 65};
-const CameraPose kPose{350, 10, -5, 3, {480, 270}};
+const ScreenGeometry kDegradedScreen{{960, 540}, 527};
+const CameraModel kDegradedCamera{{640, 360}, 65};
+const CameraPose kDegradedPose{350, 10, -5, 3, {480, 270}};
 
 Shot shoot(const Degradation& d, ScreenKind kind = ScreenKind::web_page) {
-    return photograph(make_screen(kind, kScreen.pixels, 7), kScreen, kCamera, kPose, d);
+    return photograph(make_screen(kind, kDegradedScreen.pixels, 7), kDegradedScreen, kDegradedCamera, kDegradedPose, d);
 }
 
 double gradient_energy(const cv::Mat& grey) {
@@ -57,7 +57,7 @@ TEST(SimDegradation, JpegDecodesAndStaysClose) {
     d.jpeg_quality = 70;
     const Shot jpeg = shoot(d);
     const Shot raw = shoot({});
-    ASSERT_EQ(jpeg.bgr.size(), kCamera.resolution);
+    ASSERT_EQ(jpeg.bgr.size(), kDegradedCamera.resolution);
     ASSERT_EQ(jpeg.bgr.type(), CV_8UC3);
     EXPECT_GT(cv::norm(jpeg.bgr, raw.bgr, cv::NORM_L1), 0);
     EXPECT_LT(cv::norm(jpeg.bgr, raw.bgr, cv::NORM_L1) / double(raw.bgr.total() * 3), 6);
@@ -89,11 +89,11 @@ TEST(SimDegradation, SubpixelStripesKeepTheAverage) {
     // stripes show as colour, the average stays the screen's grey. (Stripes
     // are three times as bright as their pixel, so a grey above about 155
     // would clip in a resolved stripe and lose average.)
-    const cv::Mat grey_screen(kScreen.pixels, CV_8UC3, cv::Scalar::all(120));
+    const cv::Mat grey_screen(kDegradedScreen.pixels, CV_8UC3, cv::Scalar::all(120));
     Degradation d;
     d.subpixels = true;
     const CameraPose close{60, 0, 0, 0, {480, 270}};
-    const Shot shot = photograph(grey_screen, kScreen, kCamera, close, d);
+    const Shot shot = photograph(grey_screen, kDegradedScreen, kDegradedCamera, close, d);
     const cv::Mat centre = shot.bgr(cv::Rect(200, 100, 240, 160));
     cv::Scalar mean, stddev;
     cv::meanStdDev(centre, mean, stddev);
@@ -111,7 +111,7 @@ TEST(SimDegradation, PixelGridKeepsTheAverageAndShowsTheBlackMatrix) {
     // channel while the rows of stripes are bright; the average stays the
     // screen's grey. (Stripes are 4.5 times as bright as their pixel: a grey
     // of 90 keeps them below clipping.)
-    const cv::Mat grey_screen(kScreen.pixels, CV_8UC3, cv::Scalar::all(90));
+    const cv::Mat grey_screen(kDegradedScreen.pixels, CV_8UC3, cv::Scalar::all(90));
     const cv::Mat linear = to_linear(grey_screen(cv::Rect(0, 0, 8, 8)));
     const cv::Mat grid = pixel_grid(linear);
     ASSERT_EQ(grid.size(), cv::Size(24, 24));
@@ -123,7 +123,7 @@ TEST(SimDegradation, PixelGridKeepsTheAverageAndShowsTheBlackMatrix) {
     Degradation d;
     d.pixel_grid = true;
     const CameraPose close{60, 0, 0, 0, {480, 270}};
-    const Shot shot = photograph(grey_screen, kScreen, kCamera, close, d);
+    const Shot shot = photograph(grey_screen, kDegradedScreen, kDegradedCamera, close, d);
     const cv::Mat centre_linear = to_linear(shot.bgr(cv::Rect(200, 100, 240, 160)));
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(cv::mean(centre_linear)[c], expected, 0.05 * expected) << "channel " << c;
     // Across the rows: the black matrix makes the brightness swing.

@@ -13,15 +13,15 @@ namespace {
 
 using namespace umf::sim;
 
-const ScreenGeometry kScreen{{960, 540}, 344};
-const CameraModel kCamera{{480, 360}, 75};
-const CameraPose kPose{150, 0, 0, 0, {480, 270}};
+const ScreenGeometry kShutterScreen{{960, 540}, 344};
+const CameraModel kShutterCamera{{480, 360}, 75};
+const CameraPose kShutterPose{150, 0, 0, 0, {480, 270}};
 
 // A dark screen with a bright vertical band at x = 470..490.
 cv::Mat band_picture() {
-    cv::Mat screen(kScreen.pixels, CV_8UC3, cv::Scalar::all(20));
+    cv::Mat screen(kShutterScreen.pixels, CV_8UC3, cv::Scalar::all(20));
     screen.colRange(470, 490).setTo(cv::Scalar::all(230));
-    const Shot shot = photograph(screen, kScreen, kCamera, kPose, {});
+    const Shot shot = photograph(screen, kShutterScreen, kShutterCamera, kShutterPose, {});
     return to_linear(shot.bgr);
 }
 
@@ -39,7 +39,7 @@ double band_x(const cv::Mat& linear, int y) {
 
 TEST(SimRollingShutter, NoMotionKeepsThePicture) {
     const cv::Mat picture = band_picture();
-    const cv::Mat out = rolling_shutter(picture, kScreen, kCamera, kPose, {}, 0.03);
+    const cv::Mat out = rolling_shutter(picture, kShutterScreen, kShutterCamera, kShutterPose, {}, 0.03);
     EXPECT_LT(cv::norm(out, picture, cv::NORM_INF), 1e-4);
 }
 
@@ -48,12 +48,12 @@ TEST(SimRollingShutter, TurningHandLeansVerticalEdges) {
     PoseVelocity v;
     v.aim_screen_px = {3000, 0};  // a quick pan to the side (the pose keeps looking at the aim point)
     const double readout = 0.03;
-    const cv::Mat out = rolling_shutter(picture, kScreen, kCamera, kPose, v, readout);
-    const int top = 20, bottom = kCamera.resolution.height - 21;
+    const cv::Mat out = rolling_shutter(picture, kShutterScreen, kShutterCamera, kShutterPose, v, readout);
+    const int top = 20, bottom = kShutterCamera.resolution.height - 21;
     // Where each row's pose puts the band's middle.
     const auto predicted = [&](int y) {
-        const cv::Matx33d h = screen_to_image(kScreen, kCamera, pose_at(kPose, v, row_time(readout, y, kCamera.resolution.height)));
-        const cv::Matx33d h0 = screen_to_image(kScreen, kCamera, kPose);
+        const cv::Matx33d h = screen_to_image(kShutterScreen, kShutterCamera, pose_at(kShutterPose, v, row_time(readout, y, kShutterCamera.resolution.height)));
+        const cv::Matx33d h0 = screen_to_image(kShutterScreen, kShutterCamera, kShutterPose);
         const double screen_y = apply(h0.inv(), {240, y + 0.5}).y;
         return apply(h, {480, screen_y}).x;
     };
@@ -62,7 +62,7 @@ TEST(SimRollingShutter, TurningHandLeansVerticalEdges) {
     EXPECT_GT(std::abs(expected), 5.0);
     EXPECT_NEAR(lean, expected, 0.15 * std::abs(expected) + 0.5);
     // The centre row stays where it was.
-    EXPECT_NEAR(band_x(out, kCamera.resolution.height / 2), band_x(picture, kCamera.resolution.height / 2), 0.3);
+    EXPECT_NEAR(band_x(out, kShutterCamera.resolution.height / 2), band_x(picture, kShutterCamera.resolution.height / 2), 0.3);
 }
 
 }  // namespace

@@ -16,8 +16,8 @@ namespace {
 
 using namespace umf::sim;
 
-const ScreenGeometry kScreen{{1920, 1080}, 527};
-const CameraModel kCamera{{320, 240}, 65};
+const ScreenGeometry kSourceScreen{{1920, 1080}, 527};
+const CameraModel kSourceCamera{{320, 240}, 65};
 
 // Near and square-on (the finest level), far and steep (several levels
 // blended), and one looking partly past the screen's edge.
@@ -47,13 +47,13 @@ Degradation rendered(ScreenRendering rendering) {
 bool same(const cv::Mat& a, const cv::Mat& b) { return a.size() == b.size() && cv::norm(a, b, cv::NORM_INF) == 0; }
 
 TEST(ScreenSource, ShotsFromOneSourceAreTheShotsOfTheScreenGivenAfresh) {
-    const cv::Mat screen = make_screen(ScreenKind::web_page, kScreen.pixels, 3);
-    const ScreenSource source(screen, kScreen);
+    const cv::Mat screen = make_screen(ScreenKind::web_page, kSourceScreen.pixels, 3);
+    const ScreenSource source(screen, kSourceScreen);
     for (const auto rendering : {ScreenRendering::plain, ScreenRendering::subpixels, ScreenRendering::pixel_grid})
         for (const CameraPose& pose : poses()) {
             const Degradation d = rendered(rendering);
-            const Shot afresh = photograph(screen, kScreen, kCamera, pose, d, 20);
-            const Shot reused = photograph(source, kCamera, pose, d, 20);
+            const Shot afresh = photograph(screen, kSourceScreen, kSourceCamera, pose, d, 20);
+            const Shot reused = photograph(source, kSourceCamera, pose, d, 20);
             EXPECT_TRUE(same(afresh.bgr, reused.bgr)) << "rendering " << static_cast<int>(rendering);
             EXPECT_EQ(afresh.image_to_screen, reused.image_to_screen);
             EXPECT_EQ(afresh.module_px_in_image, reused.module_px_in_image);
@@ -61,21 +61,21 @@ TEST(ScreenSource, ShotsFromOneSourceAreTheShotsOfTheScreenGivenAfresh) {
 }
 
 TEST(ScreenSource, ShotsOnSeveralThreadsShareOneSource) {
-    const cv::Mat screen = make_screen(ScreenKind::document, kScreen.pixels, 4);
-    const ScreenSource source(screen, kScreen);
+    const cv::Mat screen = make_screen(ScreenKind::document, kSourceScreen.pixels, 4);
+    const ScreenSource source(screen, kSourceScreen);
     const std::vector<CameraPose> views = poses();
     std::vector<Shot> shots(views.size());
     std::vector<std::thread> threads;
     for (std::size_t i = 0; i < views.size(); ++i)
-        threads.emplace_back([&, i] { shots[i] = photograph(source, kCamera, views[i], rendered(ScreenRendering::plain)); });
+        threads.emplace_back([&, i] { shots[i] = photograph(source, kSourceCamera, views[i], rendered(ScreenRendering::plain)); });
     for (auto& t : threads) t.join();
     for (std::size_t i = 0; i < views.size(); ++i)
-        EXPECT_TRUE(same(shots[i].bgr, photograph(screen, kScreen, kCamera, views[i], rendered(ScreenRendering::plain)).bgr))
+        EXPECT_TRUE(same(shots[i].bgr, photograph(screen, kSourceScreen, kSourceCamera, views[i], rendered(ScreenRendering::plain)).bgr))
             << "view " << i;
 }
 
 TEST(ScreenSource, RefusesAScreenOfAnotherSize) {
-    EXPECT_THROW(ScreenSource(cv::Mat(100, 100, CV_8UC3), kScreen), cv::Exception);
+    EXPECT_THROW(ScreenSource(cv::Mat(100, 100, CV_8UC3), kSourceScreen), cv::Exception);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@ namespace {
 
 using namespace umf::sim;
 
-const cv::Size kScreen{1920, 1080};
+const cv::Size kSequenceScreen{1920, 1080};
 constexpr int kFrames = 250;  // 10 s
 
 TEST(SimSequence, PulseSwingsBetweenMinAndMax) {
@@ -22,9 +22,9 @@ TEST(SimSequence, PulseSwingsBetweenMinAndMax) {
 
 TEST(SimSequence, TrajectoriesAreSeededAndSmooth) {
     for (Motion motion : kAllMotions) {
-        const auto a = pose_trajectory(motion, kFrames, kScreen, 3);
-        const auto b = pose_trajectory(motion, kFrames, kScreen, 3);
-        const auto c = pose_trajectory(motion, kFrames, kScreen, 4);
+        const auto a = pose_trajectory(motion, kFrames, kSequenceScreen, 3);
+        const auto b = pose_trajectory(motion, kFrames, kSequenceScreen, 3);
+        const auto c = pose_trajectory(motion, kFrames, kSequenceScreen, 4);
         ASSERT_EQ(a.size(), std::size_t(kFrames));
         EXPECT_EQ(a.back().distance_mm, b.back().distance_mm) << to_string(motion);
         EXPECT_EQ(a.back().aim_screen_px, b.back().aim_screen_px) << to_string(motion);
@@ -48,18 +48,18 @@ double span(const std::vector<umf::sim::CameraPose>& poses, F value) {
 
 TEST(SimSequence, CategoriesMoveWhatTheySay) {
     const auto tilt = [](const CameraPose& p) { return std::hypot(p.pitch_deg, p.yaw_deg); };
-    const auto near_far = pose_trajectory(Motion::near_far, kFrames, kScreen, 1);
+    const auto near_far = pose_trajectory(Motion::near_far, kFrames, kSequenceScreen, 1);
     EXPECT_GT(span(near_far, [](const CameraPose& p) { return p.distance_mm; }), 450);
     EXPECT_LT(span(near_far, tilt), 3);
 
-    const auto horizontal = pose_trajectory(Motion::horizontal, kFrames, kScreen, 1);
-    EXPECT_GT(span(horizontal, [](const CameraPose& p) { return p.aim_screen_px.x; }), 0.5 * kScreen.width);
+    const auto horizontal = pose_trajectory(Motion::horizontal, kFrames, kSequenceScreen, 1);
+    EXPECT_GT(span(horizontal, [](const CameraPose& p) { return p.aim_screen_px.x; }), 0.5 * kSequenceScreen.width);
     EXPECT_LT(span(horizontal, [](const CameraPose& p) { return p.aim_screen_px.y; }), 20);
 
-    const auto rotation = pose_trajectory(Motion::rotation, kFrames, kScreen, 1);
+    const auto rotation = pose_trajectory(Motion::rotation, kFrames, kSequenceScreen, 1);
     EXPECT_GT(span(rotation, [](const CameraPose& p) { return p.roll_deg; }), 300);
 
-    const auto perspective = pose_trajectory(Motion::perspective, kFrames, kScreen, 1);
+    const auto perspective = pose_trajectory(Motion::perspective, kFrames, kSequenceScreen, 1);
     const double max_tilt = tilt(*std::max_element(perspective.begin(), perspective.end(),
                                                    [&](const auto& p, const auto& q) { return tilt(p) < tilt(q); }));
     EXPECT_GT(max_tilt, 55);

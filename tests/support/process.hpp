@@ -36,6 +36,10 @@ inline CommandResult run_command(const std::string& command) {
     return r;
 }
 
+// `s` as one word of a shell command: in single quotes (the tests' paths
+// hold none).
+inline std::string shell_quoted(const std::string& s) { return "'" + s + "'"; }
+
 // A child process started with execv (no shell); its stdout is a pipe.
 class ChildProcess {
 public:

@@ -1,6 +1,6 @@
 #include "provider/desktop/wlroots/hyprland_ipc.hpp"
 
-#include "provider/desktop/wlroots/json_fields.hpp"
+#include "provider/common/json_fields.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "provider/desktop/wlroots/sway_tree.hpp"
 
-#include "provider/desktop/wlroots/json_fields.hpp"
+#include "provider/common/json_fields.hpp"
 
 #include <functional>
 #include <string>

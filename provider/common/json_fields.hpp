@@ -1,6 +1,7 @@
-// Fields of a compositor's JSON answers (Sway's tree, Hyprland's clients),
-// read leniently: a missing or mistyped field is empty or zero, never an
-// exception, since what a compositor sends is not the provider's to trust.
+// Fields of JSON from outside the provider (a compositor's answers, Sway's
+// tree and Hyprland's clients, the browser companion's messages), read
+// leniently: a missing or mistyped field is empty or zero, never an
+// exception, since what they send is not the provider's to trust.
 #pragma once
 
 #include <nlohmann/json.hpp>
