@@ -12,6 +12,7 @@
 
 #include "requester/frame_source.hpp"
 #include "requester/grey_frame.hpp"
+#include "requester/json_lines.hpp"
 #include "shared/detect/detector.hpp"
 #include "shared/detect/image.hpp"
 #include "shared/detect/pulse_search.hpp"
@@ -61,8 +62,9 @@ options:
                   frame, a video's too, is detected on its own.
                   A field too faint for any one frame is looked for in the last 24
                   frames together while nothing is locked: its pulse is found in
-                  them and the field demodulated out of the content. The camera
-                  must be at rest (on a stand or a table). Such a line is
+                  them and the field demodulated out of the content, the frames
+                  first laid onto the newest (a hand-held camera's move; a cut
+                  starts the frames over). Such a line is
                   "state": "locked" with "demodulated": true and "pulse_frames": n
                   after the keys above; "ms" includes that search.
   --pulse-period S  with --sequence: the period of the field's pulse in seconds, as
@@ -77,8 +79,6 @@ exit codes: 0 the frames were read (frames without the field and unreadable imag
 )";
 
 namespace {
-
-using Json = nlohmann::ordered_json;
 
 // Three decimals: microseconds are noise in a timing.
 double round_ms(double ms) { return std::round(ms * 1000) / 1000; }
@@ -147,12 +147,6 @@ PulseSearchOptions pulse_search_options(const LocateOptions& o, double video_fps
     options.shape = PulseShape{[unit](double phase) { return overlay::opacity_at(unit, phase); }, *o.pulse_period_s};
     if (video_fps > 0) options.frame_rates = {video_fps};
     return options;
-}
-
-void write_line(std::FILE* out, const Json& j) {
-    const std::string line = j.dump() + "\n";
-    if (std::fwrite(line.data(), 1, line.size(), out) != line.size() || std::fflush(out) != 0)
-        throw InputError(std::string("cannot write the output: ") + std::strerror(errno));
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ struct LocateOptions {
     std::vector<std::string> images;
     std::optional<std::string> video;
     // With sequence: the pulse the provider announces (its welcome's
-    // overlay period and waveform), for the frames of a faint field at rest.
+    // overlay period and waveform), for the frames of a faint field.
     std::optional<double> pulse_period_s;
     overlay::Waveform waveform = overlay::Waveform::sine;
 };

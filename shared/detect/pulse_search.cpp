@@ -24,20 +24,6 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
     return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0;
 }
 
-// The 90th percentile of |a - b| over every 4th pixel of every 4th row.
-double change_p90(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int width, int height) {
-    std::vector<int> change;
-    change.reserve(static_cast<std::size_t>((width / 4 + 1) * (height / 4 + 1)));
-    for (int y = 0; y < height; y += 4)
-        for (int x = 0; x < width; x += 4) {
-            const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            change.push_back(std::abs(static_cast<int>(a[i]) - b[i]));
-        }
-    const auto p90 = change.begin() + static_cast<std::ptrdiff_t>(change.size() * 9 / 10);
-    std::nth_element(change.begin(), p90, change.end());
-    return *p90;
-}
-
 }  // namespace
 
 PulseSearch::PulseSearch(PulseSearchOptions options) : options_(std::move(options)) {
@@ -47,6 +33,8 @@ PulseSearch::PulseSearch(PulseSearchOptions options) : options_(std::move(option
 
 void PulseSearch::clear() {
     kept_.clear();
+    motion_.reset();
+    last_motion_.setIdentity();
     added_since_search_ = 0;
     last_found_ = false;
     width_ = height_ = 0;
@@ -59,27 +47,33 @@ void PulseSearch::add(const GreyView& frame) {
         width_ = frame.width;
         height_ = frame.height;
     }
-    std::vector<std::uint8_t> copy;
-    if (static_cast<int>(kept_.size()) >= options_.frames) {
-        copy = std::move(kept_.front());  // its buffer reused
-        kept_.pop_front();
+    Kept next{FramePyramid(frame), Eigen::Matrix3d::Identity()};
+    motion_.reset();
+    if (!kept_.empty()) {
+        // The last motion is the likeliest next one; a view that stops or
+        // turns back is found from where it stands.
+        FrameRegistration r = register_frames(kept_.back().pyramid, next.pyramid, last_motion_, options_.registration);
+        if (!r.registered && !last_motion_.isIdentity())
+            r = register_frames(kept_.back().pyramid, next.pyramid, Eigen::Matrix3d::Identity(), options_.registration);
+        if (r.registered) {
+            motion_ = r.homography;
+            last_motion_ = r.homography;
+            for (Kept& k : kept_) k.to_newest = r.homography * k.to_newest;
+        } else {
+            // Frames that cannot be laid onto this one are of no use with it.
+            kept_.clear();
+            last_motion_.setIdentity();
+            ++unregistered_;
+        }
     }
-    copy.resize(static_cast<std::size_t>(width_) * height_);
-    for (int y = 0; y < height_; ++y) std::copy_n(frame.row(y), width_, copy.data() + static_cast<std::size_t>(y) * width_);
-    kept_.push_back(std::move(copy));
+    if (static_cast<int>(kept_.size()) >= options_.frames) kept_.pop_front();
+    kept_.push_back(std::move(next));
     ++added_since_search_;
 }
 
 bool PulseSearch::due() const {
     return frames() >= options_.min_frames && (last_found_ || added_since_search_ >= options_.search_every ||
                                                added_since_search_ == frames());
-}
-
-bool PulseSearch::at_rest() const {
-    const auto& last = kept_.back();
-    const double near = change_p90(last, kept_[kept_.size() - 2], width_, height_);
-    const double far = change_p90(last, kept_.front(), width_, height_);
-    return far <= options_.rest_factor * near + options_.rest_levels;
 }
 
 // The shape at the rate and phase that follow the course best, scaled to
@@ -119,12 +113,14 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         out.detection.failure = "too few frames for the pulse";
         return out;
     }
-    if (!at_rest()) {
-        out.detection.failure = "the view moved";
-        return out;
-    }
+    // Every frame laid onto the newest: the content stays where it is in
+    // the newest, and the field is found there.
+    const GreyView newest = kept_.back().pyramid.level(0);
+    warped_.resize(kept_.size());
     std::vector<GreyView> views;
-    for (const auto& f : kept_) views.push_back({f.data(), width_, height_, width_});
+    for (std::size_t i = 0; i < kept_.size(); ++i)
+        views.push_back(i + 1 == kept_.size() ? newest
+                                              : warp_frame(kept_[i].pyramid.level(0), kept_[i].to_newest, newest, warped_[i]));
     const PulseCourse course = find_pulse_course(views);
     out.share = course.share;
     if (course.level.empty() || course.share < options_.min_share) {

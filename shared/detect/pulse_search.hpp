@@ -1,13 +1,13 @@
 // A field too faint for any one frame, found in the last frames together:
-// they are demodulated (pulse_demodulator.hpp) against the pulse's course,
-// found from the frames (pulse_course.hpp) and, where the pulse's shape is
-// known (the welcome's period and waveform), fitted to that shape, and the
-// detector reads the demodulated image. The frames must show the screen in
-// the same place: a camera at rest (a kiosk's, a phone laid down or held on
-// a stand); the frames of a view that moves are not searched (a cheap
-// look at how much the frames changed, PulseSearchOptions::rest_factor). A
-// hand-held phone's frames would first have to be registered onto each
-// other, which this does not do yet.
+// each frame is registered onto the one before it as it comes
+// (frame_registration.hpp: the content is on the screen's plane with the
+// field, so what aligns the content aligns the field), the frames kept are
+// laid onto the newest and demodulated (pulse_demodulator.hpp) against the
+// pulse's course, found from the frames (pulse_course.hpp) and, where the
+// pulse's shape is known (the welcome's period and waveform), fitted to that
+// shape; the detector reads the demodulated image, in the newest frame's
+// place. A frame that cannot be registered onto the one before it (a cut, a
+// view turned away) starts the frames kept over.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "shared/detect/detector.hpp"
+#include "shared/detect/frame_registration.hpp"
 #include "shared/detect/image.hpp"
 #include "shared/detect/search_plan.hpp"
 
@@ -41,13 +42,8 @@ struct PulseSearchOptions {
     // A fit below this correlation with the course is not taken; the
     // course itself is used.
     double min_fit = 0.8;
-    // The view at rest: the 90th percentile of the grey level's change from
-    // the first frame kept to the last at most `rest_factor` times that
-    // from the last but one to the last, plus `rest_levels` (a pulse of a
-    // few percent changes a pixel by a few levels; a view that moves, by
-    // tens at every edge, more the longer it moves).
-    double rest_factor = 2;
-    double rest_levels = 6;
+    // How each frame is registered onto the one before it.
+    RegistrationOptions registration;
     // A search that found nothing is not tried again until this many more
     // frames are kept (one that found the field is tried on every frame).
     int search_every = 4;
@@ -62,7 +58,7 @@ struct PulseSearchOptions {
 };
 
 struct PulseSearchResult {
-    Detection detection;  // holds for every frame kept (they are at rest)
+    Detection detection;  // in the newest frame
     int frames = 0;       // kept when searching
     double share = 0;     // of their variation explained by the course
     bool fitted = false;  // the course fitted to PulseSearchOptions::shape
@@ -72,10 +68,16 @@ class PulseSearch {
 public:
     explicit PulseSearch(PulseSearchOptions options = {});
 
-    // Copies the frame; one of another size than those kept starts over.
+    // Copies the frame and registers it onto the last; one of another size
+    // than those kept, or one that cannot be registered, starts over.
     void add(const GreyView& frame);
     void clear();
     int frames() const { return static_cast<int>(kept_.size()); }
+    // The homography taking the last frame but one to the last: how the
+    // screen moved in the view; empty when the last frame started over.
+    const std::optional<Eigen::Matrix3d>& motion() const { return motion_; }
+    // How many frames could not be registered onto the one before them.
+    int registration_losses() const { return unregistered_; }
 
     // Whether a search is worth its cost now: enough frames kept, and
     // search_every more since a search that found nothing.
@@ -84,14 +86,21 @@ public:
     PulseSearchResult search(const Detector& detector, const Eigen::Vector2d& aim);
 
 private:
+    struct Kept {
+        FramePyramid pyramid;
+        Eigen::Matrix3d to_newest;  // its points to the newest frame's
+    };
     std::vector<double> fit_shape(const std::vector<double>& course) const;
-    bool at_rest() const;
 
     PulseSearchOptions options_;
     int width_ = 0, height_ = 0;
     int added_since_search_ = 0;
+    int unregistered_ = 0;
     bool last_found_ = false;
-    std::deque<std::vector<std::uint8_t>> kept_;
+    std::deque<Kept> kept_;
+    std::optional<Eigen::Matrix3d> motion_;
+    Eigen::Matrix3d last_motion_ = Eigen::Matrix3d::Identity();
+    std::vector<std::vector<std::uint8_t>> warped_;  // the kept frames laid onto the newest, reused
 };
 
 }  // namespace umf

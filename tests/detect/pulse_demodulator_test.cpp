@@ -93,7 +93,7 @@ TEST(PulseDemodulator, ForgetsOldFramesAndStartsOverAtAnotherSize) {
 }
 
 // PulseSearch's every step on small frames of a checkerboard pulsing over
-// noise: at rest, a pulse, its shape fitted, both signs demodulated, and the
+// noise: registered at rest, a pulse, its shape fitted, both signs demodulated, and the
 // detector, which finds no field in a checkerboard, has the last word.
 TEST(PulseSearch, RunsEveryStepOnAPulseThatIsNoField) {
     const Detector detector(load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json"));
@@ -135,7 +135,13 @@ TEST(PulseSearch, RunsEveryStepOnAPulseThatIsNoField) {
     EXPECT_EQ(r.frames, 20);
     EXPECT_GT(r.share, 0.2);
     EXPECT_TRUE(r.fitted);
-    for (const char* pulse_search_reason : {"too few frames for the pulse", "the view moved", "no pulse in the frames"})
+    EXPECT_EQ(search.registration_losses(), 0) << "the frames of a view at rest are registered";
+    ASSERT_TRUE(search.motion().has_value());
+    for (const Eigen::Vector3d& corner : {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(width - 1, height - 1, 1)}) {
+        const Eigen::Vector3d moved = *search.motion() * corner;
+        EXPECT_LT((moved.head<2>() / moved.z() - corner.head<2>()).norm(), 0.2) << *search.motion();
+    }
+    for (const char* pulse_search_reason : {"too few frames for the pulse", "no pulse in the frames"})
         EXPECT_NE(r.detection.failure, pulse_search_reason);
     EXPECT_FALSE(r.detection.failure.empty());
 }
