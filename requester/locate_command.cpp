@@ -66,7 +66,10 @@ options:
                   first laid onto the newest (a hand-held camera's move; a cut
                   starts the frames over). Such a line is
                   "state": "locked" with "demodulated": true and "pulse_frames": n
-                  after the keys above; "ms" includes that search.
+                  after the keys above; "ms" includes that search. Once found, the
+                  field is carried from frame to frame as the frames move
+                  ("prior": true) until a search finds it again, for at most
+                  25 frames.
   --pulse-period S  with --sequence: the period of the field's pulse in seconds, as
                   the provider's welcome gives it; the pulse found in the frames
                   is fitted to it (at 24, 25, 30, 50 or 60 frames a second, or the
@@ -124,15 +127,16 @@ Json tracked_json(int frame, const TrackResult& t) {
     return j;
 }
 
-// A frame the tracker holds no lock on, found in the frames kept with it.
-Json demodulated_json(int frame, const PulseSearchResult& r, double ms) {
-    Json j = detection_json(frame, r.detection, r.detection.aim_field);
+// A frame the tracker holds no lock on, found in the frames kept with it
+// or carried there from the last frame that was.
+Json demodulated_json(int frame, const Detection& d, int pulse_frames, double ms) {
+    Json j = detection_json(frame, d, d.aim_field);
     j["ms"] = round_ms(ms);
     j["state"] = to_string(TrackState::locked);
-    j["prior"] = false;
-    j["raw_point"] = point_json(r.detection.aim_field);
+    j["prior"] = d.from_prior;
+    j["raw_point"] = point_json(d.aim_field);
     j["demodulated"] = true;
-    j["pulse_frames"] = r.frames;
+    j["pulse_frames"] = pulse_frames;
     return j;
 }
 
@@ -220,13 +224,16 @@ int run_locate(const LocateOptions& o, std::FILE* out) {
             const TrackResult t = tracker->update(view, aim);
             j = tracked_json(frame->index, t);
             pulse->add(view);
-            if (t.state != TrackState::locked && pulse->due()) {
+            if (t.state != TrackState::locked) {
                 const auto start = std::chrono::steady_clock::now();
-                const PulseSearchResult r = pulse->search(*detector, aim);
+                std::optional<PulseSearchResult> r;
+                if (pulse->due()) r = pulse->search(*detector, aim);
                 const double ms = t.detection.times.total_ms +
                                   std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-                if (r.detection.found)
-                    j = demodulated_json(frame->index, r, ms);
+                if (r && r->detection.found)
+                    j = demodulated_json(frame->index, r->detection, r->frames, ms);
+                else if (const auto carried = pulse->carried(aim))
+                    j = demodulated_json(frame->index, *carried, pulse->frames(), ms);
                 else
                     j["ms"] = round_ms(ms);
             }

@@ -1,9 +1,11 @@
 #include "shared/detect/pulse_search.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
+#include "shared/detect/homography.hpp"
 #include "shared/detect/pulse_course.hpp"
 #include "shared/detect/pulse_demodulator.hpp"
 
@@ -35,6 +37,7 @@ void PulseSearch::clear() {
     kept_.clear();
     motion_.reset();
     last_motion_.setIdentity();
+    found_.reset();
     added_since_search_ = 0;
     last_found_ = false;
     width_ = height_ = 0;
@@ -59,10 +62,13 @@ void PulseSearch::add(const GreyView& frame) {
             motion_ = r.homography;
             last_motion_ = r.homography;
             for (Kept& k : kept_) k.to_newest = r.homography * k.to_newest;
+            if (found_) found_->image_to_field = found_->image_to_field * r.homography.inverse();
+            if (++carried_for_ > options_.carry_frames) found_.reset();
         } else {
             // Frames that cannot be laid onto this one are of no use with it.
             kept_.clear();
             last_motion_.setIdentity();
+            found_.reset();
             ++unregistered_;
         }
     }
@@ -152,7 +158,23 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         if (d.found) out.detection = std::move(d);
     }
     last_found_ = out.detection.found;
+    if (out.detection.found) {
+        found_ = out.detection;
+        carried_for_ = 0;
+    }
     return out;
+}
+
+std::optional<Detection> PulseSearch::carried(const Eigen::Vector2d& aim) const {
+    if (!found_) return std::nullopt;
+    const std::optional<Point2> at = apply_homography(found_->image_to_field, aim);
+    if (!at) return std::nullopt;
+    Detection d = *found_;
+    d.aim_image = aim;
+    d.aim_field = *at;
+    d.from_prior = true;
+    d.times = {};
+    return d;
 }
 
 }  // namespace umf

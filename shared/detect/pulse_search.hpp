@@ -47,6 +47,10 @@ struct PulseSearchOptions {
     // A search that found nothing is not tried again until this many more
     // frames are kept (one that found the field is tried on every frame).
     int search_every = 4;
+    // Once found, the field is carried from frame to frame through their
+    // registration (the screen moves in the view as its content does), for
+    // at most this many frames without a search that finds it again.
+    int carry_frames = 25;
     // What the detector runs on a demodulated image: the first scan of a
     // video's frame, then the scan three pixels across and the image
     // smoothed (search_plan.hpp's parts 2 and 5): the demodulated image's
@@ -84,6 +88,11 @@ public:
     bool due() const;
     // The field in the frames kept, or a detection that says why not.
     PulseSearchResult search(const Detector& detector, const Eigen::Vector2d& aim);
+    // The place the last search found carried to the newest frame through
+    // the registration of each frame since (from_prior set); empty when no
+    // search found the field, a frame since could not be registered, or it
+    // was found more than carry_frames frames ago.
+    std::optional<Detection> carried(const Eigen::Vector2d& aim) const;
 
 private:
     struct Kept {
@@ -99,6 +108,8 @@ private:
     bool last_found_ = false;
     std::deque<Kept> kept_;
     std::optional<Eigen::Matrix3d> motion_;
+    std::optional<Detection> found_;  // the last search's, carried to the newest frame
+    int carried_for_ = 0;             // frames since it was found
     Eigen::Matrix3d last_motion_ = Eigen::Matrix3d::Identity();
     std::vector<std::vector<std::uint8_t>> warped_;  // the kept frames laid onto the newest, reused
 };

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "shared/detect/detector.hpp"
@@ -220,7 +221,7 @@ TEST_F(PulseSearchOnAWebPage, AFieldThatDoesNotPulseIsNotSearched) {
 // degree of pitch, half a degree of roll and a few pixels along the screen
 // on) whose field pulses between 0.01 and 0.04: each frame is registered
 // onto the one before, the frames are laid onto the newest, and the field
-// is found in the newest frame's place.
+// is found in the newest frame's place, then carried to the frames after.
 TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     const Field f = test::shipped_field("b4-64x36.json");
     const Detector detector(f);
@@ -229,7 +230,7 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     test::Photo p;
     p.camera.resolution = {640, 480};
     PulseSearch search;
-    for (int i = 0; i < 19; ++i) {
+    const auto film_frame = [&](int i) {
         p.pose.distance_mm = 300 - i;
         p.pose.pitch_deg = 10 + i * 0.3;
         p.pose.yaw_deg = 5 - i * 0.2;
@@ -241,10 +242,14 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
         const double a = overlay::opacity_at(pulse, i / 25.0);
         p.shot = sim::photograph(sim::mix_field(screen, f, p.placement, a), p.geometry, p.camera, p.pose, degradation);
         search.add(view(p.shot.grey));
+    };
+    for (int i = 0; i < 19; ++i) {
+        film_frame(i);
         if (i > 0) {
             ASSERT_TRUE(search.motion().has_value()) << "frame " << i;
         }
     }
+    EXPECT_FALSE(search.carried({320, 240}).has_value()) << "nothing found yet";
     EXPECT_EQ(search.registration_losses(), 0);
     EXPECT_EQ(search.frames(), 19);
     const PulseSearchResult r = search.search(detector, {320, 240});
@@ -255,6 +260,19 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
         << ", " << truth.y << ")";
     EXPECT_TRUE(search.due()) << "found: searched again on every frame";
 
+    // Between searches the place found is carried through the registration
+    // of each frame onto the last, as the view goes on moving.
+    for (int i = 19; i < 25; ++i) {
+        film_frame(i);
+        const std::optional<Detection> carried = search.carried({320, 240});
+        ASSERT_TRUE(carried.has_value()) << "frame " << i;
+        EXPECT_TRUE(carried->from_prior);
+        const cv::Point2d now = sim::image_to_field(p.shot, p.placement, {320, 240});
+        EXPECT_LT(std::hypot(carried->aim_field.x() - now.x, carried->aim_field.y() - now.y), 0.15)
+            << "frame " << i << ": carried to (" << carried->aim_field.x() << ", " << carried->aim_field.y()
+            << "), truth (" << now.x << ", " << now.y << ")";
+    }
+
     // A view that cannot be laid onto the last (a cut to another screen)
     // starts the frames kept over.
     const test::Photo other = test::photograph_field(f, 0.03, -10, 14, -20, 320, sim::ScreenKind::document);
@@ -262,6 +280,7 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     EXPECT_EQ(search.registration_losses(), 1);
     EXPECT_EQ(search.frames(), 1);
     EXPECT_FALSE(search.motion().has_value());
+    EXPECT_FALSE(search.carried({320, 240}).has_value()) << "not carried across a cut";
 }
 
 }  // namespace
