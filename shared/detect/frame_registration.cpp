@@ -192,10 +192,11 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     const double aspect = static_cast<double>(h) / w;
     FrameRegistration result;
     Step last;
+    std::vector<Sample> samples;  // at the end, the finest level's
     for (int level = coarsest; level >= finest; --level) {
         const Eigen::Matrix3d to_unit = level_to_unit(w, h, level);
         const Eigen::Matrix3d unit_to_level = to_unit.inverse();
-        const std::vector<Sample> samples = samples_of(from.level(level), to_unit, options.samples);
+        samples = samples_of(from.level(level), to_unit, options.samples);
         for (int it = 0; it < options.iterations; ++it) {
             last = align_step(samples, to.level(level), warp, unit_to_level);
             if (!last.solved) break;
@@ -211,7 +212,6 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     // its edges at other phases), so the alignment is judged by how much it
     // explains as well as by what it leaves.
     const Eigen::Matrix3d finest_to_unit = level_to_unit(w, h, finest);
-    const std::vector<Sample> samples = samples_of(from.level(finest), finest_to_unit, options.samples);
     last = align_step(samples, to.level(finest), warp, finest_to_unit.inverse());
     const Step unmoved = align_step(samples, to.level(finest), Eigen::Matrix3d::Identity(), finest_to_unit.inverse());
     result.homography = full_to_unit.inverse() * warp * full_to_unit;

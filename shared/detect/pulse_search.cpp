@@ -36,7 +36,6 @@ PulseSearch::PulseSearch(PulseSearchOptions options) : options_(std::move(option
 void PulseSearch::clear() {
     kept_.clear();
     motion_.reset();
-    last_motion_.setIdentity();
     found_.reset();
     added_since_search_ = 0;
     last_found_ = false;
@@ -51,23 +50,22 @@ void PulseSearch::add(const GreyView& frame) {
         height_ = frame.height;
     }
     Kept next{FramePyramid(frame), Eigen::Matrix3d::Identity()};
+    // The last motion is the likeliest next one; a view that stops or turns
+    // back is found from where it stands.
+    const Eigen::Matrix3d guess = motion_.value_or(Eigen::Matrix3d::Identity());
     motion_.reset();
     if (!kept_.empty()) {
-        // The last motion is the likeliest next one; a view that stops or
-        // turns back is found from where it stands.
-        FrameRegistration r = register_frames(kept_.back().pyramid, next.pyramid, last_motion_, options_.registration);
-        if (!r.registered && !last_motion_.isIdentity())
+        FrameRegistration r = register_frames(kept_.back().pyramid, next.pyramid, guess, options_.registration);
+        if (!r.registered && !guess.isIdentity())
             r = register_frames(kept_.back().pyramid, next.pyramid, Eigen::Matrix3d::Identity(), options_.registration);
         if (r.registered) {
             motion_ = r.homography;
-            last_motion_ = r.homography;
             for (Kept& k : kept_) k.to_newest = r.homography * k.to_newest;
             if (found_) found_->image_to_field = found_->image_to_field * r.homography.inverse();
             if (++carried_for_ > options_.carry_frames) found_.reset();
         } else {
             // Frames that cannot be laid onto this one are of no use with it.
             kept_.clear();
-            last_motion_.setIdentity();
             found_.reset();
             ++unregistered_;
         }

@@ -107,10 +107,9 @@ private:
     int unregistered_ = 0;
     bool last_found_ = false;
     std::deque<Kept> kept_;
-    std::optional<Eigen::Matrix3d> motion_;
+    std::optional<Eigen::Matrix3d> motion_;  // also the next frame's first guess
     std::optional<Detection> found_;  // the last search's, carried to the newest frame
     int carried_for_ = 0;             // frames since it was found
-    Eigen::Matrix3d last_motion_ = Eigen::Matrix3d::Identity();
     std::vector<std::vector<std::uint8_t>> warped_;  // the kept frames laid onto the newest, reused
 };
 
