@@ -4,7 +4,6 @@
 
 #include <cerrno>
 #include <cmath>
-#include <chrono>
 #include <cstring>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -15,8 +14,7 @@
 #include "requester/json_lines.hpp"
 #include "shared/detect/detector.hpp"
 #include "shared/detect/image.hpp"
-#include "shared/detect/pulse_search.hpp"
-#include "shared/detect/tracker.hpp"
+#include "shared/detect/pulse_tracker.hpp"
 #include "shared/field/field_io.hpp"
 #include "shared/overlay/pulse.hpp"
 
@@ -66,7 +64,9 @@ options:
                   first laid onto the newest (a hand-held camera's move; a cut
                   starts the frames over). Such a line is
                   "state": "locked" with "demodulated": true and "pulse_frames": n
-                  after the keys above; "ms" includes that search. Once found, the
+                  after the keys above. With --sequence "ms" is the frame's whole
+                  work: the tracker, laying the frame onto the last, and the
+                  search of the frames together where it ran. Once found, the
                   field is carried from frame to frame as the frames move
                   ("prior": true) until a search finds it again, for at most
                   25 frames.
@@ -127,16 +127,16 @@ Json tracked_json(int frame, const TrackResult& t) {
     return j;
 }
 
-// A frame the tracker holds no lock on, found in the frames kept with it
-// or carried there from the last frame that was.
-Json demodulated_json(int frame, const Detection& d, int pulse_frames, double ms) {
-    Json j = detection_json(frame, d, d.aim_field);
-    j["ms"] = round_ms(ms);
-    j["state"] = to_string(TrackState::locked);
-    j["prior"] = d.from_prior;
-    j["raw_point"] = point_json(d.aim_field);
-    j["demodulated"] = true;
-    j["pulse_frames"] = pulse_frames;
+// A frame of a sequence: the tracker's lock, or the place the pulse search
+// found in the frames kept with it or carried there from the last frame
+// where it did; "ms" is the whole update.
+Json sequence_json(int frame, const PulseTrackResult& r) {
+    Json j = tracked_json(frame, r.track);
+    j["ms"] = round_ms(r.ms);
+    if (r.demodulated) {
+        j["demodulated"] = true;
+        j["pulse_frames"] = r.pulse_frames;
+    }
     return j;
 }
 
@@ -192,12 +192,8 @@ int run_locate(const LocateOptions& o, std::FILE* out) {
         throw FieldFileError(o.field_path + ": " + e.what());
     }
     std::unique_ptr<FrameSource> source = o.video ? video_file(*o.video) : image_files(o.images);
-    std::optional<Tracker> tracker;
-    std::optional<PulseSearch> pulse;
-    if (o.sequence) {
-        tracker.emplace(*detector);
-        pulse.emplace(pulse_search_options(o, source->fps()));
-    }
+    std::optional<PulseTracker> tracker;
+    if (o.sequence) tracker.emplace(*detector, TrackerOptions{}, pulse_search_options(o, source->fps()));
 
     std::vector<std::uint8_t> luma;  // reused between frames
     int frames = 0, found = 0, unreadable = 0;
@@ -221,22 +217,7 @@ int run_locate(const LocateOptions& o, std::FILE* out) {
         const Eigen::Vector2d aim = o.aim.value_or(Eigen::Vector2d(view.width / 2.0, view.height / 2.0));
         Json j;
         if (tracker) {
-            const TrackResult t = tracker->update(view, aim);
-            j = tracked_json(frame->index, t);
-            pulse->add(view);
-            if (t.state != TrackState::locked) {
-                const auto start = std::chrono::steady_clock::now();
-                std::optional<PulseSearchResult> r;
-                if (pulse->due()) r = pulse->search(*detector, aim);
-                const double ms = t.detection.times.total_ms +
-                                  std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-                if (r && r->detection.found)
-                    j = demodulated_json(frame->index, r->detection, r->frames, ms);
-                else if (const auto carried = pulse->carried(aim))
-                    j = demodulated_json(frame->index, *carried, pulse->frames(), ms);
-                else
-                    j["ms"] = round_ms(ms);
-            }
+            j = sequence_json(frame->index, tracker->update(view, aim));
         } else {
             const Detection d = detector->detect(view, aim);
             j = detection_json(frame->index, d, d.aim_field);

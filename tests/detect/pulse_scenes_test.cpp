@@ -4,6 +4,7 @@
 // slow under the sanitizers, which run pulse_demodulator_test.cpp instead.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "shared/detect/pulse_course.hpp"
 #include "shared/detect/pulse_demodulator.hpp"
 #include "shared/detect/pulse_search.hpp"
+#include "shared/detect/pulse_tracker.hpp"
 #include "shared/overlay/preset.hpp"
 #include "shared/overlay/pulse.hpp"
 #include "tests/detect/photo.hpp"
@@ -219,30 +221,48 @@ TEST_F(PulseSearchOnAWebPage, AFieldThatDoesNotPulseIsNotSearched) {
 
 // A hand-held phone turning slowly over a web page (each frame a third of a
 // degree of pitch, half a degree of roll and a few pixels along the screen
-// on) whose field pulses between 0.01 and 0.04: each frame is registered
-// onto the one before, the frames are laid onto the newest, and the field
-// is found in the newest frame's place, then carried to the frames after.
-TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
-    const Field f = test::shipped_field("b4-64x36.json");
-    const Detector detector(f);
-    const overlay::Preset pulse = test::sine_pulse(0.01, 0.04, 1.5);
-    const cv::Mat screen = sim::make_screen(sim::ScreenKind::web_page, {1920, 1080}, 5);
-    test::Photo p;
-    p.camera.resolution = {640, 480};
-    PulseSearch search;
-    const auto film_frame = [&](int i) {
-        p.pose.distance_mm = 300 - i;
-        p.pose.pitch_deg = 10 + i * 0.3;
-        p.pose.yaw_deg = 5 - i * 0.2;
-        p.pose.roll_deg = 20 + i * 0.5;
-        p.pose.aim_screen_px = {950 + 3.0 * i, 520 - 2.0 * i};
+// on) whose field pulses between 0.01 and 0.04, or holds at `steady`.
+class HandHeldFilm {
+public:
+    explicit HandHeldFilm(const Field& f, double steady = -1)
+        : field_(f),
+          pulse_(steady >= 0 ? test::sine_pulse(steady, steady, 1.5) : test::sine_pulse(0.01, 0.04, 1.5)),
+          screen_(sim::make_screen(sim::ScreenKind::web_page, {1920, 1080}, 5)) {
+        p_.camera.resolution = {640, 480};
+    }
+    GreyView frame(int i) {
+        p_.pose.distance_mm = 300 - i;
+        p_.pose.pitch_deg = 10 + i * 0.3;
+        p_.pose.yaw_deg = 5 - i * 0.2;
+        p_.pose.roll_deg = 20 + i * 0.5;
+        p_.pose.aim_screen_px = {950 + 3.0 * i, 520 - 2.0 * i};
         sim::Degradation degradation;
         degradation.noise_sigma = 2;
         degradation.seed = 300 + static_cast<std::uint64_t>(i);
-        const double a = overlay::opacity_at(pulse, i / 25.0);
-        p.shot = sim::photograph(sim::mix_field(screen, f, p.placement, a), p.geometry, p.camera, p.pose, degradation);
-        search.add(view(p.shot.grey));
-    };
+        const double a = overlay::opacity_at(pulse_, i / 25.0);
+        p_.shot = sim::photograph(sim::mix_field(screen_, field_, p_.placement, a), p_.geometry, p_.camera, p_.pose,
+                                  degradation);
+        return view(p_.shot.grey);
+    }
+    // The field point under the last frame's centre.
+    cv::Point2d truth() const { return sim::image_to_field(p_.shot, p_.placement, {320, 240}); }
+
+private:
+    const Field& field_;
+    overlay::Preset pulse_;
+    cv::Mat screen_;
+    test::Photo p_;
+};
+
+// Each frame is registered onto the one before, the frames are laid onto
+// the newest, and the field is found in the newest frame's place, then
+// carried to the frames after.
+TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
+    const Field f = test::shipped_field("b4-64x36.json");
+    const Detector detector(f);
+    HandHeldFilm film(f);
+    PulseSearch search;
+    const auto film_frame = [&](int i) { search.add(film.frame(i)); };
     for (int i = 0; i < 19; ++i) {
         film_frame(i);
         if (i > 0) {
@@ -254,7 +274,7 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     EXPECT_EQ(search.frames(), 19);
     const PulseSearchResult r = search.search(detector, {320, 240});
     ASSERT_TRUE(r.detection.found) << r.detection.failure << ", share " << r.share;
-    const cv::Point2d truth = sim::image_to_field(p.shot, p.placement, {320, 240});
+    const cv::Point2d truth = film.truth();
     EXPECT_LT(std::hypot(r.detection.aim_field.x() - truth.x, r.detection.aim_field.y() - truth.y), 0.1)
         << "found (" << r.detection.aim_field.x() << ", " << r.detection.aim_field.y() << "), truth (" << truth.x
         << ", " << truth.y << ")";
@@ -267,7 +287,7 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
         const std::optional<Detection> carried = search.carried({320, 240});
         ASSERT_TRUE(carried.has_value()) << "frame " << i;
         EXPECT_TRUE(carried->from_prior);
-        const cv::Point2d now = sim::image_to_field(p.shot, p.placement, {320, 240});
+        const cv::Point2d now = film.truth();
         EXPECT_LT(std::hypot(carried->aim_field.x() - now.x, carried->aim_field.y() - now.y), 0.15)
             << "frame " << i << ": carried to (" << carried->aim_field.x() << ", " << carried->aim_field.y()
             << "), truth (" << now.x << ", " << now.y << ")";
@@ -281,6 +301,49 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     EXPECT_EQ(search.frames(), 1);
     EXPECT_FALSE(search.motion().has_value());
     EXPECT_FALSE(search.carried({320, 240}).has_value()) << "not carried across a cut";
+}
+
+// The tracker and the pulse search together, as a requester runs them on
+// each camera frame: on the pulse's faint frames the tracker alone finds
+// nothing, and the field is found in the frames together once enough are kept, then
+// every frame after it is locked (near the pulse's top, at 0.04, the
+// tracker may lock on a frame alone), searched again or carried; a field
+// seen in every frame is the tracker's own, never demodulated.
+TEST(PulseTracker, LocksOnAFaintPulseThatNoFrameShows) {
+    const Field f = test::shipped_field("b4-64x36.json");
+    const Detector detector(f);
+    HandHeldFilm film(f);
+    PulseTracker tracker(detector);
+    int first_lock = -1, demodulated = 0;
+    for (int i = 0; i < 32; ++i) {
+        const PulseTrackResult r = tracker.update(film.frame(i));
+        EXPECT_EQ(r.pulse_frames, std::min(i + 1, 24)) << "frame " << i;
+        EXPECT_GT(r.ms, 0);
+        if (r.track.state != TrackState::locked) {
+            EXPECT_LT(first_lock, 0) << "frame " << i << ": lost again after the first lock";
+            continue;
+        }
+        if (first_lock < 0) {
+            first_lock = i;
+            EXPECT_TRUE(r.demodulated) << "frame " << i << ": the first lock is the frames' together";
+        }
+        demodulated += r.demodulated ? 1 : 0;
+        const cv::Point2d truth = film.truth();
+        EXPECT_LT(std::hypot(r.track.aim_field.x() - truth.x, r.track.aim_field.y() - truth.y), 0.15)
+            << "frame " << i << ": (" << r.track.aim_field.x() << ", " << r.track.aim_field.y() << "), truth ("
+            << truth.x << ", " << truth.y << ")";
+    }
+    EXPECT_GE(first_lock, 7) << "found before enough frames were kept";
+    EXPECT_LE(first_lock, 20) << "found late or never";
+    EXPECT_GE(demodulated, 8) << "near the pulse's top the tracker alone may lock on a frame, not at its foot";
+
+    HandHeldFilm visible(f, 0.3);
+    PulseTracker plain(detector);
+    for (int i = 0; i < 6; ++i) {
+        const PulseTrackResult r = plain.update(visible.frame(i));
+        EXPECT_EQ(r.track.state, TrackState::locked) << "frame " << i;
+        EXPECT_FALSE(r.demodulated) << "frame " << i;
+    }
 }
 
 }  // namespace
