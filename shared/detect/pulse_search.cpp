@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "shared/detect/homography.hpp"
@@ -24,6 +25,18 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
         bb += (b[i] - mb) * (b[i] - mb);
     }
     return aa > 0 && bb > 0 ? ab / std::sqrt(aa * bb) : 0;
+}
+
+// How far apart (pixels) two homographies put a corner of a w x h frame.
+double corner_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, int w, int h) {
+    double most = 0;
+    for (const double x : {0.0, w - 1.0})
+        for (const double y : {0.0, h - 1.0}) {
+            const auto p = apply_homography(a, Point2(x, y)), q = apply_homography(b, Point2(x, y));
+            if (!p || !q) return std::numeric_limits<double>::infinity();
+            most = std::max(most, (*p - *q).norm());
+        }
+    return most;
 }
 
 }  // namespace
@@ -58,6 +71,9 @@ void PulseSearch::add(const GreyView& frame) {
         FrameRegistration r = register_frames(kept_.back().pyramid, next.pyramid, guess, options_.registration);
         if (!r.registered && !guess.isIdentity())
             r = register_frames(kept_.back().pyramid, next.pyramid, Eigen::Matrix3d::Identity(), options_.registration);
+        if (r.registered && !guess.isIdentity() &&
+            corner_distance(r.homography, guess, width_, height_) > options_.max_motion_change * width_)
+            r.registered = false;
         if (r.registered) {
             motion_ = r.homography;
             for (Kept& k : kept_) k.to_newest = r.homography * k.to_newest;
@@ -161,6 +177,12 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         carried_for_ = 0;
     }
     return out;
+}
+
+void PulseSearch::found_elsewhere(const Detection& found) {
+    if (!found.found || kept_.empty()) return;
+    found_ = found;
+    carried_for_ = 0;
 }
 
 std::optional<Detection> PulseSearch::carried(const Eigen::Vector2d& aim) const {

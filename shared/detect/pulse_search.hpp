@@ -44,6 +44,12 @@ struct PulseSearchOptions {
     double min_fit = 0.8;
     // How each frame is registered onto the one before it.
     RegistrationOptions registration;
+    // A registration whose motion differs from the last frame's by more
+    // than this share of the frame's width at a corner is taken for none:
+    // a hand's motion changes little from one frame to the next, while a
+    // content with little but the faint field to align on (a blank page)
+    // can be aligned a few modules off.
+    double max_motion_change = 0.03;
     // A search that found nothing is not tried again until this many more
     // frames are kept (one that found the field is tried on every frame).
     int search_every = 4;
@@ -93,6 +99,10 @@ public:
     // search found the field, a frame since could not be registered, or it
     // was found more than carry_frames frames ago.
     std::optional<Detection> carried(const Eigen::Vector2d& aim) const;
+    // A place found in the newest frame some other way (a tracker's lock on
+    // it alone): carried from here on in place of the last search's, which
+    // has been carried further.
+    void found_elsewhere(const Detection& found);
 
 private:
     struct Kept {

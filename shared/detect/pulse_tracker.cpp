@@ -24,7 +24,12 @@ PulseTrackResult PulseTracker::update(const GreyView& frame, const Eigen::Vector
     // phase needs the frames before it, registered onto each other.
     pulse_.add(frame);
     out.pulse_frames = pulse_.frames();
-    if (out.track.state != TrackState::locked) {
+    if (out.track.state == TrackState::locked) {
+        // The freshest place to carry into the frames after, should the
+        // lock be lost in the pulse's faint phase: a search's from frames
+        // ago has come through more registrations, each a little off.
+        pulse_.found_elsewhere(out.track.detection);
+    } else {
         std::optional<Detection> found;
         if (pulse_.due()) {
             PulseSearchResult r = pulse_.search(*detector_, aim);

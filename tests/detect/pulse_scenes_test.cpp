@@ -293,6 +293,20 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
             << "), truth (" << now.x << ", " << now.y << ")";
     }
 
+    // A place found in the newest frame some other way (a tracker's lock)
+    // is carried from there on in place of the search's.
+    const std::optional<Detection> before = search.carried({320, 240});
+    ASSERT_TRUE(before.has_value());
+    Detection elsewhere = *before;
+    Eigen::Matrix3d along_u = Eigen::Matrix3d::Identity();
+    along_u(0, 2) = 2;  // two modules along u
+    elsewhere.image_to_field = along_u * before->image_to_field;
+    search.found_elsewhere(elsewhere);
+    const std::optional<Detection> after = search.carried({320, 240});
+    ASSERT_TRUE(after.has_value());
+    EXPECT_NEAR(after->aim_field.x() - before->aim_field.x(), 2, 1e-9);
+    EXPECT_NEAR(after->aim_field.y() - before->aim_field.y(), 0, 1e-9);
+
     // A view that cannot be laid onto the last (a cut to another screen)
     // starts the frames kept over.
     const test::Photo other = test::photograph_field(f, 0.03, -10, 14, -20, 320, sim::ScreenKind::document);

@@ -1,0 +1,355 @@
+// umf_pulse_benchmark: a field pulsing at a few percent of opacity, filmed
+// by a hand-held phone, found by the tracker alone and by the tracker with
+// the pulse search (shared/detect/pulse_tracker.hpp), frame by frame, and
+// the same videos without the field, where every place found is wrong.
+// docs/BENCHMARKS.md, "A field nobody notices".
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "shared/detect/pulse_tracker.hpp"
+#include "shared/overlay/preset.hpp"
+#include "shared/overlay/pulse.hpp"
+#include "tests/bench/heldout_run.hpp"
+#include "tests/bench/heldout_scenario.hpp"
+#include "tests/bench/methods.hpp"
+#include "tests/bench/scenario.hpp"
+#include "tests/sim/field_mix.hpp"
+#include "tests/sim/sequence.hpp"
+
+namespace umf::bench {
+namespace {
+
+const char* const kUsage = R"(umf_pulse_benchmark: a field pulsing at a few percent found over a hand-held phone's frames.
+
+Usage: umf_pulse_benchmark [options]
+  --set tuning|heldout   whose pulsing videos (default tuning): the tuning set's swing from looking up at the
+                         screen to looking down on it at 25 fps, one video per screen kind; or the held-out
+                         set's hand path at 30 fps, one per content, on its three screens and camera model
+  --opacities MIN,MAX    the pulse's opacities (default 0.01,0.04), sine, every 1.5 s
+  --frames N             frames per video (default 150)
+  --resolutions WxH,...  (default 640x480)
+  --not-announced        the pulse search is not told the pulse's period and waveform
+  --frame-ms MS          the tracker's search held to MS a frame, as the page holds it (TrackerOptions::frame_ms
+                         with its spread search; default 2); 0: every search on every frame without a lock
+  --max-motion-change X  PulseSearchOptions::max_motion_change (default: the library's)
+  --videos a,b           only these videos (screen kinds, or held-out contents)
+  --log FILE             one line per frame of the pulse search's videos: video, frame, state, where the
+                         place came from, its error in modules
+  --seed N               scenario seed (default 1)
+  --threads N            threads making frames (default: all cores)
+  --help                 this text
+
+Every video is also run without the field (the same frames, opacity 0): every place found there is wrong.
+A place is right within half a module of the truth. Times are of one update on one thread: the tracker,
+laying the frame onto the last and, where it ran, the search of the frames together.
+Progress goes to stderr, the tables to stdout.
+)";
+
+struct Options {
+    bool heldout = false;
+    double min_opacity = 0.01, max_opacity = 0.04;
+    int frames = 150;
+    std::vector<cv::Size> resolutions{{640, 480}};
+    bool announced = true;
+    double frame_ms = 2;
+    std::optional<double> max_motion_change;
+    std::vector<std::string> videos;  // empty: all
+    std::string log;
+    std::uint64_t seed = 1;
+    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+};
+
+constexpr double kPeriodS = 1.5;
+constexpr double kRadiusModules = 0.5;
+
+// One video: its frames with the field and without, and where the field lies.
+struct Video {
+    std::string name;
+    std::vector<Frame> field, bare;
+    sim::FieldPlacement placement;
+    double fps = 25;
+};
+
+bool wanted(const Options& o, const std::string& video) {
+    return o.videos.empty() || std::find(o.videos.begin(), o.videos.end(), video) != o.videos.end();
+}
+
+// The benchmark's pulse in place of the provider's default (0.1 to 0.4):
+// the same phase, scaled to the faint range.
+double faint(const Options& o, double default_pulse_opacity) {
+    return o.min_opacity + (o.max_opacity - o.min_opacity) * (default_pulse_opacity - 0.1) / 0.3;
+}
+
+std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size res) {
+    const Scene scene;
+    const sim::FieldPlacement placement{{0, 0}, scene.module_px};
+    std::vector<Video> out;
+    for (const sim::ScreenKind kind : sim::kEverydayScreenKinds) {
+        if (!wanted(o, sim::to_string(kind))) continue;
+        const cv::Mat screen = sim::make_screen(kind, scene.screen.pixels, 7);
+        const auto rs = pulsing_recipes(scene, kind, o.frames, o.seed);
+        Video v{sim::to_string(kind), std::vector<Frame>(rs.size()), std::vector<Frame>(rs.size()), placement,
+                sim::kFps};
+        parallel_for(static_cast<int>(rs.size()), o.threads, [&](int i) {
+            const auto at = static_cast<std::size_t>(i);
+            const double a = faint(o, pulsing_opacity(rs[at].index));
+            v.field[at] = shoot(scene, rs[at], sim::mix_field(screen, field, placement, a), res);
+            v.bare[at] = shoot(scene, rs[at], screen, res);
+        });
+        out.push_back(std::move(v));
+    }
+    return out;
+}
+
+std::vector<Video> heldout_videos(const Options& o, const Field& field, cv::Size res) {
+    std::vector<Video> out;
+    const cv::Size modules(field.width, field.height);
+    for (const sim::HeldoutContent content : sim::kAllHeldoutContents) {
+        if (!wanted(o, sim::to_string(content))) continue;
+        const auto rs = heldout_pulsing_recipes(content, o.frames, o.seed);
+        const HeldoutScreen& s = heldout_screens()[static_cast<std::size_t>(rs.front().screen)];
+        const sim::FieldPlacement placement = heldout_placement(s, field);
+        const cv::Mat screen = sim::make_heldout_screen(content, s.geometry.pixels, kHeldoutScreenSeed);
+        Video v{sim::to_string(content), std::vector<Frame>(rs.size()), std::vector<Frame>(rs.size()), placement,
+                kHeldoutFps};
+        parallel_for(static_cast<int>(rs.size()), o.threads, [&](int i) {
+            const auto at = static_cast<std::size_t>(i);
+            const double a = faint(o, heldout_pulsing_opacity(content, rs[at].index, o.seed));
+            v.field[at] = shoot_heldout(rs[at], sim::mix_field(screen, field, placement, a), res, placement, modules);
+            v.bare[at] = shoot_heldout(rs[at], screen, res, placement, modules);
+            v.bare[at].centre_on_screen = v.field[at].centre_on_screen;
+        });
+        out.push_back(std::move(v));
+    }
+    return out;
+}
+
+PulseSearchOptions pulse_options(const Options& o, double fps) {
+    PulseSearchOptions p;
+    if (o.max_motion_change) p.max_motion_change = *o.max_motion_change;
+    if (!o.announced) return p;
+    overlay::Preset unit;  // the waveform over one period, 0 to 1
+    unit.opacity_min = 0;
+    unit.opacity_max = 1;
+    unit.period_s = 1;
+    p.shape = PulseShape{[unit](double phase) { return overlay::opacity_at(unit, phase); }, kPeriodS};
+    p.frame_rates = {fps};
+    return p;
+}
+
+// What one method made of one video's frames whose centre is on the field.
+struct Tally {
+    int evaluated = 0, right = 0, wrong = 0, demodulated = 0;
+    int first_right = -1;  // frame index
+    int longest_gap = 0;   // evaluated frames in a row without a right place, after the first
+    int unregistered = 0;  // frames the pulse search could not lay onto the one before
+    std::vector<double> ms;
+
+    void add(int index, const Frame& f, const sim::FieldPlacement& placement, bool locked,
+             const Eigen::Vector2d& aim_field, bool from_pulse, double update_ms) {
+        ms.push_back(update_ms);
+        if (!f.centre_on_screen) return;
+        ++evaluated;
+        bool ok = false;
+        if (locked) {
+            const cv::Point2d at = sim::field_to_screen(placement, {aim_field.x(), aim_field.y()});
+            ok = cv::norm(at - f.centre_screen_px) / placement.module_px <= kRadiusModules;
+            (ok ? right : wrong) += 1;
+            demodulated += ok && from_pulse ? 1 : 0;
+        }
+        if (ok && first_right < 0) first_right = index;
+        gap_ = ok ? 0 : gap_ + 1;
+        if (first_right >= 0) longest_gap = std::max(longest_gap, gap_);
+    }
+    void merge(const Tally& t) {
+        evaluated += t.evaluated, right += t.right, wrong += t.wrong, demodulated += t.demodulated;
+        unregistered += t.unregistered;
+        longest_gap = std::max(longest_gap, t.longest_gap);
+        ms.insert(ms.end(), t.ms.begin(), t.ms.end());
+    }
+
+private:
+    int gap_ = 0;
+};
+
+double percentile(std::vector<double> v, double p) {
+    if (v.empty()) return std::nan("");
+    std::sort(v.begin(), v.end());
+    return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size() - 1), p * static_cast<double>(v.size())))];
+}
+
+TrackerOptions tracking(const Options& o) {
+    TrackerOptions t;
+    t.spread_search = o.frame_ms > 0;
+    t.frame_ms = o.frame_ms;
+    return t;
+}
+
+Tally run_tracker(const Detector& detector, const Options& o, const Video& v, const std::vector<Frame>& frames) {
+    Tally t;
+    Tracker tracker(detector, tracking(o));
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const auto t0 = BenchClock::now();
+        const TrackResult r = tracker.update(grey_view(frames[i]));
+        const double ms = ms_between(t0, BenchClock::now());
+        t.add(static_cast<int>(i), frames[i], v.placement, r.state == TrackState::locked, r.aim_field, false, ms);
+    }
+    return t;
+}
+
+Tally run_pulse(const Detector& detector, const Options& o, const Video& v, const std::vector<Frame>& frames,
+                std::ostream* log) {
+    Tally t;
+    PulseTracker tracker(detector, tracking(o), pulse_options(o, v.fps));
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        const PulseTrackResult r = tracker.update(grey_view(frames[i]));
+        t.add(static_cast<int>(i), frames[i], v.placement, r.track.state == TrackState::locked, r.track.aim_field,
+              r.demodulated, r.ms);
+        if (log) {
+            *log << v.name << "\t" << i << "\t" << to_string(r.track.state) << "\t"
+                 << (r.demodulated ? (r.track.used_prior ? "carried" : "demodulated") : "tracker") << "\t";
+            if (r.track.state == TrackState::locked && frames[i].centre_on_screen)
+                *log << cv::norm(sim::field_to_screen(v.placement, {r.track.aim_field.x(), r.track.aim_field.y()}) -
+                                 frames[i].centre_screen_px) / v.placement.module_px;
+            *log << "\t" << r.share << "\t" << r.ms << "\n";
+        }
+    }
+    t.unregistered = tracker.pulse().registration_losses();
+    return t;
+}
+
+std::string cell(const Tally& t) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%d / %d", t.right, t.wrong);
+    return buf;
+}
+
+std::string ms_cell(const Tally& t) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.2f / %.2f", percentile(t.ms, 0.5), percentile(t.ms, 0.95));
+    return buf;
+}
+
+void run(const Options& o) {
+    const Field field = bench_field("b4-64x36.json");
+    const Detector detector(field);
+    std::optional<std::ofstream> log;
+    if (!o.log.empty()) {
+        log.emplace(o.log);
+        if (!*log) throw std::runtime_error("cannot write " + o.log);
+    }
+    std::printf("Set %s, the field pulsing between opacity %.3g and %.3g (sine, %.1f s), %d frames a video, pulse %s, "
+                "the tracker's search held to %.3g ms a frame (0: every search), seed %llu; right within %.1f module; ms of one "
+                "update on one thread (median / p95).\n",
+                o.heldout ? "held-out" : "tuning", o.min_opacity, o.max_opacity, kPeriodS, o.frames,
+                o.announced ? "announced" : "not announced", o.frame_ms, static_cast<unsigned long long>(o.seed), kRadiusModules);
+    for (const cv::Size res : o.resolutions) {
+        std::cerr << "making " << res.width << " x " << res.height << " videos\n";
+        const std::vector<Video> videos = o.heldout ? heldout_videos(o, field, res) : tuning_videos(o, field, res);
+        std::printf("\n### %d x %d\n\n", res.width, res.height);
+        std::printf("| video | frames | tracker right / wrong | with the pulse search right / wrong | of them "
+                    "demodulated | first right | longest gap | not registered | ms | without the field: found (wrong) | ms |\n");
+        std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+        Tally all_tracker, all_pulse, all_bare;
+        for (const Video& v : videos) {
+            std::cerr << "  " << v.name << "\n";
+            const Tally tracker = run_tracker(detector, o, v, v.field);
+            const Tally pulse = run_pulse(detector, o, v, v.field, log ? &*log : nullptr);
+            const Tally bare = run_pulse(detector, o, v, v.bare, nullptr);
+            std::printf("| %s | %d | %s | %s | %d | %d | %d | %d | %s | %d | %s |\n", v.name.c_str(), pulse.evaluated,
+                        cell(tracker).c_str(), cell(pulse).c_str(), pulse.demodulated, pulse.first_right,
+                        pulse.longest_gap, pulse.unregistered, ms_cell(pulse).c_str(), bare.right + bare.wrong,
+                        ms_cell(bare).c_str());
+            std::fflush(stdout);
+            all_tracker.merge(tracker);
+            all_pulse.merge(pulse);
+            all_bare.merge(bare);
+        }
+        std::printf("| **all** | %d | %s | **%s** | %d | | %d | %d | %s | %d | %s |\n", all_pulse.evaluated,
+                    cell(all_tracker).c_str(), cell(all_pulse).c_str(), all_pulse.demodulated, all_pulse.longest_gap,
+                    all_pulse.unregistered, ms_cell(all_pulse).c_str(), all_bare.right + all_bare.wrong,
+                    ms_cell(all_bare).c_str());
+    }
+}
+
+std::vector<cv::Size> parse_resolutions(const std::string& s) {
+    std::vector<cv::Size> out;
+    std::size_t at = 0;
+    while (at <= s.size()) {
+        const std::size_t comma = std::min(s.find(',', at), s.size());
+        int w = 0, h = 0;
+        if (std::sscanf(s.substr(at, comma - at).c_str(), "%dx%d", &w, &h) != 2 || w < 16 || h < 16)
+            throw std::invalid_argument("--resolutions: not WxH: " + s);
+        out.emplace_back(w, h);
+        at = comma + 1;
+    }
+    return out;
+}
+
+Options parse(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const auto value = [&]() -> std::string {
+            if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--help") {
+            std::fputs(kUsage, stdout);
+            std::exit(0);
+        } else if (a == "--set") {
+            const std::string s = value();
+            if (s != "tuning" && s != "heldout") throw std::invalid_argument("--set: tuning or heldout, not " + s);
+            o.heldout = s == "heldout";
+        } else if (a == "--opacities") {
+            if (std::sscanf(value().c_str(), "%lf,%lf", &o.min_opacity, &o.max_opacity) != 2 || !(o.min_opacity >= 0) ||
+                !(o.max_opacity > o.min_opacity) || o.max_opacity > 1)
+                throw std::invalid_argument("--opacities: MIN,MAX with 0 <= MIN < MAX <= 1");
+        } else if (a == "--frames") {
+            o.frames = std::stoi(value());
+            if (o.frames < 1) throw std::invalid_argument("--frames: at least 1");
+        } else if (a == "--resolutions") {
+            o.resolutions = parse_resolutions(value());
+        } else if (a == "--frame-ms") {
+            o.frame_ms = std::stod(value());
+            if (!(o.frame_ms >= 0)) throw std::invalid_argument("--frame-ms: 0 or more");
+        } else if (a == "--not-announced") {
+            o.announced = false;
+        } else if (a == "--max-motion-change") {
+            o.max_motion_change = std::stod(value());
+        } else if (a == "--videos") {
+            std::stringstream list(value());
+            for (std::string name; std::getline(list, name, ',');) o.videos.push_back(name);
+        } else if (a == "--log") {
+            o.log = value();
+        } else if (a == "--seed") {
+            o.seed = std::stoull(value());
+        } else if (a == "--threads") {
+            o.threads = std::max(1, std::stoi(value()));
+        } else {
+            throw std::invalid_argument("unknown option " + a + " (--help lists them)");
+        }
+    }
+    return o;
+}
+
+}  // namespace
+}  // namespace umf::bench
+
+int main(int argc, char** argv) {
+    try {
+        umf::bench::run(umf::bench::parse(argc, argv));
+    } catch (const std::exception& e) {
+        std::cerr << "umf_pulse_benchmark: " << e.what() << "\n";
+        return 2;
+    }
+    return 0;
+}
