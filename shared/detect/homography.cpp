@@ -136,7 +136,7 @@ std::optional<Eigen::Matrix3d> fit_homography(const std::vector<Point2>& from, c
 }
 
 std::optional<Eigen::Matrix3d> fit_homography_to_lines(const std::vector<Point2>& from, const std::vector<Point2>& to,
-                                                       const std::vector<Point2>& normal) {
+                                                       const std::vector<Point2>& normal, double along_weight) {
     const std::size_t n = from.size();
     if (n < 8 || to.size() != n || normal.size() != n) return std::nullopt;
     // Each row says H a lies on the line l through b across its normal:
@@ -151,6 +151,14 @@ std::optional<Eigen::Matrix3d> fit_homography_to_lines(const std::vector<Point2>
         const Eigen::Matrix3d aa = a * a.transpose();
         for (int r = 0; r < 3; ++r)
             for (int c = r; c < 3; ++c) ata.block<3, 3>(3 * r, 3 * c) += l(r) * l(c) * aa;
+        if (along_weight > 0) {
+            // The line through b along the first one: its normal is the
+            // first line's direction.
+            const Point2 t = along_weight * Point2(-normal[i].y(), normal[i].x());
+            const Eigen::Vector3d m(t.x(), t.y(), -t.dot(b));
+            for (int r = 0; r < 3; ++r)
+                for (int c = r; c < 3; ++c) ata.block<3, 3>(3 * r, 3 * c) += m(r) * m(c) * aa;
+        }
     }
     for (int r = 1; r < 3; ++r)
         for (int c = 0; c < r; ++c) ata.block<3, 3>(3 * r, 3 * c) = ata.block<3, 3>(3 * c, 3 * r);

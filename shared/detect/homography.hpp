@@ -22,9 +22,12 @@ std::optional<Eigen::Matrix3d> fit_homography(const std::vector<Point2>& from, c
 // where the edge is, not where along it the search started. Minimises the
 // distances from those lines (times each point's homogeneous weight).
 // Nothing for fewer than eight points or lines that do not pin H down
-// (all parallel...).
+// (all parallel...). With `along_weight` > 0 each point is also drawn to
+// `to[i]` along its line, that many times as weakly: where the lines of a
+// part of the view run mostly one way (a smear leaves the edges along it),
+// they leave the fit free along them.
 std::optional<Eigen::Matrix3d> fit_homography_to_lines(const std::vector<Point2>& from, const std::vector<Point2>& to,
-                                                       const std::vector<Point2>& normal);
+                                                       const std::vector<Point2>& normal, double along_weight = 0);
 
 // Nothing when the point maps to infinity.
 std::optional<Point2> apply_homography(const Eigen::Matrix3d& h, const Point2& p);

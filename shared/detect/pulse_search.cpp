@@ -67,6 +67,7 @@ void PulseSearch::add(const GreyView& frame) {
     // back is found from where it stands.
     const Eigen::Matrix3d guess = motion_.value_or(Eigen::Matrix3d::Identity());
     motion_.reset();
+    last_registration_ = {};
     if (!kept_.empty()) {
         FrameRegistration r = register_frames(kept_.back().pyramid, next.pyramid, guess, options_.registration);
         if (!r.registered && !guess.isIdentity())
@@ -74,6 +75,7 @@ void PulseSearch::add(const GreyView& frame) {
         if (r.registered && !guess.isIdentity() &&
             corner_distance(r.homography, guess, width_, height_) > options_.max_motion_change * width_)
             r.registered = false;
+        last_registration_ = r;
         if (r.registered) {
             motion_ = r.homography;
             for (Kept& k : kept_) k.to_newest = r.homography * k.to_newest;

@@ -88,6 +88,9 @@ public:
     const std::optional<Eigen::Matrix3d>& motion() const { return motion_; }
     // How many frames could not be registered onto the one before them.
     int registration_losses() const { return unregistered_; }
+    // How the last frame was laid onto the one before it (not registered:
+    // the first frame, or one that started over).
+    const FrameRegistration& last_registration() const { return last_registration_; }
 
     // Whether a search is worth its cost now: enough frames kept, and
     // search_every more since a search that found nothing.
@@ -118,6 +121,7 @@ private:
     bool last_found_ = false;
     std::deque<Kept> kept_;
     std::optional<Eigen::Matrix3d> motion_;  // also the next frame's first guess
+    FrameRegistration last_registration_;
     std::optional<Detection> found_;  // the last search's, carried to the newest frame
     int carried_for_ = 0;             // frames since it was found
     std::vector<std::vector<std::uint8_t>> warped_;  // the kept frames laid onto the newest, reused

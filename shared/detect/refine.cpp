@@ -201,7 +201,7 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
                 if (static_cast<int>(kf.size()) < o.min_edges) break;
                 out.edges_fitted = static_cast<int>(kf.size());
                 out.rms_px = std::sqrt(sq / kf.size());
-                fit = fit_homography_to_lines(kf, kt, ka);
+                fit = fit_homography_to_lines(kf, kt, ka, o.along_weight);
                 if (fit) {
                     h = *fit;
                     out.refined = true;

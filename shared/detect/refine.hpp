@@ -24,6 +24,12 @@ struct RefineOptions {
     double tolerance_modules = 0.2;  // an edge further than this from the fit is an outlier
     double max_strength_ratio = 2.5; // edges stronger than this times the median are not the field's
     double max_radius_modules = 1e9; // the rings stop at this radius (the whole view by default)
+    // Each edge is fitted as a point on its line and, this many times as
+    // weakly, as the point found (fit_homography_to_lines' along_weight):
+    // on the lines alone a few smeared frames at 1280 x 720 and above put
+    // the aim 0.5-0.7 module off (docs/BENCHMARKS.md, "A weak pull along
+    // each edge").
+    double along_weight = 0.1;
 };
 
 struct Refinement {

@@ -42,7 +42,9 @@ Usage: umf_pulse_benchmark [options]
   --max-motion-change X  PulseSearchOptions::max_motion_change (default: the library's)
   --videos a,b           only these videos (screen kinds, or held-out contents)
   --log FILE             one line per frame of the pulse search's videos: video, frame, state, where the
-                         place came from, its error in modules
+                         place came from, its error in modules, the share the pulse explained where searched,
+                         ms, and the frame's registration onto the last: registered, residual, the residual
+                         unmoved, overlap
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --help                 this text
@@ -219,7 +221,9 @@ Tally run_pulse(const Detector& detector, const Options& o, const Video& v, cons
             if (r.track.state == TrackState::locked && frames[i].centre_on_screen)
                 *log << cv::norm(sim::field_to_screen(v.placement, {r.track.aim_field.x(), r.track.aim_field.y()}) -
                                  frames[i].centre_screen_px) / v.placement.module_px;
-            *log << "\t" << r.share << "\t" << r.ms << "\n";
+            const FrameRegistration& g = tracker.pulse().last_registration();
+            *log << "\t" << r.share << "\t" << r.ms << "\t" << g.registered << "\t" << g.residual << "\t"
+                 << g.unmoved_residual << "\t" << g.overlap << "\n";
         }
     }
     t.unregistered = tracker.pulse().registration_losses();

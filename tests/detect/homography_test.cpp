@@ -185,4 +185,31 @@ TEST(Homography, LineFitRefusesTooFewOrParallelLines) {
     EXPECT_FALSE(fit_homography_to_lines(e.from, e.to, f7));  // sizes differ
 }
 
+// A weak pull along each line: where the lines run one way it alone says
+// where things are along them; where they cross, a point found off along
+// its edge moves the fit by a fraction of what a fit to the points would.
+TEST(Homography, LineFitWithAWeakPullAlongEachEdge) {
+    const Eigen::Matrix3d truth = some_perspective();
+    const FoundEdges e = edges_found(truth, 6, 0.0);
+    FoundEdges one_way;
+    for (std::size_t i = 0; i < e.from.size(); i += 2) {
+        one_way.from.push_back(e.from[i]);
+        one_way.to.push_back(e.to[i]);
+        one_way.normal.push_back(e.normal[i]);
+    }
+    auto h = fit_homography_to_lines(one_way.from, one_way.to, one_way.normal, 0.1);
+    ASSERT_TRUE(h);
+    EXPECT_LT((*h - truth).norm(), 1e-6 * truth.norm());
+
+    const Point2 centre(30, 30);
+    const FoundEdges slid = edges_found(truth, 6, 1.5);
+    auto by_points = fit_homography(slid.from, slid.to);
+    h = fit_homography_to_lines(slid.from, slid.to, slid.normal, 0.1);
+    ASSERT_TRUE(h && by_points);
+    const double off = (*apply_homography(*h, centre) - *apply_homography(truth, centre)).norm();
+    const double off_by_points = (*apply_homography(*by_points, centre) - *apply_homography(truth, centre)).norm();
+    EXPECT_GT(off, 0);
+    EXPECT_LT(off, 0.05 * off_by_points);
+}
+
 }  // namespace
