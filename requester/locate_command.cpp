@@ -66,10 +66,10 @@ options:
                   "state": "locked" with "demodulated": true and "pulse_frames": n
                   after the keys above. With --sequence "ms" is the frame's whole
                   work: the tracker, laying the frame onto the last, and the
-                  search of the frames together where it ran. Once found, the
-                  field is carried from frame to frame as the frames move
-                  ("prior": true) until a search finds it again, for at most
-                  25 frames.
+                  search of the frames together where it ran. Once found (by
+                  that search, or locked on a frame alone), the field is
+                  carried from frame to frame as the frames move ("prior":
+                  true) until it is found again, for at most 25 frames.
   --pulse-period S  with --sequence: the period of the field's pulse in seconds, as
                   the provider's welcome gives it; the pulse found in the frames
                   is fitted to it (at 24, 25, 30, 50 or 60 frames a second, or the

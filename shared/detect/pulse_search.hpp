@@ -97,10 +97,10 @@ public:
     bool due() const;
     // The field in the frames kept, or a detection that says why not.
     PulseSearchResult search(const Detector& detector, const Eigen::Vector2d& aim);
-    // The place the last search found carried to the newest frame through
-    // the registration of each frame since (from_prior set); empty when no
-    // search found the field, a frame since could not be registered, or it
-    // was found more than carry_frames frames ago.
+    // The place last found (by a search, or found_elsewhere) carried to the
+    // newest frame through the registration of each frame since (from_prior
+    // set); empty when nothing has been found, a frame since could not be
+    // registered, or it was found more than carry_frames frames ago.
     std::optional<Detection> carried(const Eigen::Vector2d& aim) const;
     // A place found in the newest frame some other way (a tracker's lock on
     // it alone): carried from here on in place of the last search's, which
