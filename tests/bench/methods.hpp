@@ -10,6 +10,8 @@
 #include <chrono>
 #include <exception>
 #include <mutex>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -59,6 +61,30 @@ void parallel_for(int n, int threads, const Job& job) {
 inline Field bench_field(const std::string& name_or_path) {
     return load_field(name_or_path.find('/') != std::string::npos ? name_or_path
                                                                    : std::string(UMF_DATA_DIR) + "/fields/" + name_or_path);
+}
+
+// A benchmark's --resolutions: "WxH,WxH,...", each side at least 16 pixels.
+inline std::vector<cv::Size> parse_resolutions(const std::string& list) {
+    std::vector<cv::Size> out;
+    std::stringstream in(list);
+    for (std::string item; std::getline(in, item, ',');) {
+        const auto x = item.find('x');
+        int w = 0, h = 0;
+        std::size_t used_w = 0, used_h = 0;
+        try {
+            if (x != std::string::npos) {
+                w = std::stoi(item.substr(0, x), &used_w);
+                h = std::stoi(item.substr(x + 1), &used_h);
+            }
+        } catch (const std::exception&) {
+            used_w = used_h = 0;
+        }
+        if (x == std::string::npos || used_w != x || used_h != item.size() - x - 1 || w < 16 || h < 16)
+            throw std::invalid_argument("--resolutions: '" + item + "' is not WxH with sides of 16 pixels or more");
+        out.emplace_back(w, h);
+    }
+    if (out.empty()) throw std::invalid_argument("--resolutions: none given");
+    return out;
 }
 
 // A frame's grey image as the detector takes it.

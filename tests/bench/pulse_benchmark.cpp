@@ -84,10 +84,12 @@ bool wanted(const Options& o, const std::string& video) {
     return o.videos.empty() || std::find(o.videos.begin(), o.videos.end(), video) != o.videos.end();
 }
 
-// The benchmark's pulse in place of the provider's default (0.1 to 0.4):
-// the same phase, scaled to the faint range.
+// The benchmark's pulse in place of the provider's default, which both
+// sets' pulsing videos show (0.1 to 0.4, kHeldoutPulseMin and
+// kHeldoutPulseMax): the same phase, scaled to the faint range.
 double faint(const Options& o, double default_pulse_opacity) {
-    return o.min_opacity + (o.max_opacity - o.min_opacity) * (default_pulse_opacity - 0.1) / 0.3;
+    return o.min_opacity + (o.max_opacity - o.min_opacity) * (default_pulse_opacity - kHeldoutPulseMin) /
+                               (kHeldoutPulseMax - kHeldoutPulseMin);
 }
 
 std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size res) {
@@ -182,12 +184,6 @@ private:
     int gap_ = 0;
 };
 
-double percentile(std::vector<double> v, double p) {
-    if (v.empty()) return std::nan("");
-    std::sort(v.begin(), v.end());
-    return v[static_cast<std::size_t>(std::min<double>(static_cast<double>(v.size() - 1), p * static_cast<double>(v.size())))];
-}
-
 TrackerOptions tracking(const Options& o) {
     TrackerOptions t;
     t.spread_search = o.frame_ms > 0;
@@ -238,7 +234,7 @@ std::string cell(const Tally& t) {
 
 std::string ms_cell(const Tally& t) {
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.2f / %.2f", percentile(t.ms, 0.5), percentile(t.ms, 0.95));
+    std::snprintf(buf, sizeof buf, "%.2f / %.2f", percentile(t.ms, 50), percentile(t.ms, 95));
     return buf;
 }
 
@@ -282,20 +278,6 @@ void run(const Options& o) {
                     all_pulse.unregistered, ms_cell(all_pulse).c_str(), all_bare.right + all_bare.wrong,
                     ms_cell(all_bare).c_str());
     }
-}
-
-std::vector<cv::Size> parse_resolutions(const std::string& s) {
-    std::vector<cv::Size> out;
-    std::size_t at = 0;
-    while (at <= s.size()) {
-        const std::size_t comma = std::min(s.find(',', at), s.size());
-        int w = 0, h = 0;
-        if (std::sscanf(s.substr(at, comma - at).c_str(), "%dx%d", &w, &h) != 2 || w < 16 || h < 16)
-            throw std::invalid_argument("--resolutions: not WxH: " + s);
-        out.emplace_back(w, h);
-        at = comma + 1;
-    }
-    return out;
 }
 
 Options parse(int argc, char** argv) {

@@ -388,17 +388,6 @@ int run(const SpeedOptions& opt) {
     return 0;
 }
 
-std::vector<cv::Size> parse_resolutions(const std::string& text) {
-    std::vector<cv::Size> out;
-    std::stringstream s(text);
-    for (std::string item; std::getline(s, item, ',');) {
-        const auto x = item.find('x');
-        if (x == std::string::npos) throw std::invalid_argument("--resolutions: WxH,... expected, got " + item);
-        out.emplace_back(std::stoi(item.substr(0, x)), std::stoi(item.substr(x + 1)));
-    }
-    return out;
-}
-
 const char kUsage[] =
     "umf_speed_benchmark: the detector's time per frame on the tuning set's scenes (or the held-out set's), one "
     "call at a time on one thread.\n\n"

@@ -185,12 +185,7 @@ Options parse(int argc, char** argv) {
             o.category_names = split(value());
             if (o.category_names.empty()) throw std::invalid_argument("nothing to run: empty category list");
         } else if (a == "--resolutions") {
-            o.resolutions.clear();
-            for (const auto& r : split(value())) {
-                const auto x = r.find('x');
-                if (x == std::string::npos) throw std::invalid_argument("resolution '" + r + "' is not WxH");
-                o.resolutions.emplace_back(positive_int(r.substr(0, x), r, 16), positive_int(r.substr(x + 1), r, 16));
-            }
+            o.resolutions = parse_resolutions(value());
             res_given = true;
         } else if (a == "--opacities") {
             o.opacities_given = true;
