@@ -11,7 +11,7 @@ namespace umf {
 
 namespace {
 
-double bilinear(const GreyView& im, double x, double y, long& visited) {
+double bilinear(const GreyView& im, double x, double y) {
     x -= 0.5;  // pixel centres are at +0.5
     y -= 0.5;
     // Inside, truncation is the floor (and no far-off point overflows an int).
@@ -20,9 +20,6 @@ double bilinear(const GreyView& im, double x, double y, long& visited) {
     const double fx = x - x0, fy = y - y0;
     const std::uint8_t* r0 = im.row(y0) + x0;
     const std::uint8_t* r1 = im.row(y0 + 1) + x0;
-    // Neighbouring samples of a profile one pixel apart share half their
-    // four pixels: two new pixels per sample.
-    visited += 2;
     return (r0[0] * (1 - fx) + r0[1] * fx) * (1 - fy) + (r1[0] * (1 - fx) + r1[1] * fx) * fy;
 }
 
@@ -32,11 +29,37 @@ struct FoundEdge {
     double gradient;
 };
 
+// The vertex of the parabola through a peak of g and its neighbours, as an
+// offset from the peak's sample in [-0.5, 0.5].
+double vertex_offset(double g_before, double g_peak, double g_after) {
+    const double denom = g_before - 2 * g_peak + g_after;
+    return denom < 0 ? std::clamp(0.5 * (g_before - g_after) / denom, -0.5, 0.5) : 0.0;
+}
+
+// An edge found between samples more than a pixel apart, placed again from
+// samples a pixel apart within a sample's reach of `near`.
+std::optional<FoundEdge> peak_a_pixel_apart(const GreyView& im, const Point2& near, const Point2& dir,
+                                            double polarity, double gradient) {
+    double profile[7];
+    for (int k = -3; k <= 3; ++k) {
+        const Point2 q = near + k * dir;
+        profile[k + 3] = bilinear(im, q.x(), q.y());
+        if (!std::isfinite(profile[k + 3])) return std::nullopt;
+    }
+    double g[5];  // at -2 .. 2 pixels
+    for (int k = 0; k < 5; ++k) g[k] = polarity * (profile[k + 2] - profile[k]) / 2;
+    int peak = 2;
+    if (g[1] > g[peak]) peak = 1;
+    if (g[3] > g[peak]) peak = 3;
+    return FoundEdge{near + (peak - 2 + vertex_offset(g[peak - 1], g[peak], g[peak + 1])) * dir, dir, gradient};
+}
+
 // Searches one edge; where it lies and how strong it is, or nothing.
 // Peaks stronger than max_gradient belong to something else (text, a
 // picture's edge) and are passed over for the strongest peak below it.
+// `a_pixel_apart`: the peak placed from samples a pixel apart at the end.
 std::optional<FoundEdge> find_edge(const GreyView& im, const Eigen::Matrix3d& h, const ExpectedEdge& e,
-                                   const RefineOptions& o, double max_gradient, long& visited) {
+                                   const RefineOptions& o, double max_gradient, long& visited, bool a_pixel_apart) {
     auto p = apply_homography(h, e.mid);
     auto a = apply_homography(h, e.mid + 0.5 * e.across);
     auto b = apply_homography(h, e.mid - 0.5 * e.across);
@@ -48,36 +71,53 @@ std::optional<FoundEdge> find_edge(const GreyView& im, const Eigen::Matrix3d& h,
     // Wider than the profile holds (a homography gone wild): no edge of this field.
     const double half_width = std::ceil(o.search_modules * module_px);
     if (!(half_width <= 64)) return std::nullopt;
-    const int reach = std::max(2, static_cast<int>(half_width));
-    // The profile one pixel apart across the edge, and its derivative
-    // towards the expected brighter side.
+    // Samples a fixed fraction of a module apart, never closer than a
+    // pixel: on large modules (1280 x 720 and up) a profile one pixel apart
+    // costs twice what it does at 640 x 480 and places the edge no better
+    // than the fit of eighty of them needs.
+    const double step = std::max(1.0, module_px * o.sample_modules);
+    // A peak is found strictly inside the profile: as far out as a pixel
+    // apart, whatever the spacing.
+    const int reach = std::max(2, 1 + static_cast<int>(std::ceil((half_width - 1) / step)));
+    if (reach > 64) return std::nullopt;
+    // The profile across the edge, and its derivative (grey levels per
+    // pixel) towards the expected brighter side.
     double profile[2 * 64 + 3];
     for (int t = -reach - 1; t <= reach + 1; ++t) {
-        const Point2 q = *p + t * dir;
-        const double v = bilinear(im, q.x(), q.y(), visited);
+        const Point2 q = *p + (t * step) * dir;
+        const double v = bilinear(im, q.x(), q.y());
         if (!std::isfinite(v)) return std::nullopt;
         profile[t + reach + 1] = v;
     }
+    // Neighbouring samples a pixel apart share half their four pixels.
+    visited += (2 * reach + 3) * (step < 2 ? 2 : 4);
     int best = 0;
     double best_g = 0;
     double g[2 * 64 + 1];
-    for (int t = -reach; t <= reach; ++t) g[t + reach] = e.polarity * (profile[t + reach + 2] - profile[t + reach]) / 2;
+    const double per_px = e.polarity / (2 * step);
+    for (int t = -reach; t <= reach; ++t) g[t + reach] = per_px * (profile[t + reach + 2] - profile[t + reach]);
     // The peak that is strong and near the prediction: text strokes under
     // the field make peaks of their own across the whole search range.
-    const double spread = 0.25 * module_px;
+    const double spread = 0.25 * module_px / step;
     double best_score = 0;
     for (int t = -reach + 1; t < reach; ++t) {
         const double v = g[t + reach];
         if (v < o.min_gradient || v > max_gradient || v < g[t + reach - 1] || v < g[t + reach + 1]) continue;
+        if (v <= best_score) continue;  // its score is no more than v
         const double score = v * std::exp(-0.5 * t * t / (spread * spread));
         if (score > best_score) best_score = score, best_g = v, best = t;
     }
     if (best_score <= 0) return std::nullopt;
-    // Sub-pixel: the vertex of the parabola through the peak and its neighbours.
-    const double gm = g[best + reach - 1], g0 = g[best + reach], gp = g[best + reach + 1];
-    const double denom = gm - 2 * g0 + gp;
-    const double offset = denom < 0 ? std::clamp(0.5 * (gm - gp) / denom, -0.5, 0.5) : 0.0;
-    return FoundEdge{*p + (best + offset) * dir, dir, best_g};
+    // Before the first fit the prediction is off by up to the search's
+    // reach, and alike for neighbouring edges: a vertex between samples a
+    // tenth of a module apart would be biased alike for all of them and bend
+    // the fit (smeared frames at 640 x 480 lost the tracker's lock on it).
+    if (a_pixel_apart && step > 1) {
+        visited += 14;
+        return peak_a_pixel_apart(im, *p + (best * step) * dir, dir, e.polarity, best_g);
+    }
+    const double offset = vertex_offset(g[best + reach - 1], g[best + reach], g[best + reach + 1]);
+    return FoundEdge{*p + ((best + offset) * step) * dir, dir, best_g};
 }
 
 }  // namespace
@@ -108,9 +148,9 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
     const double span = std::min(std::max({u1 - u0, v1 - v0, 1.0}), std::max(1.0, o.max_radius_modules));
     Eigen::Matrix3d h = field_to_image;
     double max_gradient = std::numeric_limits<double>::infinity();
-    // Rings of radius 4, 6, 9, 13... modules (each fit must predict the next
-    // ring within the search range), then once more over everything
-    // with the edges the whole view predicts.
+    // Rings of radius 4, 6, 9, 13... modules (ring_growth: each fit must
+    // predict the next ring within the search range), then once more over
+    // everything with the edges the whole view predicts.
     bool last = false;
     std::vector<ExpectedEdge> edges;
     // The rounds' lists, made once: a frame runs a dozen rounds of up to
@@ -119,7 +159,7 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
     std::vector<double> strength, sorted;
     for (auto* v : {&from, &to, &across, &kf, &kt, &ka}) v->reserve(static_cast<std::size_t>(std::max(0, o.max_edges)));
     for (auto* v : {&strength, &sorted}) v->reserve(static_cast<std::size_t>(std::max(0, o.max_edges)));
-    for (double radius = 4;; radius = std::min(radius * 1.5, span)) {
+    for (double radius = 4;; radius = std::min(radius * o.ring_growth, span)) {
         // The edges whose midpoints lie within `radius` (modules, Chebyshev)
         // of the seed and inside the field's visible box, spread evenly when
         // there are too many.
@@ -134,7 +174,7 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
         strength.clear();
         for (const ExpectedEdge& e : edges) {
             ++out.edges_searched;
-            if (auto q = find_edge(im, h, e, o, max_gradient, visited)) {
+            if (auto q = find_edge(im, h, e, o, max_gradient, visited, !out.refined)) {
                 from.push_back(e.mid);
                 to.push_back(q->at);
                 across.push_back(q->across);

@@ -17,6 +17,7 @@ namespace umf {
 
 struct RefineOptions {
     double search_modules = 0.4;  // how far across its predicted place an edge is looked for
+    double sample_modules = 0.1;  // the profile's samples this far apart (a pixel at least)
     double min_gradient = 1.5;    // grey levels per pixel for an edge to count
     double min_module_px = 2.5;   // smaller modules are not searched
     int max_edges = 80;           // edges searched per round, spread over the region
@@ -24,6 +25,7 @@ struct RefineOptions {
     double tolerance_modules = 0.2;  // an edge further than this from the fit is an outlier
     double max_strength_ratio = 2.5; // edges stronger than this times the median are not the field's
     double max_radius_modules = 1e9; // the rings stop at this radius (the whole view by default)
+    double ring_growth = 1.5;        // each ring's radius over the last's
     // Each edge is fitted as a point on its line and, this many times as
     // weakly, as the point found (fit_homography_to_lines' along_weight):
     // on the lines alone a few smeared frames at 1280 x 720 and above put
