@@ -149,8 +149,9 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
     Eigen::Matrix3d h = field_to_image;
     double max_gradient = std::numeric_limits<double>::infinity();
     // Rings of radius 4, 6, 9, 13... modules (ring_growth: each fit must
-    // predict the next ring within the search range), then once more over
-    // everything with the edges the whole view predicts.
+    // predict the next ring within the search range; after a clear fit 4,
+    // 12, 36...), then once more over everything with the edges the whole
+    // view predicts.
     bool last = false;
     std::vector<ExpectedEdge> edges;
     // The rounds' lists, made once: a frame runs a dozen rounds of up to
@@ -159,7 +160,9 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
     std::vector<double> strength, sorted;
     for (auto* v : {&from, &to, &across, &kf, &kt, &ka}) v->reserve(static_cast<std::size_t>(std::max(0, o.max_edges)));
     for (auto* v : {&strength, &sorted}) v->reserve(static_cast<std::size_t>(std::max(0, o.max_edges)));
-    for (double radius = 4;; radius = std::min(radius * o.ring_growth, span)) {
+    double growth = o.ring_growth;
+    for (double radius = 4;; radius = std::min(radius * growth, span)) {
+        growth = o.ring_growth;
         // The edges whose midpoints lie within `radius` (modules, Chebyshev)
         // of the seed and inside the field's visible box, spread evenly when
         // there are too many.
@@ -241,6 +244,11 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
                 if (static_cast<int>(kf.size()) < o.min_edges) break;
                 out.edges_fitted = static_cast<int>(kf.size());
                 out.rms_px = std::sqrt(sq / kf.size());
+                // A clear fit predicts far beyond its ring (tol is a fifth of a module).
+                const double module_px = tol / o.tolerance_modules;
+                if (round == 1 && kf.size() >= o.clear_found_share * edges.size() &&
+                    out.rms_px <= o.clear_rms_modules * module_px)
+                    growth = o.clear_ring_growth;
                 fit = fit_homography_to_lines(kf, kt, ka, o.along_weight);
                 if (fit) {
                     h = *fit;

@@ -26,6 +26,14 @@ struct RefineOptions {
     double max_strength_ratio = 2.5; // edges stronger than this times the median are not the field's
     double max_radius_modules = 1e9; // the rings stop at this radius (the whole view by default)
     double ring_growth = 1.5;        // each ring's radius over the last's
+    // After a ring whose fit is clear (at least clear_found_share of its
+    // edges fitted, their rms across the edges at most clear_rms_modules)
+    // the next is clear_ring_growth times as wide: fewer rounds where the
+    // vote's homography was already good (docs/BENCHMARKS.md, "The refit's
+    // rings").
+    double clear_ring_growth = 3;
+    double clear_found_share = 0.8;
+    double clear_rms_modules = 0.05;
     // Each edge is fitted as a point on its line and, this many times as
     // weakly, as the point found (fit_homography_to_lines' along_weight):
     // on the lines alone a few smeared frames at 1280 x 720 and above put
