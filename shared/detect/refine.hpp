@@ -29,8 +29,8 @@ struct RefineOptions {
     // After a ring whose fit is clear (at least clear_found_share of its
     // edges fitted, their rms across the edges at most clear_rms_modules)
     // the next is clear_ring_growth times as wide: fewer rounds where the
-    // vote's homography was already good (docs/BENCHMARKS.md, "The refit's
-    // rings").
+    // vote's homography was already good (docs/BENCHMARKS.md, "wider rings
+    // after a clear fit").
     double clear_ring_growth = 3;
     double clear_found_share = 0.8;
     double clear_rms_modules = 0.05;
