@@ -14,12 +14,11 @@
 
 #include "shared/detect/module_edges.hpp"
 #include "shared/field/field_io.hpp"
+#include "tests/detect/photo.hpp"
 
 using namespace umf;
 
 namespace {
-
-Field shipped(const char* name) { return load_field(std::string(UMF_DATA_DIR) + "/fields/" + name); }
 
 // The field seen through `field_to_image`, each pixel the mean of 4 x 4
 // samples, blurred as a camera's optics do, faint (24 grey levels between
@@ -79,7 +78,7 @@ struct RefitCase {
 };
 
 TEST(Refine, BringsTheAimToTheFieldsEdgesAtAnyModuleSize) {
-    const Field f = shipped("b4-64x36.json");
+    const Field f = test::shipped_field("b4-64x36.json");
     const ModuleEdges edges(f);
     for (const RefitCase c : {RefitCase{7, {640, 480}, 0.8}, RefitCase{12, {640, 480}, 1.0},
                               RefitCase{26, {1280, 720}, 1.5}, RefitCase{40, {1920, 1080}, 2.0}}) {
