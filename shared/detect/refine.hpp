@@ -30,9 +30,11 @@ struct RefineOptions {
     // edges fitted, their rms across the edges at most clear_rms_modules)
     // the next is clear_ring_growth times as wide: fewer rounds where the
     // vote's homography was already good (docs/BENCHMARKS.md, "wider rings
-    // after a clear fit").
+    // after a clear fit"). At 4/5 of the edges a faint field's first ring
+    // over a spreadsheet's rules read as clear and the wider ring beyond
+    // it put the aim half a module off (tuning set, ruled at opacity 0.08).
     double clear_ring_growth = 3;
-    double clear_found_share = 0.8;
+    double clear_found_share = 0.85;
     double clear_rms_modules = 0.05;
     // Each edge is fitted as a point on its line and, this many times as
     // weakly, as the point found (fit_homography_to_lines' along_weight):
