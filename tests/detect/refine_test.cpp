@@ -13,7 +13,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include "shared/detect/module_edges.hpp"
-#include "shared/field/field_io.hpp"
 #include "tests/detect/photo.hpp"
 
 using namespace umf;
