@@ -19,4 +19,10 @@ void fft(Complex* data, int n, int stride = 1);
 // The 2-D forward transform of an n x n image stored row by row.
 void fft_2d(std::vector<Complex>& image, int n);
 
+// The same, with only the columns x < `low_columns` and x >= n -
+// `high_columns` transformed after the rows (the others hold the rows'
+// transforms alone): what a spectrum read over a band of one half plane
+// needs, each value as fft_2d makes it.
+void fft_2d(std::vector<Complex>& image, int n, int low_columns, int high_columns);
+
 }  // namespace umf

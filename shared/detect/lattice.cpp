@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <deque>
+#include <map>
 
 #include "shared/detect/fft.hpp"
 
@@ -46,12 +48,19 @@ struct Peak {
 // module sizes looked for, strongest first; only those standing well above
 // the band's mean (a flat or noisy patch has none).
 std::vector<Peak> spectral_peaks(const std::vector<double>& e, int n, const LatticeOptions& o) {
+    // The half plane kx in [0, n / 2) and its neighbours: columns 0 to n / 2,
+    // and n - 1 for kx = -1.
+    const int low = n / 2 + 1, high = 1;
     std::vector<Complex> s(e.begin(), e.end());
-    fft_2d(s, n);
+    fft_2d(s, n, low, high);
     std::vector<double> magnitude(s.size());
-    for (std::size_t i = 0; i < s.size(); ++i) magnitude[i] = std::sqrt(std::norm(s[i]));
+    for (std::size_t y = 0; y < static_cast<std::size_t>(n); ++y)
+        for (std::size_t x = 0; x < static_cast<std::size_t>(n); ++x)
+            if (x < static_cast<std::size_t>(low) || x >= static_cast<std::size_t>(n - high))
+                magnitude[y * n + x] = std::sqrt(std::norm(s[y * n + x]));
+    // n is a power of two: k & (n - 1) is k modulo n, negative k too.
     const auto mag = [&](int kx, int ky) {
-        return magnitude[static_cast<std::size_t>(((ky % n) + n) % n) * n + static_cast<std::size_t>(((kx % n) + n) % n)];
+        return magnitude[static_cast<std::size_t>(ky & (n - 1)) * n + static_cast<std::size_t>(kx & (n - 1))];
     };
     const double r_lo = n / o.max_period_px, r_hi = n / o.min_period_px;
     std::vector<Peak> peaks;
@@ -85,22 +94,43 @@ std::vector<Complex> phasors(double freq, int n) {
     return p;
 }
 
+// The phasors of the frequencies one axis's search has been at: a search
+// over halving steps comes back to most of them, and each costs n sines
+// and cosines.
+class PhasorTable {
+public:
+    explicit PhasorTable(int n) : n_(n) {}
+    const std::vector<Complex>& at(double freq) {
+        for (const auto& [f, p] : made_)
+            if (f == freq) return p;
+        made_.emplace_back(freq, phasors(freq, n_));
+        return made_.back().second;
+    }
+
+private:
+    int n_;
+    std::deque<std::pair<double, std::vector<Complex>>> made_;
+};
+
 // The patch's Fourier coefficients near a frequency, separably: the patch's
 // rows transformed at one x frequency (rows[y]) and its columns at one y
 // frequency (cols[x]) make the coefficient at any y frequency with the
 // first, or any x frequency with the second, in n multiply-adds rather than
 // n^2. Only a move of the x frequency (y frequency) makes rows (cols) anew.
+// The transforms keep real and imaginary parts apart and several rows'
+// sums at once, each sum in the order of its terms.
 class PatchCoefficients {
 public:
-    PatchCoefficients(const std::vector<double>& e, int n, const Eigen::Vector2d& f) : e_(e), n_(n), f_(f) {
+    PatchCoefficients(const std::vector<double>& e, int n, const Eigen::Vector2d& f)
+        : e_(e), n_(n), f_(f), x_phasors_(n), y_phasors_(n) {
         transform_rows();
         transform_cols();
     }
     const Eigen::Vector2d& frequency() const { return f_; }
-    Complex at() const { return sum(cols_, phasors(f_.x(), n_)); }
+    Complex at() { return sum(cols_, x_phasors_.at(f_.x())); }
     // At the frequency moved by `d` along one axis (d.x() or d.y() is 0).
-    Complex moved(const Eigen::Vector2d& d) const {
-        return d.x() != 0 ? sum(cols_, phasors(f_.x() + d.x(), n_)) : sum(rows_, phasors(f_.y() + d.y(), n_));
+    Complex moved(const Eigen::Vector2d& d) {
+        return d.x() != 0 ? sum(cols_, x_phasors_.at(f_.x() + d.x())) : sum(rows_, y_phasors_.at(f_.y() + d.y()));
     }
     void move(const Eigen::Vector2d& d) {
         f_ += d;
@@ -109,34 +139,63 @@ public:
     }
 
 private:
+    // Sum of a[k] p[k], the products written out (as fft.cpp's butterflies).
     static Complex sum(const std::vector<Complex>& a, const std::vector<Complex>& p) {
-        Complex total = 0;
-        for (std::size_t k = 0; k < a.size(); ++k) total += a[k] * p[k];
-        return total;
+        double re = 0, im = 0;
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            re += a[k].real() * p[k].real() - a[k].imag() * p[k].imag();
+            im += a[k].real() * p[k].imag() + a[k].imag() * p[k].real();
+        }
+        return {re, im};
+    }
+    static void split(const std::vector<Complex>& p, std::vector<double>& re, std::vector<double>& im) {
+        re.resize(p.size());
+        im.resize(p.size());
+        for (std::size_t k = 0; k < p.size(); ++k) {
+            re[k] = p[k].real();
+            im[k] = p[k].imag();
+        }
     }
     void transform_rows() {
-        const std::vector<Complex> px = phasors(f_.x(), n_);
+        constexpr int kRowsAtOnce = 4;
+        split(x_phasors_.at(f_.x()), re_, im_);
         rows_.assign(static_cast<std::size_t>(n_), 0);
-        for (int y = 0; y < n_; ++y) {
-            const double* line = e_.data() + static_cast<std::ptrdiff_t>(y) * n_;
-            Complex row = 0;
-            for (int x = 0; x < n_; ++x) row += line[x] * px[static_cast<std::size_t>(x)];
-            rows_[static_cast<std::size_t>(y)] = row;
+        const std::size_t n = static_cast<std::size_t>(n_);
+        for (std::size_t y = 0; y < n; y += kRowsAtOnce) {
+            const std::size_t count = std::min<std::size_t>(kRowsAtOnce, n - y);
+            double sum_re[kRowsAtOnce] = {}, sum_im[kRowsAtOnce] = {};
+            const double* line = e_.data() + y * n;
+            for (std::size_t x = 0; x < n; ++x)
+                for (std::size_t j = 0; j < count; ++j) {
+                    const double v = line[j * n + x];
+                    sum_re[j] += v * re_[x];
+                    sum_im[j] += v * im_[x];
+                }
+            for (std::size_t j = 0; j < count; ++j) rows_[y + j] = Complex(sum_re[j], sum_im[j]);
         }
     }
     void transform_cols() {
-        const std::vector<Complex> py = phasors(f_.y(), n_);
-        cols_.assign(static_cast<std::size_t>(n_), 0);
-        for (int y = 0; y < n_; ++y) {
-            const double* line = e_.data() + static_cast<std::ptrdiff_t>(y) * n_;
-            const Complex w = py[static_cast<std::size_t>(y)];
-            for (int x = 0; x < n_; ++x) cols_[static_cast<std::size_t>(x)] += line[x] * w;
+        const std::vector<Complex>& py = y_phasors_.at(f_.y());
+        const std::size_t n = static_cast<std::size_t>(n_);
+        re_.assign(n, 0);
+        im_.assign(n, 0);
+        for (std::size_t y = 0; y < n; ++y) {
+            const double* line = e_.data() + y * n;
+            const double wr = py[y].real(), wi = py[y].imag();
+            for (std::size_t x = 0; x < n; ++x) {
+                re_[x] += line[x] * wr;
+                im_[x] += line[x] * wi;
+            }
         }
+        cols_.resize(n);
+        for (std::size_t x = 0; x < n; ++x) cols_[x] = Complex(re_[x], im_[x]);
     }
     const std::vector<double>& e_;
     int n_;
     Eigen::Vector2d f_;
+    PhasorTable x_phasors_, y_phasors_;
     std::vector<Complex> rows_, cols_;
+    std::vector<double> re_, im_;  // a transform's working parts
 };
 
 // The peak's frequency to a 16th of a bin, by a search over halving steps
@@ -239,9 +298,16 @@ std::vector<Lattice> find_lattices(const GreyView& im, const Eigen::Vector2d& ai
         });
         if (!seen) pairs.emplace_back(&peaks[i], other);
     }
+    // A peak in several pairs is refined once.
+    std::map<const Peak*, std::pair<Eigen::Vector2d, Complex>> refined;
+    auto refine = [&](const Peak* p) -> const std::pair<Eigen::Vector2d, Complex>& {
+        auto it = refined.find(p);
+        if (it == refined.end()) it = refined.emplace(p, refine_frequency(e, n, *p)).first;
+        return it->second;
+    };
     for (const auto& [p1, p2] : pairs) {
-        const auto [f1, c1] = refine_frequency(e, n, *p1);
-        const auto [f2, c2] = refine_frequency(e, n, *p2);
+        const auto [f1, c1] = refine(p1);
+        const auto [f2, c2] = refine(p2);
         const Eigen::Vector2d f[2] = {f1, f2};
         const double phase[2] = {std::arg(c1), std::arg(c2)};
         Lattice l;

@@ -42,6 +42,29 @@ TEST(Fft, TwoDimensionsFindAPlaneWavesFrequency) {
     EXPECT_LT(std::abs(image[5 * n + 4]), 1e-6);
 }
 
+TEST(Fft, TwoDimensionsOverSomeColumnsMatchTheWholeTransformThere) {
+    const int n = 16;
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<Complex> image(static_cast<std::size_t>(n) * n);
+    for (auto& v : image) v = u(rng);
+    std::vector<Complex> whole = image, some = image, rows_only = image;
+    umf::fft_2d(whole, n);
+    umf::fft_2d(some, n, 9, 1);
+    umf::fft_2d(rows_only, n, 0, 0);
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * n + x;
+            if (x < 9 || x == n - 1)
+                EXPECT_EQ(some[i], whole[i]) << x << " " << y;  // the same arithmetic, bit for bit
+            else
+                EXPECT_EQ(some[i], rows_only[i]) << x << " " << y;
+        }
+    // The rows alone are each row's 1-D transform.
+    std::vector<Complex> row(image.begin() + 3 * n, image.begin() + 4 * n);
+    for (int k = 0; k < n; ++k) EXPECT_LT(std::abs(rows_only[3 * n + static_cast<std::size_t>(k)] - naive(row, k)), 1e-9);
+}
+
 TEST(Fft, RefusesLengthsThatAreNotPowersOfTwo) {
     std::vector<Complex> x(12);
     EXPECT_THROW(umf::fft(x.data(), 12), std::invalid_argument);
