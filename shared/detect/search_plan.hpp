@@ -164,7 +164,11 @@ constexpr SearchPlan search_piece(SearchPlan part, int piece) {
 // they cost on frames without the field (umf_speed_benchmark --parts, which
 // prints the greedy order: most frames not yet found per millisecond next),
 // so that a frame a cheap part finds does not first pay for the dear ones.
-inline constexpr std::array<int, kSearchParts> kPartOrder = {0, 6, 1, 8, 2, 10, 4, 3, 11, 9, 5, 7};
+// Since the lattice costs half what it did (2026-12-04: at 640 x 480 part 1
+// 0.65 ms, 3 0.66, 8 (at 1280 x 720) 0.69, where the first scan costs 1.2),
+// its three parts come first: the modelled mean time to find a frame the
+// first scan misses, 5.4 ms in the order before, 4.6 in this one.
+inline constexpr std::array<int, kSearchParts> kPartOrder = {8, 1, 3, 0, 2, 10, 4, 9, 5, 6, 7, 11};
 
 // A photo's search: the first scan, then the parts in order while nothing
 // is found (Detector::detect over the plans).
@@ -185,7 +189,7 @@ constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kP
 // tracker in a dim room kept finding the field at half size and searched
 // nearly every frame anew (tuning set, opacity 0.1, 1280 x 720: low_light
 // 1.07 ms median a frame before, 24.7 ms).
-inline constexpr std::array<int, kSearchParts> kPartOrderNearPrior = {2, 7, 0, 6, 1, 8, 10, 4, 3, 11, 9, 5};
+inline constexpr std::array<int, kSearchParts> kPartOrderNearPrior = {2, 7, 8, 1, 3, 0, 10, 4, 9, 5, 6, 11};
 
 // Whether a part searches edgels at all (the others are lattices alone).
 constexpr bool searches_edgels(const SearchPlan& p) {
@@ -206,7 +210,10 @@ struct SearchPiece {
 
 // Each piece's cost, by part and piece (0 for a piece a lattice part does
 // not have). Part 8, the lattice below half size, runs only on larger
-// frames: about a quarter of part 3 there.
+// frames: about a quarter of part 3 there. The lattice parts' costs (1, 3,
+// 8) are from before the lattice took half the time (2026-12-04): the
+// shares a fixed budget makes were judged with these figures and are kept
+// until they are judged again with the new ones.
 inline constexpr double kPieceCost[kSearchParts][kPiecesOfAPart] = {
     {0.46, 0.78}, {1.33, 0}, {1.09, 1.73}, {1.45, 0},    {0.81, 1.53}, {1.37, 1.73},
     {0.96, 1.16}, {1.73, 2.83}, {0.40, 0}, {3.03, 4.50}, {2.22, 3.15}, {2.09, 3.21}};

@@ -350,11 +350,12 @@ TEST(CategoryFloors, TinyModulesGoToTheLatticeBeforeTheContentsGrids) {
     std::cout << "tiny: lattice first " << found << " found, " << grids << " grids read; in order " << found_in_order
               << " found, " << grids_in_order << " grids read; a spread search's first scan " << found_spread << " of "
               << frames << " with the cue, " << found_spread_without_cue << " without\n";
-    // Measured: 19 found either way; 539 grids read, 1019 in order (a frame
-    // found by neither reads some 370 either way); the spread's first scan
-    // 16 of 20 with the cue, 2 without.
+    // Measured: 19 found either way; 629 grids read, 822 in order (a frame
+    // found by neither reads some 370 either way; 1019 in order before the
+    // lattice parts came first in kPartOrder, 2026-12-04); the spread's
+    // first scan 17 of 20 with the cue, 6 without.
     EXPECT_GE(found, found_in_order);
-    EXPECT_LT(grids * 3, grids_in_order * 2);
+    EXPECT_LT(grids * 5, grids_in_order * 4);
     EXPECT_GE(found_spread, found_spread_without_cue + frames / 2);
 }
 
