@@ -68,6 +68,7 @@ public:
 
     explicit GnomeSession(const Options& options = {}) : root_("umf-gnome") {
         ensure_user();
+        ensure_x11_socket_folder();
         run_ = root_.path / "run";
         home_ = root_.path / "home";
         fs::create_directories(run_);
@@ -197,6 +198,24 @@ private:
         return std::string(std::istreambuf_iterator<char>(in), {});
     }
     static void write_file(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+    // The shell starts Xwayland and refuses a /tmp/.X11-unix that is not
+    // root's and open to all (1777), as a booted system makes it. On a
+    // machine whose /tmp holds none yet (a fresh container, or a run of the
+    // GNOME tests alone, before any Xvfb test made it) the shell would make
+    // it itself, as the test user, and stop.
+    static void ensure_x11_socket_folder() {
+        const fs::path folder = "/tmp/.X11-unix";
+        std::error_code ignored;
+        fs::create_directory(folder, ignored);
+        struct stat st {};
+        if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+            throw std::runtime_error(folder.string() + " is not a folder");
+        if ((st.st_uid != 0 && ::chown(folder.c_str(), 0, 0) != 0) ||
+            ((st.st_mode & 07777) != 01777 && ::chmod(folder.c_str(), 01777) != 0))
+            throw std::runtime_error("cannot make " + folder.string() + " root's and open to all (1777): " +
+                                     std::strerror(errno));
+    }
 
     void ensure_user() {
         if (!::getpwnam(kGnomeTestUser))
