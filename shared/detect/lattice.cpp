@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
-#include <map>
+#include <optional>
 
 #include "shared/detect/fft.hpp"
 
@@ -54,10 +54,14 @@ std::vector<Peak> spectral_peaks(const std::vector<double>& e, int n, const Latt
     std::vector<Complex> s(e.begin(), e.end());
     fft_2d(s, n, low, high);
     std::vector<double> magnitude(s.size());
-    for (std::size_t y = 0; y < static_cast<std::size_t>(n); ++y)
-        for (std::size_t x = 0; x < static_cast<std::size_t>(n); ++x)
-            if (x < static_cast<std::size_t>(low) || x >= static_cast<std::size_t>(n - high))
-                magnitude[y * n + x] = std::sqrt(std::norm(s[y * n + x]));
+    for (int y = 0; y < n; ++y) {
+        const auto at = [&](int x) {
+            const std::size_t i = static_cast<std::size_t>(y) * n + static_cast<std::size_t>(x);
+            magnitude[i] = std::sqrt(std::norm(s[i]));
+        };
+        for (int x = 0; x < low; ++x) at(x);
+        for (int x = n - high; x < n; ++x) at(x);
+    }
     // n is a power of two: k & (n - 1) is k modulo n, negative k too.
     const auto mag = [&](int kx, int ky) {
         return magnitude[static_cast<std::size_t>(ky & (n - 1)) * n + static_cast<std::size_t>(kx & (n - 1))];
@@ -299,11 +303,11 @@ std::vector<Lattice> find_lattices(const GreyView& im, const Eigen::Vector2d& ai
         if (!seen) pairs.emplace_back(&peaks[i], other);
     }
     // A peak in several pairs is refined once.
-    std::map<const Peak*, std::pair<Eigen::Vector2d, Complex>> refined;
+    std::vector<std::optional<std::pair<Eigen::Vector2d, Complex>>> refined(peaks.size());
     auto refine = [&](const Peak* p) -> const std::pair<Eigen::Vector2d, Complex>& {
-        auto it = refined.find(p);
-        if (it == refined.end()) it = refined.emplace(p, refine_frequency(e, n, *p)).first;
-        return it->second;
+        auto& r = refined[static_cast<std::size_t>(p - peaks.data())];
+        if (!r) r = refine_frequency(e, n, *p);
+        return *r;
     };
     for (const auto& [p1, p2] : pairs) {
         const auto [f1, c1] = refine(p1);
