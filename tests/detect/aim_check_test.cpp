@@ -3,12 +3,12 @@
 #include <gtest/gtest.h>
 
 #include "shared/field/field_io.hpp"
+#include "tests/support/shipped_field.hpp"
 
 using namespace umf;
+using umf::test::shipped_field;
 
 namespace {
-
-Field shipped(const char* name) { return load_field(std::string(UMF_DATA_DIR) + "/fields/" + name); }
 
 // The modules of field rows r0.. and columns c0.. as read from a view, turn 0;
 // the part of the box right of column `bent_from` read one module further
@@ -25,7 +25,7 @@ ModuleGrid read_box(const Field& f, int r0, int c0, int rows, int cols, int bent
 }
 
 TEST(ModuleGrid, CropKeepsValuesAndEdgesInsideAndUnknownOutside) {
-    const Field f = shipped("b4-64x36.json");
+    const Field f = shipped_field("b4-64x36.json");
     const ModuleGrid g = read_box(f, 2, 3, 10, 12);
     const ModuleGrid part = g.crop(-1, 8, 4, 6);
     ASSERT_EQ(part.rows, 4);
@@ -41,7 +41,7 @@ TEST(ModuleGrid, CropKeepsValuesAndEdgesInsideAndUnknownOutside) {
 
 TEST(AimCheck, HoldsWhereTheModulesAroundTheAimReadAsTheField) {
     for (const char* name : {"b4-64x36.json", "k3e4-64x36.json"}) {
-        const Field f = shipped(name);
+        const Field f = shipped_field(name);
         const WindowIndex index(f);
         const ModuleGrid g = read_box(f, 4, 6, 20, 30);
         EXPECT_TRUE(aim_holds(g, 4, 6, Eigen::Vector2d(20.5, 13.2), index, VoteOptions{})) << name;
@@ -51,7 +51,7 @@ TEST(AimCheck, HoldsWhereTheModulesAroundTheAimReadAsTheField) {
 
 TEST(AimCheck, FailsWhereTheViewBendsAwayByAModuleAtTheAim) {
     for (const char* name : {"b4-64x36.json", "k3e4-64x36.json"}) {
-        const Field f = shipped(name);
+        const Field f = shipped_field(name);
         const WindowIndex index(f);
         // Read right from column 18 on: most of the box is right, the aim's
         // neighbourhood (columns 18-24) is not.
@@ -62,7 +62,7 @@ TEST(AimCheck, FailsWhereTheViewBendsAwayByAModuleAtTheAim) {
 }
 
 TEST(AimCheck, FailsWhereNothingAroundTheAimWasRead) {
-    const Field f = shipped("b4-64x36.json");
+    const Field f = shipped_field("b4-64x36.json");
     const WindowIndex index(f);
     ModuleGrid g = read_box(f, 4, 6, 20, 30);
     for (int i = 5; i < 15; ++i)
@@ -72,7 +72,7 @@ TEST(AimCheck, FailsWhereNothingAroundTheAimWasRead) {
 }
 
 TEST(AimCheck, AnAimOffTheFieldHasNothingToCheck) {
-    const Field f = shipped("b4-64x36.json");
+    const Field f = shipped_field("b4-64x36.json");
     const WindowIndex index(f);
     const ModuleGrid g = read_box(f, 0, 0, 10, 10);
     EXPECT_TRUE(aim_holds(g, 0, 0, Eigen::Vector2d(-2, 5), index, VoteOptions{}));

@@ -8,12 +8,12 @@
 #include <random>
 
 #include "shared/field/field_io.hpp"
+#include "tests/support/shipped_field.hpp"
 
 using namespace umf;
+using umf::test::shipped_field;
 
 namespace {
-
-Field shipped(const char* name) { return load_field(std::string(UMF_DATA_DIR) + "/fields/" + name); }
 
 // Module by module over the block, every edge, then every k-th.
 std::vector<ExpectedEdge> walked(const Field& f, int r0, int r1, int c0, int c1, std::size_t most) {
@@ -34,7 +34,7 @@ std::vector<ExpectedEdge> walked(const Field& f, int r0, int r1, int c0, int c1,
 
 TEST(ModuleEdges, AnyBlockSpreadAsWalkingItGivesIt) {
     for (const char* name : {"b4-64x36.json", "b4-96x54.json", "k3e4-64x36.json"}) {
-        const Field f = shipped(name);
+        const Field f = shipped_field(name);
         const ModuleEdges edges(f);
         std::mt19937 rng(7);
         std::vector<ExpectedEdge> got;

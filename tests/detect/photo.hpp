@@ -7,16 +7,14 @@
 
 #include "shared/detect/image.hpp"
 #include "shared/field/field.hpp"
-#include "shared/field/field_io.hpp"
 #include "shared/overlay/preset.hpp"
 #include "shared/overlay/pulse.hpp"
 #include "tests/sim/camera.hpp"
 #include "tests/sim/field_mix.hpp"
 #include "tests/sim/screen_content.hpp"
+#include "tests/support/shipped_field.hpp"
 
 namespace umf::test {
-
-inline Field shipped_field(const char* name) { return load_field(std::string(UMF_DATA_DIR) + "/fields/" + name); }
 
 struct Photo {
     sim::Shot shot;

@@ -7,12 +7,12 @@
 #include <utility>
 
 #include "shared/field/field_io.hpp"
+#include "tests/support/shipped_field.hpp"
 
 using namespace umf;
+using umf::test::shipped_field;
 
 namespace {
-
-Field shipped(const char* name) { return load_field(std::string(UMF_DATA_DIR) + "/fields/" + name); }
 
 // The field region of h x w modules at (r0, c0), turned clockwise t times as a
 // camera would see it; `source` gets the field module each grid cell shows.
@@ -53,7 +53,7 @@ void expect_placement(const ModuleGrid& g, const VoteResult& v, const std::vecto
 
 TEST(WindowIndex, FindsEveryWindowUnderEveryTurn) {
     for (const char* name : {"b4-64x36.json", "k3e4-64x36.json", "k5e3-64x36.json"}) {
-        Field f = shipped(name);
+        Field f = shipped_field(name);
         WindowIndex index(f);
         for (int r = 0; r < f.window_rows(); r += 3)
             for (int c = 0; c < f.window_cols(); c += 2)
@@ -74,7 +74,7 @@ TEST(WindowIndex, RefusesFieldsThatAreNotOrientable) {
 
 TEST(PlacementVote, FindsPositionAndTurnOfAnyRegion) {
     for (const char* name : {"b4-64x36.json", "k3e4-64x36.json", "k5e3-64x36.json"}) {
-        Field f = shipped(name);
+        Field f = shipped_field(name);
         WindowIndex index(f);
         std::mt19937 rng(1);
         for (int trial = 0; trial < 40; ++trial) {
@@ -93,7 +93,7 @@ TEST(PlacementVote, FindsPositionAndTurnOfAnyRegion) {
 }
 
 TEST(PlacementVote, FieldPointsFollowTheModules) {
-    Field f = shipped("b4-64x36.json");
+    Field f = shipped_field("b4-64x36.json");
     WindowIndex index(f);
     for (int t = 0; t < 4; ++t) {
         std::vector<std::pair<int, int>> source;
@@ -118,7 +118,7 @@ TEST(PlacementVote, FieldPointsFollowTheModules) {
 // Found at most `misread` and `unread` per cent of modules wrong or missing:
 // returns how many of `trials` 12 x 12 grids were placed; each placed one must be right.
 int place_noisy_grids(const char* name, int misread, int unread, int trials) {
-    Field f = shipped(name);
+    Field f = shipped_field(name);
     WindowIndex index(f);
     std::mt19937 rng(2);
     int found = 0;
@@ -155,7 +155,7 @@ TEST(PlacementVote, ToleratesMisreadAndUnreadModules) {
 // every turn.
 TEST(PlacementVote, VoteNearCountsTheWindowsTheWholeVoteCounts) {
     for (const char* name : {"b4-64x36.json", "k3e4-64x36.json"}) {
-        Field f = shipped(name);
+        Field f = shipped_field(name);
         WindowIndex index(f);
         std::mt19937 rng(5);
         int compared = 0;
@@ -189,7 +189,7 @@ TEST(PlacementVote, VoteNearCountsTheWindowsTheWholeVoteCounts) {
 
 TEST(PlacementVote, NeverPlacesRandomGrids) {
     for (const char* name : {"b4-64x36.json", "k3e4-64x36.json"}) {
-        Field f = shipped(name);
+        Field f = shipped_field(name);
         WindowIndex index(f);
         std::mt19937 rng(3);
         for (int trial = 0; trial < 1000; ++trial) {
@@ -202,7 +202,7 @@ TEST(PlacementVote, NeverPlacesRandomGrids) {
 }
 
 TEST(PlacementVote, NeverPlacesAnotherFieldsRegion) {
-    Field a = shipped("b4-64x36.json"), b = shipped("b4-96x54.json");
+    Field a = shipped_field("b4-64x36.json"), b = shipped_field("b4-96x54.json");
     WindowIndex index(a);
     std::mt19937 rng(4);
     for (int trial = 0; trial < 300; ++trial) {
@@ -214,7 +214,7 @@ TEST(PlacementVote, NeverPlacesAnotherFieldsRegion) {
 }
 
 TEST(PlacementVote, FewModulesInViewAreNotEnough) {
-    Field f = shipped("b4-64x36.json");
+    Field f = shipped_field("b4-64x36.json");
     WindowIndex index(f);
     std::vector<std::pair<int, int>> source;
     ModuleGrid g = turned_region(f, 3, 3, 4, 4, 0, source);

@@ -13,12 +13,12 @@
 
 #include "shared/field/field_io.hpp"
 #include "tests/sim/field_mix.hpp"
+#include "tests/support/shipped_field.hpp"
 
 namespace {
 
 using namespace umf;
-
-Field shipped(const char* name) { return load_field(std::string(UMF_DATA_DIR) + "/fields/" + name); }
+using umf::test::shipped_field;
 
 cv::Mat random_image(cv::Size size, int type, unsigned seed) {
     cv::Mat m(size, type);
@@ -33,7 +33,7 @@ overlay::PixelBuffer buffer_of(cv::Mat& m, bool bgr) {
 
 TEST(FieldMix, MatchesTheSimulatorByteForByte) {
     for (const char* name : {"b4-64x36.json", "k3e4-64x36.json"}) {
-        const Field field = shipped(name);
+        const Field field = shipped_field(name);
         const cv::Mat screen = random_image({701, 419}, CV_8UC3, 7);
         // Fractional origin and module size, the field reaching past the right and bottom edges.
         const overlay::FieldPlacement placement{13.37, -21.71, 11.23};
@@ -77,7 +77,7 @@ TEST(FieldMix, MatchesTheSimulatorByteForByte) {
 }
 
 TEST(FieldMix, OpacityZeroLeavesTheImageAsItWas) {
-    const Field field = shipped("b4-64x36.json");
+    const Field field = shipped_field("b4-64x36.json");
     const cv::Mat screen = random_image({640, 360}, CV_8UC3, 11);
     cv::Mat mixed = screen.clone();
     overlay::mix_field(buffer_of(mixed, true), field, {0.5, 0.25, 10.0}, 0.0);
@@ -85,7 +85,7 @@ TEST(FieldMix, OpacityZeroLeavesTheImageAsItWas) {
 }
 
 TEST(FieldMix, UsesThePaletteGiven) {
-    const Field field = shipped("b4-64x36.json");
+    const Field field = shipped_field("b4-64x36.json");
     cv::Mat mixed(360, 640, CV_8UC3, cv::Scalar(0, 0, 0));
     const overlay::FieldPlacement placement{0, 0, 10};
     // At opacity 1 every pixel is its module's colour: red for 0, blue for 1 (BGR order in the Mat).
@@ -99,7 +99,7 @@ TEST(FieldMix, UsesThePaletteGiven) {
 }
 
 TEST(FieldMix, RefusesWhatCannotBeMixed) {
-    const Field field = shipped("k3e4-64x36.json");
+    const Field field = shipped_field("k3e4-64x36.json");
     cv::Mat m(100, 100, CV_8UC3, cv::Scalar::all(0));
     const overlay::FieldPlacement placement{0, 0, 10};
     EXPECT_THROW(overlay::mix_field(buffer_of(m, true), field, placement, 1.5), std::invalid_argument);

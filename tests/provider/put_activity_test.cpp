@@ -34,6 +34,7 @@ using umf::test::FakeXdgOpen;
 using umf::test::ScriptedDecider;
 using umf::test::TempDir;
 using umf::test::file_put;
+using umf::test::url_put;
 
 constexpr const char* kActivityToken = "put-activity-token-0123456789";
 
@@ -65,16 +66,6 @@ private:
     std::condition_variable changed_;
     std::vector<PutActivity> steps_;
 };
-
-p::Put url_put(const std::string& id) {
-    p::Put put;
-    put.id = p::RequestId{id};
-    put.point = {10, 10};
-    put.kind = p::ContentKind::url;
-    put.url = "https://example.org/talk";
-    put.title = "Talk page";
-    return put;
-}
 
 class PutActivityTest : public ::testing::Test {
 protected:

@@ -33,21 +33,12 @@ using umf::test::folder_names;
 using umf::test::ScriptedDecider;
 using umf::test::TempDir;
 using umf::test::file_put;
+using umf::test::url_put;
 
 constexpr const char* kPutServiceToken = "put-token-0123456789abcdefgh";
 
 std::string put_hello(const std::optional<std::string>& device = std::nullopt) {
     return p::encode(p::Hello{p::RequestId{std::int64_t{1}}, kPutServiceToken, "Pixel 7", device});
-}
-
-p::Put url_put(const std::string& id = "p1", p::FieldPoint at = {10, 10}) {
-    p::Put put;
-    put.id = p::RequestId{id};
-    put.point = at;
-    put.kind = p::ContentKind::url;
-    put.url = "https://example.org/talk";
-    put.title = "Talk page";
-    return put;
 }
 
 class PutService : public ::testing::Test {

@@ -42,6 +42,18 @@ inline protocol::Put file_put(const std::string& bytes, const std::string& id = 
     return put;
 }
 
+// A put of a link (a talk's page), at a point every test screen shows
+// unless `at` says otherwise.
+inline protocol::Put url_put(const std::string& id = "p1", protocol::FieldPoint at = {10, 10}) {
+    protocol::Put put;
+    put.id = protocol::RequestId{id};
+    put.point = at;
+    put.kind = protocol::ContentKind::url;
+    put.url = "https://example.org/talk";
+    put.title = "Talk page";
+    return put;
+}
+
 class ScriptedDecider : public provider::PutDecider {
 public:
     enum class Mode { at_once, later, never };
