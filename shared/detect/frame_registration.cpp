@@ -118,9 +118,55 @@ struct Step {
     bool solved = false;
 };
 
-// One Gauss-Newton step of the samples against `image` through `h`.
+// The gain of `to`'s grey levels over `from`'s where `h` (unit coordinates)
+// aligns them: weighted least squares of one on the other with an offset,
+// over the flat pixels of `from` (every 4th along rows and columns), the
+// weights leaving out pairs far from the offset alone (what moves apart from
+// the screen). Flat pixels, not the edges the alignment samples: at an edge
+// the other frame's pixel is resampled, its level pulled towards the local
+// mean, and a fit through such pairs takes the gain for less. Taken once
+// aligned, for the same reason. 1 where the pixels are nearly all of one
+// grey, or outside [1/1.5, 1.5].
+double aligned_gain(const GreyView& from, const GreyView& to, const Eigen::Matrix3d& from_to_unit,
+                    const Eigen::Matrix3d& h) {
+    constexpr int kStep = 4;
+    constexpr float kFlat = 16;  // Sobel sums: 2 grey levels a pixel
+    const Eigen::Matrix3d map = from_to_unit.inverse() * h * from_to_unit;
+    std::vector<float> t, g;
+    for (int y = 1; y < from.height - 1; y += kStep)
+        for (int x = 1; x < from.width - 1; x += kStep) {
+            float gx, gy;
+            sobel(from, x, y, gx, gy);
+            if (std::abs(gx) + std::abs(gy) > kFlat) continue;
+            const Eigen::Vector3d q = map * Eigen::Vector3d(x, y, 1);
+            if (q.z() <= 0) continue;
+            const double qx = q.x() / q.z(), qy = q.y() / q.z();
+            if (!(qx >= 0 && qy >= 0 && qx < to.width - 1 && qy < to.height - 1)) continue;
+            t.push_back(from.at(x, y));
+            g.push_back(bilinear(to, qx, qy));
+        }
+    if (t.size() < 64) return 1;
+    std::vector<float> seen(t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) seen[i] = g[i] - t[i];
+    const float offset = median_of(seen);
+    for (float& d : seen) d = std::abs(d - offset);
+    const double huber = std::max(1.345 * 1.4826 * median_of(seen), 2.0);
+    double sw = 0, st = 0, si = 0, stt = 0, sti = 0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        const double e = std::abs(g[i] - t[i] - offset);
+        const double w = e <= huber ? 1.0 : huber / e;
+        sw += w, st += w * t[i], si += w * g[i], stt += w * t[i] * t[i], sti += w * t[i] * g[i];
+    }
+    const double var = stt * sw - st * st;
+    if (!(sw > 0) || !(var > 9 * sw * sw)) return 1;  // a spread of 3 levels at least
+    const double gain = (sti * sw - st * si) / var;
+    return gain >= 1 / 1.5 && gain <= 1.5 ? gain : 1;
+}
+
+// One Gauss-Newton step of the samples against `image` through `h`, with
+// the samples' grey levels scaled by `gain` (the other frame's exposure).
 Step align_step(const std::vector<Sample>& samples, const GreyView& image, const Eigen::Matrix3d& h,
-                const Eigen::Matrix3d& unit_to_level) {
+                const Eigen::Matrix3d& unit_to_level, double gain) {
     std::vector<float> diff(samples.size());
     std::vector<char> inside(samples.size(), 0);
     std::vector<float> seen;
@@ -131,6 +177,8 @@ Step align_step(const std::vector<Sample>& samples, const GreyView& image, const
         const double x = q.x() / q.z(), y = q.y() / q.z();
         if (!(x >= 0 && y >= 0 && x < image.width - 1 && y < image.height - 1)) continue;
         diff[i] = bilinear(image, x, y) - samples[i].grey;
+        // Against the samples' grey levels at the other frame's exposure.
+        if (gain != 1) diff[i] -= static_cast<float>((gain - 1) * samples[i].grey);
         inside[i] = 1;
         seen.push_back(diff[i]);
     }
@@ -147,7 +195,8 @@ Step align_step(const std::vector<Sample>& samples, const GreyView& image, const
         if (!inside[i]) continue;
         const double e = diff[i] - offset;
         const double w = std::abs(e) <= huber ? 1.0 : huber / std::abs(e);
-        const Eigen::Matrix<double, 8, 1> j = samples[i].jacobian.cast<double>();
+        // The template is `gain` times the samples': so are its gradients.
+        const Eigen::Matrix<double, 8, 1> j = gain * samples[i].jacobian.cast<double>();
         normal.selfadjointView<Eigen::Lower>().rankUpdate(j, w);
         rhs += w * e * j;
     }
@@ -193,32 +242,47 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     FrameRegistration result;
     Step last;
     std::vector<Sample> samples;  // at the end, the finest level's
-    for (int level = coarsest; level >= finest; --level) {
-        const Eigen::Matrix3d to_unit = level_to_unit(w, h, level);
-        const Eigen::Matrix3d unit_to_level = to_unit.inverse();
-        samples = samples_of(from.level(level), to_unit, options.samples);
+    auto align = [&](int level, double gain) {
+        const Eigen::Matrix3d unit_to_level = level_to_unit(w, h, level).inverse();
         for (int it = 0; it < options.iterations; ++it) {
-            last = align_step(samples, to.level(level), warp, unit_to_level);
+            last = align_step(samples, to.level(level), warp, unit_to_level, gain);
             if (!last.solved) break;
             const Eigen::Matrix3d inverse_step = as_matrix(last.update).inverse();
             warp = warp * inverse_step;
             warp /= warp(2, 2);
             if (corner_motion(inverse_step, unit_to_level, aspect) < options.converged_px) break;
         }
+    };
+    for (int level = coarsest; level >= finest; --level) {
+        samples = samples_of(from.level(level), level_to_unit(w, h, level), options.samples);
+        align(level, 1);
+    }
+    const Eigen::Matrix3d finest_to_unit = level_to_unit(w, h, finest);
+    // The exposure's gain, from the frames as aligned with an offset alone,
+    // and the finest level aligned again with it where it is more than a
+    // small change (the Huber weights carry the alignment through that).
+    double gain = 1;
+    if (options.fit_gain) {
+        gain = aligned_gain(from.level(finest), to.level(finest), finest_to_unit, warp);
+        if (std::abs(gain - 1) > options.least_gain)
+            align(finest, gain);
+        else
+            gain = 1;
     }
     // The spread and overlap where the alignment ended, against the spread
     // of the frames as they lie (the screen not moved): sharp content leaves
     // a spread of many levels even where aligned exactly (the pixels sample
     // its edges at other phases), so the alignment is judged by how much it
     // explains as well as by what it leaves.
-    const Eigen::Matrix3d finest_to_unit = level_to_unit(w, h, finest);
-    last = align_step(samples, to.level(finest), warp, finest_to_unit.inverse());
-    const Step unmoved = align_step(samples, to.level(finest), Eigen::Matrix3d::Identity(), finest_to_unit.inverse());
+    last = align_step(samples, to.level(finest), warp, finest_to_unit.inverse(), gain);
+    const Step unmoved =
+        align_step(samples, to.level(finest), Eigen::Matrix3d::Identity(), finest_to_unit.inverse(), gain);
     result.homography = full_to_unit.inverse() * warp * full_to_unit;
     result.homography /= result.homography(2, 2);
     result.residual = last.spread;
     result.unmoved_residual = unmoved.spread;
     result.overlap = last.overlap;
+    result.gain = gain;
     const bool explained = last.spread <= options.max_residual || last.spread <= options.max_share * unmoved.spread;
     result.registered = last.solved && result.homography.allFinite() && explained && last.overlap >= options.min_overlap;
     return result;

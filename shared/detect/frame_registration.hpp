@@ -11,7 +11,8 @@
 // coarse to fine over image pyramids, on the pixels of strongest gradient,
 // with Huber weights so that what moves apart from the screen (a hand, the
 // wall beside it) and the pulse's own change weigh little, and a grey-level
-// offset estimated beside it (exposure and the pulse change the mean).
+// offset estimated beside it (exposure and the pulse change the mean), and
+// on request the exposure's gain (RegistrationOptions::fit_gain).
 #pragma once
 
 #include <Eigen/Core>
@@ -62,6 +63,16 @@ struct RegistrationOptions {
     double max_residual = 8;
     double max_share = 0.7;
     double min_overlap = 0.5;
+    // The grey levels' gain fitted beside their offset: once aligned with
+    // the offset alone, and the finest level aligned again with the gain
+    // where it differs from 1 by more than `least_gain`. Off by default: on
+    // the tuning set's pulsing videos the offset alone (with its Huber
+    // weights) registers as many frames under an exposure that drifts by 8 %,
+    // and the gain cost 27 of 433 frames found where the exposure is steady
+    // (umf_pulse_benchmark --frame-ms 0 [--exposure-drift 0.08] [--no-gain]).
+    // For a camera whose exposure jumps by more (15 % in the test).
+    bool fit_gain = false;
+    double least_gain = 0.02;
 };
 
 struct FrameRegistration {
@@ -71,6 +82,7 @@ struct FrameRegistration {
     double residual = 0;  // the robust spread of the grey-level difference, levels
     double unmoved_residual = 0;  // the same between the frames as they lie
     double overlap = 0;   // the share of samples inside `to`
+    double gain = 1;      // of `to`'s grey levels over `from`'s
     bool registered = false;
 };
 

@@ -39,6 +39,44 @@ double corner_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, int w
     return most;
 }
 
+// The median ratio of `frame`'s grey levels to `reference`'s over the pixels
+// (every `step`-th along rows and columns) that `to_reference` takes from
+// inside `frame` and that are not too dark to tell a ratio: 1 where too few.
+double exposure_ratio(const GreyView& frame, const GreyView& reference, const Eigen::Matrix3d& to_reference,
+                      int step = 4) {
+    constexpr int kDarkest = 24;
+    const Eigen::Matrix3d back = to_reference.inverse();
+    std::vector<float> ratios;
+    for (int y = 0; y < reference.height; y += step)
+        for (int x = 0; x < reference.width; x += step) {
+            const int r = reference.at(x, y);
+            if (r < kDarkest) continue;
+            const Eigen::Vector3d q = back * Eigen::Vector3d(x, y, 1);
+            if (q.z() <= 0) continue;
+            const double sx = q.x() / q.z(), sy = q.y() / q.z();
+            if (!(sx >= 0 && sy >= 0 && sx < frame.width - 1 && sy < frame.height - 1)) continue;
+            ratios.push_back(static_cast<float>(frame.at(x, y)) / static_cast<float>(r));
+        }
+    if (ratios.size() < 64) return 1;
+    const auto mid = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2);
+    std::nth_element(ratios.begin(), mid, ratios.end());
+    return *mid > 0 ? *mid : 1;
+}
+
+// `view`'s grey levels divided by `gain`, into `buffer` (which may be the
+// view's own pixels), through a table of the 256 levels.
+GreyView scaled(const GreyView& view, double gain, std::vector<std::uint8_t>& buffer) {
+    std::uint8_t table[256];
+    for (int v = 0; v < 256; ++v) table[v] = static_cast<std::uint8_t>(std::min(255.0, v / gain + 0.5));
+    buffer.resize(static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height));
+    for (int y = 0; y < view.height; ++y) {
+        const std::uint8_t* src = view.row(y);
+        std::uint8_t* dst = buffer.data() + static_cast<std::size_t>(y) * view.width;
+        for (int x = 0; x < view.width; ++x) dst[x] = table[src[x]];
+    }
+    return {buffer.data(), view.width, view.height, view.width};
+}
+
 }  // namespace
 
 PulseSearch::PulseSearch(PulseSearchOptions options) : options_(std::move(options)) {
@@ -143,6 +181,11 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
     for (std::size_t i = 0; i < kept_.size(); ++i)
         views.push_back(i + 1 == kept_.size() ? newest
                                               : warp_frame(kept_[i].pyramid.level(0), kept_[i].to_newest, newest, warped_[i]));
+    if (options_.level_exposure)
+        for (std::size_t i = 0; i + 1 < views.size(); ++i) {
+            const double gain = exposure_ratio(views[i], newest, kept_[i].to_newest);
+            if (std::abs(gain - 1) > 1e-3) views[i] = scaled(views[i], gain, warped_[i]);
+        }
     const PulseCourse course = find_pulse_course(views);
     out.share = course.share;
     if (course.level.empty() || course.share < options_.min_share) {

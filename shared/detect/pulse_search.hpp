@@ -57,6 +57,13 @@ struct PulseSearchOptions {
     // registration (the screen moves in the view as its content does), for
     // at most this many frames without a search that finds it again.
     int carry_frames = 25;
+    // Each frame laid onto the newest scaled to the newest's exposure before
+    // the pulse is demodulated (the median ratio of their grey levels): a
+    // phone's auto-exposure changes the content's levels by more than a faint
+    // pulse changes the field's, and the frames' main course over time is
+    // then the exposure's. A pure gain, as exposure is; on a blank page the
+    // pulse is a change of contrast about the page's grey, which it keeps.
+    bool level_exposure = true;
     // What the detector runs on a demodulated image: the first scan of a
     // video's frame, then the scan three pixels across and the image
     // smoothed (search_plan.hpp's parts 2 and 5): the demodulated image's

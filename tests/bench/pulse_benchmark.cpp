@@ -40,6 +40,12 @@ Usage: umf_pulse_benchmark [options]
   --frame-ms MS          the tracker's search held to MS a frame, as the page holds it (TrackerOptions::frame_ms
                          with its spread search; default 2); 0: every search on every frame without a lock
   --max-motion-change X  PulseSearchOptions::max_motion_change (default: the library's)
+  --exposure-drift A     the tuning set's videos with an auto-exposure that drifts and re-meters, the light
+                         scaled by up to about 1 +- A from frame to frame (default 0: a steady exposure)
+  --gain                 the frames registered with the exposure's gain as well as a grey-level offset
+                         (RegistrationOptions::fit_gain)
+  --no-levelling         the frames laid onto the newest not levelled to its exposure before demodulating
+                         (PulseSearchOptions::level_exposure off)
   --videos a,b           only these videos (screen kinds, or held-out contents)
   --log FILE             one line per frame of the pulse search's videos: video, frame, state, where the
                          place came from, its error in modules, the share the pulse explained where searched,
@@ -63,6 +69,9 @@ struct Options {
     bool announced = true;
     double frame_ms = 2;
     std::optional<double> max_motion_change;
+    double exposure_drift = 0;
+    bool fit_gain = false;
+    bool level_exposure = true;
     std::vector<std::string> videos;  // empty: all
     std::string log;
     std::uint64_t seed = 1;
@@ -92,6 +101,24 @@ double faint(const Options& o, double default_pulse_opacity) {
                                (kHeldoutPulseMax - kHeldoutPulseMin);
 }
 
+// A phone's auto-exposure over a video, as a factor on the light at frame
+// `i`: a slow wander (two sines of a few seconds) and, every 2 s or so, a
+// re-metering that steps by up to `amplitude` / 2 and settles in about a
+// fifth of a second. Within about 1 +- `amplitude`.
+double exposure_drift(int i, double amplitude, std::uint64_t seed) {
+    if (amplitude <= 0) return 1;
+    cv::RNG rng(seed * 7919 + 17);
+    const double p1 = rng.uniform(1.1, 2.3), p2 = rng.uniform(2.9, 4.7);
+    const double f1 = rng.uniform(0.0, 2 * CV_PI), f2 = rng.uniform(0.0, 2 * CV_PI);
+    const double t = i / sim::kFps;
+    double factor = 1 + amplitude * (0.35 * std::sin(2 * CV_PI * t / p1 + f1) + 0.25 * std::sin(2 * CV_PI * t / p2 + f2));
+    for (double at = rng.uniform(0.5, 1.5); at <= t; at += rng.uniform(1.5, 2.5)) {
+        const double step = amplitude * rng.uniform(-0.5, 0.5);
+        factor += step * (1 - std::exp(-(t - at) / 0.07));
+    }
+    return std::clamp(factor, 1 - 1.5 * amplitude, 1 + 1.5 * amplitude);
+}
+
 std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size res) {
     const Scene scene;
     const sim::FieldPlacement placement{{0, 0}, scene.module_px};
@@ -99,7 +126,9 @@ std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size 
     for (const sim::ScreenKind kind : sim::kEverydayScreenKinds) {
         if (!wanted(o, sim::to_string(kind))) continue;
         const cv::Mat screen = sim::make_screen(kind, scene.screen.pixels, 7);
-        const auto rs = pulsing_recipes(scene, kind, o.frames, o.seed);
+        auto rs = pulsing_recipes(scene, kind, o.frames, o.seed);
+        for (FrameRecipe& r : rs)
+            r.degradation.exposure *= exposure_drift(r.index, o.exposure_drift, o.seed * 31 + static_cast<std::uint64_t>(kind));
         Video v{sim::to_string(kind), std::vector<Frame>(rs.size()), std::vector<Frame>(rs.size()), placement,
                 sim::kFps};
         parallel_for(static_cast<int>(rs.size()), o.threads, [&](int i) {
@@ -139,6 +168,8 @@ std::vector<Video> heldout_videos(const Options& o, const Field& field, cv::Size
 PulseSearchOptions pulse_options(const Options& o, double fps) {
     PulseSearchOptions p;
     if (o.max_motion_change) p.max_motion_change = *o.max_motion_change;
+    p.registration.fit_gain = o.fit_gain;
+    p.level_exposure = o.level_exposure;
     if (!o.announced) return p;
     overlay::Preset unit;  // the waveform over one period, 0 to 1
     unit.opacity_min = 0;
@@ -251,6 +282,9 @@ void run(const Options& o) {
                 "update on one thread (median / p95).\n",
                 o.heldout ? "held-out" : "tuning", o.min_opacity, o.max_opacity, kPeriodS, o.frames,
                 o.announced ? "announced" : "not announced", o.frame_ms, static_cast<unsigned long long>(o.seed), kRadiusModules);
+    if (o.exposure_drift > 0 && !o.heldout) std::printf("The exposure drifting by up to about %.3g.\n", o.exposure_drift);
+    if (o.fit_gain) std::printf("Registered with the exposure's gain as well as an offset.\n");
+    if (!o.level_exposure) std::printf("Not levelled to one exposure before demodulating.\n");
     for (const cv::Size res : o.resolutions) {
         std::cerr << "making " << res.width << " x " << res.height << " videos\n";
         const std::vector<Video> videos = o.heldout ? heldout_videos(o, field, res) : tuning_videos(o, field, res);
@@ -311,6 +345,13 @@ Options parse(int argc, char** argv) {
             o.announced = false;
         } else if (a == "--max-motion-change") {
             o.max_motion_change = std::stod(value());
+        } else if (a == "--exposure-drift") {
+            o.exposure_drift = std::stod(value());
+            if (!(o.exposure_drift >= 0 && o.exposure_drift < 0.5)) throw std::invalid_argument("--exposure-drift: 0 to 0.5");
+        } else if (a == "--gain") {
+            o.fit_gain = true;
+        } else if (a == "--no-levelling") {
+            o.level_exposure = false;
         } else if (a == "--videos") {
             std::stringstream list(value());
             for (std::string name; std::getline(list, name, ',');) o.videos.push_back(name);

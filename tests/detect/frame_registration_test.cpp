@@ -89,6 +89,29 @@ TEST(FrameRegistration, FindsTheMotionBetweenTwoFramesOfAPage) {
     }
 }
 
+// A phone's auto-exposure darkens the next frame by 15 %: the page's light
+// grey drops by 30 levels, the text's dark one by 5, a spread an offset
+// alone leaves as residual and a gain takes out.
+TEST(FrameRegistration, FitsTheExposuresGain) {
+    const int w = 640, h = 480;
+    const auto page = page_picture(w, h, 5);
+    const GreyView from = view_of(page, w, h);
+    const Eigen::Matrix3d truth = motion(-5, 7, 1, 1.01, 0, w, h);
+    std::vector<std::uint8_t> moved;
+    const GreyView to = warp_frame(from, truth, from, moved);
+    for (std::uint8_t& p : moved) p = static_cast<std::uint8_t>(std::lround(0.85 * p));
+    RegistrationOptions with_gain;
+    with_gain.fit_gain = true;
+    const FrameRegistration r = register_frames(FramePyramid(from), FramePyramid(to), Eigen::Matrix3d::Identity(), with_gain);
+    ASSERT_TRUE(r.registered) << "residual " << r.residual << ", overlap " << r.overlap;
+    EXPECT_NEAR(r.gain, 0.85, 0.02);
+    EXPECT_LT(farthest_apart(r.homography, truth, w, h), 0.3) << r.homography;
+    EXPECT_LT(r.residual, 4);
+    const FrameRegistration o = register_frames(FramePyramid(from), FramePyramid(to));
+    EXPECT_DOUBLE_EQ(o.gain, 1);
+    EXPECT_GT(o.residual, 1.5 * r.residual) << "an offset alone leaves the exposure's change";
+}
+
 TEST(FrameRegistration, StartsFromTheGuessForALargerMotion) {
     const int w = 640, h = 480;
     const auto page = page_picture(w, h, 11);

@@ -204,6 +204,33 @@ TEST_F(PulseSearchOnAWebPage, FitsTheAnnouncedShape) {
     EXPECT_TRUE(w.detection.found) << "the course itself is used";
 }
 
+// The phone's auto-exposure wanders by a few percent while the field pulses
+// by as much: the frames' main course over time is the exposure's unless
+// each frame is levelled to one exposure first.
+TEST_F(PulseSearchOnAWebPage, LevelsTheExposureBeforeDemodulating) {
+    const Detector detector(*field_);
+    std::vector<cv::Mat> drifting;
+    for (std::size_t i = 0; i < pulsing_->frames.size(); ++i) {
+        cv::Mat m;
+        pulsing_->frames[i].convertTo(m, CV_8U, 1 + 0.05 * std::sin(0.9 * static_cast<double>(i) + 1));
+        drifting.push_back(m);
+    }
+    for (const bool level : {true, false}) {
+        PulseSearchOptions options;
+        options.level_exposure = level;
+        PulseSearch search(options);
+        for (const cv::Mat& frame : drifting) search.add(view(frame));
+        const PulseSearchResult r = search.search(detector, {320, 240});
+        if (!level) {
+            EXPECT_FALSE(r.detection.found) << "the course is the exposure's";
+            continue;
+        }
+        ASSERT_TRUE(r.detection.found) << r.detection.failure << ", share " << r.share;
+        EXPECT_LT(std::hypot(r.detection.aim_field.x() - pulsing_->truth.x, r.detection.aim_field.y() - pulsing_->truth.y),
+                  0.05);
+    }
+}
+
 TEST_F(PulseSearchOnAWebPage, AFieldThatDoesNotPulseIsNotSearched) {
     const Detector detector(*field_);
     const Clip steady = film(*field_, 10, 0, 0.03);
