@@ -12,15 +12,15 @@ namespace {
 
 using test::Photo;
 
-struct Case {
+struct DetectorCase {
     const char* name;
     double pitch, yaw, roll, distance;
 };
 
-class DetectorOnBlankScreens : public ::testing::TestWithParam<Case> {};
+class DetectorOnBlankScreens : public ::testing::TestWithParam<DetectorCase> {};
 
 TEST_P(DetectorOnBlankScreens, FindsTheAimPoint) {
-    const Case c = GetParam();
+    const DetectorCase c = GetParam();
     Field f = test::shipped_field("b4-64x36.json");
     Detector detector(f);
     Photo p = test::photograph_field(f, 0.5, c.pitch, c.yaw, c.roll, c.distance);
@@ -42,10 +42,10 @@ TEST_P(DetectorOnBlankScreens, FindsTheAimPoint) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Poses, DetectorOnBlankScreens,
-                         ::testing::Values(Case{"straight", 0, 0, 0, 300}, Case{"rolled", 0, 0, 33, 300},
-                                           Case{"upside_down", 0, 0, 190, 300},
-                                           Case{"tilted", 40, -25, 20, 250}, Case{"near", 10, 10, 100, 180}),
-                         [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+                         ::testing::Values(DetectorCase{"straight", 0, 0, 0, 300}, DetectorCase{"rolled", 0, 0, 33, 300},
+                                           DetectorCase{"upside_down", 0, 0, 190, 300},
+                                           DetectorCase{"tilted", 40, -25, 20, 250}, DetectorCase{"near", 10, 10, 100, 180}),
+                         [](const ::testing::TestParamInfo<DetectorCase>& info) { return std::string(info.param.name); });
 
 TEST(Detector, NeverPlacesAScreenWithoutTheField) {
     Field f = test::shipped_field("b4-64x36.json");
