@@ -69,7 +69,7 @@ struct RegistrationOptions {
     // the tuning set's pulsing videos the offset alone (with its Huber
     // weights) registers as many frames under an exposure that drifts by 8 %,
     // and the gain cost 27 of 433 frames found where the exposure is steady
-    // (umf_pulse_benchmark --frame-ms 0 [--exposure-drift 0.08] [--no-gain]).
+    // (umf_pulse_benchmark --frame-ms 0 [--exposure-drift 0.08] [--gain]).
     // For a camera whose exposure jumps by more (15 % in the test).
     bool fit_gain = false;
     double least_gain = 0.02;

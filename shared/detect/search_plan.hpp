@@ -6,8 +6,9 @@
 // double size and the frame smoothed), and a second pass over the grid-line
 // labellings the first one left. Together they cost a frame without the
 // field about 29 ms at 640 x 480 (median; 55 ms p95; umf_speed_benchmark,
-// 2026-12-04), where the first scan alone costs about 1.2 ms. A video does not need every frame to try
-// everything: a tracker may give each frame without a lock a share of the
+// 2026-12-04), where the first scan alone costs about 1.2 ms. A video does
+// not need every frame to try everything: a tracker may give each frame
+// without a lock a share of the
 // search (search_share; TrackerOptions::spread_search): the first scan's
 // first pairs of labellings and as many pieces of the other parts as fit in
 // a budget, so that no frame stalls the camera and a field that only another
