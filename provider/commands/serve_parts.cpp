@@ -65,8 +65,9 @@ PutAnswerers put_answerers(const PutChoice& puts, bool headless, OverlayManager*
                 std::vector<std::shared_ptr<PutDecider>>{out.prompt, out.control});
             // The cards stay over the field, which raises itself over new windows.
             if (overlay)
-                overlay->on_raised([cards = std::weak_ptr<PutPromptDecider>(out.prompt)] {
-                    if (const auto c = cards.lock()) c->raise_cards();
+                overlay->set_windows_over_field([cards = std::weak_ptr<PutPromptDecider>(out.prompt)] {
+                    const auto c = cards.lock();
+                    return c ? c->shown_cards() : std::vector<QWindow*>{};
                 });
         }
     }

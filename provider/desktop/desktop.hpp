@@ -28,6 +28,7 @@
 #include "provider/screen/screen_field.hpp"
 
 class QScreen;
+class QWindow;
 
 namespace umf::provider {
 
@@ -126,6 +127,9 @@ public:
     // Put back above other windows (X11 override-redirect windows can be
     // covered by a restack; layer surfaces and actors stay on top).
     virtual void raise() {}
+    // The same, but right under `sibling`, a window of the provider's that
+    // belongs over the field (a put card), in one restack.
+    virtual void raise_under(const QWindow& /*sibling*/) { raise(); }
 };
 
 // What a backend can do here, for the console and the tray.

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "provider/desktop/x11/x11_stacking.hpp"
 #include "provider/field_overlay/overlay_entry.hpp"
 #include "provider/screen/desktop_layout.hpp"
 #include "shared/overlay/pulse.hpp"
@@ -24,7 +25,6 @@ constexpr double kOpacityStep = 1.0 / 255.0;
 // How often the windows are raised again: see OverlayWindow's flags. Rare
 // enough to cost nothing, often enough that a window put above them by the
 // window manager covers the field only briefly.
-constexpr int kRaiseIntervalMs = 1000;
 
 // The preset's module size on this screen: Qt gives the physical density in
 // logical pixels an inch, the ratio turns it into the screen's own pixels.
@@ -84,11 +84,11 @@ OverlayManager::OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> 
         if (circles_wanted() != circles_applied_) refocus_all();
     });
     connect(&raise_timer_, &QTimer::timeout, this, [this] {
+        QWindow* under = lowest_window_over_field(true);
         for (auto& entry : entries_) {
-            if (entry->window->is_visible()) entry->window->raise();
-            if (entry->aim_window && entry->aim_window->isVisible()) entry->aim_window->raise();
+            raise_field(*entry, under);
+            raise_ring(*entry, under);
         }
-        if (raised_) raised_();
     });
     raise_timer_.start(kRaiseIntervalMs);
     // Only an X server can be asked for the desktop under the overlay.
@@ -267,22 +267,48 @@ void OverlayManager::apply_shown(double opacity) {
     applied_opacity_ = opacity;
     // An invisible field is unmapped rather than composited at opacity 0.
     const bool shown = visible_ && snapshot_depth_ == 0 && opacity > 0;
-    bool raised = false;
     for (auto& entry : entries_) {
         FieldSurface& window = *entry->window;
         if (shown) {
             window.set_opacity(opacity);
             if (!window.is_visible()) {
+                // Stacked before it is mapped: mapped first where it was, it
+                // could show over a card for a moment.
+                QWindow* under = lowest_window_over_field(false);
+                if (under) window.raise_under(*under);
                 window.show();
-                window.raise();
-                raised = true;
+                if (!under) window.raise();
             }
         } else if (window.is_visible()) {
             window.hide();
         }
         show_aim_mark(*entry);
     }
-    if (raised && raised_) raised_();
+}
+
+QWindow* OverlayManager::lowest_window_over_field(bool raise_them) {
+    // The offscreen platform cannot raise.
+    if (!windows_over_field_ || QGuiApplication::platformName() == QLatin1String("offscreen")) return nullptr;
+    const std::vector<QWindow*> over = windows_over_field_();
+    if (raise_them)
+        for (QWindow* window : over) window->raise();
+    return over.empty() ? nullptr : over.front();
+}
+
+void OverlayManager::raise_field(Entry& entry, QWindow* under) {
+    if (!entry.window->is_visible()) return;
+    if (under)
+        entry.window->raise_under(*under);
+    else
+        entry.window->raise();
+}
+
+void OverlayManager::raise_ring(Entry& entry, QWindow* under) {
+    if (!entry.aim_window || !entry.aim_window->isVisible()) return;
+    if (under)
+        stack_under(*entry.aim_window, *under);
+    else
+        entry.aim_window->raise();
 }
 
 OverlayManager::Entry* OverlayManager::entry_for(int index) {
@@ -358,8 +384,13 @@ void OverlayManager::show_aim_mark(Entry& entry) {
     }
     if (!entry.aim_window) return;
     if (shown) {
-        if (!entry.aim_window->isVisible()) entry.aim_window->show();
-        entry.aim_window->raise();  // above the field's window, which may have been raised since
+        // Above the field's window, which may have been raised since, and
+        // under the cards; stacked before it is mapped, as the field.
+        AimWindow& ring = *entry.aim_window;
+        QWindow* under = lowest_window_over_field(false);
+        if (under) stack_under(ring, *under);
+        if (!ring.isVisible()) ring.show();
+        if (!under) ring.raise();
     } else if (!shown && entry.aim_window->isVisible()) {
         entry.aim_window->hide();
     }

@@ -38,6 +38,7 @@
 #include "shared/overlay/preset.hpp"
 
 class QScreen;
+class QWindow;
 
 namespace umf::provider {
 
@@ -112,11 +113,16 @@ public:
     // Called after screens() or layout() changed: a screen came, went or
     // changed size or density, or the preset's module size changed.
     void on_screens_changed(std::function<void()> callback) { screens_changed_ = std::move(callback); }
-    // Called each time the field's windows were raised (when they come up,
-    // and every kRaiseIntervalMs to stay over windows mapped since): the
-    // provider's own windows that belong over the field (the put cards)
-    // raise themselves again.
-    void on_raised(std::function<void()> callback) { raised_ = std::move(callback); }
+    // The provider's own windows that belong over the field (the put
+    // cards), those shown now, lowest first. Each time the field's windows
+    // are raised (every kRaiseIntervalMs, to stay over windows mapped since)
+    // these are raised first, and the field's and the ring's windows then go
+    // right under the lowest of them (desktop/x11/x11_stacking.hpp): no
+    // restack leaves the field over a card, not even for a frame.
+    void set_windows_over_field(std::function<std::vector<QWindow*>()> windows) {
+        windows_over_field_ = std::move(windows);
+    }
+    static constexpr int kRaiseIntervalMs = 1000;
 
     // The screen in `root_rect` (root-window pixels, within one screen) as it
     // is without the overlay; a null image when it cannot be had. The default
@@ -156,6 +162,13 @@ private:
     // Every screen's refocus, when circles_shown() changes.
     void refocus_all();
     void show_aim_mark(Entry& entry);
+    // The lowest of the windows over the field (nullptr: none), all of them
+    // raised first with `raise_them`.
+    QWindow* lowest_window_over_field(bool raise_them);
+    // The entry's field window, or its ring's, to the top or right under
+    // `under` (the ring raised after the field goes above it).
+    void raise_field(Entry& entry, QWindow* under);
+    void raise_ring(Entry& entry, QWindow* under);
     void expire_aim_marks();
     bool circles_wanted() const;
     // Region::focus with a blur and a way to grab: the painted pulse.
@@ -187,7 +200,7 @@ private:
     bool visible_ = true;
     int snapshot_depth_ = 0;
     std::function<void()> screens_changed_;
-    std::function<void()> raised_;
+    std::function<std::vector<QWindow*>()> windows_over_field_;
     GrabFunction grab_;
     enum class GrabState { idle, scheduled, settling };
     GrabState grab_state_ = GrabState::idle;

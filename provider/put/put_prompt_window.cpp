@@ -407,9 +407,15 @@ void PutPromptDecider::show(const PutOffer& offer, std::function<void(PutReply)>
 }
 
 void PutPromptDecider::map_card(PutCard* card) {
+    // Above windows mapped before it, the field among them, and raised
+    // before it is mapped: mapped first where it was (under the field,
+    // after a snapshot), it would show under the field for a moment. The
+    // offscreen platform cannot raise.
+    if (QGuiApplication::platformName() != QLatin1String("offscreen")) {
+        card->create();
+        card->raise();
+    }
     card->show();
-    // Above windows mapped before it (the offscreen platform cannot raise).
-    if (QGuiApplication::platformName() != QLatin1String("offscreen")) card->raise();
 }
 
 void PutPromptDecider::hide_for_snapshot() {
@@ -422,9 +428,13 @@ void PutPromptDecider::show_after_snapshot() {
     for (auto& [id, s] : shown_) map_card(s.card);
 }
 
-void PutPromptDecider::raise_cards() {
-    if (snapshot_depth_ > 0 || QGuiApplication::platformName() == QLatin1String("offscreen")) return;
-    for (auto& [id, s] : shown_) s.card->raise();
+std::vector<QWindow*> PutPromptDecider::shown_cards() const {
+    // Each card is raised when mapped, and the map keeps their ids' order.
+    std::vector<QWindow*> out;
+    if (snapshot_depth_ > 0) return out;
+    for (const auto& [id, s] : shown_)
+        if (s.card->isVisible()) out.push_back(s.card);
+    return out;
 }
 
 void PutPromptDecider::finish(std::uint64_t id, std::optional<PutReply> reply) {

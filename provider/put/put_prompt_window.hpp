@@ -126,9 +126,10 @@ public:
     // countdowns go on.
     void hide_for_snapshot();
     void show_after_snapshot();
-    // On the Qt thread: the cards shown go over every window again (the
-    // field raises itself over new windows, OverlayManager::on_raised).
-    void raise_cards();
+    // On the Qt thread: the cards on the screen now (none around a
+    // snapshot), lowest first: what the field stays under
+    // (OverlayManager::set_windows_over_field).
+    std::vector<QWindow*> shown_cards() const;
 
     // On the Qt thread: the cards up, oldest first; one by id (nullptr).
     std::vector<PutCard*> cards() const;

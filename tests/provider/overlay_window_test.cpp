@@ -5,11 +5,7 @@
 // focus mode with a blur, over a fine checkerboard, the circle shows the
 // field over the blurred pattern and the pattern is untouched around it.
 //
-// The Qt half runs in a child process, this test binary run again for one
-// disabled test: other tests make an offscreen QGuiApplication, at most one
-// exists per process and it cannot change platform, while the child starts
-// clean and makes its own on xcb. fork() alone would copy the parent's
-// threads' state and maybe its application; exec gives a fresh process.
+// The Qt half runs in a child process (tests/provider/x11_child.hpp).
 //
 // UMF_PROVIDER_OVERLAY: defined once provider/field_overlay/ is built into the
 // provider core; until then this file would not link.
@@ -36,6 +32,7 @@
 #include "provider/screen/board_window.hpp"
 #include "provider/screen/screen_field.hpp"
 #include "tests/provider/qt_pump.hpp"
+#include "tests/provider/x11_child.hpp"
 #include "tests/support/temp_dir.hpp"
 #include "tests/support/x11_session.hpp"
 
@@ -61,7 +58,7 @@ namespace fs = std::filesystem;
 using namespace umf::provider;
 using namespace umf::test;
 
-constexpr const char* kChildVariable = "UMF_OVERLAY_TEST_CHILD";
+constexpr const char* kChildVariable = kX11ChildVariable;
 constexpr int kGrey = 0x80;
 
 // The window below the overlay: flat grey, counting the presses it gets.
@@ -240,44 +237,9 @@ TEST(OverlayWindowOnX, DISABLED_Child) {
     EXPECT_EQ(active_window(env), backdrop_id);
 }
 
-// Runs the child test `child` (OverlayWindowOnX.DISABLED_...) on a fresh
-// Xvfb `screen` with openbox and `compositor` running, and checks that it
-// passed; `log` gets its output. With `check_detection` the compositor must
-// be seen as running only once it runs (test (e)).
 void run_child(const std::string& child, const std::string& screen, const std::vector<std::string>& compositor,
                std::string& log, bool check_detection = false) {
-    for (const std::string& program : {std::string("Xvfb"), std::string("openbox"), compositor[0]})
-        if (!find_program(program))
-            GTEST_SKIP() << program << " is not installed (Debian: apt-get install -y xvfb openbox " << compositor[0] << ")";
-    TempDir dir;
-    const XServer server = start_xvfb(dir.path / "xvfb.log", screen);
-    Process::Options options;
-    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}});
-    options.log = dir.path / "openbox.log";
-    const auto openbox = start_openbox(options, dir.path / "openbox-ready");
-    const X11Desktop desktop(server.display);
-    ASSERT_TRUE(desktop.has_ewmh());
-    if (check_detection) {
-        EXPECT_FALSE(compositor_running(server.display, 0));
-    }
-    options.log = dir.path / "compositor.log";
-    Process running(compositor, options);
-    ASSERT_TRUE(wait_until([&] { return compositor_running(server.display, 0); }, 5s));
-    if (check_detection) {
-        EXPECT_FALSE(compositor_advice().empty());
-    }
-
-    options.log = dir.path / "child.log";
-    options.env = environment_with({{"DISPLAY", server.display}, {"QT_QPA_PLATFORM", "xcb"}, {kChildVariable, "1"}});
-    Process process({fs::read_symlink("/proc/self/exe").string(), "--gtest_also_run_disabled_tests",
-                     "--gtest_filter=OverlayWindowOnX.DISABLED_" + child},
-                    options);
-    const auto status = process.wait_exit(30s);
-    std::ifstream in(dir.path / "child.log");
-    log.assign(std::istreambuf_iterator<char>(in), {});
-    ASSERT_TRUE(status) << "the child did not finish:\n" << log;
-    EXPECT_EQ(*status, 0) << log;
-    EXPECT_NE(log.find("[  PASSED  ] 1 test"), std::string::npos) << log;
+    run_x11_child("OverlayWindowOnX.DISABLED_" + child, screen, compositor, log, check_detection);
 }
 
 // The child's overlay over openbox and a compositing manager, `compositor`.

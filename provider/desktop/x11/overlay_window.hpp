@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "provider/desktop/desktop.hpp"
+#include "provider/desktop/x11/x11_stacking.hpp"
 #include "provider/screen/screen_field.hpp"
 
 class QPainter;
@@ -81,6 +82,7 @@ public:
     void hide() override { QRasterWindow::hide(); }
     bool is_visible() const override { return isVisible(); }
     void raise() override { QRasterWindow::raise(); }
+    void raise_under(const QWindow& sibling) override { stack_under(*this, sibling); }
 
     // Paint events handled since the window was made: tests use it to tell
     // that the pulse does not repaint.
