@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <opencv2/imgproc.hpp>
+
 #include "shared/detect/pulse_tracker.hpp"
 #include "shared/overlay/preset.hpp"
 #include "shared/overlay/pulse.hpp"
@@ -42,6 +44,10 @@ Usage: umf_pulse_benchmark [options]
   --max-motion-change X  PulseSearchOptions::max_motion_change (default: the library's)
   --exposure-drift A     the tuning set's videos with an auto-exposure that drifts and re-meters, the light
                          scaled by up to about 1 +- A from frame to frame (default 0: a steady exposure)
+  --rolling-shutter S    the tuning set's videos read row by row over S seconds (first row to last, the
+                         middle row at the frame's own pose), the camera moving on towards the next frame's
+                         pose meanwhile (default 0: every row at once)
+  --swing-speed K        the tuning set's hand swinging K times as fast (an integer; default 1)
   --gain                 the frames registered with the exposure's gain as well as a grey-level offset
                          (RegistrationOptions::fit_gain)
   --no-levelling         the frames laid onto the newest not levelled to its exposure before demodulating
@@ -70,6 +76,8 @@ struct Options {
     double frame_ms = 2;
     std::optional<double> max_motion_change;
     double exposure_drift = 0;
+    double readout_s = 0;
+    int swing_speed = 1;
     bool fit_gain = false;
     bool level_exposure = true;
     std::vector<std::string> videos;  // empty: all
@@ -119,6 +127,31 @@ double exposure_drift(int i, double amplitude, std::uint64_t seed) {
     return std::clamp(factor, 1 - 1.5 * amplitude, 1 + 1.5 * amplitude);
 }
 
+// Row y of `frame` as a rolling shutter reads it: at the pose a fraction
+// of the way from this frame's towards the next frame's (`to_next`: their
+// screen-to-image homographies, `interval_s` apart), the fraction the row's
+// read-out time after the middle row's; rows above the middle read before.
+// The homographies are interpolated entry by entry (normalised), close to
+// the poses' own interpolation over the few milliseconds of a read-out.
+void roll_shutter(cv::Mat& frame, const cv::Matx33d& at_frame, const cv::Matx33d& to_next, double interval_s,
+                  double readout_s) {
+    const cv::Matx33d a = at_frame * (1 / at_frame(2, 2)), b = to_next * (1 / to_next(2, 2));
+    cv::Mat map_x(frame.size(), CV_32F), map_y(frame.size(), CV_32F);
+    for (int y = 0; y < frame.rows; ++y) {
+        const double s = (y - (frame.rows - 1) / 2.0) / frame.rows * readout_s / interval_s;
+        // The row's image point back to the frame as shot at once.
+        const cv::Matx33d back = a * (a + s * (b - a)).inv();
+        for (int x = 0; x < frame.cols; ++x) {
+            const cv::Vec3d p = back * cv::Vec3d(x, y, 1);
+            map_x.at<float>(y, x) = static_cast<float>(p[0] / p[2]);
+            map_y.at<float>(y, x) = static_cast<float>(p[1] / p[2]);
+        }
+    }
+    cv::Mat rolled;
+    cv::remap(frame, rolled, map_x, map_y, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    frame = rolled;
+}
+
 std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size res) {
     const Scene scene;
     const sim::FieldPlacement placement{{0, 0}, scene.module_px};
@@ -126,7 +159,13 @@ std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size 
     for (const sim::ScreenKind kind : sim::kEverydayScreenKinds) {
         if (!wanted(o, sim::to_string(kind))) continue;
         const cv::Mat screen = sim::make_screen(kind, scene.screen.pixels, 7);
-        auto rs = pulsing_recipes(scene, kind, o.frames, o.seed);
+        // A faster swing: every K-th pose of a K times longer swing, at the
+        // frames' own times (the pulse, the degradations and the exposure).
+        auto rs = pulsing_recipes(scene, kind, o.frames * o.swing_speed, o.seed);
+        for (int i = 0; i < o.frames; ++i) {
+            rs[static_cast<std::size_t>(i)].pose = rs[static_cast<std::size_t>(i * o.swing_speed)].pose;
+        }
+        rs.resize(static_cast<std::size_t>(o.frames));
         for (FrameRecipe& r : rs)
             r.degradation.exposure *= exposure_drift(r.index, o.exposure_drift, o.seed * 31 + static_cast<std::uint64_t>(kind));
         Video v{sim::to_string(kind), std::vector<Frame>(rs.size()), std::vector<Frame>(rs.size()), placement,
@@ -136,6 +175,16 @@ std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size 
             const double a = faint(o, pulsing_opacity(rs[at].index));
             v.field[at] = shoot(scene, rs[at], sim::mix_field(screen, field, placement, a), res);
             v.bare[at] = shoot(scene, rs[at], screen, res);
+            if (o.readout_s > 0) {
+                // The last frame moves on as from the one before it.
+                const sim::CameraModel camera{res, scene.hfov_deg};
+                const bool last = at + 1 == rs.size();
+                const cv::Matx33d here = sim::screen_to_image(scene.screen, camera, rs[at].pose);
+                const cv::Matx33d next = sim::screen_to_image(scene.screen, camera, rs[last ? at - 1 : at + 1].pose);
+                const double readout = last ? -o.readout_s : o.readout_s;
+                roll_shutter(v.field[at].grey, here, next, 1 / sim::kFps, readout);
+                roll_shutter(v.bare[at].grey, here, next, 1 / sim::kFps, readout);
+            }
         });
         out.push_back(std::move(v));
     }
@@ -283,6 +332,8 @@ void run(const Options& o) {
                 o.heldout ? "held-out" : "tuning", o.min_opacity, o.max_opacity, kPeriodS, o.frames,
                 o.announced ? "announced" : "not announced", o.frame_ms, static_cast<unsigned long long>(o.seed), kRadiusModules);
     if (o.exposure_drift > 0 && !o.heldout) std::printf("The exposure drifting by up to about %.3g.\n", o.exposure_drift);
+    if (o.readout_s > 0 && !o.heldout) std::printf("A rolling shutter reading the rows over %.3g s.\n", o.readout_s);
+    if (o.swing_speed > 1 && !o.heldout) std::printf("The hand swinging %d times as fast.\n", o.swing_speed);
     if (o.fit_gain) std::printf("Registered with the exposure's gain as well as an offset.\n");
     if (!o.level_exposure) std::printf("Not levelled to one exposure before demodulating.\n");
     for (const cv::Size res : o.resolutions) {
@@ -348,6 +399,13 @@ Options parse(int argc, char** argv) {
         } else if (a == "--exposure-drift") {
             o.exposure_drift = std::stod(value());
             if (!(o.exposure_drift >= 0 && o.exposure_drift < 0.5)) throw std::invalid_argument("--exposure-drift: 0 to 0.5");
+        } else if (a == "--rolling-shutter") {
+            o.readout_s = std::stod(value());
+            if (!(o.readout_s >= 0 && o.readout_s < 1 / sim::kFps))
+                throw std::invalid_argument("--rolling-shutter: 0 to one frame's interval (0.04 s)");
+        } else if (a == "--swing-speed") {
+            o.swing_speed = std::stoi(value());
+            if (o.swing_speed < 1 || o.swing_speed > 8) throw std::invalid_argument("--swing-speed: 1 to 8");
         } else if (a == "--gain") {
             o.fit_gain = true;
         } else if (a == "--no-levelling") {

@@ -92,6 +92,59 @@ TEST(PulseDemodulator, ForgetsOldFramesAndStartsOverAtAnotherSize) {
     EXPECT_THROW(demodulator.add(GreyView{}, 0.1), std::invalid_argument);
 }
 
+// The registration's motion check (PulseSearchOptions::max_motion_change) on
+// small frames of a textured page: a hand's swing that speeds up by a little
+// each frame stays registered; a view held still that jumps by 11 pixels in
+// one frame (on a blank page, a registration a few modules off) is refused.
+TEST(PulseSearch, ASwingStaysRegisteredAndAStillViewThatJumpsDoesNot) {
+    // A page of soft-edged blocks (8 px, blurred twice over 7 px, as a
+    // camera's frame is soft), wider than the view.
+    const int width = 160, height = 120, page_width = 400;
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<int> grey(30, 225);
+    std::vector<int> blocks((page_width / 8 + 1) * (height / 8 + 1));
+    for (int& b : blocks) b = grey(rng);
+    std::vector<double> page(page_width * height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < page_width; ++x) page[y * page_width + x] = blocks[(y / 8) * (page_width / 8 + 1) + x / 8];
+    for (const bool across : {true, false}) {
+        std::vector<double> blurred(page.size());
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < page_width; ++x) {
+                double sum = 0;
+                int n = 0;
+                for (int d = -3; d <= 3; ++d) {
+                    const int u = across ? x + d : x, v = across ? y : y + d;
+                    if (u < 0 || v < 0 || u >= page_width || v >= height) continue;
+                    sum += page[v * page_width + u];
+                    ++n;
+                }
+                blurred[y * page_width + x] = sum / n;
+            }
+        page = std::move(blurred);
+    }
+    std::vector<std::uint8_t> frame(width * height);
+    auto shoot = [&](int left) {
+        for (int y = 0; y < height; ++y)
+            for (int x = 0; x < width; ++x)
+                frame[y * width + x] = static_cast<std::uint8_t>(std::lround(page[y * page_width + x + left]));
+        return view_of(frame, width, height);
+    };
+    // Steps of 4, 5, 7 and 10 pixels: each changes by at most 3 pixels, less
+    // than 3 % of the width (4.8).
+    PulseSearch swing{PulseSearchOptions{}};
+    for (const int left : {0, 4, 9, 16, 26}) swing.add(shoot(left));
+    EXPECT_EQ(swing.registration_losses(), 0);
+    ASSERT_TRUE(swing.motion().has_value());
+    EXPECT_NEAR((*swing.motion())(0, 2), -10, 0.1) << *swing.motion();
+
+    PulseSearch still{PulseSearchOptions{}};
+    for (int i = 0; i < 4; ++i) still.add(shoot(100 + i % 2));
+    EXPECT_EQ(still.registration_losses(), 0);
+    still.add(shoot(112));
+    EXPECT_EQ(still.registration_losses(), 1) << "a jump of 11 pixels after a still view";
+}
+
 // PulseSearch's every step on small frames of a checkerboard pulsing over
 // noise: registered at rest, a pulse, its shape fitted, both signs demodulated, and the
 // detector, which finds no field in a checkerboard, has the last word.
