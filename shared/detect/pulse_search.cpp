@@ -87,6 +87,7 @@ PulseSearch::PulseSearch(PulseSearchOptions options) : options_(std::move(option
 void PulseSearch::clear() {
     kept_.clear();
     motion_.reset();
+    earlier_motion_.reset();
     found_.reset();
     added_since_search_ = 0;
     last_found_ = false;
@@ -101,18 +102,11 @@ void PulseSearch::add(const GreyView& frame) {
         height_ = frame.height;
     }
     Kept next{FramePyramid(frame), Eigen::Matrix3d::Identity()};
-    // The last motion is the likeliest next one; a view that stops or turns
-    // back is found from where it stands.
-    const Eigen::Matrix3d guess = motion_.value_or(Eigen::Matrix3d::Identity());
-    motion_.reset();
     last_registration_ = {};
     if (!kept_.empty()) {
-        FrameRegistration r = register_frames(kept_.back().pyramid, next.pyramid, guess, options_.registration);
-        if (!r.registered && !guess.isIdentity())
-            r = register_frames(kept_.back().pyramid, next.pyramid, Eigen::Matrix3d::Identity(), options_.registration);
-        if (r.registered && !guess.isIdentity() &&
-            corner_distance(r.homography, guess, width_, height_) > options_.max_motion_change * width_)
-            r.registered = false;
+        FrameRegistration r = register_next(next.pyramid);
+        earlier_motion_ = motion_;
+        motion_.reset();
         last_registration_ = r;
         if (r.registered) {
             motion_ = r.homography;
@@ -126,9 +120,43 @@ void PulseSearch::add(const GreyView& frame) {
             ++unregistered_;
         }
     }
+    if (kept_.empty()) {
+        earlier_motion_.reset();
+        motion_.reset();
+    }
     if (static_cast<int>(kept_.size()) >= options_.frames) kept_.pop_front();
     kept_.push_back(std::move(next));
     ++added_since_search_;
+}
+
+FrameRegistration PulseSearch::register_next(const FramePyramid& next) const {
+    const FramePyramid& last = kept_.back().pyramid;
+    const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+    // From `guess`, else from where the view stands (a view that stops or
+    // turns back); a motion too far from the guess is taken for none.
+    auto attempt = [&](const Eigen::Matrix3d& guess) {
+        FrameRegistration r = register_frames(last, next, guess, options_.registration);
+        if (!r.registered && !guess.isIdentity()) r = register_frames(last, next, identity, options_.registration);
+        if (r.registered && !guess.isIdentity() &&
+            corner_distance(r.homography, guess, width_, height_) > options_.max_motion_change * width_)
+            r.registered = false;
+        return r;
+    };
+    // The last motion is the likeliest next one; a hand speeding up or
+    // slowing down goes on changing its motion as it did, so that change
+    // carried on is tried too where it differs, and the alignment leaving
+    // the smaller residual kept.
+    const Eigen::Matrix3d last_motion = motion_.value_or(identity);
+    FrameRegistration best = attempt(last_motion);
+    if (motion_ && earlier_motion_) {
+        Eigen::Matrix3d carried_on = *motion_ * earlier_motion_->inverse() * *motion_;
+        carried_on /= carried_on(2, 2);
+        if (corner_distance(carried_on, last_motion, width_, height_) > kSameGuessPx) {
+            FrameRegistration r = attempt(carried_on);
+            if (r.registered && (!best.registered || r.residual < best.residual)) best = r;
+        }
+    }
+    return best;
 }
 
 bool PulseSearch::due() const {

@@ -127,7 +127,13 @@ private:
     int unregistered_ = 0;
     bool last_found_ = false;
     std::deque<Kept> kept_;
-    std::optional<Eigen::Matrix3d> motion_;  // also the next frame's first guess
+    // The frame's registration onto the last kept one (kept_ not empty).
+    FrameRegistration register_next(const FramePyramid& next) const;
+    // Guesses closer than this at every corner are taken for one.
+    static constexpr double kSameGuessPx = 0.5;
+
+    std::optional<Eigen::Matrix3d> motion_;          // the last frame's, the next frame's first guess
+    std::optional<Eigen::Matrix3d> earlier_motion_;  // the one before it
     FrameRegistration last_registration_;
     std::optional<Detection> found_;  // the last search's, carried to the newest frame
     int carried_for_ = 0;             // frames since it was found

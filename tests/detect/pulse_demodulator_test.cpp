@@ -94,8 +94,10 @@ TEST(PulseDemodulator, ForgetsOldFramesAndStartsOverAtAnotherSize) {
 
 // The registration's motion check (PulseSearchOptions::max_motion_change) on
 // small frames of a textured page: a hand's swing that speeds up by a little
-// each frame stays registered; a view held still that jumps by 11 pixels in
-// one frame (on a blank page, a registration a few modules off) is refused.
+// each frame stays registered, and so does one that speeds up by more than
+// the check allows from the last motion, its change carried on; a view held
+// still that jumps by 11 pixels in one frame (on a blank page, a
+// registration a few modules off) is refused.
 TEST(PulseSearch, ASwingStaysRegisteredAndAStillViewThatJumpsDoesNot) {
     // A page of soft-edged blocks (8 px, blurred twice over 7 px, as a
     // camera's frame is soft), wider than the view.
@@ -137,6 +139,13 @@ TEST(PulseSearch, ASwingStaysRegisteredAndAStillViewThatJumpsDoesNot) {
     EXPECT_EQ(swing.registration_losses(), 0);
     ASSERT_TRUE(swing.motion().has_value());
     EXPECT_NEAR((*swing.motion())(0, 2), -10, 0.1) << *swing.motion();
+    // Steps of 4, 8, 13, 19 and 26 pixels: changes of 5 to 7 pixels from
+    // the last step, of 1 from the last change carried on.
+    PulseSearch faster{PulseSearchOptions{}};
+    for (const int left : {0, 4, 12, 25, 44, 70}) faster.add(shoot(left));
+    EXPECT_EQ(faster.registration_losses(), 0);
+    ASSERT_TRUE(faster.motion().has_value());
+    EXPECT_NEAR((*faster.motion())(0, 2), -26, 0.1) << *faster.motion();
 
     PulseSearch still{PulseSearchOptions{}};
     for (int i = 0; i < 4; ++i) still.add(shoot(100 + i % 2));
