@@ -22,9 +22,6 @@ namespace {
 constexpr double kMaxPulseHz = 60.0;
 // One level of an 8-bit screen: a smaller change cannot show.
 constexpr double kOpacityStep = 1.0 / 255.0;
-// How often the windows are raised again: see OverlayWindow's flags. Rare
-// enough to cost nothing, often enough that a window put above them by the
-// window manager covers the field only briefly.
 
 // The preset's module size on this screen: Qt gives the physical density in
 // logical pixels an inch, the ratio turns it into the screen's own pixels.

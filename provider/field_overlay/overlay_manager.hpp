@@ -122,6 +122,9 @@ public:
     void set_windows_over_field(std::function<std::vector<QWindow*>()> windows) {
         windows_over_field_ = std::move(windows);
     }
+    // How often the windows are raised again (OverlayWindow's flags): rare
+    // enough to cost nothing, often enough that a window put above them by
+    // the window manager covers the field only briefly.
     static constexpr int kRaiseIntervalMs = 1000;
 
     // The screen in `root_rect` (root-window pixels, within one screen) as it
