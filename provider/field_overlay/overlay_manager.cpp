@@ -81,7 +81,9 @@ OverlayManager::OverlayManager(overlay::Preset preset, std::shared_ptr<Desktop> 
         if (circles_wanted() != circles_applied_) refocus_all();
     });
     connect(&raise_timer_, &QTimer::timeout, this, [this] {
-        QWindow* under = lowest_window_over_field(true);
+        const std::vector<QWindow*> over = windows_over_field();
+        for (QWindow* window : over) window->raise();
+        QWindow* under = over.empty() ? nullptr : over.front();
         for (auto& entry : entries_) {
             raise_field(*entry, under);
             raise_ring(*entry, under);
@@ -271,7 +273,7 @@ void OverlayManager::apply_shown(double opacity) {
             if (!window.is_visible()) {
                 // Stacked before it is mapped: mapped first where it was, it
                 // could show over a card for a moment.
-                QWindow* under = lowest_window_over_field(false);
+                QWindow* under = lowest_window_over_field();
                 if (under) window.raise_under(*under);
                 window.show();
                 if (!under) window.raise();
@@ -283,12 +285,14 @@ void OverlayManager::apply_shown(double opacity) {
     }
 }
 
-QWindow* OverlayManager::lowest_window_over_field(bool raise_them) {
+std::vector<QWindow*> OverlayManager::windows_over_field() const {
     // The offscreen platform cannot raise.
-    if (!windows_over_field_ || QGuiApplication::platformName() == QLatin1String("offscreen")) return nullptr;
-    const std::vector<QWindow*> over = windows_over_field_();
-    if (raise_them)
-        for (QWindow* window : over) window->raise();
+    if (!windows_over_field_ || QGuiApplication::platformName() == QLatin1String("offscreen")) return {};
+    return windows_over_field_();
+}
+
+QWindow* OverlayManager::lowest_window_over_field() const {
+    const std::vector<QWindow*> over = windows_over_field();
     return over.empty() ? nullptr : over.front();
 }
 
@@ -384,7 +388,7 @@ void OverlayManager::show_aim_mark(Entry& entry) {
         // Above the field's window, which may have been raised since, and
         // under the cards; stacked before it is mapped, as the field.
         AimWindow& ring = *entry.aim_window;
-        QWindow* under = lowest_window_over_field(false);
+        QWindow* under = lowest_window_over_field();
         if (under) stack_under(ring, *under);
         if (!ring.isVisible()) ring.show();
         if (!under) ring.raise();

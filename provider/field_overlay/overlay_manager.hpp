@@ -165,9 +165,10 @@ private:
     // Every screen's refocus, when circles_shown() changes.
     void refocus_all();
     void show_aim_mark(Entry& entry);
-    // The lowest of the windows over the field (nullptr: none), all of them
-    // raised first with `raise_them`.
-    QWindow* lowest_window_over_field(bool raise_them);
+    // set_windows_over_field's windows where they can be stacked (none on
+    // the offscreen platform), and the lowest of them (nullptr: none).
+    std::vector<QWindow*> windows_over_field() const;
+    QWindow* lowest_window_over_field() const;
     // The entry's field window, or its ring's, to the top or right under
     // `under` (the ring raised after the field goes above it).
     void raise_field(Entry& entry, QWindow* under);

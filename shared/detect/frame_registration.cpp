@@ -118,6 +118,24 @@ struct Step {
     bool solved = false;
 };
 
+// The median of grey-level differences, their robust spread about it (the
+// median absolute deviation as a standard deviation) and the Huber weights'
+// bound from it (at least 2 levels). Reorders `differences`.
+struct RobustSpread {
+    float offset = 0;
+    double spread = 0;
+    double huber = 2;
+};
+
+RobustSpread robust_spread(std::vector<float>& differences) {
+    RobustSpread out;
+    out.offset = median_of(differences);
+    for (float& d : differences) d = std::abs(d - out.offset);
+    out.spread = 1.4826 * median_of(differences);
+    out.huber = std::max(1.345 * out.spread, 2.0);
+    return out;
+}
+
 // The gain of `to`'s grey levels over `from`'s where `h` (unit coordinates)
 // aligns them: weighted least squares of one on the other with an offset,
 // over the flat pixels of `from` (every 4th along rows and columns), the
@@ -148,9 +166,9 @@ double aligned_gain(const GreyView& from, const GreyView& to, const Eigen::Matri
     if (t.size() < 64) return 1;
     std::vector<float> seen(t.size());
     for (std::size_t i = 0; i < t.size(); ++i) seen[i] = g[i] - t[i];
-    const float offset = median_of(seen);
-    for (float& d : seen) d = std::abs(d - offset);
-    const double huber = std::max(1.345 * 1.4826 * median_of(seen), 2.0);
+    const RobustSpread robust = robust_spread(seen);
+    const float offset = robust.offset;
+    const double huber = robust.huber;
     double sw = 0, st = 0, si = 0, stt = 0, sti = 0;
     for (std::size_t i = 0; i < t.size(); ++i) {
         const double e = std::abs(g[i] - t[i] - offset);
@@ -185,10 +203,10 @@ Step align_step(const std::vector<Sample>& samples, const GreyView& image, const
     Step step;
     step.overlap = samples.empty() ? 0 : static_cast<double>(seen.size()) / static_cast<double>(samples.size());
     if (seen.size() < 16) return step;
-    const float offset = median_of(seen);
-    for (float& d : seen) d = std::abs(d - offset);
-    step.spread = 1.4826 * median_of(seen);
-    const double huber = std::max(1.345 * step.spread, 2.0);
+    const RobustSpread robust = robust_spread(seen);
+    const float offset = robust.offset;
+    const double huber = robust.huber;
+    step.spread = robust.spread;
     Eigen::Matrix<double, 8, 8> normal = Eigen::Matrix<double, 8, 8>::Zero();
     Eigen::Matrix<double, 8, 1> rhs = Eigen::Matrix<double, 8, 1>::Zero();
     for (std::size_t i = 0; i < samples.size(); ++i) {

@@ -104,11 +104,10 @@ void PulseSearch::add(const GreyView& frame) {
     Kept next{FramePyramid(frame), Eigen::Matrix3d::Identity()};
     last_registration_ = {};
     if (!kept_.empty()) {
-        FrameRegistration r = register_next(next.pyramid);
-        earlier_motion_ = motion_;
-        motion_.reset();
+        const FrameRegistration r = register_next(next.pyramid);
         last_registration_ = r;
         if (r.registered) {
+            earlier_motion_ = motion_;
             motion_ = r.homography;
             for (Kept& k : kept_) k.to_newest = r.homography * k.to_newest;
             if (found_) found_->image_to_field = found_->image_to_field * r.homography.inverse();
@@ -121,8 +120,9 @@ void PulseSearch::add(const GreyView& frame) {
         }
     }
     if (kept_.empty()) {
-        earlier_motion_.reset();
+        // No motion to start the next frame's registration from.
         motion_.reset();
+        earlier_motion_.reset();
     }
     if (static_cast<int>(kept_.size()) >= options_.frames) kept_.pop_front();
     kept_.push_back(std::move(next));
@@ -132,11 +132,16 @@ void PulseSearch::add(const GreyView& frame) {
 FrameRegistration PulseSearch::register_next(const FramePyramid& next) const {
     const FramePyramid& last = kept_.back().pyramid;
     const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
+    // From where the view stands: made once, whichever guess needs it.
+    std::optional<FrameRegistration> standing;
     // From `guess`, else from where the view stands (a view that stops or
     // turns back); a motion too far from the guess is taken for none.
     auto attempt = [&](const Eigen::Matrix3d& guess) {
         FrameRegistration r = register_frames(last, next, guess, options_.registration);
-        if (!r.registered && !guess.isIdentity()) r = register_frames(last, next, identity, options_.registration);
+        if (!r.registered && !guess.isIdentity()) {
+            if (!standing) standing = register_frames(last, next, identity, options_.registration);
+            r = *standing;
+        }
         if (r.registered && !guess.isIdentity() &&
             corner_distance(r.homography, guess, width_, height_) > options_.max_motion_change * width_)
             r.registered = false;

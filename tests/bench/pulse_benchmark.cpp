@@ -133,6 +133,8 @@ double exposure_drift(int i, double amplitude, std::uint64_t seed) {
 // read-out time after the middle row's; rows above the middle read before.
 // The homographies are interpolated entry by entry (normalised), close to
 // the poses' own interpolation over the few milliseconds of a read-out.
+// Not sim::rolling_shutter: that is the held-out camera's, and a tuning
+// video made with it would tune on the held-out camera's own effect.
 void roll_shutter(cv::Mat& frame, const cv::Matx33d& at_frame, const cv::Matx33d& to_next, double interval_s,
                   double readout_s) {
     const cv::Matx33d a = at_frame * (1 / at_frame(2, 2)), b = to_next * (1 / to_next(2, 2));

@@ -146,10 +146,7 @@ protected:
 
 TEST(OverlayStackingOnX, DISABLED_Child) {
     if (!std::getenv(kX11ChildVariable)) GTEST_SKIP() << "run by OverlayStacking.ThePutCardStaysOverTheFieldInEveryRestack";
-    int argc = 1;
-    char name[] = "umf_stacking_child";
-    char* argv[] = {name, nullptr};
-    QGuiApplication app(argc, argv);
+    X11ChildApplication child;
     ASSERT_EQ(QGuiApplication::platformName(), "xcb");
     StackWatch watch(std::getenv("DISPLAY"));
     ASSERT_TRUE(watch.ok());

@@ -128,10 +128,7 @@ int mix_error(const X11Desktop& desktop, const std::vector<Probe>& ps, double op
 // Only in the child (see the top of the file): the overlay made through Qt.
 TEST(OverlayWindowOnX, DISABLED_Child) {
     if (!std::getenv(kChildVariable)) GTEST_SKIP() << "run by OverlayWindow.MixesIntoACompositedDesktop";
-    int argc = 1;
-    char name[] = "umf_overlay_child";
-    char* argv[] = {name, nullptr};
-    QGuiApplication app(argc, argv);
+    X11ChildApplication child;
     ASSERT_EQ(QGuiApplication::platformName(), "xcb");
     const std::string display = std::getenv("DISPLAY");
     const auto env = environment_with({});
@@ -313,10 +310,7 @@ int off_pattern(const X11Desktop& desktop, QRect rect) {
 // Only in the child: focus with a blur over the pattern.
 TEST(OverlayWindowOnX, DISABLED_BlurChild) {
     if (!std::getenv(kChildVariable)) GTEST_SKIP() << "run by OverlayWindow.BlursTheDesktopUnderTheFocusCircle";
-    int argc = 1;
-    char name[] = "umf_overlay_child";
-    char* argv[] = {name, nullptr};
-    QGuiApplication app(argc, argv);
+    X11ChildApplication child;
     ASSERT_EQ(QGuiApplication::platformName(), "xcb");
     const X11Desktop desktop(std::getenv("DISPLAY"));
     QScreen* screen = QGuiApplication::primaryScreen();
@@ -425,10 +419,7 @@ TEST(OverlayWindow, BlursTheDesktopUnderTheFocusCircle) {
 // follows as screens), and one of them is twice as dense.
 TEST(OverlayWindowOnX, DISABLED_ScreensChild) {
     if (!std::getenv(kChildVariable)) GTEST_SKIP() << "run by OverlayWindow.FollowsScreensAddedAndRemoved";
-    int argc = 1;
-    char name[] = "umf_overlay_child";
-    char* argv[] = {name, nullptr};
-    QGuiApplication app(argc, argv);
+    X11ChildApplication child;
     ASSERT_EQ(QGuiApplication::platformName(), "xcb");
     const auto env = environment_with({});
 

@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <QGuiApplication>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -23,6 +25,14 @@ namespace umf::test {
 
 // Set in the child's environment: a child test skips without it.
 constexpr const char* kX11ChildVariable = "UMF_OVERLAY_TEST_CHILD";
+
+// The child's application, on the xcb platform the parent set.
+struct X11ChildApplication {
+    int argc = 1;
+    char name[16] = "umf_x11_child";
+    char* argv[2] = {name, nullptr};
+    QGuiApplication app{argc, argv};
+};
 
 // Runs the disabled test `child` (its full name, e.g.
 // "OverlayWindowOnX.DISABLED_Child") on a fresh Xvfb `screen` with openbox
