@@ -241,12 +241,25 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
     }
     // The course's sign is not known: the field shows in the image or in
     // its inverse, which the course of the other sign would give.
+    std::vector<std::uint8_t> inverse_pixels;
+    auto inverse = [&] {
+        if (inverse_pixels.empty()) {
+            inverse_pixels.assign(field.data, field.data + static_cast<std::size_t>(field.width) * field.height);
+            for (auto& v : inverse_pixels) v = static_cast<std::uint8_t>(255 - v);
+        }
+        return GreyView{inverse_pixels.data(), field.width, field.height, field.width};
+    };
+    // A place carried here is confirmed where it is said to be first: far
+    // cheaper than a search, and it reads a field too faint for one. Found
+    // again, it is carried on from here, the registrations' drift gone.
+    if (found_ && options_.follow_carried) {
+        out.detection = detector.follow(field, aim, found_->image_to_field);
+        if (!out.detection.found) out.detection = detector.follow(inverse(), aim, found_->image_to_field);
+    }
     const std::span<const SearchPlan> plans(options_.plans);
-    out.detection = detector.detect(field, aim, nullptr, plans);
+    if (!out.detection.found) out.detection = detector.detect(field, aim, nullptr, plans);
     if (!out.detection.found) {
-        std::vector<std::uint8_t> inverse(field.data, field.data + static_cast<std::size_t>(field.width) * field.height);
-        for (auto& v : inverse) v = static_cast<std::uint8_t>(255 - v);
-        Detection d = detector.detect(GreyView{inverse.data(), field.width, field.height, field.width}, aim, nullptr, plans);
+        Detection d = detector.detect(inverse(), aim, nullptr, plans);
         if (d.found) out.detection = std::move(d);
     }
     last_found_ = out.detection.found;

@@ -57,6 +57,9 @@ struct PulseSearchOptions {
     // registration (the screen moves in the view as its content does), for
     // at most this many frames without a search that finds it again.
     int carry_frames = 25;
+    // A place carried is looked for where it is said to be in each
+    // demodulated image (Detector::follow) before the image is searched.
+    bool follow_carried = true;
     // Each frame laid onto the newest scaled to the newest's exposure before
     // the pulse is demodulated (the median ratio of their grey levels): a
     // phone's auto-exposure changes the content's levels by more than a faint

@@ -48,15 +48,22 @@ Usage: umf_pulse_benchmark [options]
                          middle row at the frame's own pose), the camera moving on towards the next frame's
                          pose meanwhile (default 0: every row at once)
   --swing-speed K        the tuning set's hand swinging K times as fast (an integer; default 1)
+  --noise S              the tuning set's sensor noise, S grey levels (default: 2 to 3 a frame)
+  --jpeg-quality Q       the tuning set's frames encoded at JPEG quality Q (default 80)
   --gain                 the frames registered with the exposure's gain as well as a grey-level offset
                          (RegistrationOptions::fit_gain)
   --no-levelling         the frames laid onto the newest not levelled to its exposure before demodulating
                          (PulseSearchOptions::level_exposure off)
-  --videos a,b           only these videos (screen kinds, or held-out contents)
+  --carry-frames N       PulseSearchOptions::carry_frames (default: the library's)
+  --no-follow            a place carried not looked for where it is said to be before each search
+                         (PulseSearchOptions::follow_carried off)
+  --videos a,b           only these videos (screen kinds, or held-out contents; the tuning set's spreadsheet
+                         only when named)
   --log FILE             one line per frame of the pulse search's videos: video, frame, state, where the
                          place came from, its error in modules, the share the pulse explained where searched,
                          ms, and the frame's registration onto the last: registered, residual, the residual
-                         unmoved, overlap
+                         unmoved, overlap, and (tuning set) how far the registration put the frame's centre
+                         from the true motion's, pixels
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --help                 this text
@@ -78,8 +85,12 @@ struct Options {
     double exposure_drift = 0;
     double readout_s = 0;
     int swing_speed = 1;
+    std::optional<double> noise;
+    std::optional<int> jpeg_quality;
     bool fit_gain = false;
     bool level_exposure = true;
+    bool follow_carried = true;
+    std::optional<int> carry_frames;
     std::vector<std::string> videos;  // empty: all
     std::string log;
     std::uint64_t seed = 1;
@@ -95,6 +106,9 @@ struct Video {
     std::vector<Frame> field, bare;
     sim::FieldPlacement placement;
     double fps = 25;
+    // The screen-to-image homography of each frame (the tuning set's; empty
+    // for the held-out set): the true motion between frames.
+    std::vector<cv::Matx33d> screen_to_image = {};
 };
 
 bool wanted(const Options& o, const std::string& video) {
@@ -158,8 +172,11 @@ std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size 
     const Scene scene;
     const sim::FieldPlacement placement{{0, 0}, scene.module_px};
     std::vector<Video> out;
-    for (const sim::ScreenKind kind : sim::kEverydayScreenKinds) {
-        if (!wanted(o, sim::to_string(kind))) continue;
+    // The spreadsheet's repeated cells only when named.
+    for (const sim::ScreenKind kind : sim::kAllScreenKinds) {
+        const bool everyday = std::find(sim::kEverydayScreenKinds.begin(), sim::kEverydayScreenKinds.end(), kind) !=
+                              sim::kEverydayScreenKinds.end();
+        if (o.videos.empty() ? !everyday : !wanted(o, sim::to_string(kind))) continue;
         const cv::Mat screen = sim::make_screen(kind, scene.screen.pixels, 7);
         // A faster swing: every K-th pose of a K times longer swing, at the
         // frames' own times (the pulse, the degradations and the exposure).
@@ -168,10 +185,15 @@ std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size 
             rs[static_cast<std::size_t>(i)].pose = rs[static_cast<std::size_t>(i * o.swing_speed)].pose;
         }
         rs.resize(static_cast<std::size_t>(o.frames));
-        for (FrameRecipe& r : rs)
+        for (FrameRecipe& r : rs) {
             r.degradation.exposure *= exposure_drift(r.index, o.exposure_drift, o.seed * 31 + static_cast<std::uint64_t>(kind));
+            if (o.noise) r.degradation.noise_sigma = *o.noise;
+            if (o.jpeg_quality) r.degradation.jpeg_quality = *o.jpeg_quality;
+        }
         Video v{sim::to_string(kind), std::vector<Frame>(rs.size()), std::vector<Frame>(rs.size()), placement,
                 sim::kFps};
+        const sim::CameraModel camera{res, scene.hfov_deg};
+        for (const FrameRecipe& r : rs) v.screen_to_image.push_back(sim::screen_to_image(scene.screen, camera, r.pose));
         parallel_for(static_cast<int>(rs.size()), o.threads, [&](int i) {
             const auto at = static_cast<std::size_t>(i);
             const double a = faint(o, pulsing_opacity(rs[at].index));
@@ -179,10 +201,9 @@ std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size 
             v.bare[at] = shoot(scene, rs[at], screen, res);
             if (o.readout_s > 0) {
                 // The last frame moves on as from the one before it.
-                const sim::CameraModel camera{res, scene.hfov_deg};
                 const bool last = at + 1 == rs.size();
-                const cv::Matx33d here = sim::screen_to_image(scene.screen, camera, rs[at].pose);
-                const cv::Matx33d next = sim::screen_to_image(scene.screen, camera, rs[last ? at - 1 : at + 1].pose);
+                const cv::Matx33d here = v.screen_to_image[at];
+                const cv::Matx33d next = v.screen_to_image[last ? at - 1 : at + 1];
                 const double readout = last ? -o.readout_s : o.readout_s;
                 roll_shutter(v.field[at].grey, here, next, 1 / sim::kFps, readout);
                 roll_shutter(v.bare[at].grey, here, next, 1 / sim::kFps, readout);
@@ -221,6 +242,8 @@ PulseSearchOptions pulse_options(const Options& o, double fps) {
     if (o.max_motion_change) p.max_motion_change = *o.max_motion_change;
     p.registration.fit_gain = o.fit_gain;
     p.level_exposure = o.level_exposure;
+    p.follow_carried = o.follow_carried;
+    if (o.carry_frames) p.carry_frames = *o.carry_frames;
     if (!o.announced) return p;
     overlay::Preset unit;  // the waveform over one period, 0 to 1
     unit.opacity_min = 0;
@@ -285,6 +308,16 @@ Tally run_tracker(const Detector& detector, const Options& o, const Video& v, co
     return t;
 }
 
+// How far (pixels) `registered` puts the frame's centre, where a place is
+// carried to, from where the true motion between the two frames' poses
+// puts it.
+double registration_error(const Eigen::Matrix3d& registered, const cv::Matx33d& from, const cv::Matx33d& to,
+                          cv::Size size) {
+    const cv::Vec3d t = to * from.inv() * cv::Vec3d((size.width - 1) / 2.0, (size.height - 1) / 2.0, 1);
+    const Eigen::Vector3d r = registered * Eigen::Vector3d((size.width - 1) / 2.0, (size.height - 1) / 2.0, 1);
+    return std::hypot(t[0] / t[2] - r.x() / r.z(), t[1] / t[2] - r.y() / r.z());
+}
+
 Tally run_pulse(const Detector& detector, const Options& o, const Video& v, const std::vector<Frame>& frames,
                 std::ostream* log) {
     Tally t;
@@ -301,7 +334,10 @@ Tally run_pulse(const Detector& detector, const Options& o, const Video& v, cons
                                  frames[i].centre_screen_px) / v.placement.module_px;
             const FrameRegistration& g = tracker.pulse().last_registration();
             *log << "\t" << r.share << "\t" << r.ms << "\t" << g.registered << "\t" << g.residual << "\t"
-                 << g.unmoved_residual << "\t" << g.overlap << "\n";
+                 << g.unmoved_residual << "\t" << g.overlap << "\t";
+            if (i > 0 && !v.screen_to_image.empty())
+                *log << registration_error(g.homography, v.screen_to_image[i - 1], v.screen_to_image[i], frames[i].grey.size());
+            *log << "\n";
         }
     }
     t.unregistered = tracker.pulse().registration_losses();
@@ -336,8 +372,11 @@ void run(const Options& o) {
     if (o.exposure_drift > 0 && !o.heldout) std::printf("The exposure drifting by up to about %.3g.\n", o.exposure_drift);
     if (o.readout_s > 0 && !o.heldout) std::printf("A rolling shutter reading the rows over %.3g s.\n", o.readout_s);
     if (o.swing_speed > 1 && !o.heldout) std::printf("The hand swinging %d times as fast.\n", o.swing_speed);
+    if (o.noise && !o.heldout) std::printf("Sensor noise of %.3g grey levels.\n", *o.noise);
+    if (o.jpeg_quality && !o.heldout) std::printf("JPEG quality %d.\n", *o.jpeg_quality);
     if (o.fit_gain) std::printf("Registered with the exposure's gain as well as an offset.\n");
     if (!o.level_exposure) std::printf("Not levelled to one exposure before demodulating.\n");
+    if (!o.follow_carried) std::printf("A place carried not followed before a search.\n");
     for (const cv::Size res : o.resolutions) {
         std::cerr << "making " << res.width << " x " << res.height << " videos\n";
         const std::vector<Video> videos = o.heldout ? heldout_videos(o, field, res) : tuning_videos(o, field, res);
@@ -408,8 +447,19 @@ Options parse(int argc, char** argv) {
         } else if (a == "--swing-speed") {
             o.swing_speed = std::stoi(value());
             if (o.swing_speed < 1 || o.swing_speed > 8) throw std::invalid_argument("--swing-speed: 1 to 8");
+        } else if (a == "--noise") {
+            o.noise = std::stod(value());
+            if (!(*o.noise >= 0 && *o.noise <= 30)) throw std::invalid_argument("--noise: 0 to 30 grey levels");
+        } else if (a == "--jpeg-quality") {
+            o.jpeg_quality = std::stoi(value());
+            if (*o.jpeg_quality < 1 || *o.jpeg_quality > 100) throw std::invalid_argument("--jpeg-quality: 1 to 100");
         } else if (a == "--gain") {
             o.fit_gain = true;
+        } else if (a == "--carry-frames") {
+            o.carry_frames = std::stoi(value());
+            if (*o.carry_frames < 0) throw std::invalid_argument("--carry-frames: 0 or more");
+        } else if (a == "--no-follow") {
+            o.follow_carried = false;
         } else if (a == "--no-levelling") {
             o.level_exposure = false;
         } else if (a == "--videos") {

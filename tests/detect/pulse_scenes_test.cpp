@@ -344,6 +344,51 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     EXPECT_FALSE(search.carried({320, 240}).has_value()) << "not carried across a cut";
 }
 
+// A place carried into the frames after a search is looked for where it
+// is said to be in the next demodulated image (Detector::follow) before
+// that image is searched: confirmed there, the place is the follow's
+// (from_prior); one carried two modules off is not confirmed, and the
+// search finds the field where it is.
+TEST(PulseSearch, ConfirmsACarriedPlaceWhereItIsSaidToBe) {
+    const Field f = test::shipped_field("b4-64x36.json");
+    const Detector detector(f);
+    const Eigen::Vector2d aim(320, 240);
+    for (const bool follow : {true, false}) {
+        SCOPED_TRACE(follow ? "followed" : "not followed");
+        HandHeldFilm film(f);
+        PulseSearchOptions options;
+        options.follow_carried = follow;
+        PulseSearch search(options);
+        for (int i = 0; i < 19; ++i) search.add(film.frame(i));
+        const PulseSearchResult first = search.search(detector, aim);
+        ASSERT_TRUE(first.detection.found) << first.detection.failure;
+        EXPECT_FALSE(first.detection.from_prior);
+        const auto off_truth = [&](const Detection& d) {
+            const cv::Point2d truth = film.truth();
+            return std::hypot(d.aim_field.x() - truth.x, d.aim_field.y() - truth.y);
+        };
+
+        search.add(film.frame(19));
+        const PulseSearchResult again = search.search(detector, aim);
+        ASSERT_TRUE(again.detection.found) << again.detection.failure;
+        EXPECT_EQ(again.detection.from_prior, follow);
+        EXPECT_LT(off_truth(again.detection), 0.1);
+
+        const std::optional<Detection> carried = search.carried(aim);
+        ASSERT_TRUE(carried.has_value());
+        Detection off = *carried;
+        Eigen::Matrix3d along_u = Eigen::Matrix3d::Identity();
+        along_u(0, 2) = 2;  // two modules along u
+        off.image_to_field = along_u * carried->image_to_field;
+        search.found_elsewhere(off);
+        search.add(film.frame(20));
+        const PulseSearchResult searched = search.search(detector, aim);
+        ASSERT_TRUE(searched.detection.found) << searched.detection.failure;
+        EXPECT_FALSE(searched.detection.from_prior) << "the place two modules off confirmed";
+        EXPECT_LT(off_truth(searched.detection), 0.1);
+    }
+}
+
 // The tracker and the pulse search together, as a requester runs them on
 // each camera frame: on the pulse's faint frames the tracker alone finds
 // nothing, and the field is found in the frames together once enough are kept, then
