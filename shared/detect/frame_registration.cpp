@@ -184,7 +184,7 @@ double aligned_gain(const GreyView& from, const GreyView& to, const Eigen::Matri
 // One Gauss-Newton step of the samples against `image` through `h`, with
 // the samples' grey levels scaled by `gain` (the other frame's exposure).
 Step align_step(const std::vector<Sample>& samples, const GreyView& image, const Eigen::Matrix3d& h,
-                const Eigen::Matrix3d& unit_to_level, double gain) {
+                const Eigen::Matrix3d& unit_to_level, double gain, bool affine = false) {
     std::vector<float> diff(samples.size());
     std::vector<char> inside(samples.size(), 0);
     std::vector<float> seen;
@@ -219,9 +219,15 @@ Step align_step(const std::vector<Sample>& samples, const GreyView& image, const
         rhs += w * e * j;
     }
     normal = normal.selfadjointView<Eigen::Lower>();
-    const Eigen::LDLT<Eigen::Matrix<double, 8, 8>> solver(normal);
-    if (solver.info() != Eigen::Success) return step;
-    step.update = solver.solve(rhs);
+    if (affine) {
+        const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver(normal.topLeftCorner<6, 6>());
+        if (solver.info() != Eigen::Success) return step;
+        step.update.head<6>() = solver.solve(rhs.head<6>());
+    } else {
+        const Eigen::LDLT<Eigen::Matrix<double, 8, 8>> solver(normal);
+        if (solver.info() != Eigen::Success) return step;
+        step.update = solver.solve(rhs);
+    }
     step.solved = step.update.allFinite();
     return step;
 }
@@ -262,8 +268,9 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     std::vector<Sample> samples;  // at the end, the finest level's
     auto align = [&](int level, double gain) {
         const Eigen::Matrix3d unit_to_level = level_to_unit(w, h, level).inverse();
+        const bool affine = options.affine_coarse && level > finest + 1;
         for (int it = 0; it < options.iterations; ++it) {
-            last = align_step(samples, to.level(level), warp, unit_to_level, gain);
+            last = align_step(samples, to.level(level), warp, unit_to_level, gain, affine);
             if (!last.solved) break;
             const Eigen::Matrix3d inverse_step = as_matrix(last.update).inverse();
             warp = warp * inverse_step;

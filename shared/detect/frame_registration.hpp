@@ -73,6 +73,11 @@ struct RegistrationOptions {
     // For a camera whose exposure jumps by more (15 % in the test).
     bool fit_gain = false;
     double least_gain = 0.02;
+    // The levels coarser than the finest aligned with an affine change of
+    // the guess alone (six parameters): from one frame to the next the
+    // view's perspective changes too little to tell at a coarse level, and
+    // sparse content (a dark editor's text) lets its two parameters run away.
+    bool affine_coarse = true;
 };
 
 struct FrameRegistration {

@@ -107,11 +107,16 @@ void PulseSearch::add(const GreyView& frame) {
         const FrameRegistration r = register_next(next.pyramid);
         last_registration_ = r;
         if (r.registered) {
+            // The first registration after a start has no motion to be
+            // checked against (max_motion_change): the frames are kept, but
+            // a place is not carried through an alignment that may have
+            // slid a line of text or a module along.
+            const bool checked = motion_.has_value();
             earlier_motion_ = motion_;
             motion_ = r.homography;
             for (Kept& k : kept_) k.to_newest = r.homography * k.to_newest;
             if (found_) found_->image_to_field = found_->image_to_field * r.homography.inverse();
-            if (++carried_for_ > options_.carry_frames) found_.reset();
+            if (++carried_for_ > options_.carry_frames || !checked) found_.reset();
         } else {
             // Frames that cannot be laid onto this one are of no use with it.
             kept_.clear();

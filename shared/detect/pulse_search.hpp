@@ -55,8 +55,12 @@ struct PulseSearchOptions {
     int search_every = 4;
     // Once found, the field is carried from frame to frame through their
     // registration (the screen moves in the view as its content does), for
-    // at most this many frames without a search that finds it again.
-    int carry_frames = 25;
+    // at most this many frames without a search that finds it again (or
+    // confirms it: follow_carried). On the tuning set's pulsing videos a
+    // place carried 60 frames was off by at most 0.16 module, and 25 lost
+    // 71 frames right that 60 and 100 keep (umf_pulse_benchmark
+    // --carry-frames N).
+    int carry_frames = 60;
     // A place carried is looked for where it is said to be in each
     // demodulated image (Detector::follow) before the image is searched.
     bool follow_carried = true;

@@ -55,6 +55,9 @@ Usage: umf_pulse_benchmark [options]
   --no-levelling         the frames laid onto the newest not levelled to its exposure before demodulating
                          (PulseSearchOptions::level_exposure off)
   --carry-frames N       PulseSearchOptions::carry_frames (default: the library's)
+  --max-share X          RegistrationOptions::max_share (default: the library's)
+  --full-coarse          the coarse levels registered with the whole homography
+                         (RegistrationOptions::affine_coarse off)
   --no-follow            a place carried not looked for where it is said to be before each search
                          (PulseSearchOptions::follow_carried off)
   --videos a,b           only these videos (screen kinds, or held-out contents; the tuning set's spreadsheet
@@ -91,6 +94,8 @@ struct Options {
     bool level_exposure = true;
     bool follow_carried = true;
     std::optional<int> carry_frames;
+    bool affine_coarse = true;
+    std::optional<double> max_share;
     std::vector<std::string> videos;  // empty: all
     std::string log;
     std::uint64_t seed = 1;
@@ -244,6 +249,8 @@ PulseSearchOptions pulse_options(const Options& o, double fps) {
     p.level_exposure = o.level_exposure;
     p.follow_carried = o.follow_carried;
     if (o.carry_frames) p.carry_frames = *o.carry_frames;
+    p.registration.affine_coarse = o.affine_coarse;
+    if (o.max_share) p.registration.max_share = *o.max_share;
     if (!o.announced) return p;
     overlay::Preset unit;  // the waveform over one period, 0 to 1
     unit.opacity_min = 0;
@@ -458,6 +465,10 @@ Options parse(int argc, char** argv) {
         } else if (a == "--carry-frames") {
             o.carry_frames = std::stoi(value());
             if (*o.carry_frames < 0) throw std::invalid_argument("--carry-frames: 0 or more");
+        } else if (a == "--max-share") {
+            o.max_share = std::stod(value());
+        } else if (a == "--full-coarse") {
+            o.affine_coarse = false;
         } else if (a == "--no-follow") {
             o.follow_carried = false;
         } else if (a == "--no-levelling") {

@@ -342,6 +342,18 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     EXPECT_EQ(search.frames(), 1);
     EXPECT_FALSE(search.motion().has_value());
     EXPECT_FALSE(search.carried({320, 240}).has_value()) << "not carried across a cut";
+
+    // A place found right after a start is not carried through the first
+    // registration, which has no motion to be checked against; through
+    // the next, it is.
+    search.found_elsewhere(*before);
+    search.add(view(other.shot.grey));
+    EXPECT_EQ(search.frames(), 2);
+    EXPECT_FALSE(search.carried({320, 240}).has_value()) << "carried through an unchecked registration";
+    search.found_elsewhere(*before);
+    search.add(view(other.shot.grey));
+    EXPECT_EQ(search.frames(), 3);
+    EXPECT_TRUE(search.carried({320, 240}).has_value());
 }
 
 // A place carried into the frames after a search is looked for where it
