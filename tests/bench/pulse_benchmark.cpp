@@ -57,7 +57,7 @@ Usage: umf_pulse_benchmark [options]
                          (PulseSearchOptions::level_exposure off)
   --carry-frames N       PulseSearchOptions::carry_frames (default: the library's)
   --max-share X          RegistrationOptions::max_share (default: the library's)
-  --full-coarse          the coarse levels registered with the whole homography
+  --full-coarse          the coarsest level registered with the whole homography
                          (RegistrationOptions::affine_coarse off)
   --no-follow            a place carried not looked for where it is said to be before each search
                          (PulseSearchOptions::follow_carried off)

@@ -281,6 +281,15 @@ private:
     test::Photo p_;
 };
 
+// `d` with its place moved `modules` along the field's u axis.
+Detection moved_along_u(const Detection& d, double modules) {
+    Detection out = d;
+    Eigen::Matrix3d along_u = Eigen::Matrix3d::Identity();
+    along_u(0, 2) = modules;
+    out.image_to_field = along_u * d.image_to_field;
+    return out;
+}
+
 // Each frame is registered onto the one before, the frames are laid onto
 // the newest, and the field is found in the newest frame's place, then
 // carried to the frames after.
@@ -324,11 +333,7 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     // is carried from there on in place of the search's.
     const std::optional<Detection> before = search.carried({320, 240});
     ASSERT_TRUE(before.has_value());
-    Detection elsewhere = *before;
-    Eigen::Matrix3d along_u = Eigen::Matrix3d::Identity();
-    along_u(0, 2) = 2;  // two modules along u
-    elsewhere.image_to_field = along_u * before->image_to_field;
-    search.found_elsewhere(elsewhere);
+    search.found_elsewhere(moved_along_u(*before, 2));
     const std::optional<Detection> after = search.carried({320, 240});
     ASSERT_TRUE(after.has_value());
     EXPECT_NEAR(after->aim_field.x() - before->aim_field.x(), 2, 1e-9);
@@ -388,11 +393,7 @@ TEST(PulseSearch, ConfirmsACarriedPlaceWhereItIsSaidToBe) {
 
         const std::optional<Detection> carried = search.carried(aim);
         ASSERT_TRUE(carried.has_value());
-        Detection off = *carried;
-        Eigen::Matrix3d along_u = Eigen::Matrix3d::Identity();
-        along_u(0, 2) = 2;  // two modules along u
-        off.image_to_field = along_u * carried->image_to_field;
-        search.found_elsewhere(off);
+        search.found_elsewhere(moved_along_u(*carried, 2));
         search.add(film.frame(20));
         const PulseSearchResult searched = search.search(detector, aim);
         ASSERT_TRUE(searched.detection.found) << searched.detection.failure;
