@@ -7,9 +7,9 @@
 // aligns the content aligns the field.
 //
 // The alignment is Gauss-Newton on the eight parameters of the homography
-// (six, an affine change, at the coarsest level; inverse compositional:
-// the gradients of `from` are taken once a level), coarse to fine over
-// image pyramids, on the pixels of strongest gradient,
+// (on request six, an affine change, at the coarsest level; inverse
+// compositional: the gradients of `from` are taken once a level), coarse
+// to fine over image pyramids, on the pixels of strongest gradient,
 // with Huber weights so that what moves apart from the screen (a hand, the
 // wall beside it) and the pulse's own change weigh little, and a grey-level
 // offset estimated beside it (exposure and the pulse change the mean), and
@@ -75,13 +75,13 @@ struct RegistrationOptions {
     bool fit_gain = false;
     double least_gain = 0.02;
     // The coarsest level aligned with an affine change of the guess alone
-    // (six parameters): from one frame to the next the view's perspective
-    // changes too little to tell there, and with its two parameters free
-    // the lines of a document slid one line along (the tuning set's
-    // pulsing document lost 19 frames so). The levels after it fit all
-    // eight: affine there too, a photo's swing was left misaligned (111
-    // frames found -> 17). umf_pulse_benchmark --full-coarse.
-    bool affine_coarse = true;
+    // (six parameters), the levels after it with all eight: from one frame
+    // to the next the view's perspective changes little, and with its two
+    // parameters free at the coarsest level the lines of a document can
+    // slide one line along. Off by default: a fast swing's perspective
+    // changes by more (PulseSearchOptions::affine_retry uses it where the
+    // whole homography fails).
+    bool affine_coarse = false;
 };
 
 struct FrameRegistration {

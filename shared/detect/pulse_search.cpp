@@ -141,15 +141,27 @@ FrameRegistration PulseSearch::register_next(const FramePyramid& next) const {
     std::optional<FrameRegistration> standing;
     // From `guess`, else from where the view stands (a view that stops or
     // turns back); a motion too far from the guess is taken for none.
+    auto checked = [&](FrameRegistration r, const Eigen::Matrix3d& guess) {
+        if (r.registered && !guess.isIdentity() &&
+            corner_distance(r.homography, guess, width_, height_) > options_.max_motion_change * width_)
+            r.registered = false;
+        return r;
+    };
     auto attempt = [&](const Eigen::Matrix3d& guess) {
         FrameRegistration r = register_frames(last, next, guess, options_.registration);
         if (!r.registered && !guess.isIdentity()) {
             if (!standing) standing = register_frames(last, next, identity, options_.registration);
             r = *standing;
         }
-        if (r.registered && !guess.isIdentity() &&
-            corner_distance(r.homography, guess, width_, height_) > options_.max_motion_change * width_)
-            r.registered = false;
+        r = checked(r, guess);
+        // Lines of text can draw the whole homography a line along at the
+        // coarsest level: aligned again with an affine change there.
+        if (!r.registered && options_.affine_retry && !options_.registration.affine_coarse) {
+            RegistrationOptions affine = options_.registration;
+            affine.affine_coarse = true;
+            FrameRegistration a = checked(register_frames(last, next, guess, affine), guess);
+            if (a.registered) r = a;
+        }
         return r;
     };
     // The last motion is the likeliest next one; a hand speeding up or

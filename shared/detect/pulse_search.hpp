@@ -50,6 +50,13 @@ struct PulseSearchOptions {
     // content with little but the faint field to align on (a blank page)
     // can be aligned a few modules off.
     double max_motion_change = 0.03;
+    // A frame not registered (or refused by the motion check) is aligned
+    // again with the coarsest level an affine change
+    // (RegistrationOptions::affine_coarse): the tuning set's document slid
+    // its lines one line along at a frame and lost every frame after it;
+    // affine in every registration, the photo swung twice as fast was left
+    // misaligned instead (27 frames right -> 3, and 24 wrong).
+    bool affine_retry = true;
     // A search that found nothing is not tried again until this many more
     // frames are kept (one that found the field is tried on every frame).
     int search_every = 4;

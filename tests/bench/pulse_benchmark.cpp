@@ -57,8 +57,10 @@ Usage: umf_pulse_benchmark [options]
                          (PulseSearchOptions::level_exposure off)
   --carry-frames N       PulseSearchOptions::carry_frames (default: the library's)
   --max-share X          RegistrationOptions::max_share (default: the library's)
-  --full-coarse          the coarsest level registered with the whole homography
-                         (RegistrationOptions::affine_coarse off)
+  --affine-coarse        every registration's coarsest level an affine change
+                         (RegistrationOptions::affine_coarse on)
+  --no-affine-retry      no registration tried again with an affine coarsest level
+                         (PulseSearchOptions::affine_retry off)
   --no-follow            a place carried not looked for where it is said to be before each search
                          (PulseSearchOptions::follow_carried off)
   --videos a,b           only these videos (screen kinds, or held-out contents; the tuning set's spreadsheet
@@ -95,7 +97,8 @@ struct Options {
     bool level_exposure = true;
     bool follow_carried = true;
     std::optional<int> carry_frames;
-    bool affine_coarse = true;
+    bool affine_coarse = false;
+    bool affine_retry = true;
     std::optional<double> max_share;
     std::vector<std::string> videos;  // empty: all
     std::string log;
@@ -206,6 +209,7 @@ PulseSearchOptions pulse_options(const Options& o, double fps) {
     p.follow_carried = o.follow_carried;
     if (o.carry_frames) p.carry_frames = *o.carry_frames;
     p.registration.affine_coarse = o.affine_coarse;
+    p.affine_retry = o.affine_retry;
     if (o.max_share) p.registration.max_share = *o.max_share;
     if (!o.announced) return p;
     overlay::Preset unit;  // the waveform over one period, 0 to 1
@@ -423,8 +427,10 @@ Options parse(int argc, char** argv) {
             if (*o.carry_frames < 0) throw std::invalid_argument("--carry-frames: 0 or more");
         } else if (a == "--max-share") {
             o.max_share = std::stod(value());
-        } else if (a == "--full-coarse") {
-            o.affine_coarse = false;
+        } else if (a == "--affine-coarse") {
+            o.affine_coarse = true;
+        } else if (a == "--no-affine-retry") {
+            o.affine_retry = false;
         } else if (a == "--no-follow") {
             o.follow_carried = false;
         } else if (a == "--no-levelling") {

@@ -1,10 +1,12 @@
-// Frame registration on the pulsing benchmark's own frames (the tuning
-// set's swing, tests/bench/scenario.hpp), where a failure was seen.
+// Frame registration and the pulse search on the pulsing benchmark's own
+// frames (the tuning set's swing, tests/bench/scenario.hpp), where a
+// failure was seen.
 #include <gtest/gtest.h>
 
 #include <opencv2/imgproc.hpp>
 
 #include "shared/detect/frame_registration.hpp"
+#include "shared/detect/pulse_search.hpp"
 #include "tests/bench/scenario.hpp"
 #include "tests/sim/camera.hpp"
 
@@ -25,7 +27,8 @@ double centre_error(const Eigen::Matrix3d& registered, const cv::Matx33d& truth,
 // Frames 134 and 135 of the document's swing: with the whole homography at
 // every level the alignment of the lines of text slides a line along (27
 // pixels off at the centre, its residual low enough to pass), and every
-// frame kept was lost there; the coarse levels' affine change aligns them.
+// frame kept was lost there; the coarsest level's affine change aligns
+// them (what PulseSearch tries where the whole homography fails).
 TEST(RegistrationScenes, ADocumentsLinesAlignedAffineAtCoarseLevels) {
     const bench::Scene scene;
     const cv::Size res(640, 480);
@@ -38,13 +41,34 @@ TEST(RegistrationScenes, ADocumentsLinesAlignedAffineAtCoarseLevels) {
     const cv::Matx33d truth = sim::screen_to_image(scene.screen, camera, b.pose) *
                               sim::screen_to_image(scene.screen, camera, a.pose).inv();
     const FramePyramid from_levels(view(from.grey)), to_levels(view(to.grey));
-    const FrameRegistration r = register_frames(from_levels, to_levels);
+    RegistrationOptions affine;
+    affine.affine_coarse = true;
+    const FrameRegistration r = register_frames(from_levels, to_levels, Eigen::Matrix3d::Identity(), affine);
     EXPECT_TRUE(r.registered) << "residual " << r.residual;
     EXPECT_LT(centre_error(r.homography, truth, res), 0.5);
-    RegistrationOptions full;
-    full.affine_coarse = false;
-    const FrameRegistration f = register_frames(from_levels, to_levels, Eigen::Matrix3d::Identity(), full);
+    const FrameRegistration f = register_frames(from_levels, to_levels);
     EXPECT_GT(centre_error(f.homography, truth, res), 10) << "the whole homography at every level: a line along";
+}
+
+// The same frames in a pulse search, from the frame before them: the whole
+// homography's registration of frame 135 is refused (the motion check), and
+// the search aligns it again with the coarsest level affine
+// (PulseSearchOptions::affine_retry) instead of starting over.
+TEST(RegistrationScenes, APulseSearchAlignsADocumentAgainAffineWhereTheWholeHomographyFails) {
+    const bench::Scene scene;
+    const cv::Size res(640, 480);
+    const cv::Mat screen = sim::make_screen(sim::ScreenKind::document, scene.screen.pixels, 7);
+    const auto rs = bench::pulsing_recipes(scene, sim::ScreenKind::document, 150, 1);
+    std::vector<cv::Mat> frames;
+    for (int i = 132; i <= 135; ++i) frames.push_back(bench::shoot(scene, rs.at(static_cast<std::size_t>(i)), screen, res).grey);
+    for (const bool retry : {true, false}) {
+        PulseSearchOptions options;
+        options.affine_retry = retry;
+        PulseSearch search(options);
+        for (const cv::Mat& m : frames) search.add(view(m));
+        EXPECT_EQ(search.registration_losses(), retry ? 0 : 1) << (retry ? "aligned again" : "the whole homography");
+        EXPECT_EQ(search.frames(), retry ? 4 : 1);
+    }
 }
 
 }  // namespace registration_scenes
