@@ -3,12 +3,16 @@
 // failure was seen.
 #include <gtest/gtest.h>
 
-#include <opencv2/imgproc.hpp>
+#include <cmath>
+#include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "shared/detect/frame_registration.hpp"
 #include "shared/detect/pulse_search.hpp"
 #include "tests/bench/scenario.hpp"
 #include "tests/sim/camera.hpp"
+#include "tests/sim/screen_content.hpp"
 
 namespace registration_scenes {
 
