@@ -268,7 +268,7 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     std::vector<Sample> samples;  // at the end, the finest level's
     auto align = [&](int level, double gain) {
         const Eigen::Matrix3d unit_to_level = level_to_unit(w, h, level).inverse();
-        const bool affine = options.affine_coarse && level > finest + 1;
+        const bool affine = options.affine_coarse && level == coarsest && coarsest > finest;
         for (int it = 0; it < options.iterations; ++it) {
             last = align_step(samples, to.level(level), warp, unit_to_level, gain, affine);
             if (!last.solved) break;

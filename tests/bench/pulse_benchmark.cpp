@@ -344,6 +344,10 @@ void run(const Options& o) {
     if (o.fit_gain) std::printf("Registered with the exposure's gain as well as an offset.\n");
     if (!o.level_exposure) std::printf("Not levelled to one exposure before demodulating.\n");
     if (!o.follow_carried) std::printf("A place carried not followed before a search.\n");
+    if (o.carry_frames) std::printf("A place carried at most %d frames.\n", *o.carry_frames);
+    if (o.max_share) std::printf("Registered at up to %.3g of the unaligned residual.\n", *o.max_share);
+    if (o.affine_coarse) std::printf("Every registration's coarsest level an affine change.\n");
+    if (!o.affine_retry) std::printf("No registration tried again with an affine coarsest level.\n");
     for (const cv::Size res : o.resolutions) {
         std::cerr << "making " << res.width << " x " << res.height << " videos\n";
         const std::vector<Video> videos = o.heldout ? heldout_videos(o, field, res) : tuning_videos(o, field, res);
