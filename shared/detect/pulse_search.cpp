@@ -280,17 +280,31 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         if (d.found) out.detection = std::move(d);
     }
     last_found_ = out.detection.found;
-    if (out.detection.found) {
-        found_ = out.detection;
-        carried_for_ = 0;
-    }
+    if (out.detection.found) keep_found(out.detection);
     return out;
 }
 
 void PulseSearch::found_elsewhere(const Detection& found) {
     if (!found.found || kept_.empty()) return;
+    keep_found(found);
+}
+
+// Carried by its map through the aim: the map is fitted to the whole view,
+// the aim's place read from the module edges around it, and the two can
+// differ by a fifth of a module on a tracker's lock (the tuning set's
+// document: 0.07 module off at the tracker's last lock, 0.30 on the first
+// frame carried from its map), an error every carried frame would start from.
+void PulseSearch::keep_found(const Detection& found) {
     found_ = found;
+    found_->image_to_field = image_to_field_through_aim(found);
     carried_for_ = 0;
+}
+
+std::optional<PulseSearch::Carry> PulseSearch::carry(const Eigen::Vector2d& aim) const {
+    if (!found_) return std::nullopt;
+    const std::optional<Point2> at = apply_homography(found_->image_to_field, aim);
+    if (!at) return std::nullopt;
+    return Carry{carried_for_, (*at - found_->aim_field).norm()};
 }
 
 std::optional<Detection> PulseSearch::carried(const Eigen::Vector2d& aim) const {

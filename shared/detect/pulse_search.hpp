@@ -127,6 +127,13 @@ public:
     // it alone): carried from here on in place of the last search's, which
     // has been carried further.
     void found_elsewhere(const Detection& found);
+    // Frames since the place carried was found or confirmed, and how far
+    // (modules) the aim has come over the field since: empty when none is.
+    struct Carry {
+        int frames = 0;
+        double travel = 0;
+    };
+    std::optional<Carry> carry(const Eigen::Vector2d& aim) const;
 
 private:
     struct Kept {
@@ -134,6 +141,7 @@ private:
         Eigen::Matrix3d to_newest;  // its points to the newest frame's
     };
     std::vector<double> fit_shape(const std::vector<double>& course) const;
+    void keep_found(const Detection& found);
 
     PulseSearchOptions options_;
     int width_ = 0, height_ = 0;

@@ -69,7 +69,8 @@ Usage: umf_pulse_benchmark [options]
                          place came from, its error in modules, the share the pulse explained where searched,
                          ms, and the frame's registration onto the last: registered, residual, the residual
                          unmoved, overlap, and (tuning set) how far the registration put the frame's centre
-                         from the true motion's, pixels
+                         from the true motion's, pixels; the place carried: frames since it was found or confirmed, modules the aim has come
+                         over the field since
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --help                 this text
@@ -304,6 +305,9 @@ Tally run_pulse(const Detector& detector, const Options& o, const Video& v, cons
                  << g.unmoved_residual << "\t" << g.overlap << "\t";
             if (i > 0 && !v.screen_to_image.empty())
                 *log << registration_error(g.homography, v.screen_to_image[i - 1], v.screen_to_image[i], frames[i].grey.size());
+            *log << "\t";
+            const Eigen::Vector2d aim(frames[i].grey.cols / 2.0, frames[i].grey.rows / 2.0);
+            if (const auto c = tracker.pulse().carry(aim)) *log << c->frames << "\t" << c->travel;
             *log << "\n";
         }
     }

@@ -251,10 +251,10 @@ TEST_F(PulseSearchOnAWebPage, AFieldThatDoesNotPulseIsNotSearched) {
 // on) whose field pulses between 0.01 and 0.04, or holds at `steady`.
 class HandHeldFilm {
 public:
-    explicit HandHeldFilm(const Field& f, double steady = -1)
+    explicit HandHeldFilm(const Field& f, double steady = -1, sim::ScreenKind screen = sim::ScreenKind::web_page)
         : field_(f),
           pulse_(steady >= 0 ? test::sine_pulse(steady, steady, 1.5) : test::sine_pulse(0.01, 0.04, 1.5)),
-          screen_(sim::make_screen(sim::ScreenKind::web_page, {1920, 1080}, 5)) {
+          screen_(sim::make_screen(screen, {1920, 1080}, 5)) {
         p_.camera.resolution = {640, 480};
     }
     GreyView frame(int i) {
@@ -287,7 +287,19 @@ Detection moved_along_u(const Detection& d, double modules) {
     Eigen::Matrix3d along_u = Eigen::Matrix3d::Identity();
     along_u(0, 2) = modules;
     out.image_to_field = along_u * d.image_to_field;
+    out.aim_field.x() += modules;
     return out;
+}
+
+// A place found at the frame's centre: its map takes the centre a fifth of
+// a module away from where the module edges there put it.
+Detection found_at_centre(const Eigen::Vector2d& aim_field) {
+    Detection d;
+    d.found = true;
+    d.aim_image = {320, 240};
+    d.aim_field = aim_field;
+    d.image_to_field << 0.1, 0, aim_field.x() - 32 + 0.2, 0, 0.1, aim_field.y() - 24, 0, 0, 1;
+    return d;
 }
 
 // Each frame is registered onto the one before, the frames are laid onto
@@ -400,6 +412,35 @@ TEST(PulseSearch, ConfirmsACarriedPlaceWhereItIsSaidToBe) {
         EXPECT_FALSE(searched.detection.from_prior) << "the place two modules off confirmed";
         EXPECT_LT(off_truth(searched.detection), 0.1);
     }
+}
+
+// A place is carried from where the module edges around the aim put it,
+// not from where the map fitted to the whole view does (on a tracker's
+// lock the two can be a fifth of a module apart), and on from there.
+TEST(PulseSearch, CarriesAPlaceFromWhereItsAimWasRead) {
+    const Field f = test::shipped_field("b4-64x36.json");
+    const Eigen::Vector2d aim(320, 240), place(30, 20);
+    HandHeldFilm film(f, 0.03);
+    PulseSearch search;
+    for (int i = 0; i < 3; ++i) search.add(film.frame(i));
+    search.found_elsewhere(found_at_centre(place));
+    const std::optional<Detection> now = search.carried(aim);
+    ASSERT_TRUE(now.has_value());
+    EXPECT_NEAR((now->aim_field - place).norm(), 0, 1e-9) << "carried from the map, not the aim's edges";
+    const auto carry = search.carry(aim);
+    ASSERT_TRUE(carry.has_value());
+    EXPECT_EQ(carry->frames, 0);
+    EXPECT_NEAR(carry->travel, 0, 1e-9);
+    // The view moves a few pixels a frame: the place goes with it.
+    search.add(film.frame(3));
+    const std::optional<Detection> next = search.carried(aim);
+    ASSERT_TRUE(next.has_value());
+    const Eigen::Vector2d moved = next->aim_field - place;
+    EXPECT_GT(moved.norm(), 0.01);
+    EXPECT_LT(moved.norm(), 1);
+    ASSERT_TRUE(search.carry(aim).has_value());
+    EXPECT_EQ(search.carry(aim)->frames, 1);
+    EXPECT_NEAR(search.carry(aim)->travel, moved.norm(), 1e-9);
 }
 
 // The tracker and the pulse search together, as a requester runs them on
