@@ -69,8 +69,8 @@ Usage: umf_pulse_benchmark [options]
                          place came from, its error in modules, the share the pulse explained where searched,
                          ms, and the frame's registration onto the last: registered, residual, the residual
                          unmoved, overlap, and (tuning set) how far the registration put the frame's centre
-                         from the true motion's, pixels; the place carried: frames since it was found or confirmed, modules the aim has come
-                         over the field since
+                         from the true motion's, pixels; then the place carried: frames since it was found or
+                         confirmed, and the modules the aim has come over the field since
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --help                 this text

@@ -251,10 +251,10 @@ TEST_F(PulseSearchOnAWebPage, AFieldThatDoesNotPulseIsNotSearched) {
 // on) whose field pulses between 0.01 and 0.04, or holds at `steady`.
 class HandHeldFilm {
 public:
-    explicit HandHeldFilm(const Field& f, double steady = -1, sim::ScreenKind screen = sim::ScreenKind::web_page)
+    explicit HandHeldFilm(const Field& f, double steady = -1)
         : field_(f),
           pulse_(steady >= 0 ? test::sine_pulse(steady, steady, 1.5) : test::sine_pulse(0.01, 0.04, 1.5)),
-          screen_(sim::make_screen(screen, {1920, 1080}, 5)) {
+          screen_(sim::make_screen(sim::ScreenKind::web_page, {1920, 1080}, 5)) {
         p_.camera.resolution = {640, 480};
     }
     GreyView frame(int i) {
