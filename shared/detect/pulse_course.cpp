@@ -32,6 +32,7 @@ PulseCourse find_pulse_course(std::span<const GreyView> frames, int sample_step)
     if (!(largest > 0)) return out;
     out.level.assign(course.data(), course.data() + n);
     for (double& v : out.level) v /= largest;
+    out.covariance = covariance;
     out.share = std::clamp(eigen.eigenvalues()(n - 1) / total, 0.0, 1.0);
     return out;
 }

@@ -11,6 +11,7 @@
 // of its own windows).
 #pragma once
 
+#include <Eigen/Core>
 #include <span>
 #include <vector>
 
@@ -26,6 +27,9 @@ struct PulseCourse {
     // explains, 0..1: near 1 for a pulse well above the noise, near 1 / N
     // (N frames) for noise alone.
     double share = 0;
+    // The frames' covariance over time (N x N, on the pixels read): how
+    // much of their variation any other course would explain.
+    Eigen::MatrixXd covariance;
 };
 
 // `sample_step`: every this many pixels along rows and columns are read.

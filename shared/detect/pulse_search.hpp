@@ -3,9 +3,10 @@
 // (frame_registration.hpp: the content is on the screen's plane with the
 // field, so what aligns the content aligns the field), the frames kept are
 // laid onto the newest and demodulated (pulse_demodulator.hpp) against the
-// pulse's course, found from the frames (pulse_course.hpp) and, where the
-// pulse's shape is known (the welcome's period and waveform), fitted to that
-// shape; the detector reads the demodulated image, in the newest frame's
+// pulse's course: where the pulse's shape is known (the welcome's period and
+// waveform), that shape at the rate and phase that explain most of the
+// frames' variation over time, otherwise the frames' leading course
+// (pulse_course.hpp); the detector reads the demodulated image, in the newest frame's
 // place. A frame that cannot be registered onto the one before it (a cut, a
 // view turned away) starts the frames kept over.
 #pragma once
@@ -20,6 +21,7 @@
 #include "shared/detect/detector.hpp"
 #include "shared/detect/frame_registration.hpp"
 #include "shared/detect/image.hpp"
+#include "shared/detect/pulse_course.hpp"
 #include "shared/detect/search_plan.hpp"
 
 namespace umf {
@@ -39,9 +41,6 @@ struct PulseSearchOptions {
     std::optional<PulseShape> shape;
     // The frame rates tried when fitting the shape: image files carry none.
     std::vector<double> frame_rates = {24, 25, 30, 50, 60};
-    // A fit below this correlation with the course is not taken; the
-    // course itself is used.
-    double min_fit = 0.8;
     // How each frame is registered onto the one before it.
     RegistrationOptions registration;
     // A registration whose motion differs from the last frame's by more
@@ -92,7 +91,7 @@ struct PulseSearchResult {
     Detection detection;  // in the newest frame
     int frames = 0;       // kept when searching
     double share = 0;     // of their variation explained by the course
-    bool fitted = false;  // the course fitted to PulseSearchOptions::shape
+    bool fitted = false;  // the course is PulseSearchOptions::shape's
 };
 
 class PulseSearch {
@@ -140,7 +139,7 @@ private:
         FramePyramid pyramid;
         Eigen::Matrix3d to_newest;  // its points to the newest frame's
     };
-    std::vector<double> fit_shape(const std::vector<double>& course) const;
+    std::vector<double> fit_shape(const PulseCourse& course) const;
     void keep_found(const Detection& found);
 
     PulseSearchOptions options_;
