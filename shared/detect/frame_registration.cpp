@@ -7,6 +7,37 @@
 
 namespace umf {
 
+namespace {
+
+// `image` less the mean of the box of `radius` pixels each way around each
+// pixel (the box cut at the borders), plus 128, clamped to 0..255.
+std::vector<std::uint8_t> less_local_mean(const GreyView& image, int radius) {
+    const int w = image.width, h = image.height;
+    std::vector<std::uint32_t> sums(static_cast<std::size_t>(w + 1) * static_cast<std::size_t>(h + 1), 0);
+    auto at = [&](int x, int y) -> std::uint32_t& { return sums[static_cast<std::size_t>(y) * (w + 1) + x]; };
+    for (int y = 0; y < h; ++y) {
+        std::uint32_t row = 0;
+        for (int x = 0; x < w; ++x) {
+            row += image.at(x, y);
+            at(x + 1, y + 1) = at(x + 1, y) + row;
+        }
+    }
+    std::vector<std::uint8_t> out(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+    for (int y = 0; y < h; ++y) {
+        const int y0 = std::max(0, y - radius), y1 = std::min(h, y + radius + 1);
+        for (int x = 0; x < w; ++x) {
+            const int x0 = std::max(0, x - radius), x1 = std::min(w, x + radius + 1);
+            const auto sum = at(x1, y1) + at(x0, y0) - at(x0, y1) - at(x1, y0);
+            const float mean = static_cast<float>(sum) / static_cast<float>((x1 - x0) * (y1 - y0));
+            const float v = 128.0f + static_cast<float>(image.at(x, y)) - mean;
+            out[static_cast<std::size_t>(y) * w + x] = static_cast<std::uint8_t>(std::clamp(v + 0.5f, 0.0f, 255.0f));
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
 FramePyramid::FramePyramid(const GreyView& frame, int smallest_width) {
     Level first;
     first.width = frame.width;
@@ -22,6 +53,15 @@ FramePyramid::FramePyramid(const GreyView& frame, int smallest_width) {
         next.height = half.height;
         levels_.push_back(std::move(next));
     }
+    for (int i = 0; i < levels(); ++i) {
+        const GreyView l = level(i);
+        details_.push_back(Level{less_local_mean(l, kDetailRadius), l.width, l.height});
+    }
+}
+
+GreyView FramePyramid::detail(int i) const {
+    const Level& l = details_.at(static_cast<std::size_t>(i));
+    return {l.pixels.data(), l.width, l.height, l.width};
 }
 
 GreyView FramePyramid::level(int i) const {
@@ -266,11 +306,14 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     FrameRegistration result;
     Step last;
     std::vector<Sample> samples;  // at the end, the finest level's
+    // The gain is of grey levels, not of their difference from a local mean.
+    const bool detail = options.detail && !options.fit_gain;
+    auto image = [&](const FramePyramid& p, int level) { return detail ? p.detail(level) : p.level(level); };
     auto align = [&](int level, double gain) {
         const Eigen::Matrix3d unit_to_level = level_to_unit(w, h, level).inverse();
         const bool affine = options.affine_coarse && level == coarsest && coarsest > finest;
         for (int it = 0; it < options.iterations; ++it) {
-            last = align_step(samples, to.level(level), warp, unit_to_level, gain, affine);
+            last = align_step(samples, image(to, level), warp, unit_to_level, gain, affine);
             if (!last.solved) break;
             const Eigen::Matrix3d inverse_step = as_matrix(last.update).inverse();
             warp = warp * inverse_step;
@@ -279,7 +322,7 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
         }
     };
     for (int level = coarsest; level >= finest; --level) {
-        samples = samples_of(from.level(level), level_to_unit(w, h, level), options.samples);
+        samples = samples_of(image(from, level), level_to_unit(w, h, level), options.samples);
         align(level, 1);
     }
     const Eigen::Matrix3d finest_to_unit = level_to_unit(w, h, finest);
@@ -299,9 +342,9 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     // a spread of many levels even where aligned exactly (the pixels sample
     // its edges at other phases), so the alignment is judged by how much it
     // explains as well as by what it leaves.
-    last = align_step(samples, to.level(finest), warp, finest_to_unit.inverse(), gain);
+    last = align_step(samples, image(to, finest), warp, finest_to_unit.inverse(), gain);
     const Step unmoved =
-        align_step(samples, to.level(finest), Eigen::Matrix3d::Identity(), finest_to_unit.inverse(), gain);
+        align_step(samples, image(to, finest), Eigen::Matrix3d::Identity(), finest_to_unit.inverse(), gain);
     result.homography = full_to_unit.inverse() * warp * full_to_unit;
     result.homography /= result.homography(2, 2);
     result.residual = last.spread;

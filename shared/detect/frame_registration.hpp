@@ -35,6 +35,11 @@ public:
 
     int levels() const { return static_cast<int>(levels_.size()); }
     GreyView level(int i) const;
+    // The level less its local mean (a box of kDetailRadius pixels of the
+    // level each way), about grey 128: the content's edges without the
+    // light's slow change over the frame.
+    GreyView detail(int i) const;
+    static constexpr int kDetailRadius = 4;
     int width() const { return levels_.empty() ? 0 : levels_[0].width; }
     int height() const { return levels_.empty() ? 0 : levels_[0].height; }
 
@@ -44,6 +49,7 @@ private:
         int width = 0, height = 0;
     };
     std::vector<Level> levels_;
+    std::vector<Level> details_;
 };
 
 struct RegistrationOptions {
@@ -82,6 +88,13 @@ struct RegistrationOptions {
     // changes by more (PulseSearchOptions::affine_retry uses it where the
     // whole homography fails).
     bool affine_coarse = false;
+    // Aligned on each level less its local mean (FramePyramid::detail), not
+    // on its grey levels: a lamp's glare on the screen or a vignette changes
+    // the light smoothly over the frame, by far more than a pulse, and one
+    // grey-level offset for the whole frame cannot follow it. Off by
+    // default (PulseSearchOptions::detail_retry uses it where the grey
+    // levels fail).
+    bool detail = false;
 };
 
 struct FrameRegistration {

@@ -56,6 +56,9 @@ struct PulseSearchOptions {
     // affine in every registration, the photo swung twice as fast was left
     // misaligned instead (27 frames right -> 3, and 24 wrong).
     bool affine_retry = true;
+    // A frame still not registered is aligned again on the frames' detail
+    // (RegistrationOptions::detail).
+    bool detail_retry = true;
     // A search that found nothing is not tried again until this many more
     // frames are kept (one that found the field is tried on every frame).
     int search_every = 4;
