@@ -351,6 +351,7 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     result.unmoved_residual = unmoved.spread;
     result.overlap = last.overlap;
     result.gain = gain;
+    result.on_detail = detail;
     const bool explained = last.spread <= options.max_residual || last.spread <= options.max_share * unmoved.spread;
     result.registered = last.solved && result.homography.allFinite() && explained && last.overlap >= options.min_overlap;
     return result;

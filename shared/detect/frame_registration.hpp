@@ -105,6 +105,7 @@ struct FrameRegistration {
     double unmoved_residual = 0;  // the same between the frames as they lie
     double overlap = 0;   // the share of samples inside `to`
     double gain = 1;      // of `to`'s grey levels over `from`'s
+    bool on_detail = false;  // aligned on the frames' detail (RegistrationOptions::detail)
     bool registered = false;
 };
 

@@ -130,7 +130,10 @@ void PulseSearch::add(const GreyView& frame) {
             motion_ = r.homography;
             for (Kept& k : kept_) k.to_newest = r.homography * k.to_newest;
             if (found_) found_->image_to_field = found_->image_to_field * r.homography.inverse();
-            if (++carried_for_ > options_.carry_frames || !checked) found_.reset();
+            // Nor through one aligned on the frames' detail alone: content
+            // the grey levels could not align (a tiled board's repeats, a
+            // glare) may be aligned a little off, frame after frame.
+            if (++carried_for_ > options_.carry_frames || !checked || r.on_detail) found_.reset();
         } else {
             // Frames that cannot be laid onto this one are of no use with it.
             kept_.clear();
@@ -312,11 +315,9 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
     // A place carried here is confirmed where it is said to be first: far
     // cheaper than a search, and it reads a field too faint for one. Found
     // again, it is carried on from here, the registrations' drift gone.
-    bool followed = false;
     if (found_ && options_.follow_carried) {
         out.detection = detector.follow(field, aim, found_->image_to_field);
         if (!out.detection.found) out.detection = detector.follow(inverse(), aim, found_->image_to_field);
-        followed = out.detection.found;
     }
     const std::span<const SearchPlan> plans(options_.plans);
     if (!out.detection.found) out.detection = detector.detect(field, aim, nullptr, plans);
@@ -325,19 +326,7 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         if (d.found) out.detection = std::move(d);
     }
     last_found_ = out.detection.found;
-    if (followed) {
-        // A follow reads the module edges near the aim alone: its place
-        // there is good, its map further out may not be (the tuning web
-        // page swung twice as fast: a follow 0.2 module off at the aim, its
-        // map 12 % off in scale, carried 2.3 modules off over 18 modules of
-        // the aim's travel; 19 frames wrong). The map carried is kept,
-        // shifted to the place followed.
-        Detection kept = out.detection;
-        kept.image_to_field = found_->image_to_field;
-        keep_found(kept);
-    } else if (out.detection.found) {
-        keep_found(out.detection);
-    }
+    if (out.detection.found) keep_found(out.detection);
     return out;
 }
 

@@ -61,6 +61,8 @@ Usage: umf_pulse_benchmark [options]
                          (RegistrationOptions::affine_coarse on)
   --no-affine-retry      no registration tried again with an affine coarsest level
                          (PulseSearchOptions::affine_retry off)
+  --no-detail-retry      no registration tried again on the frames' detail
+                         (PulseSearchOptions::detail_retry off)
   --no-follow            a place carried not looked for where it is said to be before each search
                          (PulseSearchOptions::follow_carried off)
   --videos a,b           only these videos (screen kinds, or held-out contents; the tuning set's spreadsheet
@@ -100,6 +102,7 @@ struct Options {
     std::optional<int> carry_frames;
     bool affine_coarse = false;
     bool affine_retry = true;
+    bool detail_retry = true;
     std::optional<double> max_share;
     std::vector<std::string> videos;  // empty: all
     std::string log;
@@ -211,6 +214,7 @@ PulseSearchOptions pulse_options(const Options& o, double fps) {
     if (o.carry_frames) p.carry_frames = *o.carry_frames;
     p.registration.affine_coarse = o.affine_coarse;
     p.affine_retry = o.affine_retry;
+    p.detail_retry = o.detail_retry;
     if (o.max_share) p.registration.max_share = *o.max_share;
     if (!o.announced) return p;
     overlay::Preset unit;  // the waveform over one period, 0 to 1
@@ -352,6 +356,7 @@ void run(const Options& o) {
     if (o.max_share) std::printf("Registered at up to %.3g of the unaligned residual.\n", *o.max_share);
     if (o.affine_coarse) std::printf("Every registration's coarsest level an affine change.\n");
     if (!o.affine_retry) std::printf("No registration tried again with an affine coarsest level.\n");
+    if (!o.detail_retry) std::printf("No registration tried again on the frames' detail.\n");
     for (const cv::Size res : o.resolutions) {
         std::cerr << "making " << res.width << " x " << res.height << " videos\n";
         const std::vector<Video> videos = o.heldout ? heldout_videos(o, field, res) : tuning_videos(o, field, res);
@@ -439,6 +444,8 @@ Options parse(int argc, char** argv) {
             o.affine_coarse = true;
         } else if (a == "--no-affine-retry") {
             o.affine_retry = false;
+        } else if (a == "--no-detail-retry") {
+            o.detail_retry = false;
         } else if (a == "--no-follow") {
             o.follow_carried = false;
         } else if (a == "--no-levelling") {

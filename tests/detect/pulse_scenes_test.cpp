@@ -414,40 +414,6 @@ TEST(PulseSearch, ConfirmsACarriedPlaceWhereItIsSaidToBe) {
     }
 }
 
-// A follow reads the module edges near the aim alone: where it confirms a
-// place carried with a map a tenth too large, the place at the aim is the
-// follow's and the map carried on is still the one carried, shifted there,
-// not the follow's fitted to those few edges.
-TEST(PulseSearch, KeepsTheCarriedMapWhereAFollowConfirmsIt) {
-    const Field f = test::shipped_field("b4-64x36.json");
-    const Detector detector(f);
-    const Eigen::Vector2d aim(320, 240), aside(470, 240);
-    HandHeldFilm film(f);
-    PulseSearch search;
-    for (int i = 0; i < 19; ++i) search.add(film.frame(i));
-    ASSERT_TRUE(search.search(detector, aim).detection.found);
-    const std::optional<Detection> carried = search.carried(aim);
-    ASSERT_TRUE(carried.has_value());
-    Detection scaled = *carried;
-    Eigen::Matrix3d about_aim = Eigen::Matrix3d::Identity();
-    about_aim(0, 0) = about_aim(1, 1) = 1.1;
-    about_aim.topRightCorner<2, 1>() = -0.1 * carried->aim_field;
-    scaled.image_to_field = about_aim * carried->image_to_field;
-    search.found_elsewhere(scaled);
-    search.add(film.frame(19));
-    const std::optional<Detection> before = search.carried(aside);
-    ASSERT_TRUE(before.has_value());
-    const PulseSearchResult followed = search.search(detector, aim);
-    ASSERT_TRUE(followed.detection.found) << followed.detection.failure;
-    ASSERT_TRUE(followed.detection.from_prior) << "not followed";
-    const std::optional<Detection> after = search.carried(aside);
-    ASSERT_TRUE(after.has_value());
-    EXPECT_LT((after->aim_field - before->aim_field).norm(), 0.2) << "the follow's map taken";
-    const std::optional<Detection> at_aim = search.carried(aim);
-    ASSERT_TRUE(at_aim.has_value());
-    EXPECT_NEAR((at_aim->aim_field - followed.detection.aim_field).norm(), 0, 1e-9);
-}
-
 // A place is carried from where the module edges around the aim put it,
 // not from where the map fitted to the whole view does (on a tracker's
 // lock the two can be a fifth of a module apart), and on from there.
