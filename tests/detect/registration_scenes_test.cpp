@@ -105,4 +105,30 @@ TEST(RegistrationScenes, ALampsGlareOverDarkCodeAlignedOnTheFramesDetail) {
     EXPECT_TRUE(!g.registered || centre_error(g.homography, truth, res) > 5) << "on the grey levels";
 }
 
+// In a pulse search the same frames are kept together (the registration
+// aligned again on their detail), but a place found before them is not
+// carried through an alignment on the detail alone.
+TEST(RegistrationScenes, APulseSearchKeepsFramesAlignedOnTheirDetailButCarriesNoPlaceThrough) {
+    const bench::Scene scene;
+    const cv::Size res(640, 480);
+    const cv::Mat screen = sim::make_screen(sim::ScreenKind::code_dark, scene.screen.pixels, 7);
+    const auto rs = bench::pulsing_recipes(scene, sim::ScreenKind::code_dark, 150, 1);
+    std::vector<cv::Mat> frames;
+    for (int i = 14; i <= 17; ++i) frames.push_back(bench::shoot(scene, rs.at(static_cast<std::size_t>(i)), screen, res).grey);
+    PulseSearch search;
+    for (std::size_t i = 0; i + 1 < frames.size(); ++i) search.add(view(frames[i]));
+    Detection found;
+    found.found = true;
+    found.aim_image = {320, 240};
+    found.aim_field = {30, 20};
+    found.image_to_field << 0.1, 0, -2, 0, 0.1, -4, 0, 0, 1;
+    search.found_elsewhere(found);
+    ASSERT_TRUE(search.carried({320, 240}).has_value());
+    search.add(view(frames.back()));
+    EXPECT_EQ(search.registration_losses(), 0);
+    EXPECT_EQ(search.frames(), 4);
+    EXPECT_TRUE(search.last_registration().on_detail);
+    EXPECT_FALSE(search.carried({320, 240}).has_value()) << "carried through an alignment on the detail";
+}
+
 }  // namespace registration_scenes
