@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -28,30 +29,62 @@ double centre_error(const Eigen::Matrix3d& registered, const cv::Matx33d& truth,
     return std::hypot(t[0] / t[2] - r.x() / r.z(), t[1] / t[2] - r.y() / r.z());
 }
 
+// Frames `first` and first + 1 of a screen kind's swing (the pulsing
+// benchmark's tuning videos, without the field) and the true motion between
+// them.
+struct FramePair {
+    cv::Mat from, to;
+    cv::Matx33d truth;
+    bench::FrameRecipe from_recipe, to_recipe;
+};
+
+FramePair frame_pair(sim::ScreenKind kind, int first) {
+    const bench::Scene scene;
+    const cv::Size res(640, 480);
+    const sim::CameraModel camera{res, scene.hfov_deg};
+    const cv::Mat screen = sim::make_screen(kind, scene.screen.pixels, 7);
+    const auto rs = bench::pulsing_recipes(scene, kind, 150, 1);
+    const bench::FrameRecipe& a = rs.at(static_cast<std::size_t>(first));
+    const bench::FrameRecipe& b = rs.at(static_cast<std::size_t>(first + 1));
+    return {bench::shoot(scene, a, screen, res).grey, bench::shoot(scene, b, screen, res).grey,
+            sim::screen_to_image(scene.screen, camera, b.pose) * sim::screen_to_image(scene.screen, camera, a.pose).inv(),
+            a, b};
+}
+
+// Frames first..last of a screen kind's swing, without the field.
+std::vector<cv::Mat> swing_frames(sim::ScreenKind kind, int first, int last) {
+    const bench::Scene scene;
+    const cv::Mat screen = sim::make_screen(kind, scene.screen.pixels, 7);
+    const auto rs = bench::pulsing_recipes(scene, kind, 150, 1);
+    std::vector<cv::Mat> frames;
+    for (int i = first; i <= last; ++i)
+        frames.push_back(bench::shoot(scene, rs.at(static_cast<std::size_t>(i)), screen, cv::Size(640, 480)).grey);
+    return frames;
+}
+
+// The pair registered with `options`: right within half a pixel at the
+// centre. Then registered with the default options: how far off at the centre
+// (infinity where not registered).
+double registered_right_then_default_off(const FramePair& pair, const RegistrationOptions& options) {
+    const cv::Size res(pair.from.cols, pair.from.rows);
+    const FramePyramid from_levels(view(pair.from)), to_levels(view(pair.to));
+    const FrameRegistration r = register_frames(from_levels, to_levels, Eigen::Matrix3d::Identity(), options);
+    EXPECT_TRUE(r.registered) << "residual " << r.residual;
+    EXPECT_LT(centre_error(r.homography, pair.truth, res), 0.5);
+    const FrameRegistration f = register_frames(from_levels, to_levels);
+    return f.registered ? centre_error(f.homography, pair.truth, res) : std::numeric_limits<double>::infinity();
+}
+
 // Frames 134 and 135 of the document's swing: with the whole homography at
 // every level the alignment of the lines of text slides a line along (27
 // pixels off at the centre, its residual low enough to pass), and every
 // frame kept was lost there; the coarsest level's affine change aligns
 // them (what PulseSearch tries where the whole homography fails).
 TEST(RegistrationScenes, ADocumentsLinesAlignedAffineAtCoarseLevels) {
-    const bench::Scene scene;
-    const cv::Size res(640, 480);
-    const sim::CameraModel camera{res, scene.hfov_deg};
-    const cv::Mat screen = sim::make_screen(sim::ScreenKind::document, scene.screen.pixels, 7);
-    const auto rs = bench::pulsing_recipes(scene, sim::ScreenKind::document, 150, 1);
-    const bench::FrameRecipe& a = rs.at(134);
-    const bench::FrameRecipe& b = rs.at(135);
-    const bench::Frame from = bench::shoot(scene, a, screen, res), to = bench::shoot(scene, b, screen, res);
-    const cv::Matx33d truth = sim::screen_to_image(scene.screen, camera, b.pose) *
-                              sim::screen_to_image(scene.screen, camera, a.pose).inv();
-    const FramePyramid from_levels(view(from.grey)), to_levels(view(to.grey));
     RegistrationOptions affine;
     affine.affine_coarse = true;
-    const FrameRegistration r = register_frames(from_levels, to_levels, Eigen::Matrix3d::Identity(), affine);
-    EXPECT_TRUE(r.registered) << "residual " << r.residual;
-    EXPECT_LT(centre_error(r.homography, truth, res), 0.5);
-    const FrameRegistration f = register_frames(from_levels, to_levels);
-    EXPECT_GT(centre_error(f.homography, truth, res), 10) << "the whole homography at every level: a line along";
+    EXPECT_GT(registered_right_then_default_off(frame_pair(sim::ScreenKind::document, 134), affine), 10)
+        << "the whole homography at every level: a line along";
 }
 
 // The same frames in a pulse search, from the frame before them: the whole
@@ -59,12 +92,7 @@ TEST(RegistrationScenes, ADocumentsLinesAlignedAffineAtCoarseLevels) {
 // the search aligns it again with the coarsest level affine
 // (PulseSearchOptions::affine_retry) instead of starting over.
 TEST(RegistrationScenes, APulseSearchAlignsADocumentAgainAffineWhereTheWholeHomographyFails) {
-    const bench::Scene scene;
-    const cv::Size res(640, 480);
-    const cv::Mat screen = sim::make_screen(sim::ScreenKind::document, scene.screen.pixels, 7);
-    const auto rs = bench::pulsing_recipes(scene, sim::ScreenKind::document, 150, 1);
-    std::vector<cv::Mat> frames;
-    for (int i = 132; i <= 135; ++i) frames.push_back(bench::shoot(scene, rs.at(static_cast<std::size_t>(i)), screen, res).grey);
+    const std::vector<cv::Mat> frames = swing_frames(sim::ScreenKind::document, 132, 135);
     for (const bool retry : {true, false}) {
         PulseSearchOptions options;
         options.affine_retry = retry;
@@ -83,38 +111,19 @@ TEST(RegistrationScenes, APulseSearchAlignsADocumentAgainAffineWhereTheWholeHomo
 // 22 pixels off at the centre, and every frame kept was lost. Aligned on
 // their detail (each level less its local mean) it is right.
 TEST(RegistrationScenes, ALampsGlareOverDarkCodeAlignedOnTheFramesDetail) {
-    const bench::Scene scene;
-    const cv::Size res(640, 480);
-    const sim::CameraModel camera{res, scene.hfov_deg};
-    const cv::Mat screen = sim::make_screen(sim::ScreenKind::code_dark, scene.screen.pixels, 7);
-    const auto rs = bench::pulsing_recipes(scene, sim::ScreenKind::code_dark, 150, 1);
-    const bench::FrameRecipe& a = rs.at(16);
-    const bench::FrameRecipe& b = rs.at(17);
-    ASSERT_EQ(a.degradation.glare, 0);
-    ASSERT_GT(b.degradation.glare, 0);
-    const bench::Frame from = bench::shoot(scene, a, screen, res), to = bench::shoot(scene, b, screen, res);
-    const cv::Matx33d truth = sim::screen_to_image(scene.screen, camera, b.pose) *
-                              sim::screen_to_image(scene.screen, camera, a.pose).inv();
-    const FramePyramid from_levels(view(from.grey)), to_levels(view(to.grey));
+    const FramePair pair = frame_pair(sim::ScreenKind::code_dark, 16);
+    ASSERT_EQ(pair.from_recipe.degradation.glare, 0);
+    ASSERT_GT(pair.to_recipe.degradation.glare, 0);
     RegistrationOptions detail;
     detail.detail = true;
-    const FrameRegistration r = register_frames(from_levels, to_levels, Eigen::Matrix3d::Identity(), detail);
-    EXPECT_TRUE(r.registered) << "residual " << r.residual;
-    EXPECT_LT(centre_error(r.homography, truth, res), 0.5);
-    const FrameRegistration g = register_frames(from_levels, to_levels);
-    EXPECT_TRUE(!g.registered || centre_error(g.homography, truth, res) > 5) << "on the grey levels";
+    EXPECT_GT(registered_right_then_default_off(pair, detail), 5) << "on the grey levels";
 }
 
 // In a pulse search the same frames are kept together (the registration
 // aligned again on their detail), but a place found before them is not
 // carried through an alignment on the detail alone.
 TEST(RegistrationScenes, APulseSearchKeepsFramesAlignedOnTheirDetailButCarriesNoPlaceThrough) {
-    const bench::Scene scene;
-    const cv::Size res(640, 480);
-    const cv::Mat screen = sim::make_screen(sim::ScreenKind::code_dark, scene.screen.pixels, 7);
-    const auto rs = bench::pulsing_recipes(scene, sim::ScreenKind::code_dark, 150, 1);
-    std::vector<cv::Mat> frames;
-    for (int i = 14; i <= 17; ++i) frames.push_back(bench::shoot(scene, rs.at(static_cast<std::size_t>(i)), screen, res).grey);
+    const std::vector<cv::Mat> frames = swing_frames(sim::ScreenKind::code_dark, 14, 17);
     PulseSearch search;
     for (std::size_t i = 0; i + 1 < frames.size(); ++i) search.add(view(frames[i]));
     Detection found;
