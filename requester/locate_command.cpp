@@ -69,11 +69,12 @@ options:
                   search of the frames together where it ran. Once found (by
                   that search, or locked on a frame alone), the field is
                   carried from frame to frame as the frames move ("prior":
-                  true) until it is found again, for at most 25 frames.
+                  true) until it is found again, for at most 60 frames.
   --pulse-period S  with --sequence: the period of the field's pulse in seconds, as
-                  the provider's welcome gives it; the pulse found in the frames
-                  is fitted to it (at 24, 25, 30, 50 or 60 frames a second, or the
-                  video's rate). Without it the pulse is taken as the frames show it.
+                  the provider's welcome gives it; the pulse is taken to be that
+                  shape at the rate (24, 25, 30, 50 or 60 frames a second, or the
+                  video's) and phase that explain the frames' change the most.
+                  Without it the pulse is taken as the frames show it.
   --waveform W    with --pulse-period: sine (the default) or triangle
 
 exit codes: 0 the frames were read (frames without the field and unreadable images
