@@ -212,7 +212,8 @@ bool PulseSearch::due() const {
 // The shape at the rate and phase whose course explains most of the
 // frames' variation over time (t' C t, t the course less its mean and of
 // unit length, C the frames' covariance), scaled to [-1, 1]; empty where the
-// shape has none or a smooth course it does not follow. Not the shape nearest the frames' leading course: at a
+// shape has none, or where the frames' leading course is smooth and the
+// shape does not follow it. Not the shape nearest the leading course: at a
 // pulse of a few percent over moving content, that course is the content's
 // frame-to-frame leakage through the registrations (the tuning document's
 // at 12 frames jumped between +1 and -0.66 from one frame to the next, and
