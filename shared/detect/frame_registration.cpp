@@ -53,14 +53,15 @@ FramePyramid::FramePyramid(const GreyView& frame, int smallest_width) {
         next.height = half.height;
         levels_.push_back(std::move(next));
     }
-    for (int i = 0; i < levels(); ++i) {
-        const GreyView l = level(i);
-        details_.push_back(Level{less_local_mean(l, kDetailRadius), l.width, l.height});
-    }
+    details_.resize(levels_.size());
 }
 
 GreyView FramePyramid::detail(int i) const {
-    const Level& l = details_.at(static_cast<std::size_t>(i));
+    Level& l = details_.at(static_cast<std::size_t>(i));
+    if (l.pixels.empty()) {
+        const GreyView grey = level(i);
+        l = Level{less_local_mean(grey, kDetailRadius), grey.width, grey.height};
+    }
     return {l.pixels.data(), l.width, l.height, l.width};
 }
 

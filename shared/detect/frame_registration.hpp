@@ -37,7 +37,9 @@ public:
     GreyView level(int i) const;
     // The level less its local mean (a box of kDetailRadius pixels of the
     // level each way), about grey 128: the content's edges without the
-    // light's slow change over the frame.
+    // light's slow change over the frame. Made on the first call (only a
+    // registration that the grey levels failed reads it); the view stays
+    // valid as long as the pyramid.
     GreyView detail(int i) const;
     static constexpr int kDetailRadius = 4;
     int width() const { return levels_.empty() ? 0 : levels_[0].width; }
@@ -49,7 +51,7 @@ private:
         int width = 0, height = 0;
     };
     std::vector<Level> levels_;
-    std::vector<Level> details_;
+    mutable std::vector<Level> details_;  // per level; empty until detail() asks
 };
 
 struct RegistrationOptions {

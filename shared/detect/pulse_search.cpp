@@ -252,10 +252,11 @@ std::vector<double> PulseSearch::fit_shape(const PulseCourse& found) const {
     // course smoother than kSmooth followed the shape at a correlation of
     // 0.79 or more (umf_pulse_benchmark --frames 80).
     constexpr double kSmooth = 0.7, kFollows = 0.5;
-    if (lag_one_correlation(found.level) > kSmooth && std::abs(correlation(found.level, best)) < kFollows) return {};
+    const double follows = correlation(found.level, best);
+    if (lag_one_correlation(found.level) > kSmooth && std::abs(follows) < kFollows) return {};
     const auto [lo, hi] = std::minmax_element(best.begin(), best.end());
     const double mid = (*hi + *lo) / 2, half = (*hi - *lo) / 2;
-    const double sign = correlation(found.level, best) < 0 ? -1 : 1;
+    const double sign = follows < 0 ? -1 : 1;
     for (double& v : best) v = sign * (v - mid) / half;
     return best;
 }
