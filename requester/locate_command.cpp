@@ -16,7 +16,7 @@
 #include "shared/detect/image.hpp"
 #include "shared/detect/pulse_tracker.hpp"
 #include "shared/field/field_io.hpp"
-#include "shared/overlay/pulse.hpp"
+#include "shared/overlay/pulse_shape.hpp"
 
 namespace umf::requester {
 
@@ -144,12 +144,7 @@ Json sequence_json(int frame, const PulseTrackResult& r) {
 PulseSearchOptions pulse_search_options(const LocateOptions& o, double video_fps) {
     PulseSearchOptions options;
     if (!o.pulse_period_s) return options;
-    overlay::Preset unit;  // the waveform over one period, 0 to 1
-    unit.opacity_min = 0;
-    unit.opacity_max = 1;
-    unit.period_s = 1;
-    unit.waveform = o.waveform;
-    options.shape = PulseShape{[unit](double phase) { return overlay::opacity_at(unit, phase); }, *o.pulse_period_s};
+    options.shape = overlay::announced_pulse_shape(o.waveform, *o.pulse_period_s);
     if (video_fps > 0) options.frame_rates = {video_fps};
     return options;
 }

@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 namespace umf {
@@ -104,6 +105,20 @@ std::optional<Point2> apply_homography(const Eigen::Matrix3d& h, const Point2& p
     const Eigen::Vector3d q = h * Eigen::Vector3d(p.x(), p.y(), 1.0);
     if (std::abs(q.z()) < 1e-12) return std::nullopt;
     return Point2(q.x() / q.z(), q.y() / q.z());
+}
+
+double shape_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, const Point2& at, double reach) {
+    const auto pa = apply_homography(a, at), pb = apply_homography(b, at);
+    if (!pa || !pb) return std::numeric_limits<double>::infinity();
+    double most = 0;
+    for (const double dx : {-reach, 0.0, reach})
+        for (const double dy : {-reach, 0.0, reach}) {
+            const Point2 q = at + Point2(dx, dy);
+            const auto qa = apply_homography(a, q), qb = apply_homography(b, q);
+            if (!qa || !qb) return std::numeric_limits<double>::infinity();
+            most = std::max(most, ((*qa - *pa) - (*qb - *pb)).norm());
+        }
+    return most;
 }
 
 std::optional<Eigen::Matrix3d> fit_homography(const std::vector<Point2>& from, const std::vector<Point2>& to) {

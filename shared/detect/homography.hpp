@@ -32,6 +32,12 @@ std::optional<Eigen::Matrix3d> fit_homography_to_lines(const std::vector<Point2>
 // Nothing when the point maps to infinity.
 std::optional<Point2> apply_homography(const Eigen::Matrix3d& h, const Point2& p);
 
+// How far apart two maps put the points of a square ring `reach` around `at`
+// (its corners and edge middles) once both are moved to agree at `at`: how
+// much their shapes differ there, in the maps' units (infinity where either
+// sends a point to infinity).
+double shape_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, const Point2& at, double reach);
+
 struct RobustHomography {
     Eigen::Matrix3d h = Eigen::Matrix3d::Identity();
     std::vector<bool> inlier;

@@ -108,14 +108,22 @@ void PulseSearch::clear() {
     width_ = height_ = 0;
 }
 
-void PulseSearch::add(const GreyView& frame) {
+void PulseSearch::add(const GreyView& frame, std::optional<double> time_s) {
     if (auto problem = describe_invalid(frame); !problem.empty()) throw std::invalid_argument("pulse search: " + problem);
     if (frame.width != width_ || frame.height != height_) {
         clear();
         width_ = frame.width;
         height_ = frame.height;
     }
-    Kept next{FramePyramid(frame), Eigen::Matrix3d::Identity()};
+    if (time_s && !std::isfinite(*time_s)) time_s.reset();
+    // A clock that stands or runs back (a page's timestamps from another
+    // source after a restart) cannot place the pulse: the frames kept
+    // before it are dropped.
+    if (!kept_.empty() && time_s && kept_.back().time_s && !(*time_s > *kept_.back().time_s)) {
+        kept_.clear();
+        found_.reset();
+    }
+    Kept next{FramePyramid(frame), Eigen::Matrix3d::Identity(), time_s};
     last_registration_ = {};
     if (!kept_.empty()) {
         const FrameRegistration r = register_next(next.pyramid);
@@ -228,11 +236,19 @@ std::vector<double> PulseSearch::fit_shape(const PulseCourse& found) const {
     std::vector<double> best;
     Eigen::VectorXd trial(n);
     double most = 0;
-    for (const double rate : options_.frame_rates) {
+    // Each frame's time from the first kept (seconds): its own where every
+    // frame kept has one (a page drops frames while it is busy), else the
+    // frame's number at each rate tried.
+    const bool timed = static_cast<Eigen::Index>(kept_.size()) == n &&
+                       std::all_of(kept_.begin(), kept_.end(), [](const Kept& k) { return k.time_s.has_value(); });
+    const std::vector<double> rates = timed ? std::vector<double>{1.0} : options_.frame_rates;
+    for (const double rate : rates) {
         if (!(rate > 0)) continue;
         for (int p = 0; p < kPhases; ++p) {
             for (Eigen::Index i = 0; i < n; ++i) {
-                const double phase = static_cast<double>(i) / (shape.period_s * rate) + static_cast<double>(p) / kPhases;
+                const double t = timed ? *kept_[static_cast<std::size_t>(i)].time_s - *kept_.front().time_s
+                                       : static_cast<double>(i) / rate;
+                const double phase = t / shape.period_s + static_cast<double>(p) / kPhases;
                 trial(i) = shape.waveform(phase - std::floor(phase));
             }
             trial.array() -= trial.mean();
@@ -299,6 +315,7 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
     }
     PulseDemodulator demodulator;
     for (std::size_t i = 0; i < views.size(); ++i) demodulator.add(views[i], std::clamp(0.5 + 0.5 * level[i], 0.0, 1.0));
+    out.course = std::move(level);
     const GreyView field = demodulator.field_image(PulseDemodulator::SlopeScale::spread);
     if (!field.data) {
         out.detection.failure = "no pulse in the frames";
@@ -317,9 +334,11 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
     // A place carried here is confirmed where it is said to be first: far
     // cheaper than a search, and it reads a field too faint for one. Found
     // again, it is carried on from here, the registrations' drift gone.
+    bool followed = false;
     if (found_ && options_.follow_carried) {
         out.detection = detector.follow(field, aim, found_->image_to_field);
         if (!out.detection.found) out.detection = detector.follow(inverse(), aim, found_->image_to_field);
+        followed = out.detection.found;
     }
     const std::span<const SearchPlan> plans(options_.plans);
     if (!out.detection.found) out.detection = detector.detect(field, aim, nullptr, plans);
@@ -328,7 +347,18 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         if (d.found) out.detection = std::move(d);
     }
     last_found_ = out.detection.found;
-    if (out.detection.found) keep_found(out.detection);
+    if (followed) {
+        // The follow's place at the aim is kept; where its map's shape
+        // around the aim departs from the carried map's, the carried map's
+        // shape is carried on from that place.
+        Detection kept = out.detection;
+        if (shape_distance(found_->image_to_field, image_to_field_through_aim(kept), aim, kShapeReach * width_) >
+            options_.max_follow_shape_change)
+            kept.image_to_field = found_->image_to_field;
+        keep_found(kept);
+    } else if (out.detection.found) {
+        keep_found(out.detection);
+    }
     return out;
 }
 

@@ -75,6 +75,16 @@ struct PulseSearchOptions {
     // A place carried is looked for where it is said to be in each
     // demodulated image (Detector::follow) before the image is searched.
     bool follow_carried = true;
+    // A follow reads the module edges near the aim, and its map can be far
+    // off away from them: on the tuning web page swung twice as fast, one
+    // follow's map put the points a tenth of the frame's width from the aim
+    // 0.9 module from where the carried map put them, and the place carried
+    // on from it drifted 2.3 modules (19 frames wrong). Where the two maps,
+    // moved to agree at the aim, differ there by more than this (modules),
+    // the carried map's shape is kept through the follow's place: 19 wrong
+    // -> 3 at that swing, the tuning set at its own speed unchanged
+    // (umf_pulse_benchmark --swing-speed 2).
+    double max_follow_shape_change = 0.5;
     // Each frame laid onto the newest scaled to the newest's exposure before
     // the pulse is demodulated (the median ratio of their grey levels): a
     // phone's auto-exposure changes the content's levels by more than a faint
@@ -97,6 +107,9 @@ struct PulseSearchResult {
     int frames = 0;       // kept when searching
     double share = 0;     // of their variation explained by the course
     bool fitted = false;  // the course is PulseSearchOptions::shape's
+    // The course demodulated against, one value a frame kept, oldest first,
+    // from -1 to 1 (empty where no pulse was found).
+    std::vector<double> course;
 };
 
 class PulseSearch {
@@ -105,7 +118,9 @@ public:
 
     // Copies the frame and registers it onto the last; one of another size
     // than those kept, or one that cannot be registered, starts over.
-    void add(const GreyView& frame);
+    // `time_s`: when the frame was taken, seconds on any clock; without it
+    // the frames are taken to come at one of options.frame_rates.
+    void add(const GreyView& frame, std::optional<double> time_s = std::nullopt);
     void clear();
     int frames() const { return static_cast<int>(kept_.size()); }
     // The homography taking the last frame but one to the last: how the
@@ -143,6 +158,7 @@ private:
     struct Kept {
         FramePyramid pyramid;
         Eigen::Matrix3d to_newest;  // its points to the newest frame's
+        std::optional<double> time_s;
     };
     std::vector<double> fit_shape(const PulseCourse& course) const;
     void keep_found(const Detection& found);
@@ -157,6 +173,9 @@ private:
     FrameRegistration register_next(const FramePyramid& next) const;
     // Guesses closer than this at every corner are taken for one.
     static constexpr double kSameGuessPx = 0.5;
+    // Where a follow's map is compared with the carried one: this share of
+    // the frame's width around the aim (max_follow_shape_change).
+    static constexpr double kShapeReach = 0.1;
 
     std::optional<Eigen::Matrix3d> motion_;          // the last frame's, the next frame's first guess
     std::optional<Eigen::Matrix3d> earlier_motion_;  // the one before it

@@ -16,13 +16,13 @@ PulseTrackResult PulseTracker::update(const GreyView& frame) {
     return update(frame, Eigen::Vector2d(frame.width / 2.0, frame.height / 2.0));
 }
 
-PulseTrackResult PulseTracker::update(const GreyView& frame, const Eigen::Vector2d& aim) {
+PulseTrackResult PulseTracker::update(const GreyView& frame, const Eigen::Vector2d& aim, std::optional<double> time_s) {
     auto start = StageClock::now();
     PulseTrackResult out;
     out.track = tracker_.update(frame, aim);
     // Every frame is kept, locked or not: a lock lost in the pulse's faint
     // phase needs the frames before it, registered onto each other.
-    pulse_.add(frame);
+    pulse_.add(frame, time_s);
     out.pulse_frames = pulse_.frames();
     if (out.track.state == TrackState::locked) {
         // The freshest place to carry into the frames after, should the

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 
 #include "shared/detect/detector.hpp"
 #include "shared/detect/image.hpp"
@@ -30,7 +31,8 @@ public:
     // The detector must outlive the tracker.
     explicit PulseTracker(const Detector& detector, TrackerOptions tracking = {}, PulseSearchOptions pulse = {});
 
-    PulseTrackResult update(const GreyView& frame, const Eigen::Vector2d& aim);
+    // `time_s`: when the frame was taken (PulseSearch::add).
+    PulseTrackResult update(const GreyView& frame, const Eigen::Vector2d& aim, std::optional<double> time_s = {});
     PulseTrackResult update(const GreyView& frame);
     void reset();
 

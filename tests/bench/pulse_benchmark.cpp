@@ -17,8 +17,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "shared/detect/pulse_tracker.hpp"
-#include "shared/overlay/preset.hpp"
-#include "shared/overlay/pulse.hpp"
+#include "shared/overlay/pulse_shape.hpp"
 #include "tests/bench/heldout_run.hpp"
 #include "tests/bench/heldout_scenario.hpp"
 #include "tests/bench/methods.hpp"
@@ -43,6 +42,9 @@ Usage: umf_pulse_benchmark [options]
   --frame-ms MS          the tracker's search held to MS a frame, as the page holds it (TrackerOptions::frame_ms
                          with its spread search; default 2); 0: every search on every frame without a lock
   --max-motion-change X  PulseSearchOptions::max_motion_change (default: the library's)
+  --max-follow-shape-change X
+                         PulseSearchOptions::max_follow_shape_change, modules (default: the library's; 1e9:
+                         a follow's map always carried on)
   --exposure-drift A     the tuning set's videos with an auto-exposure that drifts and re-meters, the light
                          scaled by up to about 1 +- A from frame to frame (default 0: a steady exposure)
   --rolling-shutter S    the tuning set's videos read row by row over S seconds (first row to last, the
@@ -91,6 +93,7 @@ struct Options {
     bool announced = true;
     double frame_ms = 2;
     std::optional<double> max_motion_change;
+    std::optional<double> max_follow_shape_change;
     double exposure_drift = 0;
     double readout_s = 0;
     int swing_speed = 1;
@@ -208,6 +211,7 @@ std::vector<Video> heldout_videos(const Options& o, const Field& field, cv::Size
 PulseSearchOptions pulse_options(const Options& o, double fps) {
     PulseSearchOptions p;
     if (o.max_motion_change) p.max_motion_change = *o.max_motion_change;
+    if (o.max_follow_shape_change) p.max_follow_shape_change = *o.max_follow_shape_change;
     p.registration.fit_gain = o.fit_gain;
     p.level_exposure = o.level_exposure;
     p.follow_carried = o.follow_carried;
@@ -217,11 +221,7 @@ PulseSearchOptions pulse_options(const Options& o, double fps) {
     p.detail_retry = o.detail_retry;
     if (o.max_share) p.registration.max_share = *o.max_share;
     if (!o.announced) return p;
-    overlay::Preset unit;  // the waveform over one period, 0 to 1
-    unit.opacity_min = 0;
-    unit.opacity_max = 1;
-    unit.period_s = 1;
-    p.shape = PulseShape{[unit](double phase) { return overlay::opacity_at(unit, phase); }, kPeriodS};
+    p.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, kPeriodS);
     p.frame_rates = {fps};
     return p;
 }
@@ -417,6 +417,8 @@ Options parse(int argc, char** argv) {
             o.announced = false;
         } else if (a == "--max-motion-change") {
             o.max_motion_change = std::stod(value());
+        } else if (a == "--max-follow-shape-change") {
+            o.max_follow_shape_change = std::stod(value());
         } else if (a == "--exposure-drift") {
             o.exposure_drift = std::stod(value());
             if (!(o.exposure_drift >= 0 && o.exposure_drift < 0.5)) throw std::invalid_argument("--exposure-drift: 0 to 0.5");

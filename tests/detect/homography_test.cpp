@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <cmath>
 #include <random>
 
 using namespace umf;
@@ -213,3 +214,22 @@ TEST(Homography, LineFitWithAWeakPullAlongEachEdge) {
 }
 
 }  // namespace
+
+TEST(Homography, ShapeDistanceIgnoresAShiftAndMeasuresAScale) {
+    Eigen::Matrix3d a;
+    a << 0.05, 0.01, 3, -0.01, 0.05, 7, 1e-5, 2e-5, 1;
+    Eigen::Matrix3d shifted = a;
+    shifted.row(0) += 2.5 * a.row(2);  // the same map, 2.5 units along x
+    const Point2 at(320, 240);
+    EXPECT_NEAR(shape_distance(a, shifted, at, 64), 0, 1e-9);
+    Eigen::Matrix3d scaled = a;
+    scaled.topRows<2>() *= 1.1;  // ten percent larger, about the origin of its units
+    const double d = shape_distance(a, scaled, at, 64);
+    // The ring's farthest point is some 4.5 units from `at` under a.
+    EXPECT_GT(d, 0.3);
+    EXPECT_LT(d, 0.6);
+    EXPECT_LT(shape_distance(a, scaled, at, 8), d / 4);
+    Eigen::Matrix3d vanishing = a;
+    vanishing.row(2) << -1.0 / 256, 0, 1;  // the line x = 256, through the ring, sent to infinity
+    EXPECT_TRUE(std::isinf(shape_distance(a, vanishing, at, 64)));
+}

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iostream>
+#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -202,6 +204,54 @@ TEST_F(PulseSearchOnAWebPage, FitsTheAnnouncedShape) {
     const PulseSearchResult w = wrong.search(detector, {320, 240});
     EXPECT_FALSE(w.fitted);
     EXPECT_TRUE(w.detection.found) << "the course itself is used";
+}
+
+// A page that is busy drops camera frames: the frames kept come at uneven
+// times, and the announced shape is fitted at each frame's own time, not at
+// any frame rate (those tried here, 50 a second, are wrong).
+TEST(PulseSearch, FitsTheAnnouncedShapeAtEachFramesOwnTime) {
+    const Field f = test::shipped_field("b4-64x36.json");
+    const Clip all = film(f, 36, 0.9);
+    const std::vector<int> taken = {0, 1, 2, 5, 6, 9, 13, 14, 15, 19, 22, 23, 27, 30, 31, 35};
+    const Detector detector(f);
+    PulseSearchOptions options;
+    overlay::Preset unit;  // the pulse's shape: 0 to 1 over a period
+    unit.opacity_min = 0;
+    unit.opacity_max = 1;
+    unit.period_s = 1;
+    options.shape = PulseShape{[unit](double phase) { return overlay::opacity_at(unit, phase); }, 1.5};
+    options.frame_rates = {50};
+    std::vector<double> truth;
+    for (const int i : taken) truth.push_back(overlay::opacity_at(test::sine_pulse(0.01, 0.04, 1.5), 0.9 + i / 25.0));
+    auto followed = [&](const std::vector<double>& course) {
+        if (course.size() != truth.size()) return 0.0;
+        const double mc = std::accumulate(course.begin(), course.end(), 0.0) / course.size();
+        const double mt = std::accumulate(truth.begin(), truth.end(), 0.0) / truth.size();
+        double ct = 0, cc = 0, tt = 0;
+        for (std::size_t i = 0; i < course.size(); ++i) {
+            ct += (course[i] - mc) * (truth[i] - mt);
+            cc += (course[i] - mc) * (course[i] - mc);
+            tt += (truth[i] - mt) * (truth[i] - mt);
+        }
+        return ct / std::sqrt(cc * tt);
+    };
+    PulseSearch timed(options), untimed(options);
+    for (const int i : taken) {
+        timed.add(view(all.frames[static_cast<std::size_t>(i)]), 1000.0 + i / 25.0);
+        untimed.add(view(all.frames[static_cast<std::size_t>(i)]));
+    }
+    const PulseSearchResult r = timed.search(detector, {320, 240});
+    ASSERT_TRUE(r.detection.found) << r.detection.failure;
+    EXPECT_TRUE(r.fitted);
+    EXPECT_GT(std::abs(followed(r.course)), 0.99);
+    EXPECT_LT(std::hypot(r.detection.aim_field.x() - all.truth.x, r.detection.aim_field.y() - all.truth.y), 0.05);
+    const PulseSearchResult u = untimed.search(detector, {320, 240});
+    std::cout << "[ measure  ] the course's correlation with the pulse at the frames' times: timed " << followed(r.course)
+              << ", at 50 frames a second " << followed(u.course) << "\n";
+    EXPECT_LT(std::abs(followed(u.course)), 0.95) << "fitted at the rate tried, not the frames' times";
+    // A clock that runs back starts the frames kept over.
+    timed.add(view(all.frames.back()), 999.0);
+    EXPECT_EQ(timed.frames(), 1);
 }
 
 // The phone's auto-exposure wanders by a few percent while the field pulses

@@ -1,0 +1,16 @@
+#include "shared/overlay/pulse_shape.hpp"
+
+#include "shared/overlay/pulse.hpp"
+
+namespace umf::overlay {
+
+PulseShape announced_pulse_shape(Waveform waveform, double period_s) {
+    Preset unit;  // the waveform over one period, 0 to 1
+    unit.opacity_min = 0;
+    unit.opacity_max = 1;
+    unit.period_s = 1;
+    unit.waveform = waveform;
+    return PulseShape{[unit](double phase) { return opacity_at(unit, phase); }, period_s};
+}
+
+}  // namespace umf::overlay
