@@ -139,9 +139,10 @@ compose  writes the screen exactly as shown at time T (content, the board over
          fields, phone page and browser extension from (PREFIX/share/umf when
          installed).
 
---preset      overlay preset: subtle, balanced, visible, static, kiosk, or one
-              of yours in CONFIG_DIR/presets.json (default: kiosk with a board,
-              else balanced).
+--preset      overlay preset: subtle, balanced, visible, static, kiosk,
+              invisible (a pulse of a few grey levels that phones find over
+              their frames), or one of yours in CONFIG_DIR/presets.json
+              (default: kiosk with a board, else balanced).
 --opacity-min A --opacity-max A --period S --waveform sine|triangle --module-px P
 --blur B --region full|focus --focus-radius M --activation always|on_demand
 --fade S --palette #rrggbb,#rrggbb

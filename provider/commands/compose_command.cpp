@@ -35,8 +35,8 @@ usage:
 --board    a board file (umf-board/1): the board window, shown full screen,
            covers the content
 --screen   the screen size when there is no --content (default 1920x1080)
---preset   a built-in preset (subtle, balanced, visible, static, kiosk) or
-           one of presets.json in the configuration directory
+--preset   a built-in preset (subtle, balanced, visible, static, kiosk,
+           invisible) or one of presets.json in the configuration directory
 --opacity-min A --opacity-max A --period S --waveform sine|triangle --blur B
 --region full|focus --focus-radius M --activation always|on_demand --fade S
 --palette #rrggbb,#rrggbb

@@ -163,6 +163,9 @@ std::vector<Preset> built_in_presets() {
     Preset kiosk = make("kiosk", 0.15, 0.4, 1.5, Activation::always);
     kiosk.module_px = 40.0;  // read from across a room
     out.push_back(kiosk);
+    // A pulse of a few grey levels, found by demodulating it over the
+    // phone's frames (shared/detect/pulse_search.hpp), not in any one frame.
+    out.push_back(make("invisible", 0.01, 0.04, 1.5, Activation::on_demand));
     return out;
 }
 

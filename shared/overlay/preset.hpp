@@ -64,7 +64,7 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-// subtle, balanced, visible, static, kiosk; all valid.
+// subtle, balanced, visible, static, kiosk, invisible; all valid.
 std::vector<Preset> built_in_presets();
 // The preset called `name`, or nullptr.
 const Preset* find_preset(const std::vector<Preset>& presets, std::string_view name);

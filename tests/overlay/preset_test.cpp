@@ -56,7 +56,7 @@ void expect_error(const std::string& text, const std::string& words) {
 
 TEST(OverlayPreset, BuiltInsAreValidAndAsSpecified) {
     auto presets = built_in_presets();
-    ASSERT_EQ(presets.size(), 5u);
+    ASSERT_EQ(presets.size(), 6u);
     for (const auto& p : presets) EXPECT_EQ(describe_invalid(p), "") << p.name;
 
     const Preset& subtle = built_in("subtle");
@@ -83,6 +83,12 @@ TEST(OverlayPreset, BuiltInsAreValidAndAsSpecified) {
     EXPECT_EQ(kiosk.module_px, 40.0);
     EXPECT_EQ(kiosk.opacity_min, 0.15);
     EXPECT_EQ(kiosk.activation, Activation::always);
+    const Preset& invisible = built_in("invisible");
+    EXPECT_EQ(invisible.opacity_min, 0.01);
+    EXPECT_EQ(invisible.opacity_max, 0.04);
+    EXPECT_EQ(invisible.period_s, 1.5);
+    EXPECT_EQ(invisible.waveform, Waveform::sine);
+    EXPECT_EQ(invisible.activation, Activation::on_demand);
     EXPECT_EQ(find_preset(presets, "nonesuch"), nullptr);
 }
 

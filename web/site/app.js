@@ -231,8 +231,17 @@ function startWorker() {
       showError('protocol', `the detector did not start: ${e.message || 'worker error'}`);
       resolve(false);
     };
-    worker.postMessage({ type: 'field', field: link.welcome.field.definition });
+    worker.postMessage({ type: 'field', field: link.welcome.field.definition, pulse: faintPulse(link.welcome.overlay) });
   });
+}
+
+// A pulse too faint for the tracker to lock on in one frame (the invisible
+// preset's 0.01..0.04; it locks on 0.1 and above): the worker then searches
+// the frames together as well. Null for a field strong enough or static.
+const kFaintOpacity = 0.1;
+function faintPulse(overlay) {
+  if (!(overlay?.period_s > 0) || !(overlay.opacity_max < kFaintOpacity)) return null;
+  return { waveform: overlay.waveform, periodS: overlay.period_s };
 }
 
 // ---- camera and photos --------------------------------------------------------
@@ -245,7 +254,10 @@ function handFrame(frame) {
   busy = true;
   // Now and then, while another screen is seen, a frame for the screens nearby.
   const frameRate = stream?.getVideoTracks()[0]?.getSettings().frameRate ?? 0;
-  worker.postMessage({ type: nearby.takesFrame(view) ? 'identify' : 'frame', id: ++frameId, frame, frameRate }, [frame]);
+  // When it was taken, for the pulse's fit: a VideoFrame's own time (microseconds), else now.
+  const timeMs = typeof frame.timestamp === 'number' ? frame.timestamp / 1000 : performance.now();
+  worker.postMessage({ type: nearby.takesFrame(view) ? 'identify' : 'frame', id: ++frameId, frame, frameRate, timeMs },
+                     [frame]);
 }
 
 async function startCamera() {

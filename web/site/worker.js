@@ -9,6 +9,7 @@ import { createDetector } from './detector.js';
 
 let detector = null;
 let frameRate = 0;  // the camera's, as the detector was last told (0: every search on every frame)
+let pulse = null;  // the screen's faint pulse, {waveform, periodS}, searched over frames; null: none
 let nearby = [];  // one detector per nearby screen's field, in the page's order
 let canvas = null;
 let context = null;
@@ -39,9 +40,9 @@ async function pixelsOf(source, maxSide = Infinity) {
   return { data: context.getImageData(0, 0, width, height).data, width, height };
 }
 
-function track(pixels) {
+function track(pixels, timeMs) {
   const t0 = performance.now();
-  const result = detector.track(pixels.data, pixels.width, pixels.height, { format: 'rgba' });
+  const result = detector.track(pixels.data, pixels.width, pixels.height, { format: 'rgba', timeMs });
   return { ...result, width: pixels.width, height: pixels.height, totalMs: performance.now() - t0 };
 }
 
@@ -53,6 +54,8 @@ self.onmessage = async (event) => {
       detector = null;
       detector = await createDetector(message.field);
       frameRate = 0;
+      pulse = message.pulse ?? null;
+      if (pulse) detector.setPulse(pulse.waveform, pulse.periodS);
       self.postMessage({ type: 'ready' });
     } else if (message.type === 'frame') {
       const frame = message.frame;
@@ -61,11 +64,11 @@ self.onmessage = async (event) => {
         // A frame without a lock searches what fits between two of the camera's.
         const rate = message.frameRate > 0 ? message.frameRate : 0;
         if (rate !== frameRate) {
-          detector.setFrameRate(rate);
+          detector.setFrameRate(rate);  // the pulse, if any, is kept
           frameRate = rate;
         }
         const pixels = await pixelsOf(frame);
-        self.postMessage({ type: 'result', id: message.id, result: track(pixels) });
+        self.postMessage({ type: 'result', id: message.id, result: track(pixels, message.timeMs) });
       } finally {
         frame.close?.();
       }

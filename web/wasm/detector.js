@@ -19,8 +19,10 @@ const RESULT_SIZE = 168;
 const OFF = {
   point: 0, confidence: 16, H: 24, ms: 96, greyMs: 104, detectMs: 112, rawPoint: 120,
   state: 136, found: 140, windows: 144, usedPrior: 148, framesSinceLock: 152, edgesFitted: 156,
-  anotherField: 160,
+  anotherField: 160, demodulated: 164,
 };
+// UmfPulse (detector_module.hpp): the welcome's overlay waveform.
+const PULSES = { none: 0, sine: 1, triangle: 2 };
 
 // fieldJson: the welcome's field definition, as an object or as JSON text.
 export async function createDetector(fieldJson, { moduleOptions } = {}) {
@@ -38,8 +40,10 @@ export async function createDetector(fieldJson, { moduleOptions } = {}) {
     // pixels: Uint8Array or Uint8ClampedArray (or an ArrayBuffer) of
     // width*height*4 (RGBA) or width*height (grey) bytes. options.format
     // 'rgba' | 'grey' (by default from the length); options.aim [x, y] in
-    // image pixels (default the image centre, as the native requester).
-    track(pixels, width, height, { format, aim } = {}) {
+    // image pixels (default the image centre, as the native requester);
+    // options.timeMs: when the frame was taken, ms on a clock that runs
+    // forward (VideoFrame.timestamp / 1000), for the pulse search's fit.
+    track(pixels, width, height, { format, aim, timeMs } = {}) {
       alive();
       const data = pixels instanceof ArrayBuffer ? new Uint8Array(pixels) : pixels;
       const n = width * height;
@@ -52,7 +56,7 @@ export async function createDetector(fieldJson, { moduleOptions } = {}) {
       // After _umf_frame_buffer: the memory may have grown, M.HEAPU8 is the current view.
       M.HEAPU8.set(data.length === bytes ? data : data.subarray(0, bytes), buffer);
       const [ax, ay] = aim ?? [width / 2, height / 2];
-      const r = M._umf_track(handle, width, height, FORMATS[f], ax, ay);
+      const r = M._umf_track(handle, width, height, FORMATS[f], ax, ay, Number.isFinite(timeMs) ? timeMs : NaN);
       if (!r) throw new Error(cString(M, M._umf_last_error()));
       return readResult(M, r, handle);
     },
@@ -72,6 +76,16 @@ export async function createDetector(fieldJson, { moduleOptions } = {}) {
     setFrameRate(framesPerSecond) {
       alive();
       if (M._umf_set_frame_rate(handle, framesPerSecond) !== 0) throw new Error(cString(M, M._umf_last_error()));
+    },
+    // The screen's pulse as its welcome announces it (overlay.waveform
+    // 'sine' | 'triangle', overlay.period_s): frames without a lock are then
+    // also searched together for a field too faint for any one of them.
+    // 'none' (or a period of 0, a static field) turns that off. Forgets the lock.
+    setPulse(waveform, periodS) {
+      alive();
+      const pulse = periodS > 0 ? PULSES[waveform] : PULSES.none;
+      if (pulse === undefined) throw new Error(`umf detector: no pulse "${waveform}"`);
+      if (M._umf_set_pulse(handle, pulse, periodS > 0 ? periodS : 0) !== 0) throw new Error(cString(M, M._umf_last_error()));
     },
     destroy() {
       if (handle) M._umf_destroy(handle);
@@ -100,6 +114,7 @@ function readResult(M, r, handle) {
     framesSinceLock: i(OFF.framesSinceLock),
     edgesFitted: i(OFF.edgesFitted),
     anotherField: i(OFF.anotherField) !== 0,  // another screen's field under the aim
+    demodulated: i(OFF.demodulated) !== 0,    // the place is the pulse search's (setPulse)
     ms: d(OFF.ms),                            // inside the module, grey conversion included
     greyMs: d(OFF.greyMs),
     detectMs: d(OFF.detectMs),

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <new>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,8 +25,11 @@
 #include "shared/aiming/aim.hpp"
 #include "shared/detect/detector.hpp"
 #include "shared/detect/image.hpp"
+#include "shared/detect/pulse_tracker.hpp"
 #include "shared/detect/tracker.hpp"
 #include "shared/field/field_io.hpp"
+#include "shared/overlay/preset.hpp"
+#include "shared/overlay/pulse_shape.hpp"
 
 static_assert(offsetof(UmfTrackResult, confidence) == 16);
 static_assert(offsetof(UmfTrackResult, H) == 24);
@@ -34,6 +38,7 @@ static_assert(offsetof(UmfTrackResult, raw_point) == 120);
 static_assert(offsetof(UmfTrackResult, state) == 136);
 static_assert(offsetof(UmfTrackResult, edges_fitted) == 156);
 static_assert(offsetof(UmfTrackResult, another_field) == 160);
+static_assert(offsetof(UmfTrackResult, demodulated) == 164);
 static_assert(sizeof(UmfTrackResult) == 168);
 
 namespace {
@@ -46,7 +51,20 @@ struct Instance {
     explicit Instance(umf::Field f) : field(std::move(f)), detector(field), tracker(detector) {}
     umf::Field field;
     umf::Detector detector;
+    umf::TrackerOptions tracking;
     umf::Tracker tracker;
+    // Set with a pulse (umf_set_pulse): tracks in the tracker's place.
+    std::optional<umf::PulseShape> pulse;
+    std::unique_ptr<umf::PulseTracker> pulse_tracker;
+    // Made anew for new tracking options or a new pulse.
+    void restart() {
+        tracker = umf::Tracker(detector, tracking);
+        pulse_tracker.reset();
+        if (!pulse) return;
+        umf::PulseSearchOptions options;
+        options.shape = pulse;
+        pulse_tracker = std::make_unique<umf::PulseTracker>(detector, tracking, options);
+    }
     std::vector<std::uint8_t> frame;  // what the caller copies into (RGBA or grey)
     std::vector<std::uint8_t> grey;   // what the detector reads
     const std::uint8_t* last_grey = nullptr;  // the last frame's grey (grey buffer or frame buffer)
@@ -170,7 +188,7 @@ EMSCRIPTEN_KEEPALIVE std::uint8_t* umf_frame_buffer(void* handle, int width, int
 }
 
 EMSCRIPTEN_KEEPALIVE const UmfTrackResult* umf_track(void* handle, int width, int height, int format, double aim_x,
-                                                     double aim_y) {
+                                                     double aim_y, double time_ms) {
     const auto t0 = Clock::now();
     g_last_error.clear();
     Instance* in = instance(handle);
@@ -202,9 +220,19 @@ EMSCRIPTEN_KEEPALIVE const UmfTrackResult* umf_track(void* handle, int width, in
     in->last_grey = view.data;
     out.grey_ms = ms_since(t0);
     try {
-        const umf::TrackResult r = in->tracker.update(view, Eigen::Vector2d(aim_x, aim_y));
-        fill(out, r);
-        in->failure = r.detection.failure;
+        const Eigen::Vector2d aim(aim_x, aim_y);
+        if (in->pulse_tracker) {
+            std::optional<double> time_s;
+            if (std::isfinite(time_ms)) time_s = time_ms / 1000;
+            const umf::PulseTrackResult r = in->pulse_tracker->update(view, aim, time_s);
+            fill(out, r.track);
+            out.demodulated = r.demodulated ? 1 : 0;
+            in->failure = r.track.detection.failure;
+        } else {
+            const umf::TrackResult r = in->tracker.update(view, aim);
+            fill(out, r);
+            in->failure = r.detection.failure;
+        }
     } catch (const std::exception& e) {
         g_last_error = std::string("umf_track: ") + e.what();
         return nullptr;
@@ -214,7 +242,10 @@ EMSCRIPTEN_KEEPALIVE const UmfTrackResult* umf_track(void* handle, int width, in
 }
 
 EMSCRIPTEN_KEEPALIVE void umf_reset(void* handle) {
-    if (Instance* in = instance(handle)) in->tracker.reset();
+    Instance* in = instance(handle);
+    if (!in) return;
+    in->tracker.reset();
+    if (in->pulse_tracker) in->pulse_tracker->reset();
 }
 
 EMSCRIPTEN_KEEPALIVE int umf_set_frame_rate(void* handle, double frames_per_second) {
@@ -229,7 +260,34 @@ EMSCRIPTEN_KEEPALIVE int umf_set_frame_rate(void* handle, double frames_per_seco
         options.spread_search = true;
         options.frame_ms = umf::kSpreadFrameShare * 1000 / frames_per_second;
     }
-    in->tracker = umf::Tracker(in->detector, options);
+    in->tracking = options;
+    in->restart();
+    return 0;
+}
+
+EMSCRIPTEN_KEEPALIVE int umf_set_pulse(void* handle, int pulse, double period_s) {
+    g_last_error.clear();
+    Instance* in = instance(handle);
+    if (!in) {
+        g_last_error = "umf_set_pulse: no handle";
+        return -1;
+    }
+    if (pulse == UMF_PULSE_NONE) {
+        in->pulse.reset();
+    } else if ((pulse == UMF_PULSE_SINE || pulse == UMF_PULSE_TRIANGLE) && period_s >= umf::overlay::kMinPeriodS &&
+               period_s <= umf::overlay::kMaxPeriodS) {
+        in->pulse = umf::overlay::announced_pulse_shape(
+            pulse == UMF_PULSE_SINE ? umf::overlay::Waveform::sine : umf::overlay::Waveform::triangle, period_s);
+    } else {
+        g_last_error = "umf_set_pulse: an unknown pulse, or a period outside 0.5..60 s";
+        return -1;
+    }
+    try {
+        in->restart();
+    } catch (const std::bad_alloc&) {
+        g_last_error = "umf_set_pulse: out of memory";
+        return -1;
+    }
     return 0;
 }
 

@@ -54,7 +54,15 @@ struct UmfTrackResult {
     std::int32_t edges_fitted;       // 156
     std::int32_t another_field;      // 160: not found, for another screen's field is under the aim
                                      //      (Detection::another_field)
-    std::int32_t reserved;           // 164: 0
+    std::int32_t demodulated;        // 164: the place is the pulse search's, found over the frames
+                                     //      kept or carried from it (PulseTrackResult::demodulated)
+};
+
+// The pulse a provider announces (its welcome's overlay waveform).
+enum UmfPulse : std::int32_t {
+    UMF_PULSE_NONE = 0,  // no pulse search: each frame tracked on its own
+    UMF_PULSE_SINE = 1,
+    UMF_PULSE_TRIANGLE = 2,
 };
 
 // A tracker for the field in `field_json` (a umf-field/1 object, the
@@ -69,11 +77,15 @@ void umf_destroy(void* handle);
 // larger frame comes; null for sizes the detector does not take.
 std::uint8_t* umf_frame_buffer(void* handle, int width, int height);
 
-// Runs Tracker::update on the frame in the frame buffer, aiming at image
-// point (aim_x, aim_y) in pixels (continuous coordinates: the image centre is
-// (width / 2, height / 2), what the native requester aims at). Null on bad
+// Runs Tracker::update (PulseTracker::update once a pulse is set) on the
+// frame in the frame buffer, aiming at image point (aim_x, aim_y) in pixels
+// (continuous coordinates: the image centre is (width / 2, height / 2), what
+// the native requester aims at). `time_ms`: when the frame was taken, in
+// milliseconds on any clock that runs forward (VideoFrame.timestamp / 1000),
+// or NaN: the pulse is then fitted at the frame rate set. Null on bad
 // arguments (umf_last_error()).
-const UmfTrackResult* umf_track(void* handle, int width, int height, int format, double aim_x, double aim_y);
+const UmfTrackResult* umf_track(void* handle, int width, int height, int format, double aim_x, double aim_y,
+                                double time_ms);
 
 // Forgets the lock: the next frame is searched from scratch.
 void umf_reset(void* handle);
@@ -86,6 +98,14 @@ void umf_reset(void* handle);
 // lock. Returns 0, or -1 for a rate that is
 // negative or not finite (umf_last_error()).
 int umf_set_frame_rate(void* handle, double frames_per_second);
+
+// The screen's field pulses (`pulse`, every `period_s` seconds: the welcome's
+// overlay): frames where the tracker holds no lock are also registered onto
+// each other and searched together for a field too faint for any one of
+// them (shared/detect/pulse_tracker.hpp). UMF_PULSE_NONE turns that off.
+// Forgets the lock. Returns 0, or -1 for an unknown pulse or a period outside
+// 0.5..60 s (umf_last_error()).
+int umf_set_pulse(void* handle, int pulse, double period_s);
 
 // The grey image of the last frame (width*height bytes), for tests and debugging.
 const std::uint8_t* umf_grey_buffer(void* handle);
