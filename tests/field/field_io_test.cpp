@@ -7,21 +7,18 @@
 #include <fstream>
 
 #include "tests/field/test_fields.hpp"
+#include "tests/support/replaced.hpp"
 
 using namespace umf;
 
 namespace {
 
+using umf::test::replaced;
+
 std::string good_json() {
     return R"({"format": "umf-field/1", "id": "t", "width": 5, "height": 4, "window": 3, "colors": 3,
                "key": "edges", "palette": ["#000000", "#808080", "#ffffff"],
                "rows": ["01201", "12010", "20102", "01021"]})";
-}
-
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-    auto at = s.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    return s.replace(at, from.size(), to);
 }
 
 // The message must name the problem: each case below checks its own words.

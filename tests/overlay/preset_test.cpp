@@ -7,22 +7,19 @@
 #include <fstream>
 
 #include "shared/overlay/pulse.hpp"
+#include "tests/support/replaced.hpp"
 
 using namespace umf::overlay;
 
 namespace {
+
+using umf::test::replaced;
 
 const Preset& built_in(const std::string& name) {
     static const auto presets = built_in_presets();
     const Preset* p = find_preset(presets, name);
     if (!p) throw std::runtime_error("no built-in preset " + name);
     return *p;
-}
-
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-    auto at = s.find(from);
-    EXPECT_NE(at, std::string::npos) << from;
-    return at == std::string::npos ? s : s.replace(at, from.size(), to);
 }
 
 // A preset with every member set, none at its default.

@@ -8,11 +8,14 @@
 
 #include "shared/field/field_io.hpp"
 #include "shared/protocol/json_checks.hpp"
+#include "tests/support/replaced.hpp"
 
 using namespace umf;
 using namespace umf::protocol;
 
 namespace {
+
+using umf::test::replaced;
 
 Field shipped_field() { return load_field(std::string(UMF_DATA_DIR) + "/fields/b4-64x36.json"); }
 
@@ -124,12 +127,6 @@ void expect_refused(const std::string& text, ErrorCode code, const std::string& 
     EXPECT_EQ(e.code, code) << text.substr(0, 300) << "\nmessage: " << e.message;
     EXPECT_NE(e.message.find(words), std::string::npos)
         << "message: " << e.message << "\nexpected words: " << words << "\ntext: " << text.substr(0, 300);
-}
-
-std::string replaced(std::string s, const std::string& from, const std::string& to) {
-    auto at = s.find(from);
-    EXPECT_NE(at, std::string::npos) << from << " not in " << s.substr(0, 300);
-    return at == std::string::npos ? s : s.replace(at, from.size(), to);
 }
 
 TEST(ProtocolMessages, EveryTypeRoundTrips) {

@@ -31,7 +31,7 @@ const options = {
 };
 const TICK_MS = 250;  // the core's timeouts are looked at this often
 
-const debug = { transport: null, frames: 0, locks: 0, firstLockMs: null, lastResult: null, detectMs: null,
+const debug = { transport: null, pulse: null, frames: 0, locks: 0, firstFrameMs: null, firstLockMs: null, lastResult: null, detectMs: null,
                 device: null, client: null, features: [], serviceWorker: null, share: null, put: null, view: null,
                 name: null };
 window.umfDebug = debug;
@@ -231,7 +231,8 @@ function startWorker() {
       showError('protocol', `the detector did not start: ${e.message || 'worker error'}`);
       resolve(false);
     };
-    worker.postMessage({ type: 'field', field: link.welcome.field.definition, pulse: faintPulse(link.welcome.overlay) });
+    debug.pulse = faintPulse(link.welcome.overlay);
+    worker.postMessage({ type: 'field', field: link.welcome.field.definition, pulse: debug.pulse });
   });
 }
 
@@ -252,6 +253,7 @@ const framesWanted = () => !busy && workerReady && !paused() && (!view || aiming
 
 function handFrame(frame) {
   busy = true;
+  if (debug.firstFrameMs === null) debug.firstFrameMs = performance.now() - pageStart;
   // Now and then, while another screen is seen, a frame for the screens nearby.
   const frameRate = stream?.getVideoTracks()[0]?.getSettings().frameRate ?? 0;
   // When it was taken, for the pulse's fit: a VideoFrame's own time (microseconds), else now.

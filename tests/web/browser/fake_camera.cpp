@@ -13,7 +13,8 @@
 // chosen tile from a phone's distance, slightly tilted, and wanders around it
 // by hand tremor. Tremor and pulse are both periodic over the video, so when
 // Chromium loops the file the last frame runs smoothly into the first.
-// Finally the native Tracker is run over the frames (twice round the loop)
+// Finally the native Tracker (PulseTracker for a faint pulse, as the page)
+// is run over the frames (twice round the loop)
 // as a check that the video can be grabbed at all: how many frames lock and
 // whether the aim lands on the tile. A summary goes to stdout as JSON.
 #include <algorithm>
@@ -37,9 +38,11 @@
 #include "provider/board/board.hpp"
 #include "shared/detect/detector.hpp"
 #include "shared/detect/image.hpp"
+#include "shared/detect/pulse_tracker.hpp"
 #include "shared/detect/tracker.hpp"
 #include "shared/field/field_io.hpp"
 #include "shared/overlay/preset.hpp"
+#include "shared/overlay/pulse_shape.hpp"
 #include "tests/sim/camera.hpp"
 #include "tests/sim/field_mix.hpp"
 #include "tests/support/process.hpp"
@@ -92,6 +95,10 @@ check is reported on stderr); 2 usage; 3 compose or the board failed;
 4 the check failed: fewer than half the frames locked on the tile (or
 the --aim rectangle).
 )";
+
+// Below this opacity the check searches the frames together (the page's
+// rule: web/site/app.js, kFaintOpacity).
+constexpr double kFaintOpacity = 0.1;
 
 struct Options {
     std::string provider, board, content, out, still, work, field_seed, preset = "kiosk";
@@ -407,6 +414,16 @@ int main(int argc, char** argv) {
         const umf::Field field = umf::load_field(phases[0].field_file);
         const umf::Detector detector(field);
         umf::Tracker tracker(detector);
+        // A pulse too faint for one frame is searched over the frames, as
+        // the page searches it (web/site/app.js, faintPulse).
+        std::optional<umf::PulseTracker> pulse_tracker;
+        const auto presets = umf::overlay::built_in_presets();
+        if (const auto* preset = umf::overlay::find_preset(presets, o.preset);
+            preset && preset->period_s > 0 && preset->opacity_max < kFaintOpacity) {
+            umf::PulseSearchOptions pulse;
+            pulse.shape = umf::overlay::announced_pulse_shape(preset->waveform, preset->period_s);
+            pulse_tracker.emplace(detector, umf::TrackerOptions{}, pulse);
+        }
         int locked = 0, on_tile = 0, first_lock = -1;
         std::vector<std::uint8_t> luma;
         for (int round = 0; round < 2; ++round) {
@@ -417,7 +434,10 @@ int main(int argc, char** argv) {
                 const umf::GreyView view = umf::to_luma(
                     {rgba.data, rgba.cols, rgba.rows, static_cast<std::ptrdiff_t>(rgba.step), umf::PixelOrder::rgba},
                     luma);
-                const auto r = tracker.update(view, Eigen::Vector2d(view.width / 2.0, view.height / 2.0));
+                const Eigen::Vector2d aim(view.width / 2.0, view.height / 2.0);
+                const double t = (round * o.frames + i) / o.fps;
+                const umf::TrackResult r = pulse_tracker ? pulse_tracker->update(view, aim, t).track
+                                                         : tracker.update(view, aim);
                 if (r.state != umf::TrackState::locked) continue;
                 if (first_lock < 0) first_lock = round * o.frames + i;
                 if (round == 0) continue;

@@ -79,9 +79,10 @@ try {
 const SCENARIOS = ['camera_file', 'slow_download', 'cut_download', 'cut_put', 'camera_url_http', 'photo', 'wrong_token', 'unreachable', 'camera_denied', 'no_camera',
                    'websocket_blocked', 'detection_failing', 'insecure_photo', 'unpaired',
                    'put_file', 'put_url_http', 'put_refused', 'put_carry', 'put_note', 'put_chooser_holds', 'share_target',
-                   'trusted_root', 'kiosk_lock', 'name_follows', 'nearby_screen', 'another_screen'];
+                   'trusted_root', 'kiosk_lock', 'invisible_lock', 'name_follows', 'nearby_screen', 'another_screen'];
 if (!SCENARIOS.includes(opts.scenario)) usage(`no scenario ${opts.scenario}; there are ${SCENARIOS.join(', ')}`);
-if (opts.scenario === 'kiosk_lock' && !/^\d+$/.test(opts.tile ?? '')) usage('kiosk_lock needs --tile N (the demo board\'s tile)');
+if (['kiosk_lock', 'invisible_lock'].includes(opts.scenario) && !/^\d+$/.test(opts.tile ?? ''))
+  usage(`${opts.scenario} needs --tile N (the demo board's tile)`);
 const boardFile = path.resolve(opts.board);
 // The seed of the test screen's field, beside the board (tests/web/CMakeLists.txt).
 const screenFieldSeed = path.join(path.dirname(boardFile), 'field-seed');
@@ -488,6 +489,7 @@ async function watchLock({ durationMs }) {
   let rafs = 0;
   let lastResult = window.umfDebug.lastResult;
   let resultsNotLocked = 0;
+  let demodulated = 0;
   const frames0 = window.umfDebug.frames;
   const note = (how) => {
     samples += 1;
@@ -504,6 +506,7 @@ async function watchLock({ durationMs }) {
     if (r && r !== lastResult) {
       lastResult = r;
       if (r.state !== 'locked') resultsNotLocked += 1;
+      if (r.demodulated) demodulated += 1;
     }
   };
   note('start');
@@ -527,7 +530,7 @@ async function watchLock({ durationMs }) {
   observer.disconnect();
   note('end');
   const ms = performance.now() - t0;
-  return { ms, events, titles, samples, rafs, results: window.umfDebug.frames - frames0, resultsNotLocked };
+  return { ms, events, titles, samples, rafs, results: window.umfDebug.frames - frames0, resultsNotLocked, demodulated };
 }
 
 // Time locked with Grab enabled, and the unlocked stretches.
@@ -1129,6 +1132,37 @@ Object.assign(scenarios, {
           `the aim is on tile ${tile}: #target-title "${title}" (${JSON.stringify(w.titles)})`);
   },
 });
+
+// The invisible preset on the built-in demo board, filmed over one tile: a
+// pulse of a few grey levels that no frame shows alone. The page must lock
+// within one pulse period (1.5 s) of its first camera frame, on the tile.
+const INVISIBLE_FIRST_LOCK_MS = 1500;
+scenarios.invisible_lock = async () => {
+  const tile = Number(opts.tile);
+  const video = fixture(`invisible_tile${tile}.y4m`);
+  const provider = await startProvider({ board: null, extra: ['--preset', 'invisible'] });
+  check(/preset invisible\b/.test(provider.output()), 'the provider runs the invisible preset');
+  const demo = JSON.parse(fs.readFileSync(path.join(work, 'config', 'demo-board', 'board.json'), 'utf8'));
+  if (!(tile < demo.items.length)) throw new Failure(`--tile ${tile}: the demo board has ${demo.items.length} tiles`);
+  const title = demo.items[tile].title;
+  const browser = await launch({ video });
+  const page = await openPage(browser, pageUrl(provider.pairing, {}));
+  await waitForState(page, ['locked'], 30000);
+  const d = await debugOf(page);
+  check(d.pulse?.waveform === 'sine' && d.pulse?.periodS === 1.5,
+        `the page searches the frames together for the welcome's faint pulse (${JSON.stringify(d.pulse)})`);
+  const ms = d.firstLockMs - d.firstFrameMs;
+  // One pulse period locked: the titles the aim showed, and how much of it.
+  const w = await page.evaluate(watchLock, { durationMs: INVISIBLE_FIRST_LOCK_MS });
+  const s = summariseWatch(w);
+  console.log(`INVISIBLE tile ${tile}: first lock ${Math.round(ms)} ms after the first camera frame ` +
+              `(${Math.round(d.firstLockMs)} ms after page load, ${d.frames} results); then locked ` +
+              `${s.lockedPercent.toFixed(1)} % of ${(w.ms / 1000).toFixed(1)} s (${w.results} results, ` +
+              `${w.demodulated} of those seen demodulated), "${title}"`);
+  check(ms <= INVISIBLE_FIRST_LOCK_MS, `locked within ${INVISIBLE_FIRST_LOCK_MS} ms of the first frame (${Math.round(ms)} ms)`);
+  check(w.titles.length > 0 && w.titles.every((t) => t === title),
+        `the aim is on tile ${tile}: #target-title "${title}" (${JSON.stringify(w.titles)})`);
+};
 
 // The screen's root in Chromium's NSS database instead of --ignore-certificate-errors.
 scenarios.trusted_root = () => trustedRoot({
