@@ -18,6 +18,7 @@
 #include "shared/detect/pulse_tracker.hpp"
 #include "shared/overlay/preset.hpp"
 #include "shared/overlay/pulse.hpp"
+#include "shared/overlay/pulse_shape.hpp"
 #include "tests/detect/photo.hpp"
 
 using namespace umf;
@@ -184,11 +185,7 @@ TEST_F(PulseSearchOnAWebPage, FindsTheFieldOnceEnoughFramesAreKept) {
 TEST_F(PulseSearchOnAWebPage, FitsTheAnnouncedShape) {
     const Detector detector(*field_);
     PulseSearchOptions options;
-    overlay::Preset unit;  // the pulse's shape: 0 to 1 over a period
-    unit.opacity_min = 0;
-    unit.opacity_max = 1;
-    unit.period_s = 1;
-    options.shape = PulseShape{[unit](double phase) { return overlay::opacity_at(unit, phase); }, 1.5};
+    options.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, 1.5);
     PulseSearch search(options);
     for (const cv::Mat& frame : pulsing_->frames) search.add(view(frame));
     const PulseSearchResult r = search.search(detector, {320, 240});
@@ -215,11 +212,7 @@ TEST(PulseSearch, FitsTheAnnouncedShapeAtEachFramesOwnTime) {
     const std::vector<int> taken = {0, 1, 2, 5, 6, 9, 13, 14, 15, 19, 22, 23, 27, 30, 31, 35};
     const Detector detector(f);
     PulseSearchOptions options;
-    overlay::Preset unit;  // the pulse's shape: 0 to 1 over a period
-    unit.opacity_min = 0;
-    unit.opacity_max = 1;
-    unit.period_s = 1;
-    options.shape = PulseShape{[unit](double phase) { return overlay::opacity_at(unit, phase); }, 1.5};
+    options.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, 1.5);
     options.frame_rates = {50};
     std::vector<double> truth;
     for (const int i : taken) truth.push_back(overlay::opacity_at(test::sine_pulse(0.01, 0.04, 1.5), 0.9 + i / 25.0));

@@ -551,6 +551,22 @@ function summariseWatch(w) {
   return { lockedPercent: (100 * lockedMs) / w.ms, longestUnlockMs, unlocks };
 }
 
+// The provider serving its built-in demo board at `preset`, and the page
+// filmed over tile `tile` by `video` once it has locked: the tile's title and the page.
+async function demoBoardLocked(preset, tile, video) {
+  const provider = await startProvider({ board: null, extra: ['--preset', preset] });
+  check(new RegExp(`preset ${preset}\\b`).test(provider.output()), `the provider runs the ${preset} preset`);
+  // What it serves: the demo board it wrote into its configuration folder.
+  const demoFile = path.join(work, 'config', 'demo-board', 'board.json');
+  check(fs.existsSync(demoFile), `the provider serves its built-in demo board (${demoFile})`);
+  const demo = JSON.parse(fs.readFileSync(demoFile, 'utf8'));
+  if (!(tile < demo.items.length)) throw new Failure(`--tile ${tile}: the demo board has ${demo.items.length} tiles`);
+  const browser = await launch({ video });
+  const page = await openPage(browser, pageUrl(provider.pairing, {}));
+  await waitForState(page, ['locked'], 30000);
+  return { title: demo.items[tile].title, page };
+}
+
 // ---------------------------------------------------------------- scenarios
 const scenarios = {
   // (a) The camera film of a file tile, grabbed as soon as the lock holds.
@@ -1097,17 +1113,7 @@ Object.assign(scenarios, {
   async kiosk_lock() {
     const tile = Number(opts.tile);
     const video = fixture(`kiosk_tile${tile}.y4m`);
-    const provider = await startProvider({ board: null, extra: ['--preset', 'kiosk'] });
-    check(/preset kiosk\b/.test(provider.output()), 'the provider runs the kiosk preset');
-    // What it serves: the demo board it wrote into its configuration folder.
-    const demoFile = path.join(work, 'config', 'demo-board', 'board.json');
-    check(fs.existsSync(demoFile), `the provider serves its built-in demo board (${demoFile})`);
-    const demo = JSON.parse(fs.readFileSync(demoFile, 'utf8'));
-    if (!(tile < demo.items.length)) throw new Failure(`--tile ${tile}: the demo board has ${demo.items.length} tiles`);
-    const title = demo.items[tile].title;
-    const browser = await launch({ video });
-    const page = await openPage(browser, pageUrl(provider.pairing, {}));
-    await waitForState(page, ['locked'], 30000);
+    const { title, page } = await demoBoardLocked('kiosk', tile, video);
     const d0 = await debugOf(page);
     log(`first lock ${Math.round(d0.firstLockMs)} ms after page load; watching ${KIOSK_PERIODS} pulse periods ` +
         `(${KIOSK_WATCH_MS} ms)`);
@@ -1140,14 +1146,7 @@ const INVISIBLE_FIRST_LOCK_MS = 1500;
 scenarios.invisible_lock = async () => {
   const tile = Number(opts.tile);
   const video = fixture(`invisible_tile${tile}.y4m`);
-  const provider = await startProvider({ board: null, extra: ['--preset', 'invisible'] });
-  check(/preset invisible\b/.test(provider.output()), 'the provider runs the invisible preset');
-  const demo = JSON.parse(fs.readFileSync(path.join(work, 'config', 'demo-board', 'board.json'), 'utf8'));
-  if (!(tile < demo.items.length)) throw new Failure(`--tile ${tile}: the demo board has ${demo.items.length} tiles`);
-  const title = demo.items[tile].title;
-  const browser = await launch({ video });
-  const page = await openPage(browser, pageUrl(provider.pairing, {}));
-  await waitForState(page, ['locked'], 30000);
+  const { title, page } = await demoBoardLocked('invisible', tile, video);
   const d = await debugOf(page);
   check(d.pulse?.waveform === 'sine' && d.pulse?.periodS === 1.5,
         `the page searches the frames together for the welcome's faint pulse (${JSON.stringify(d.pulse)})`);
