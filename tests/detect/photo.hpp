@@ -62,6 +62,22 @@ inline overlay::Preset sine_pulse(double lo, double hi, double period_s) {
     return pulse;
 }
 
+// A grey cv::Mat as the detector reads it.
+inline GreyView grey_view(const cv::Mat& m) { return {m.data, m.cols, m.rows, static_cast<std::ptrdiff_t>(m.step)}; }
+
+// A phone at rest 320 mm from the screen, turned a little every way, at
+// 640 x 480: the pulse scenes' camera.
+inline Photo resting_phone() {
+    Photo p;
+    p.camera.resolution = {640, 480};
+    p.pose.distance_mm = 320;
+    p.pose.pitch_deg = -10;
+    p.pose.yaw_deg = 14;
+    p.pose.roll_deg = -20;
+    p.pose.aim_screen_px = {900, 560};
+    return p;
+}
+
 // `count` grey frames at 25 a second of a camera at rest (`p`'s camera,
 // pose and placement) before a screen of `kind` whose field follows
 // `pulse` from `start_s` on; each frame has its own noise (sigma 2).

@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iostream>
-#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -25,7 +23,7 @@ using namespace umf;
 
 namespace {
 
-GreyView view(const cv::Mat& m) { return {m.data, m.cols, m.rows, static_cast<std::ptrdiff_t>(m.step)}; }
+using test::grey_view;
 
 struct PulseCase {
     const char* name;
@@ -131,13 +129,7 @@ struct Clip {
 };
 
 Clip film(const Field& f, int count, double start_s, double steady = -1) {
-    test::Photo p;
-    p.camera.resolution = {640, 480};
-    p.pose.distance_mm = 320;
-    p.pose.pitch_deg = -10;
-    p.pose.yaw_deg = 14;
-    p.pose.roll_deg = -20;
-    p.pose.aim_screen_px = {900, 560};
+    test::Photo p = test::resting_phone();
     const overlay::Preset pulse = steady >= 0 ? test::sine_pulse(steady, steady, 1.5) : test::sine_pulse(0.01, 0.04, 1.5);
     Clip clip;
     clip.frames = test::film_pulse(f, p, sim::ScreenKind::web_page, pulse, count, start_s);
@@ -166,7 +158,7 @@ TEST_F(PulseSearchOnAWebPage, FindsTheFieldOnceEnoughFramesAreKept) {
     PulseSearch search(options);
     const Eigen::Vector2d aim(320, 240);
     for (int i = 0; i < 16; ++i) {
-        search.add(view(pulsing_->frames[static_cast<std::size_t>(i)]));
+        search.add(grey_view(pulsing_->frames[static_cast<std::size_t>(i)]));
         if (i == 5) {
             const PulseSearchResult early = search.search(detector, aim);
             EXPECT_FALSE(early.detection.found);
@@ -187,7 +179,7 @@ TEST_F(PulseSearchOnAWebPage, FitsTheAnnouncedShape) {
     PulseSearchOptions options;
     options.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, 1.5);
     PulseSearch search(options);
-    for (const cv::Mat& frame : pulsing_->frames) search.add(view(frame));
+    for (const cv::Mat& frame : pulsing_->frames) search.add(grey_view(frame));
     const PulseSearchResult r = search.search(detector, {320, 240});
     ASSERT_TRUE(r.detection.found) << r.detection.failure;
     EXPECT_TRUE(r.fitted);
@@ -197,54 +189,10 @@ TEST_F(PulseSearchOnAWebPage, FitsTheAnnouncedShape) {
     options.shape->period_s = 0.2;
     options.frame_rates = {25};
     PulseSearch wrong(options);
-    for (const cv::Mat& frame : pulsing_->frames) wrong.add(view(frame));
+    for (const cv::Mat& frame : pulsing_->frames) wrong.add(grey_view(frame));
     const PulseSearchResult w = wrong.search(detector, {320, 240});
     EXPECT_FALSE(w.fitted);
     EXPECT_TRUE(w.detection.found) << "the course itself is used";
-}
-
-// A page that is busy drops camera frames: the frames kept come at uneven
-// times, and the announced shape is fitted at each frame's own time, not at
-// any frame rate (those tried here, 50 a second, are wrong).
-TEST(PulseSearch, FitsTheAnnouncedShapeAtEachFramesOwnTime) {
-    const Field f = test::shipped_field("b4-64x36.json");
-    const Clip all = film(f, 36, 0.9);
-    const std::vector<int> taken = {0, 1, 2, 5, 6, 9, 13, 14, 15, 19, 22, 23, 27, 30, 31, 35};
-    const Detector detector(f);
-    PulseSearchOptions options;
-    options.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, 1.5);
-    options.frame_rates = {50};
-    std::vector<double> truth;
-    for (const int i : taken) truth.push_back(overlay::opacity_at(test::sine_pulse(0.01, 0.04, 1.5), 0.9 + i / 25.0));
-    auto followed = [&](const std::vector<double>& course) {
-        if (course.size() != truth.size()) return 0.0;
-        const double mc = std::accumulate(course.begin(), course.end(), 0.0) / course.size();
-        const double mt = std::accumulate(truth.begin(), truth.end(), 0.0) / truth.size();
-        double ct = 0, cc = 0, tt = 0;
-        for (std::size_t i = 0; i < course.size(); ++i) {
-            ct += (course[i] - mc) * (truth[i] - mt);
-            cc += (course[i] - mc) * (course[i] - mc);
-            tt += (truth[i] - mt) * (truth[i] - mt);
-        }
-        return ct / std::sqrt(cc * tt);
-    };
-    PulseSearch timed(options), untimed(options);
-    for (const int i : taken) {
-        timed.add(view(all.frames[static_cast<std::size_t>(i)]), 1000.0 + i / 25.0);
-        untimed.add(view(all.frames[static_cast<std::size_t>(i)]));
-    }
-    const PulseSearchResult r = timed.search(detector, {320, 240});
-    ASSERT_TRUE(r.detection.found) << r.detection.failure;
-    EXPECT_TRUE(r.fitted);
-    EXPECT_GT(std::abs(followed(r.course)), 0.99);
-    EXPECT_LT(std::hypot(r.detection.aim_field.x() - all.truth.x, r.detection.aim_field.y() - all.truth.y), 0.05);
-    const PulseSearchResult u = untimed.search(detector, {320, 240});
-    std::cout << "[ measure  ] the course's correlation with the pulse at the frames' times: timed " << followed(r.course)
-              << ", at 50 frames a second " << followed(u.course) << "\n";
-    EXPECT_LT(std::abs(followed(u.course)), 0.95) << "fitted at the rate tried, not the frames' times";
-    // A clock that runs back starts the frames kept over.
-    timed.add(view(all.frames.back()), 999.0);
-    EXPECT_EQ(timed.frames(), 1);
 }
 
 // The phone's auto-exposure wanders by a few percent while the field pulses
@@ -262,7 +210,7 @@ TEST_F(PulseSearchOnAWebPage, LevelsTheExposureBeforeDemodulating) {
         PulseSearchOptions options;
         options.level_exposure = level;
         PulseSearch search(options);
-        for (const cv::Mat& frame : drifting) search.add(view(frame));
+        for (const cv::Mat& frame : drifting) search.add(grey_view(frame));
         const PulseSearchResult r = search.search(detector, {320, 240});
         if (!level) {
             EXPECT_FALSE(r.detection.found) << "the course is the exposure's";
@@ -278,14 +226,14 @@ TEST_F(PulseSearchOnAWebPage, AFieldThatDoesNotPulseIsNotSearched) {
     const Detector detector(*field_);
     const Clip steady = film(*field_, 10, 0, 0.03);
     PulseSearch search;
-    for (const cv::Mat& frame : steady.frames) search.add(view(frame));
+    for (const cv::Mat& frame : steady.frames) search.add(grey_view(frame));
     const PulseSearchResult r = search.search(detector, {320, 240});
     EXPECT_FALSE(r.detection.found);
     EXPECT_EQ(r.detection.failure, "no pulse in the frames");
     EXPECT_LT(r.share, 0.2);
     // Another size starts over.
     cv::Mat small(240, 320, CV_8U, cv::Scalar(90));
-    search.add(view(small));
+    search.add(grey_view(small));
     EXPECT_EQ(search.frames(), 1);
 }
 
@@ -312,7 +260,7 @@ public:
         const double a = overlay::opacity_at(pulse_, i / 25.0);
         p_.shot = sim::photograph(sim::mix_field(screen_, field_, p_.placement, a), p_.geometry, p_.camera, p_.pose,
                                   degradation);
-        return view(p_.shot.grey);
+        return grey_view(p_.shot.grey);
     }
     // The field point under the last frame's centre.
     cv::Point2d truth() const { return sim::image_to_field(p_.shot, p_.placement, {320, 240}); }
@@ -397,7 +345,7 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     // A view that cannot be laid onto the last (a cut to another screen)
     // starts the frames kept over.
     const test::Photo other = test::photograph_field(f, 0.03, -10, 14, -20, 320, sim::ScreenKind::document);
-    search.add(view(other.shot.grey));
+    search.add(grey_view(other.shot.grey));
     EXPECT_EQ(search.registration_losses(), 1);
     EXPECT_EQ(search.frames(), 1);
     EXPECT_FALSE(search.motion().has_value());
@@ -407,11 +355,11 @@ TEST(PulseSearch, FindsTheFieldOfAFaintPulseInAHandHeldView) {
     // registration, which has no motion to be checked against; through
     // the next, it is.
     search.found_elsewhere(*before);
-    search.add(view(other.shot.grey));
+    search.add(grey_view(other.shot.grey));
     EXPECT_EQ(search.frames(), 2);
     EXPECT_FALSE(search.carried({320, 240}).has_value()) << "carried through an unchecked registration";
     search.found_elsewhere(*before);
-    search.add(view(other.shot.grey));
+    search.add(grey_view(other.shot.grey));
     EXPECT_EQ(search.frames(), 3);
     EXPECT_TRUE(search.carried({320, 240}).has_value());
 }

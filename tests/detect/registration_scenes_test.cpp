@@ -19,7 +19,7 @@ namespace registration_scenes {
 
 using namespace umf;
 
-GreyView view(const cv::Mat& m) { return {m.data, m.cols, m.rows, static_cast<std::ptrdiff_t>(m.step)}; }
+using test::grey_view;
 
 // Where a registration puts the frame's centre, against the truth.
 double centre_error(const Eigen::Matrix3d& registered, const cv::Matx33d& truth, cv::Size size) {
@@ -67,7 +67,7 @@ std::vector<cv::Mat> swing_frames(sim::ScreenKind kind, int first, int last) {
 // (infinity where not registered).
 double registered_right_then_default_off(const FramePair& pair, const RegistrationOptions& options) {
     const cv::Size res(pair.from.cols, pair.from.rows);
-    const FramePyramid from_levels(view(pair.from)), to_levels(view(pair.to));
+    const FramePyramid from_levels(grey_view(pair.from)), to_levels(grey_view(pair.to));
     const FrameRegistration r = register_frames(from_levels, to_levels, Eigen::Matrix3d::Identity(), options);
     EXPECT_TRUE(r.registered) << "residual " << r.residual;
     EXPECT_LT(centre_error(r.homography, pair.truth, res), 0.5);
@@ -98,7 +98,7 @@ TEST(RegistrationScenes, APulseSearchAlignsADocumentAgainAffineWhereTheWholeHomo
         options.affine_retry = retry;
         options.detail_retry = false;  // which aligns it too
         PulseSearch search(options);
-        for (const cv::Mat& m : frames) search.add(view(m));
+        for (const cv::Mat& m : frames) search.add(grey_view(m));
         EXPECT_EQ(search.registration_losses(), retry ? 0 : 1) << (retry ? "aligned again" : "the whole homography");
         EXPECT_EQ(search.frames(), retry ? 4 : 1);
     }
@@ -125,7 +125,7 @@ TEST(RegistrationScenes, ALampsGlareOverDarkCodeAlignedOnTheFramesDetail) {
 TEST(RegistrationScenes, APulseSearchKeepsFramesAlignedOnTheirDetailButCarriesNoPlaceThrough) {
     const std::vector<cv::Mat> frames = swing_frames(sim::ScreenKind::code_dark, 14, 17);
     PulseSearch search;
-    for (std::size_t i = 0; i + 1 < frames.size(); ++i) search.add(view(frames[i]));
+    for (std::size_t i = 0; i + 1 < frames.size(); ++i) search.add(grey_view(frames[i]));
     Detection found;
     found.found = true;
     found.aim_image = {320, 240};
@@ -133,7 +133,7 @@ TEST(RegistrationScenes, APulseSearchKeepsFramesAlignedOnTheirDetailButCarriesNo
     found.image_to_field << 0.1, 0, -2, 0, 0.1, -4, 0, 0, 1;
     search.found_elsewhere(found);
     ASSERT_TRUE(search.carried({320, 240}).has_value());
-    search.add(view(frames.back()));
+    search.add(grey_view(frames.back()));
     EXPECT_EQ(search.registration_losses(), 0);
     EXPECT_EQ(search.frames(), 4);
     EXPECT_TRUE(search.last_registration().on_detail);

@@ -11,6 +11,7 @@
 import { openCamera, pumpFrames } from './camera.js';
 import { download, showGrabOutcome, showResult } from './grab_result.js';
 import { clearHistory, showHistory } from './history.js';
+import { faintPulse } from './faint_pulse.js';
 import { clientName, deviceName } from './identity.js';
 import { currentPairing, forget, rememberAbout } from './pairing.js';
 import { createPointer } from './pointer.js';
@@ -234,15 +235,6 @@ function startWorker() {
     debug.pulse = faintPulse(link.welcome.overlay);
     worker.postMessage({ type: 'field', field: link.welcome.field.definition, pulse: debug.pulse });
   });
-}
-
-// A pulse too faint for the tracker to lock on in one frame (the invisible
-// preset's 0.01..0.04; it locks on 0.1 and above): the worker then searches
-// the frames together as well. Null for a field strong enough or static.
-const kFaintOpacity = 0.1;
-function faintPulse(overlay) {
-  if (!(overlay?.period_s > 0) || !(overlay.opacity_max < kFaintOpacity)) return null;
-  return { waveform: overlay.waveform, periodS: overlay.period_s };
 }
 
 // ---- camera and photos --------------------------------------------------------

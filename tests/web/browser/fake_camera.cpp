@@ -97,7 +97,7 @@ the --aim rectangle).
 )";
 
 // Below this opacity the check searches the frames together (the page's
-// rule: web/site/app.js, kFaintOpacity).
+// rule: web/site/faint_pulse.js, kFaintOpacity).
 constexpr double kFaintOpacity = 0.1;
 
 struct Options {
@@ -415,7 +415,7 @@ int main(int argc, char** argv) {
         const umf::Detector detector(field);
         umf::Tracker tracker(detector);
         // A pulse too faint for one frame is searched over the frames, as
-        // the page searches it (web/site/app.js, faintPulse).
+        // the page searches it (web/site/faint_pulse.js).
         std::optional<umf::PulseTracker> pulse_tracker;
         const auto presets = umf::overlay::built_in_presets();
         if (const auto* preset = umf::overlay::find_preset(presets, o.preset);
