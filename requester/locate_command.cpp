@@ -25,7 +25,8 @@ const char* const kLocateUsage = R"(umf-requester locate: which field point a ca
 usage:
   umf-requester locate --field F.json [--sequence] [--aim X,Y] IMAGE...
   umf-requester locate --field F.json [--sequence] [--aim X,Y] --video FILE
-  umf-requester locate --field F.json --sequence [--pulse-period S --waveform sine|triangle] IMAGE...
+  umf-requester locate --field F.json --sequence [--pulse-period S --waveform sine|triangle
+                                            [--pulse-opacities MIN,MAX]] IMAGE...
 
 Finds the field of F.json in each IMAGE (any format OpenCV decodes) or in every
 frame of the video FILE, and prints one JSON object per line and frame, each line
@@ -76,6 +77,11 @@ options:
                   video's) and phase that explain the frames' change the most.
                   Without it the pulse is taken as the frames show it.
   --waveform W    with --pulse-period: sine (the default) or triangle
+  --pulse-opacities MIN,MAX
+                  with --pulse-period: the opacities the pulse runs between, as the
+                  welcome's overlay gives them (opacity_min, opacity_max); the
+                  content is then taken out of the frames searched together, the
+                  field alone looked for where the content hides it.
 
 exit codes: 0 the frames were read (frames without the field and unreadable images
             are reported in their lines); 2 wrong usage; 3 the field file or the
@@ -144,7 +150,8 @@ Json sequence_json(int frame, const PulseTrackResult& r) {
 PulseSearchOptions pulse_search_options(const LocateOptions& o, double video_fps) {
     PulseSearchOptions options;
     if (!o.pulse_period_s) return options;
-    options.shape = overlay::announced_pulse_shape(o.waveform, *o.pulse_period_s);
+    const auto [lo, hi] = o.pulse_opacities.value_or(std::pair{0.0, 0.0});
+    options.shape = overlay::announced_pulse_shape(o.waveform, *o.pulse_period_s, lo, hi);
     if (video_fps > 0) options.frame_rates = {video_fps};
     return options;
 }
@@ -152,7 +159,8 @@ PulseSearchOptions pulse_search_options(const LocateOptions& o, double video_fps
 }  // namespace
 
 LocateOptions parse_locate_args(int argc, char** argv, int first) {
-    const Args a = parse_args(argc, argv, first, {"field", "aim", "video", "pulse-period", "waveform"}, {"sequence"});
+    const Args a = parse_args(argc, argv, first, {"field", "aim", "video", "pulse-period", "waveform", "pulse-opacities"},
+                              {"sequence"});
     LocateOptions o;
     auto field = get(a, "field");
     if (!field) throw UsageError("locate needs --field F.json");
@@ -171,6 +179,13 @@ LocateOptions parse_locate_args(int argc, char** argv, int first) {
         const auto w = overlay::waveform_from_string(*waveform);
         if (!w) throw UsageError("--waveform must be sine or triangle, not '" + *waveform + "'");
         o.waveform = *w;
+    }
+    if (auto range = get(a, "pulse-opacities")) {
+        if (!o.pulse_period_s) throw UsageError("--pulse-opacities goes with --pulse-period");
+        const auto [lo, hi] = parse_point("pulse-opacities", *range);
+        if (!(lo >= 0 && lo < hi && hi <= 1))
+            throw UsageError("--pulse-opacities must be MIN,MAX with 0 <= MIN < MAX <= 1, not '" + *range + "'");
+        o.pulse_opacities = std::pair{lo, hi};
     }
     o.video = get(a, "video");
     o.images = a.positional;

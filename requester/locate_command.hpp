@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -26,9 +27,11 @@ struct LocateOptions {
     std::vector<std::string> images;
     std::optional<std::string> video;
     // With sequence: the pulse the provider announces (its welcome's
-    // overlay period and waveform), for the frames of a faint field.
+    // overlay period, waveform and opacities), for the frames of a faint
+    // field.
     std::optional<double> pulse_period_s;
     overlay::Waveform waveform = overlay::Waveform::sine;
+    std::optional<std::pair<double, double>> pulse_opacities;  // min, max
 };
 
 // argv[first..] of "umf-requester locate ...". Throws UsageError.

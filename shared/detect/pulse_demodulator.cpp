@@ -72,4 +72,18 @@ GreyView PulseDemodulator::field_image(SlopeScale scale) {
     return {image_.data(), width_, height_, width_};
 }
 
+GreyView PulseDemodulator::full_opacity_image(double opacity_at_zero, double opacity_at_one) {
+    const double det = weight_ * sum_aa_ - sum_a_ * sum_a_;
+    const double range = opacity_at_one - opacity_at_zero;
+    if (frames_ < 2 || !(det > 1e-12 * weight_ * weight_) || !(std::abs(range) > 1e-6)) return {};
+    // The line's value at the given value `one` that is opacity 1: the mean
+    // plus the slope times the way from the mean there, in the sums.
+    const double one = (1 - opacity_at_zero) / range, from_mean = one - sum_a_ / weight_;
+    const double p = from_mean * weight_ / det, q = 1 / weight_ - from_mean * sum_a_ / det;
+    image_.resize(sum_i_.size());
+    for (std::size_t i = 0; i < image_.size(); ++i)
+        image_[i] = static_cast<std::uint8_t>(std::clamp(p * sum_ai_[i] + q * sum_i_[i], 0.0, 255.0) + 0.5);
+    return {image_.data(), width_, height_, width_};
+}
+
 }  // namespace umf

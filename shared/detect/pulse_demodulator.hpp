@@ -57,6 +57,14 @@ public:
     static constexpr double kSpreadLevels = 48;
     GreyView field_image(SlopeScale scale = SlopeScale::opacity);
 
+    // What each pixel would be at opacity 1, the field alone: each frame's
+    // line I = C + a (F - C) followed out to a = 1, where the content C is
+    // gone. The values given to add are taken for opacities scaled linearly
+    // from `opacity_at_zero` (given 0) to `opacity_at_one` (given 1): a
+    // course found from the frames is the pulse only up to its range, which
+    // the provider announces. A view of the same buffer as field_image's.
+    GreyView full_opacity_image(double opacity_at_zero, double opacity_at_one);
+
 private:
     double forget_;
     int width_ = 0, height_ = 0;

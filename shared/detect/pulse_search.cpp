@@ -141,7 +141,9 @@ void PulseSearch::add(const GreyView& frame, std::optional<double> time_s) {
             // Nor through one aligned on the frames' detail alone: content
             // the grey levels could not align (a tiled board's repeats, a
             // glare) may be aligned a little off, frame after frame.
-            if (++carried_for_ > options_.carry_frames || !checked || r.on_detail) found_.reset();
+            on_detail_for_ = r.on_detail ? on_detail_for_ + 1 : on_detail_for_;
+            if (++carried_for_ > options_.carry_frames || !checked || on_detail_for_ > options_.detail_carry_frames)
+                found_.reset();
         } else {
             // Frames that cannot be laid onto this one are of no use with it.
             kept_.clear();
@@ -277,6 +279,32 @@ std::vector<double> PulseSearch::fit_shape(const PulseCourse& found) const {
     return best;
 }
 
+// The images the field is looked for in, in order. The course's sign is
+// not known: the field shows in the slope image or in its inverse, which the
+// course of the other sign would give. The slope is the field less the
+// content (F - C), so content as strong as the field (a spreadsheet's
+// digits, a web page's text) is there at the field's contrast; where the
+// pulse's range is announced and the course is its shape, each frame's line
+// followed out to opacity 1 is the field alone (full_opacity_image), at
+// either sign. Views of field_pixels_, valid until the next search.
+std::vector<GreyView> PulseSearch::field_images(PulseDemodulator& demodulator, const GreyView& slope, bool fitted) {
+    const std::size_t size = static_cast<std::size_t>(slope.width) * static_cast<std::size_t>(slope.height);
+    field_pixels_.resize(2);
+    field_pixels_[0].assign(slope.data, slope.data + size);
+    field_pixels_[1].resize(size);
+    for (std::size_t i = 0; i < size; ++i) field_pixels_[1][i] = static_cast<std::uint8_t>(255 - slope.data[i]);
+    const PulseShape* shape = options_.shape ? &*options_.shape : nullptr;
+    if (options_.field_alone && fitted && shape && shape->opacity_max > shape->opacity_min)
+        for (const auto& [zero, one] : {std::pair{shape->opacity_min, shape->opacity_max},
+                                        std::pair{shape->opacity_max, shape->opacity_min}}) {
+            const GreyView alone = demodulator.full_opacity_image(zero, one);
+            if (alone.data) field_pixels_.emplace_back(alone.data, alone.data + size);
+        }
+    std::vector<GreyView> out;
+    for (const auto& pixels : field_pixels_) out.push_back({pixels.data(), slope.width, slope.height, slope.width});
+    return out;
+}
+
 PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vector2d& aim) {
     PulseSearchResult out;
     added_since_search_ = 0;
@@ -321,30 +349,27 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         out.detection.failure = "no pulse in the frames";
         return out;
     }
-    // The course's sign is not known: the field shows in the image or in
-    // its inverse, which the course of the other sign would give.
-    std::vector<std::uint8_t> inverse_pixels;
-    auto inverse = [&] {
-        if (inverse_pixels.empty()) {
-            inverse_pixels.assign(field.data, field.data + static_cast<std::size_t>(field.width) * field.height);
-            for (auto& v : inverse_pixels) v = static_cast<std::uint8_t>(255 - v);
-        }
-        return GreyView{inverse_pixels.data(), field.width, field.height, field.width};
-    };
     // A place carried here is confirmed where it is said to be first: far
     // cheaper than a search, and it reads a field too faint for one. Found
     // again, it is carried on from here, the registrations' drift gone.
-    bool followed = false;
-    if (found_ && options_.follow_carried) {
-        out.detection = detector.follow(field, aim, found_->image_to_field);
-        if (!out.detection.found) out.detection = detector.follow(inverse(), aim, found_->image_to_field);
-        followed = out.detection.found;
-    }
+    // The images come in pairs of either sign: the slope's first, each pair
+    // followed and then searched before the next (the field alone followed
+    // first placed one frame of the tuning set's blank page wrong).
+    const std::vector<GreyView> images = field_images(demodulator, field, out.fitted);
     const std::span<const SearchPlan> plans(options_.plans);
-    if (!out.detection.found) out.detection = detector.detect(field, aim, nullptr, plans);
-    if (!out.detection.found) {
-        Detection d = detector.detect(inverse(), aim, nullptr, plans);
-        if (d.found) out.detection = std::move(d);
+    bool followed = false;
+    for (std::size_t pair = 0; pair < images.size() && !out.detection.found; pair += 2) {
+        const std::size_t end = std::min(images.size(), pair + 2);
+        if (found_ && options_.follow_carried)
+            for (std::size_t i = pair; i < end && !followed; ++i) {
+                Detection d = detector.follow(images[i], aim, found_->image_to_field);
+                followed = d.found;
+                if (d.found || i == 0) out.detection = std::move(d);
+            }
+        for (std::size_t i = pair; i < end && !out.detection.found; ++i) {
+            Detection d = detector.detect(images[i], aim, nullptr, plans);
+            if (d.found || i == 0) out.detection = std::move(d);
+        }
     }
     last_found_ = out.detection.found;
     if (followed) {
@@ -376,6 +401,7 @@ void PulseSearch::keep_found(const Detection& found) {
     found_ = found;
     found_->image_to_field = image_to_field_through_aim(found);
     carried_for_ = 0;
+    on_detail_for_ = 0;
 }
 
 std::optional<PulseSearch::Carry> PulseSearch::carry(const Eigen::Vector2d& aim) const {

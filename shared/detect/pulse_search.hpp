@@ -22,6 +22,7 @@
 #include "shared/detect/frame_registration.hpp"
 #include "shared/detect/image.hpp"
 #include "shared/detect/pulse_course.hpp"
+#include "shared/detect/pulse_demodulator.hpp"
 #include "shared/detect/search_plan.hpp"
 
 namespace umf {
@@ -30,6 +31,10 @@ struct PulseShape {
     // The opacity over one period (phase 0..1, opacity in any scale).
     std::function<double(double phase)> waveform;
     double period_s = 0;
+    // The opacities the pulse runs between, as announced (both 0: not
+    // known). Known, the content is taken out of the demodulated image
+    // (PulseDemodulator::full_opacity_image).
+    double opacity_min = 0, opacity_max = 0;
 };
 
 struct PulseSearchOptions {
@@ -57,10 +62,16 @@ struct PulseSearchOptions {
     // misaligned instead (27 frames right -> 3, and 24 wrong).
     bool affine_retry = true;
     // A frame still not registered is aligned again on the frames' detail
-    // (RegistrationOptions::detail). The frames so aligned are kept, but no
-    // place is carried through such a registration: on the held-out tiled
-    // board a lock carried 60 frames through them drifted 2.2 modules.
+    // (RegistrationOptions::detail). The frames so aligned are kept, and a
+    // place is carried through at most detail_carry_frames of them since it
+    // was last found or confirmed (a follow on the next demodulated image
+    // confirms it where it is right): on the held-out tiled board a lock
+    // carried 60 frames through them drifted 2.2 modules, and on the tuning
+    // set's dark code a carry dropped at each lost 31 frames
+    // (umf_pulse_benchmark --detail-carry-frames N: 1 kept 20 of them, 3
+    // all, as many as no bound).
     bool detail_retry = true;
+    int detail_carry_frames = 3;
     // A search that found nothing is not tried again until this many more
     // frames are kept (one that found the field is tried on every frame).
     int search_every = 4;
@@ -92,6 +103,12 @@ struct PulseSearchOptions {
     // then the exposure's. A pure gain, as exposure is; on a blank page the
     // pulse is a change of contrast about the page's grey, which it keeps.
     bool level_exposure = true;
+    // Where the pulse's range is announced (PulseShape::opacity_min, max),
+    // the field alone is looked for too, after the slope image and its
+    // inverse (PulseSearch::field_images): on the tuning set's web page the
+    // first right frame came at 11, not 19, and 8 more right (umf_pulse_benchmark
+    // --no-field-alone).
+    bool field_alone = true;
     // What the detector runs on a demodulated image: the first scan of a
     // video's frame, then the scan three pixels across and the image
     // smoothed (search_plan.hpp's parts 2 and 5): the demodulated image's
@@ -161,6 +178,7 @@ private:
         std::optional<double> time_s;
     };
     std::vector<double> fit_shape(const PulseCourse& course) const;
+    std::vector<GreyView> field_images(PulseDemodulator& demodulator, const GreyView& slope, bool fitted);
     void keep_found(const Detection& found);
 
     PulseSearchOptions options_;
@@ -182,6 +200,8 @@ private:
     FrameRegistration last_registration_;
     std::optional<Detection> found_;  // the last search's, carried to the newest frame
     int carried_for_ = 0;             // frames since it was found
+    int on_detail_for_ = 0;           // of them registered on the frames' detail
+    std::vector<std::vector<std::uint8_t>> field_pixels_;  // field_images', reused
     std::vector<std::vector<std::uint8_t>> warped_;  // the kept frames laid onto the newest, reused
 };
 

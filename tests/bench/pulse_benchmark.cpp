@@ -38,7 +38,7 @@ Usage: umf_pulse_benchmark [options]
   --opacities MIN,MAX    the pulse's opacities (default 0.01,0.04), sine, every 1.5 s
   --frames N             frames per video (default 150)
   --resolutions WxH,...  (default 640x480)
-  --not-announced        the pulse search is not told the pulse's period and waveform
+  --not-announced        the pulse search is not told the pulse's period, waveform and opacities
   --frame-ms MS          the tracker's search held to MS a frame, as the page holds it (TrackerOptions::frame_ms
                          with its spread search; default 2); 0: every search on every frame without a lock
   --max-motion-change X  PulseSearchOptions::max_motion_change (default: the library's)
@@ -65,6 +65,10 @@ Usage: umf_pulse_benchmark [options]
                          (PulseSearchOptions::affine_retry off)
   --no-detail-retry      no registration tried again on the frames' detail
                          (PulseSearchOptions::detail_retry off)
+  --detail-carry-frames N
+                         PulseSearchOptions::detail_carry_frames (default: the library's)
+  --no-field-alone       the field alone not looked for where the slope image fails
+                         (PulseSearchOptions::field_alone off)
   --no-follow            a place carried not looked for where it is said to be before each search
                          (PulseSearchOptions::follow_carried off)
   --videos a,b           only these videos (screen kinds, or held-out contents; the tuning set's spreadsheet
@@ -72,7 +76,7 @@ Usage: umf_pulse_benchmark [options]
   --log FILE             one line per frame of the pulse search's videos: video, frame, state, where the
                          place came from, its error in modules, the share the pulse explained where searched,
                          ms, and the frame's registration onto the last: registered, residual, the residual
-                         unmoved, overlap, and (tuning set) how far the registration put the frame's centre
+                         unmoved, overlap, whether aligned on the frames' detail, and (tuning set) how far the registration put the frame's centre
                          from the true motion's, pixels; then the place carried: frames since it was found or
                          confirmed, and the modules the aim has come over the field since
   --seed N               scenario seed (default 1)
@@ -106,6 +110,8 @@ struct Options {
     bool affine_coarse = false;
     bool affine_retry = true;
     bool detail_retry = true;
+    std::optional<int> detail_carry_frames;
+    bool field_alone = true;
     std::optional<double> max_share;
     std::vector<std::string> videos;  // empty: all
     std::string log;
@@ -219,9 +225,11 @@ PulseSearchOptions pulse_options(const Options& o, double fps) {
     p.registration.affine_coarse = o.affine_coarse;
     p.affine_retry = o.affine_retry;
     p.detail_retry = o.detail_retry;
+    if (o.detail_carry_frames) p.detail_carry_frames = *o.detail_carry_frames;
+    p.field_alone = o.field_alone;
     if (o.max_share) p.registration.max_share = *o.max_share;
     if (!o.announced) return p;
-    p.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, kPeriodS);
+    p.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, kPeriodS, o.min_opacity, o.max_opacity);
     p.frame_rates = {fps};
     return p;
 }
@@ -306,7 +314,7 @@ Tally run_pulse(const Detector& detector, const Options& o, const Video& v, cons
                                  frames[i].centre_screen_px) / v.placement.module_px;
             const FrameRegistration& g = tracker.pulse().last_registration();
             *log << "\t" << r.share << "\t" << r.ms << "\t" << g.registered << "\t" << g.residual << "\t"
-                 << g.unmoved_residual << "\t" << g.overlap << "\t";
+                 << g.unmoved_residual << "\t" << g.overlap << "\t" << g.on_detail << "\t";
             if (i > 0 && !v.screen_to_image.empty())
                 *log << registration_error(g.homography, v.screen_to_image[i - 1], v.screen_to_image[i], frames[i].grey.size());
             *log << "\t";
@@ -357,6 +365,9 @@ void run(const Options& o) {
     if (o.affine_coarse) std::printf("Every registration's coarsest level an affine change.\n");
     if (!o.affine_retry) std::printf("No registration tried again with an affine coarsest level.\n");
     if (!o.detail_retry) std::printf("No registration tried again on the frames' detail.\n");
+    if (o.detail_carry_frames)
+        std::printf("A place carried through at most %d registrations on the frames' detail.\n", *o.detail_carry_frames);
+    if (!o.field_alone) std::printf("The field alone not looked for.\n");
     for (const cv::Size res : o.resolutions) {
         std::cerr << "making " << res.width << " x " << res.height << " videos\n";
         const std::vector<Video> videos = o.heldout ? heldout_videos(o, field, res) : tuning_videos(o, field, res);
@@ -448,6 +459,11 @@ Options parse(int argc, char** argv) {
             o.affine_retry = false;
         } else if (a == "--no-detail-retry") {
             o.detail_retry = false;
+        } else if (a == "--detail-carry-frames") {
+            o.detail_carry_frames = std::stoi(value());
+            if (*o.detail_carry_frames < 0) throw std::invalid_argument("--detail-carry-frames: 0 or more");
+        } else if (a == "--no-field-alone") {
+            o.field_alone = false;
         } else if (a == "--no-follow") {
             o.follow_carried = false;
         } else if (a == "--no-levelling") {

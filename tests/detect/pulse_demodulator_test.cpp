@@ -78,6 +78,59 @@ TEST(PulseDemodulator, ExactFramesGiveTheExactSlope) {
     for (int x = 0; x < width; ++x) EXPECT_NEAR(out.data[x], 127.5 + d[x] / 2.0, 0.5) << x;
 }
 
+TEST(PulseDemodulator, FollowedOutToFullOpacityTheContentIsGone) {
+    // Exact frames: the values given are 0, 1/2 and 1, the opacities 0.2,
+    // 0.4 and 0.6. I = C + a (F - C) is whole at each of them.
+    const int c[] = {200, 0, 100, 50}, f[] = {0, 255, 255, 0};
+    const int width = 4;
+    PulseDemodulator demodulator;
+    EXPECT_EQ(demodulator.full_opacity_image(0.2, 0.6).data, nullptr) << "no frames";
+    for (const int k : {0, 1, 2}) {
+        const double a = 0.2 + 0.2 * k;
+        std::vector<std::uint8_t> frame(width);
+        for (int x = 0; x < width; ++x) frame[x] = static_cast<std::uint8_t>(std::lround(c[x] + a * (f[x] - c[x])));
+        demodulator.add(view_of(frame, width, 1), k / 2.0);
+    }
+    const GreyView alone = demodulator.full_opacity_image(0.2, 0.6);
+    ASSERT_NE(alone.data, nullptr);
+    for (int x = 0; x < width; ++x) EXPECT_NEAR(alone.data[x], f[x], 0.5) << x;
+    // The other sign (the course read backwards) is not the field.
+    const GreyView backwards = demodulator.full_opacity_image(0.6, 0.2);
+    EXPECT_NEAR(backwards.data[0], 240, 0.5) << "160 - (80 - 160)";
+    EXPECT_EQ(demodulator.full_opacity_image(0.3, 0.3).data, nullptr) << "no range";
+}
+
+TEST(PulseDemodulator, TheFieldAloneIsRightWhereTheContentIsAtTheModulesColour) {
+    // A busy content under a faint pulse (0.01 to 0.04), each frame rounded
+    // to whole levels: the slope is the field less the content, and where
+    // the content is at a module's own colour it holds no field; the frames
+    // followed out to opacity 1 hold it on every pixel.
+    const int width = 16, height = 16;
+    std::vector<std::uint8_t> content(width * height), field(width * height);
+    for (int i = 0; i < width * height; ++i) {
+        content[i] = static_cast<std::uint8_t>((i * 37) % 256);
+        field[i] = (i / 3) % 2 ? 255 : 0;
+    }
+    PulseDemodulator demodulator;
+    std::vector<std::uint8_t> frame(width * height);
+    for (int k = 0; k < 36; ++k) {
+        const double u = 0.5 - 0.5 * std::cos(2 * M_PI * k / 36.0), a = 0.01 + 0.03 * u;
+        for (int i = 0; i < width * height; ++i)
+            frame[i] = static_cast<std::uint8_t>(std::lround((1 - a) * content[i] + a * field[i]));
+        demodulator.add(view_of(frame, width, height), u);
+    }
+    const GreyView alone = demodulator.full_opacity_image(0.01, 0.04);
+    ASSERT_NE(alone.data, nullptr);
+    int right = 0;
+    double error = 0;
+    for (int i = 0; i < width * height; ++i) {
+        right += (alone.data[i] > 128) == (field[i] > 128);
+        error += std::abs(alone.data[i] - field[i]) / static_cast<double>(width * height);
+    }
+    EXPECT_EQ(right, width * height);
+    EXPECT_LT(error, 20);
+}
+
 TEST(PulseDemodulator, ForgetsOldFramesAndStartsOverAtAnotherSize) {
     PulseDemodulator demodulator(0.5);
     std::vector<std::uint8_t> small(4, 10), big(16, 10);

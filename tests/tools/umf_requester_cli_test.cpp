@@ -221,7 +221,8 @@ TEST_F(Requester, AFaintPulseAtRestIsFoundInItsFramesTogether) {
         images += " " + name;
     }
     const cv::Point2d truth = umf::sim::image_to_field(p.shot, p.placement, {320, 240});
-    for (const std::string announced : {"", "--pulse-period 1.5 --waveform sine "}) {
+    for (const std::string announced :
+         {"", "--pulse-period 1.5 --waveform sine ", "--pulse-period 1.5 --pulse-opacities 0.01,0.04 "}) {
         Outcome r = locate("--sequence " + announced + images);
         ASSERT_EQ(r.code, 0) << r.err;
         ASSERT_EQ(r.lines.size(), frames.size()) << r.out;
@@ -261,6 +262,9 @@ TEST_F(Requester, WrongUsageExitsWithTwo) {
     EXPECT_EQ(locate("--sequence --pulse-period x " + shared("photo.png")).code, 2);
     EXPECT_EQ(locate("--sequence --waveform sine " + shared("photo.png")).code, 2);  // without a period
     EXPECT_EQ(locate("--sequence --pulse-period 1.5 --waveform square " + shared("photo.png")).code, 2);
+    EXPECT_EQ(locate("--sequence --pulse-opacities 0.01,0.04 " + shared("photo.png")).code, 2);  // without a period
+    EXPECT_EQ(locate("--sequence --pulse-period 1.5 --pulse-opacities 0.04,0.01 " + shared("photo.png")).code, 2);
+    EXPECT_EQ(locate("--sequence --pulse-period 1.5 --pulse-opacities 0.01 " + shared("photo.png")).code, 2);
     for (const char* help : {"--help", "help", "locate --help", "help locate"}) {
         Outcome h = run(help, dir_);
         EXPECT_EQ(h.code, 0) << help;

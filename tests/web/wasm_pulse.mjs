@@ -27,7 +27,7 @@ const POINT_TOL = 0.25, RIGHT = 0.5;
 
 const doc = JSON.parse(fs.readFileSync(path.join(dir, 'pulse.json'), 'utf8'));
 const detector = await createDetector(fs.readFileSync(path.join(dir, doc.field), 'utf8'));
-detector.setPulse(doc.pulse.waveform, doc.pulse.period_s);
+detector.setPulse(doc.pulse.waveform, doc.pulse.period_s, { min: doc.pulse.opacity_min, max: doc.pulse.opacity_max });
 
 let failures = 0;
 const fail = (what) => {

@@ -71,7 +71,8 @@ int main(int argc, char** argv) {
     const auto poses = sim::pose_trajectory(sim::Motion::general, kFrames, geometry.pixels, 21, range);
 
     PulseSearchOptions pulse;
-    pulse.shape = overlay::announced_pulse_shape(invisible.waveform, invisible.period_s);
+    pulse.shape = overlay::announced_pulse_shape(invisible.waveform, invisible.period_s, invisible.opacity_min,
+                                                 invisible.opacity_max);
     PulseTracker tracker(detector, {}, pulse);
     Json frames = Json::array();
     std::vector<std::uint8_t> luma;
@@ -107,7 +108,11 @@ int main(int argc, char** argv) {
     const Json doc = {{"field", "field.json"},
                       {"width", 640},
                       {"height", 480},
-                      {"pulse", {{"waveform", overlay::to_string(invisible.waveform)}, {"period_s", invisible.period_s}}},
+                      {"pulse",
+                       {{"waveform", overlay::to_string(invisible.waveform)},
+                        {"period_s", invisible.period_s},
+                        {"opacity_min", invisible.opacity_min},
+                        {"opacity_max", invisible.opacity_max}}},
                       {"frames", frames}};
     std::ofstream(dir / "pulse.json") << doc.dump(1) << '\n';
     std::fprintf(stderr, "%d of %d frames locked\n", locked, kFrames);

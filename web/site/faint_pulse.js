@@ -4,9 +4,10 @@
 // (detector.js, setPulse).
 export const kFaintOpacity = 0.1;
 
-// The welcome's overlay -> {waveform, periodS} for setPulse, or null for a
-// field strong enough or static.
+// The welcome's overlay -> {waveform, periodS, range} for setPulse, or null
+// for a field strong enough or static.
 export function faintPulse(overlay) {
   if (!(overlay?.period_s > 0) || !(overlay.opacity_max < kFaintOpacity)) return null;
-  return { waveform: overlay.waveform, periodS: overlay.period_s };
+  const range = { min: overlay.opacity_min ?? 0, max: overlay.opacity_max };
+  return { waveform: overlay.waveform, periodS: overlay.period_s, range };
 }

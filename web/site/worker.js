@@ -55,7 +55,7 @@ self.onmessage = async (event) => {
       detector = await createDetector(message.field);
       frameRate = 0;
       pulse = message.pulse ?? null;
-      if (pulse) detector.setPulse(pulse.waveform, pulse.periodS);
+      if (pulse) detector.setPulse(pulse.waveform, pulse.periodS, pulse.range);
       self.postMessage({ type: 'ready' });
     } else if (message.type === 'frame') {
       const frame = message.frame;

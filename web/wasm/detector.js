@@ -80,12 +80,14 @@ export async function createDetector(fieldJson, { moduleOptions } = {}) {
     // The screen's pulse as its welcome announces it (overlay.waveform
     // 'sine' | 'triangle', overlay.period_s): frames without a lock are then
     // also searched together for a field too faint for any one of them.
-    // 'none' (or a period of 0, a static field) turns that off. Forgets the lock.
-    setPulse(waveform, periodS) {
+    // 'none' (or a period of 0, a static field) turns that off. `range`:
+    // {min, max}, the welcome's overlay.opacity_min and opacity_max, with
+    // which the content is taken out of those frames. Forgets the lock.
+    setPulse(waveform, periodS, range = { min: 0, max: 0 }) {
       alive();
       const pulse = periodS > 0 ? PULSES[waveform] : PULSES.none;
       if (pulse === undefined) throw new Error(`umf detector: no pulse "${waveform}"`);
-      if (M._umf_set_pulse(handle, pulse, periodS > 0 ? periodS : 0) !== 0) throw new Error(cString(M, M._umf_last_error()));
+      if (M._umf_set_pulse(handle, pulse, periodS > 0 ? periodS : 0, range.min ?? 0, range.max ?? 0) !== 0) throw new Error(cString(M, M._umf_last_error()));
     },
     destroy() {
       if (handle) M._umf_destroy(handle);

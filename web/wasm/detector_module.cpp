@@ -265,11 +265,16 @@ EMSCRIPTEN_KEEPALIVE int umf_set_frame_rate(void* handle, double frames_per_seco
     return 0;
 }
 
-EMSCRIPTEN_KEEPALIVE int umf_set_pulse(void* handle, int pulse, double period_s) {
+EMSCRIPTEN_KEEPALIVE int umf_set_pulse(void* handle, int pulse, double period_s, double opacity_min,
+                                       double opacity_max) {
     g_last_error.clear();
     Instance* in = instance(handle);
     if (!in) {
         g_last_error = "umf_set_pulse: no handle";
+        return -1;
+    }
+    if (!(opacity_min >= 0 && opacity_min <= opacity_max && opacity_max <= 1)) {
+        g_last_error = "umf_set_pulse: an opacity range outside 0..1";
         return -1;
     }
     if (pulse == UMF_PULSE_NONE) {
@@ -277,7 +282,8 @@ EMSCRIPTEN_KEEPALIVE int umf_set_pulse(void* handle, int pulse, double period_s)
     } else if ((pulse == UMF_PULSE_SINE || pulse == UMF_PULSE_TRIANGLE) && period_s >= umf::overlay::kMinPeriodS &&
                period_s <= umf::overlay::kMaxPeriodS) {
         in->pulse = umf::overlay::announced_pulse_shape(
-            pulse == UMF_PULSE_SINE ? umf::overlay::Waveform::sine : umf::overlay::Waveform::triangle, period_s);
+            pulse == UMF_PULSE_SINE ? umf::overlay::Waveform::sine : umf::overlay::Waveform::triangle, period_s,
+            opacity_min, opacity_max);
     } else {
         g_last_error = "umf_set_pulse: an unknown pulse, or a period outside 0.5..60 s";
         return -1;

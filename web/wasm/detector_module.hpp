@@ -102,10 +102,12 @@ int umf_set_frame_rate(void* handle, double frames_per_second);
 // The screen's field pulses (`pulse`, every `period_s` seconds: the welcome's
 // overlay): frames where the tracker holds no lock are also registered onto
 // each other and searched together for a field too faint for any one of
-// them (shared/detect/pulse_tracker.hpp). UMF_PULSE_NONE turns that off.
-// Forgets the lock. Returns 0, or -1 for an unknown pulse or a period outside
-// 0.5..60 s (umf_last_error()).
-int umf_set_pulse(void* handle, int pulse, double period_s);
+// them (shared/detect/pulse_tracker.hpp). `opacity_min` and `opacity_max`:
+// the overlay's range, with which the content is taken out of the frames
+// searched together (PulseShape; both 0: not known). UMF_PULSE_NONE turns
+// that off. Forgets the lock. Returns 0, or -1 for an unknown pulse, a
+// period outside 0.5..60 s or a range outside 0..1 (umf_last_error()).
+int umf_set_pulse(void* handle, int pulse, double period_s, double opacity_min, double opacity_max);
 
 // The grey image of the last frame (width*height bytes), for tests and debugging.
 const std::uint8_t* umf_grey_buffer(void* handle);

@@ -421,7 +421,8 @@ int main(int argc, char** argv) {
         if (const auto* preset = umf::overlay::find_preset(presets, o.preset);
             preset && preset->period_s > 0 && preset->opacity_max < kFaintOpacity) {
             umf::PulseSearchOptions pulse;
-            pulse.shape = umf::overlay::announced_pulse_shape(preset->waveform, preset->period_s);
+            pulse.shape = umf::overlay::announced_pulse_shape(preset->waveform, preset->period_s, preset->opacity_min,
+                                                              preset->opacity_max);
             pulse_tracker.emplace(detector, umf::TrackerOptions{}, pulse);
         }
         int locked = 0, on_tile = 0, first_lock = -1;
