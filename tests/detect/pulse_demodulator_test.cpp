@@ -22,21 +22,37 @@ GreyView view_of(const std::vector<std::uint8_t>& pixels, int width, int height)
     return {pixels.data(), width, height, width};
 }
 
+// 16 x 16 pixels of content at every grey level and a field of stripes
+// three pixels wide, and a frame of them mixed at opacity `a`, rounded as a
+// compositor rounds.
+struct Busy {
+    static constexpr int kSide = 16;
+    std::vector<std::uint8_t> content, field;
+    Busy() : content(kSide * kSide), field(kSide * kSide) {
+        for (int i = 0; i < kSide * kSide; ++i) {
+            content[i] = static_cast<std::uint8_t>((i * 37) % 256);
+            field[i] = (i / 3) % 2 ? 255 : 0;
+        }
+    }
+    const std::vector<std::uint8_t>& mixed(double a) {
+        frame.resize(content.size());
+        for (std::size_t i = 0; i < frame.size(); ++i)
+            frame[i] = static_cast<std::uint8_t>(std::lround((1 - a) * content[i] + a * field[i]));
+        return frame;
+    }
+    std::vector<std::uint8_t> frame;
+};
+
 TEST(PulseDemodulator, TheSlopeOfEachPixelIsTheFieldLessTheContent) {
     // Content and field of every combination, mixed as a compositor does.
-    const int width = 16, height = 16;
-    std::vector<std::uint8_t> content(width * height), field(width * height);
-    for (int i = 0; i < width * height; ++i) {
-        content[i] = static_cast<std::uint8_t>((i * 37) % 256);
-        field[i] = (i / 3) % 2 ? 255 : 0;
-    }
+    Busy busy;
+    const auto& content = busy.content;
+    const auto& field = busy.field;
+    const int width = Busy::kSide, height = Busy::kSide;
     PulseDemodulator demodulator;
     EXPECT_EQ(demodulator.field_image().data, nullptr) << "no frames";
-    std::vector<std::uint8_t> frame(width * height);
     for (const double a : {0.01, 0.02, 0.03, 0.04, 0.03, 0.02}) {
-        for (int i = 0; i < width * height; ++i)
-            frame[i] = static_cast<std::uint8_t>(std::lround((1 - a) * content[i] + a * field[i]));
-        demodulator.add(view_of(frame, width, height), a);
+        demodulator.add(view_of(busy.mixed(a), width, height), a);
         if (a == 0.01) {
             EXPECT_EQ(demodulator.field_image().data, nullptr) << "one opacity has no slope";
         }
@@ -105,19 +121,13 @@ TEST(PulseDemodulator, TheFieldAloneIsRightWhereTheContentIsAtTheModulesColour) 
     // to whole levels: the slope is the field less the content, and where
     // the content is at a module's own colour it holds no field; the frames
     // followed out to opacity 1 hold it on every pixel.
-    const int width = 16, height = 16;
-    std::vector<std::uint8_t> content(width * height), field(width * height);
-    for (int i = 0; i < width * height; ++i) {
-        content[i] = static_cast<std::uint8_t>((i * 37) % 256);
-        field[i] = (i / 3) % 2 ? 255 : 0;
-    }
+    Busy busy;
+    const auto& field = busy.field;
+    const int width = Busy::kSide, height = Busy::kSide;
     PulseDemodulator demodulator;
-    std::vector<std::uint8_t> frame(width * height);
     for (int k = 0; k < 36; ++k) {
-        const double u = 0.5 - 0.5 * std::cos(2 * M_PI * k / 36.0), a = 0.01 + 0.03 * u;
-        for (int i = 0; i < width * height; ++i)
-            frame[i] = static_cast<std::uint8_t>(std::lround((1 - a) * content[i] + a * field[i]));
-        demodulator.add(view_of(frame, width, height), u);
+        const double u = 0.5 - 0.5 * std::cos(2 * M_PI * k / 36.0);
+        demodulator.add(view_of(busy.mixed(0.01 + 0.03 * u), width, height), u);
     }
     const GreyView alone = demodulator.full_opacity_image(0.01, 0.04);
     ASSERT_NE(alone.data, nullptr);
