@@ -62,16 +62,16 @@ struct PulseSearchOptions {
     // misaligned instead (27 frames right -> 3, and 24 wrong).
     bool affine_retry = true;
     // A frame still not registered is aligned again on the frames' detail
-    // (RegistrationOptions::detail). The frames so aligned are kept, and a
+    // (RegistrationOptions::detail). The frames so aligned are kept, but a
     // place is carried through at most detail_carry_frames of them since it
-    // was last found or confirmed (a follow on the next demodulated image
-    // confirms it where it is right): on the held-out tiled board a lock
-    // carried 60 frames through them drifted 2.2 modules, and on the tuning
-    // set's dark code a carry dropped at each lost 31 frames
-    // (umf_pulse_benchmark --detail-carry-frames N: 1 kept 20 of them, 3
-    // all, as many as no bound).
+    // was last found or confirmed: on the held-out tiled board a lock
+    // carried 60 frames through them drifted 2.2 modules. Tried and left at
+    // 0: 3 gave the tuning set's dark code 31 frames and its photo 13
+    // (umf_pulse_benchmark --detail-carry-frames N), and the held-out tiled
+    // board 24 frames wrong, a place carried through one such registration
+    // drifting 0.02 module a frame for 40 frames unconfirmed.
     bool detail_retry = true;
-    int detail_carry_frames = 3;
+    int detail_carry_frames = 0;
     // A search that found nothing is not tried again until this many more
     // frames are kept (one that found the field is tried on every frame).
     int search_every = 4;
