@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -141,7 +142,7 @@ void PulseSearch::add(const GreyView& frame, std::optional<double> time_s) {
             // Nor through one aligned on the frames' detail alone: content
             // the grey levels could not align (a tiled board's repeats, a
             // glare) may be aligned a little off, frame after frame.
-            on_detail_for_ = r.on_detail ? on_detail_for_ + 1 : on_detail_for_;
+            on_detail_for_ += r.on_detail ? 1 : 0;
             if (++carried_for_ > options_.carry_frames || !checked || on_detail_for_ > options_.detail_carry_frames)
                 found_.reset();
         } else {
@@ -279,29 +280,24 @@ std::vector<double> PulseSearch::fit_shape(const PulseCourse& found) const {
     return best;
 }
 
-// The images the field is looked for in, in order. The course's sign is
-// not known: the field shows in the slope image or in its inverse, which the
-// course of the other sign would give. The slope is the field less the
-// content (F - C), so content as strong as the field (a spreadsheet's
-// digits, a web page's text) is there at the field's contrast; where the
-// pulse's range is announced and the course is its shape, each frame's line
-// followed out to opacity 1 is the field alone (full_opacity_image), at
-// either sign. Views of field_pixels_, valid until the next search.
-std::vector<GreyView> PulseSearch::field_images(PulseDemodulator& demodulator, const GreyView& slope, bool fitted) {
-    const std::size_t size = static_cast<std::size_t>(slope.width) * static_cast<std::size_t>(slope.height);
-    field_pixels_.resize(2);
-    field_pixels_[0].assign(slope.data, slope.data + size);
-    field_pixels_[1].resize(size);
-    for (std::size_t i = 0; i < size; ++i) field_pixels_[1][i] = static_cast<std::uint8_t>(255 - slope.data[i]);
-    const PulseShape* shape = options_.shape ? &*options_.shape : nullptr;
-    if (options_.field_alone && fitted && shape && shape->opacity_max > shape->opacity_min)
-        for (const auto& [zero, one] : {std::pair{shape->opacity_min, shape->opacity_max},
-                                        std::pair{shape->opacity_max, shape->opacity_min}}) {
-            const GreyView alone = demodulator.full_opacity_image(zero, one);
-            if (alone.data) field_pixels_.emplace_back(alone.data, alone.data + size);
-        }
+// The field alone at either sign, where the pulse's range is announced and
+// the course is its shape: the slope image is the field less the content
+// (F - C), so content as strong as the field (a spreadsheet's digits, a web
+// page's text) is there at the field's contrast, while each frame's line
+// followed out to opacity 1 is the field alone (full_opacity_image). Views
+// of alone_pixels_, valid until the next search; empty where not announced.
+std::vector<GreyView> PulseSearch::field_alone_images(PulseDemodulator& demodulator, bool fitted) {
     std::vector<GreyView> out;
-    for (const auto& pixels : field_pixels_) out.push_back({pixels.data(), slope.width, slope.height, slope.width});
+    const PulseShape* shape = options_.shape ? &*options_.shape : nullptr;
+    if (!options_.field_alone || !fitted || !shape || !(shape->opacity_max > shape->opacity_min)) return out;
+    std::size_t i = 0;
+    for (const auto& [zero, one] :
+         {std::pair{shape->opacity_min, shape->opacity_max}, std::pair{shape->opacity_max, shape->opacity_min}}) {
+        const GreyView alone = demodulator.full_opacity_image(zero, one);
+        if (!alone.data) continue;
+        alone_pixels_[i].assign(alone.data, alone.data + static_cast<std::size_t>(alone.width) * alone.height);
+        out.push_back({alone_pixels_[i++].data(), alone.width, alone.height, alone.width});
+    }
     return out;
 }
 
@@ -349,27 +345,38 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         out.detection.failure = "no pulse in the frames";
         return out;
     }
-    // A place carried here is confirmed where it is said to be first: far
-    // cheaper than a search, and it reads a field too faint for one. Found
-    // again, it is carried on from here, the registrations' drift gone.
-    // The images come in pairs of either sign: the slope's first, each pair
-    // followed and then searched before the next (the field alone followed
-    // first placed one frame of the tuning set's blank page wrong).
-    const std::vector<GreyView> images = field_images(demodulator, field, out.fitted);
+    // The course's sign is not known: the field shows in the image or in
+    // its inverse, which the course of the other sign would give. A place
+    // carried here is confirmed where it is said to be first: far cheaper
+    // than a search, and it reads a field too faint for one. Found again, it
+    // is carried on from here, the registrations' drift gone. Each pair of
+    // images is followed and then searched before the next is made (the
+    // field alone followed before the slope was searched placed one frame
+    // of the tuning set's blank page wrong); where none holds the field,
+    // the slope's search says why.
+    std::vector<std::uint8_t> inverse_pixels(field.data, field.data + static_cast<std::size_t>(field.width) * field.height);
+    for (auto& v : inverse_pixels) v = static_cast<std::uint8_t>(255 - v);
+    const GreyView inverse{inverse_pixels.data(), field.width, field.height, field.width};
     const std::span<const SearchPlan> plans(options_.plans);
     bool followed = false;
-    for (std::size_t pair = 0; pair < images.size() && !out.detection.found; pair += 2) {
-        const std::size_t end = std::min(images.size(), pair + 2);
+    auto look_in = [&](std::span<const GreyView> images) {
         if (found_ && options_.follow_carried)
-            for (std::size_t i = pair; i < end && !followed; ++i) {
-                Detection d = detector.follow(images[i], aim, found_->image_to_field);
-                followed = d.found;
-                if (d.found || i == 0) out.detection = std::move(d);
+            for (const GreyView& image : images) {
+                out.detection = detector.follow(image, aim, found_->image_to_field);
+                if ((followed = out.detection.found)) return;
             }
-        for (std::size_t i = pair; i < end && !out.detection.found; ++i) {
+        for (std::size_t i = 0; i < images.size(); ++i) {
             Detection d = detector.detect(images[i], aim, nullptr, plans);
             if (d.found || i == 0) out.detection = std::move(d);
+            if (out.detection.found) return;
         }
+    };
+    look_in(std::array{field, inverse});
+    if (!out.detection.found) {
+        const Detection slope_failure = out.detection;
+        const std::vector<GreyView> alone = field_alone_images(demodulator, out.fitted);
+        if (!alone.empty()) look_in(alone);
+        if (!out.detection.found) out.detection = slope_failure;
     }
     last_found_ = out.detection.found;
     if (followed) {

@@ -105,7 +105,7 @@ struct PulseSearchOptions {
     bool level_exposure = true;
     // Where the pulse's range is announced (PulseShape::opacity_min, max),
     // the field alone is looked for too, after the slope image and its
-    // inverse (PulseSearch::field_images): on the tuning set's web page the
+    // inverse (PulseSearch::field_alone_images): on the tuning set's web page the
     // first right frame came at 11, not 19, and 8 more right (umf_pulse_benchmark
     // --no-field-alone).
     bool field_alone = true;
@@ -178,7 +178,7 @@ private:
         std::optional<double> time_s;
     };
     std::vector<double> fit_shape(const PulseCourse& course) const;
-    std::vector<GreyView> field_images(PulseDemodulator& demodulator, const GreyView& slope, bool fitted);
+    std::vector<GreyView> field_alone_images(PulseDemodulator& demodulator, bool fitted);
     void keep_found(const Detection& found);
 
     PulseSearchOptions options_;
@@ -201,7 +201,7 @@ private:
     std::optional<Detection> found_;  // the last search's, carried to the newest frame
     int carried_for_ = 0;             // frames since it was found
     int on_detail_for_ = 0;           // of them registered on the frames' detail
-    std::vector<std::vector<std::uint8_t>> field_pixels_;  // field_images', reused
+    std::vector<std::uint8_t> alone_pixels_[2];  // field_alone_images', reused
     std::vector<std::vector<std::uint8_t>> warped_;  // the kept frames laid onto the newest, reused
 };
 

@@ -76,9 +76,10 @@ Usage: umf_pulse_benchmark [options]
   --log FILE             one line per frame of the pulse search's videos: video, frame, state, where the
                          place came from, its error in modules, the share the pulse explained where searched,
                          ms, and the frame's registration onto the last: registered, residual, the residual
-                         unmoved, overlap, whether aligned on the frames' detail, and (tuning set) how far the registration put the frame's centre
-                         from the true motion's, pixels; then the place carried: frames since it was found or
-                         confirmed, and the modules the aim has come over the field since
+                         unmoved, overlap, whether aligned on the frames' detail, and (tuning set) how far the
+                         registration put the frame's centre from the true motion's, pixels; then the place
+                         carried: frames since it was found or confirmed, and the modules the aim has come over
+                         the field since
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --help                 this text
