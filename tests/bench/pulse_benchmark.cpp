@@ -9,7 +9,6 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -22,103 +21,13 @@
 #include "tests/bench/heldout_scenario.hpp"
 #include "tests/bench/methods.hpp"
 #include "tests/bench/phone_effects.hpp"
+#include "tests/bench/pulse_benchmark_options.hpp"
 #include "tests/bench/scenario.hpp"
 #include "tests/sim/field_mix.hpp"
 #include "tests/sim/sequence.hpp"
 
 namespace umf::bench {
 namespace {
-
-const char* const kUsage = R"(umf_pulse_benchmark: a field pulsing at a few percent found over a hand-held phone's frames.
-
-Usage: umf_pulse_benchmark [options]
-  --set tuning|heldout   whose pulsing videos (default tuning): the tuning set's swing from looking up at the
-                         screen to looking down on it at 25 fps, one video per screen kind; or the held-out
-                         set's hand path at 30 fps, one per content, on its three screens and camera model
-  --opacities MIN,MAX    the pulse's opacities (default 0.01,0.04), sine, every 1.5 s
-  --frames N             frames per video (default 150)
-  --resolutions WxH,...  (default 640x480)
-  --not-announced        the pulse search is not told the pulse's period, waveform and opacities
-  --frame-ms MS          the tracker's search held to MS a frame, as the page holds it (TrackerOptions::frame_ms
-                         with its spread search; default 2); 0: every search on every frame without a lock
-  --max-motion-change X  PulseSearchOptions::max_motion_change (default: the library's)
-  --max-follow-shape-change X
-                         PulseSearchOptions::max_follow_shape_change, modules (default: the library's; 1e9:
-                         a follow's map always carried on)
-  --exposure-drift A     the tuning set's videos with an auto-exposure that drifts and re-meters, the light
-                         scaled by up to about 1 +- A from frame to frame (default 0: a steady exposure)
-  --rolling-shutter S    the tuning set's videos read row by row over S seconds (first row to last, the
-                         middle row at the frame's own pose), the camera moving on towards the next frame's
-                         pose meanwhile (default 0: every row at once)
-  --swing-speed K        the tuning set's hand swinging K times as fast (an integer; default 1)
-  --noise S              the tuning set's sensor noise, S grey levels (default: 2 to 3 a frame)
-  --jpeg-quality Q       the tuning set's frames encoded at JPEG quality Q (default 80)
-  --gain                 the frames registered with the exposure's gain as well as a grey-level offset
-                         (RegistrationOptions::fit_gain)
-  --no-levelling         the frames laid onto the newest not levelled to its exposure before demodulating
-                         (PulseSearchOptions::level_exposure off)
-  --carry-frames N       PulseSearchOptions::carry_frames (default: the library's)
-  --max-share X          RegistrationOptions::max_share (default: the library's)
-  --affine-coarse        every registration's coarsest level an affine change
-                         (RegistrationOptions::affine_coarse on)
-  --no-affine-retry      no registration tried again with an affine coarsest level
-                         (PulseSearchOptions::affine_retry off)
-  --no-detail-retry      no registration tried again on the frames' detail
-                         (PulseSearchOptions::detail_retry off)
-  --detail-carry-frames N
-                         PulseSearchOptions::detail_carry_frames (default: the library's)
-  --no-field-alone       the field alone not looked for where the slope image fails
-                         (PulseSearchOptions::field_alone off)
-  --no-follow            a place carried not looked for where it is said to be before each search
-                         (PulseSearchOptions::follow_carried off)
-  --videos a,b           only these videos (screen kinds, or held-out contents; the tuning set's spreadsheet
-                         only when named)
-  --log FILE             one line per frame of the pulse search's videos: video, frame, state, where the
-                         place came from, its error in modules, the share the pulse explained where searched,
-                         ms, and the frame's registration onto the last: registered, residual, the residual
-                         unmoved, overlap, whether aligned on the frames' detail, and (tuning set) how far the
-                         registration put the frame's centre from the true motion's, pixels; then the place
-                         carried: frames since it was found or confirmed, and the modules the aim has come over
-                         the field since
-  --seed N               scenario seed (default 1)
-  --threads N            threads making frames (default: all cores)
-  --help                 this text
-
-Every video is also run without the field (the same frames, opacity 0): every place found there is wrong.
-A place is right within half a module of the truth. Times are of one update on one thread: the tracker,
-laying the frame onto the last and, where it ran, the search of the frames together.
-Progress goes to stderr, the tables to stdout.
-)";
-
-struct Options {
-    bool heldout = false;
-    double min_opacity = 0.01, max_opacity = 0.04;
-    int frames = 150;
-    std::vector<cv::Size> resolutions{{640, 480}};
-    bool announced = true;
-    double frame_ms = 2;
-    std::optional<double> max_motion_change;
-    std::optional<double> max_follow_shape_change;
-    double exposure_drift = 0;
-    double readout_s = 0;
-    int swing_speed = 1;
-    std::optional<double> noise;
-    std::optional<int> jpeg_quality;
-    bool fit_gain = false;
-    bool level_exposure = true;
-    bool follow_carried = true;
-    std::optional<int> carry_frames;
-    bool affine_coarse = false;
-    bool affine_retry = true;
-    bool detail_retry = true;
-    std::optional<int> detail_carry_frames;
-    bool field_alone = true;
-    std::optional<double> max_share;
-    std::vector<std::string> videos;  // empty: all
-    std::string log;
-    std::uint64_t seed = 1;
-    int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-};
 
 constexpr double kPeriodS = 1.5;
 constexpr double kRadiusModules = 0.5;
@@ -134,19 +43,19 @@ struct Video {
     std::vector<cv::Matx33d> screen_to_image = {};
 };
 
-bool wanted(const Options& o, const std::string& video) {
+bool wanted(const PulseBenchmarkOptions& o, const std::string& video) {
     return o.videos.empty() || std::find(o.videos.begin(), o.videos.end(), video) != o.videos.end();
 }
 
 // The benchmark's pulse in place of the provider's default, which both
 // sets' pulsing videos show (0.1 to 0.4, kHeldoutPulseMin and
 // kHeldoutPulseMax): the same phase, scaled to the faint range.
-double faint(const Options& o, double default_pulse_opacity) {
+double faint(const PulseBenchmarkOptions& o, double default_pulse_opacity) {
     return o.min_opacity + (o.max_opacity - o.min_opacity) * (default_pulse_opacity - kHeldoutPulseMin) /
                                (kHeldoutPulseMax - kHeldoutPulseMin);
 }
 
-std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size res) {
+std::vector<Video> tuning_videos(const PulseBenchmarkOptions& o, const Field& field, cv::Size res) {
     const Scene scene;
     const sim::FieldPlacement placement{{0, 0}, scene.module_px};
     std::vector<Video> out;
@@ -192,7 +101,7 @@ std::vector<Video> tuning_videos(const Options& o, const Field& field, cv::Size 
     return out;
 }
 
-std::vector<Video> heldout_videos(const Options& o, const Field& field, cv::Size res) {
+std::vector<Video> heldout_videos(const PulseBenchmarkOptions& o, const Field& field, cv::Size res) {
     std::vector<Video> out;
     const cv::Size modules(field.width, field.height);
     for (const sim::HeldoutContent content : sim::kAllHeldoutContents) {
@@ -215,7 +124,7 @@ std::vector<Video> heldout_videos(const Options& o, const Field& field, cv::Size
     return out;
 }
 
-PulseSearchOptions pulse_options(const Options& o, double fps) {
+PulseSearchOptions pulse_options(const PulseBenchmarkOptions& o, double fps) {
     PulseSearchOptions p;
     if (o.max_motion_change) p.max_motion_change = *o.max_motion_change;
     if (o.max_follow_shape_change) p.max_follow_shape_change = *o.max_follow_shape_change;
@@ -270,14 +179,14 @@ private:
     int gap_ = 0;
 };
 
-TrackerOptions tracking(const Options& o) {
+TrackerOptions tracking(const PulseBenchmarkOptions& o) {
     TrackerOptions t;
     t.spread_search = o.frame_ms > 0;
     t.frame_ms = o.frame_ms;
     return t;
 }
 
-Tally run_tracker(const Detector& detector, const Options& o, const Video& v, const std::vector<Frame>& frames) {
+Tally run_tracker(const Detector& detector, const PulseBenchmarkOptions& o, const Video& v, const std::vector<Frame>& frames) {
     Tally t;
     Tracker tracker(detector, tracking(o));
     for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -299,7 +208,7 @@ double registration_error(const Eigen::Matrix3d& registered, const cv::Matx33d& 
     return std::hypot(t[0] / t[2] - r.x() / r.z(), t[1] / t[2] - r.y() / r.z());
 }
 
-Tally run_pulse(const Detector& detector, const Options& o, const Video& v, const std::vector<Frame>& frames,
+Tally run_pulse(const Detector& detector, const PulseBenchmarkOptions& o, const Video& v, const std::vector<Frame>& frames,
                 std::ostream* log) {
     Tally t;
     PulseTracker tracker(detector, tracking(o), pulse_options(o, v.fps));
@@ -340,7 +249,7 @@ std::string ms_cell(const Tally& t) {
     return buf;
 }
 
-void run(const Options& o) {
+void run(const PulseBenchmarkOptions& o) {
     const Field field = bench_field("b4-64x36.json");
     const Detector detector(field);
     std::optional<std::ofstream> log;
@@ -398,99 +307,12 @@ void run(const Options& o) {
     }
 }
 
-Options parse(int argc, char** argv) {
-    Options o;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const auto value = [&]() -> std::string {
-            if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
-            return argv[++i];
-        };
-        if (a == "--help") {
-            std::fputs(kUsage, stdout);
-            std::exit(0);
-        } else if (a == "--set") {
-            const std::string s = value();
-            if (s != "tuning" && s != "heldout") throw std::invalid_argument("--set: tuning or heldout, not " + s);
-            o.heldout = s == "heldout";
-        } else if (a == "--opacities") {
-            if (std::sscanf(value().c_str(), "%lf,%lf", &o.min_opacity, &o.max_opacity) != 2 || !(o.min_opacity >= 0) ||
-                !(o.max_opacity > o.min_opacity) || o.max_opacity > 1)
-                throw std::invalid_argument("--opacities: MIN,MAX with 0 <= MIN < MAX <= 1");
-        } else if (a == "--frames") {
-            o.frames = std::stoi(value());
-            if (o.frames < 1) throw std::invalid_argument("--frames: at least 1");
-        } else if (a == "--resolutions") {
-            o.resolutions = parse_resolutions(value());
-        } else if (a == "--frame-ms") {
-            o.frame_ms = std::stod(value());
-            if (!(o.frame_ms >= 0)) throw std::invalid_argument("--frame-ms: 0 or more");
-        } else if (a == "--not-announced") {
-            o.announced = false;
-        } else if (a == "--max-motion-change") {
-            o.max_motion_change = std::stod(value());
-        } else if (a == "--max-follow-shape-change") {
-            o.max_follow_shape_change = std::stod(value());
-        } else if (a == "--exposure-drift") {
-            o.exposure_drift = std::stod(value());
-            if (!(o.exposure_drift >= 0 && o.exposure_drift < 0.5)) throw std::invalid_argument("--exposure-drift: 0 to 0.5");
-        } else if (a == "--rolling-shutter") {
-            o.readout_s = std::stod(value());
-            if (!(o.readout_s >= 0 && o.readout_s < 1 / sim::kFps))
-                throw std::invalid_argument("--rolling-shutter: 0 to one frame's interval (0.04 s)");
-        } else if (a == "--swing-speed") {
-            o.swing_speed = std::stoi(value());
-            if (o.swing_speed < 1 || o.swing_speed > 8) throw std::invalid_argument("--swing-speed: 1 to 8");
-        } else if (a == "--noise") {
-            o.noise = std::stod(value());
-            if (!(*o.noise >= 0 && *o.noise <= 30)) throw std::invalid_argument("--noise: 0 to 30 grey levels");
-        } else if (a == "--jpeg-quality") {
-            o.jpeg_quality = std::stoi(value());
-            if (*o.jpeg_quality < 1 || *o.jpeg_quality > 100) throw std::invalid_argument("--jpeg-quality: 1 to 100");
-        } else if (a == "--gain") {
-            o.fit_gain = true;
-        } else if (a == "--carry-frames") {
-            o.carry_frames = std::stoi(value());
-            if (*o.carry_frames < 0) throw std::invalid_argument("--carry-frames: 0 or more");
-        } else if (a == "--max-share") {
-            o.max_share = std::stod(value());
-        } else if (a == "--affine-coarse") {
-            o.affine_coarse = true;
-        } else if (a == "--no-affine-retry") {
-            o.affine_retry = false;
-        } else if (a == "--no-detail-retry") {
-            o.detail_retry = false;
-        } else if (a == "--detail-carry-frames") {
-            o.detail_carry_frames = std::stoi(value());
-            if (*o.detail_carry_frames < 0) throw std::invalid_argument("--detail-carry-frames: 0 or more");
-        } else if (a == "--no-field-alone") {
-            o.field_alone = false;
-        } else if (a == "--no-follow") {
-            o.follow_carried = false;
-        } else if (a == "--no-levelling") {
-            o.level_exposure = false;
-        } else if (a == "--videos") {
-            std::stringstream list(value());
-            for (std::string name; std::getline(list, name, ',');) o.videos.push_back(name);
-        } else if (a == "--log") {
-            o.log = value();
-        } else if (a == "--seed") {
-            o.seed = std::stoull(value());
-        } else if (a == "--threads") {
-            o.threads = std::max(1, std::stoi(value()));
-        } else {
-            throw std::invalid_argument("unknown option " + a + " (--help lists them)");
-        }
-    }
-    return o;
-}
-
 }  // namespace
 }  // namespace umf::bench
 
 int main(int argc, char** argv) {
     try {
-        umf::bench::run(umf::bench::parse(argc, argv));
+        umf::bench::run(umf::bench::parse_pulse_options(argc, argv));
     } catch (const std::exception& e) {
         std::cerr << "umf_pulse_benchmark: " << e.what() << "\n";
         return 2;

@@ -1,0 +1,49 @@
+// umf_pulse_benchmark's command line: what it runs and with which of the
+// pulse search's options (shared/detect/pulse_search.hpp), parsed from its
+// arguments; --help prints the usage.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace umf::bench {
+
+struct PulseBenchmarkOptions {
+    bool heldout = false;
+    double min_opacity = 0.01, max_opacity = 0.04;
+    int frames = 150;
+    std::vector<cv::Size> resolutions{{640, 480}};
+    bool announced = true;
+    double frame_ms = 2;
+    std::optional<double> max_motion_change;
+    std::optional<double> max_follow_shape_change;
+    double exposure_drift = 0;
+    double readout_s = 0;
+    int swing_speed = 1;
+    std::optional<double> noise;
+    std::optional<int> jpeg_quality;
+    bool fit_gain = false;
+    bool level_exposure = true;
+    bool follow_carried = true;
+    std::optional<int> carry_frames;
+    bool affine_coarse = false;
+    bool affine_retry = true;
+    bool detail_retry = true;
+    std::optional<int> detail_carry_frames;
+    bool field_alone = true;
+    std::optional<double> max_share;
+    std::vector<std::string> videos;  // empty: all
+    std::string log;
+    std::uint64_t seed = 1;
+    int threads = 1;  // parse_pulse_options: all cores unless --threads
+};
+
+// Throws std::invalid_argument on a wrong option or value; --help prints
+// the usage and exits.
+PulseBenchmarkOptions parse_pulse_options(int argc, char** argv);
+
+}  // namespace umf::bench
