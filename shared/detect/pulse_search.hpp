@@ -62,16 +62,19 @@ struct PulseSearchOptions {
     // misaligned instead (27 frames right -> 3, and 24 wrong).
     bool affine_retry = true;
     // A frame still not registered is aligned again on the frames' detail
-    // (RegistrationOptions::detail). The frames so aligned are kept, but a
-    // place is carried through at most detail_carry_frames of them since it
-    // was last found or confirmed: on the held-out tiled board a lock
-    // carried 60 frames through them drifted 2.2 modules. Tried and left at
-    // 0: 3 gave the tuning set's dark code 31 frames and its photo 13
-    // (umf_pulse_benchmark --detail-carry-frames N), and the held-out tiled
-    // board 24 frames wrong, a place carried through one such registration
-    // drifting 0.02 module a frame for 40 frames unconfirmed.
+    // (RegistrationOptions::detail). The frames so aligned are kept, and a
+    // place is carried through them only while the view's centre has come
+    // at most detail_carry_modules over the field since the place was last
+    // found or confirmed: content the grey levels could not align (a tiled
+    // board's repeats, a glare) may be aligned a little off, frame after
+    // frame, and the error grows with the way come (on the held-out tiled
+    // board a place carried 40 frames through one such registration drifted
+    // 0.02 module a frame). 0: not carried through one at all. Chosen on
+    // the tuning set (umf_pulse_benchmark --detail-carry-modules X): 0 ->
+    // 2 took its dark code 78 -> 109 frames right and its photo 118 -> 131,
+    // none wrong; 1 gave 100 and 124, 5 the same as 2.
     bool detail_retry = true;
-    int detail_carry_frames = 0;
+    double detail_carry_modules = 2;
     // A search that found nothing is not tried again until this many more
     // frames are kept (one that found the field is tried on every frame).
     int search_every = 4;
@@ -180,6 +183,10 @@ private:
     std::vector<double> fit_shape(const PulseCourse& course) const;
     std::vector<GreyView> field_alone_images(PulseDemodulator& demodulator, bool fitted);
     void keep_found(const Detection& found);
+    Eigen::Vector2d view_centre() const;
+    // Whether the view's centre is within detail_carry_modules of where it
+    // was on the field when the place carried was found.
+    bool near_found() const;
 
     PulseSearchOptions options_;
     int width_ = 0, height_ = 0;
@@ -201,6 +208,7 @@ private:
     std::optional<Detection> found_;  // the last search's, carried to the newest frame
     int carried_for_ = 0;             // frames since it was found
     int on_detail_for_ = 0;           // of them registered on the frames' detail
+    std::optional<Point2> found_centre_field_;  // the view's centre on the field when it was found
     std::vector<std::uint8_t> alone_pixels_[2];  // field_alone_images', reused
     std::vector<std::vector<std::uint8_t>> warped_;  // the kept frames laid onto the newest, reused
 };

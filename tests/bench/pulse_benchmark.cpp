@@ -135,7 +135,7 @@ PulseSearchOptions pulse_options(const PulseBenchmarkOptions& o, double fps) {
     p.registration.affine_coarse = o.affine_coarse;
     p.affine_retry = o.affine_retry;
     p.detail_retry = o.detail_retry;
-    if (o.detail_carry_frames) p.detail_carry_frames = *o.detail_carry_frames;
+    if (o.detail_carry_modules) p.detail_carry_modules = *o.detail_carry_modules;
     p.field_alone = o.field_alone;
     if (o.max_share) p.registration.max_share = *o.max_share;
     if (!o.announced) return p;
@@ -275,8 +275,9 @@ void run(const PulseBenchmarkOptions& o) {
     if (o.affine_coarse) std::printf("Every registration's coarsest level an affine change.\n");
     if (!o.affine_retry) std::printf("No registration tried again with an affine coarsest level.\n");
     if (!o.detail_retry) std::printf("No registration tried again on the frames' detail.\n");
-    if (o.detail_carry_frames)
-        std::printf("A place carried through at most %d registrations on the frames' detail.\n", *o.detail_carry_frames);
+    if (o.detail_carry_modules)
+        std::printf("A place carried through registrations on the frames' detail while the view has come at most %g modules.\n",
+                    *o.detail_carry_modules);
     if (!o.field_alone) std::printf("The field alone not looked for.\n");
     for (const cv::Size res : o.resolutions) {
         std::cerr << "making " << res.width << " x " << res.height << " videos\n";

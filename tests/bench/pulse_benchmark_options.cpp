@@ -49,8 +49,8 @@ Usage: umf_pulse_benchmark [options]
                          (PulseSearchOptions::affine_retry off)
   --no-detail-retry      no registration tried again on the frames' detail
                          (PulseSearchOptions::detail_retry off)
-  --detail-carry-frames N
-                         PulseSearchOptions::detail_carry_frames (default: the library's)
+  --detail-carry-modules X
+                         PulseSearchOptions::detail_carry_modules (default: the library's)
   --no-field-alone       the field alone not looked for where the slope image fails
                          (PulseSearchOptions::field_alone off)
   --no-follow            a place carried not looked for where it is said to be before each search
@@ -139,9 +139,9 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
             o.affine_retry = false;
         } else if (a == "--no-detail-retry") {
             o.detail_retry = false;
-        } else if (a == "--detail-carry-frames") {
-            o.detail_carry_frames = std::stoi(value());
-            if (*o.detail_carry_frames < 0) throw std::invalid_argument("--detail-carry-frames: 0 or more");
+        } else if (a == "--detail-carry-modules") {
+            o.detail_carry_modules = std::stod(value());
+            if (!(*o.detail_carry_modules >= 0)) throw std::invalid_argument("--detail-carry-modules: 0 or more");
         } else if (a == "--no-field-alone") {
             o.field_alone = false;
         } else if (a == "--no-follow") {

@@ -33,7 +33,7 @@ struct PulseBenchmarkOptions {
     bool affine_coarse = false;
     bool affine_retry = true;
     bool detail_retry = true;
-    std::optional<int> detail_carry_frames;
+    std::optional<double> detail_carry_modules;
     bool field_alone = true;
     std::optional<double> max_share;
     std::vector<std::string> videos;  // empty: all

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -120,24 +121,40 @@ TEST(RegistrationScenes, ALampsGlareOverDarkCodeAlignedOnTheFramesDetail) {
 }
 
 // In a pulse search the same frames are kept together (the registration
-// aligned again on their detail), but a place found before them is not
-// carried through an alignment on the detail alone.
-TEST(RegistrationScenes, APulseSearchKeepsFramesAlignedOnTheirDetailButCarriesNoPlaceThrough) {
+// aligned again on their detail), and a place found before them is carried
+// through an alignment on the detail alone only while the view has come at
+// most PulseSearchOptions::detail_carry_modules since it was found.
+TEST(RegistrationScenes, APulseSearchKeepsFramesAlignedOnTheirDetailAndCarriesAPlaceOnlyANearWay) {
     const std::vector<cv::Mat> frames = swing_frames(sim::ScreenKind::code_dark, 14, 17);
-    PulseSearch search;
-    for (std::size_t i = 0; i + 1 < frames.size(); ++i) search.add(grey_view(frames[i]));
+    const Eigen::Vector2d centre(320, 240);
     Detection found;
     found.found = true;
-    found.aim_image = {320, 240};
+    found.aim_image = centre;
     found.aim_field = {30, 20};
     found.image_to_field << 0.1, 0, -2, 0, 0.1, -4, 0, 0, 1;
-    search.found_elsewhere(found);
-    ASSERT_TRUE(search.carried({320, 240}).has_value());
-    search.add(grey_view(frames.back()));
-    EXPECT_EQ(search.registration_losses(), 0);
-    EXPECT_EQ(search.frames(), 4);
-    EXPECT_TRUE(search.last_registration().on_detail);
-    EXPECT_FALSE(search.carried({320, 240}).has_value()) << "carried through an alignment on the detail";
+    // The way the view comes over the field through the last frame: read
+    // with no bound, then used to set one either side of it.
+    auto run = [&](double bound) {
+        PulseSearchOptions options;
+        options.detail_carry_modules = bound;
+        auto search = std::make_unique<PulseSearch>(options);
+        for (std::size_t i = 0; i + 1 < frames.size(); ++i) search->add(grey_view(frames[i]));
+        search->found_elsewhere(found);
+        EXPECT_TRUE(search->carried(centre).has_value());
+        search->add(grey_view(frames.back()));
+        EXPECT_EQ(search->registration_losses(), 0);
+        EXPECT_EQ(search->frames(), 4);
+        EXPECT_TRUE(search->last_registration().on_detail);
+        return search;
+    };
+    const auto unbounded = run(1e9);
+    ASSERT_TRUE(unbounded->carry(centre).has_value());
+    const double way = unbounded->carry(centre)->travel;
+    EXPECT_GT(way, 0.05) << "the view moved";
+    EXPECT_TRUE(run(way * 1.5)->carried(centre).has_value()) << "within the bound";
+    EXPECT_FALSE(run(way * 0.5)->carried(centre).has_value()) << "beyond it";
+    EXPECT_FALSE(run(0)->carried(centre).has_value()) << "0: carried through no alignment on the detail";
+    EXPECT_LE(way, PulseSearchOptions{}.detail_carry_modules) << "a frame's way is within the default";
 }
 
 }  // namespace registration_scenes
