@@ -142,8 +142,8 @@ void PulseSearch::add(const GreyView& frame, std::optional<double> time_s) {
             // Nor through one aligned on the frames' detail alone: content
             // the grey levels could not align (a tiled board's repeats, a
             // glare) may be aligned a little off, frame after frame.
-            on_detail_for_ += r.on_detail ? 1 : 0;
-            if (++carried_for_ > options_.carry_frames || !checked || (on_detail_for_ > 0 && !near_found()))
+            through_detail_ = through_detail_ || r.on_detail;
+            if (++carried_for_ > options_.carry_frames || !checked || (through_detail_ && !near_found()))
                 found_.reset();
         } else {
             // Frames that cannot be laid onto this one are of no use with it.
@@ -408,16 +408,14 @@ void PulseSearch::keep_found(const Detection& found) {
     found_ = found;
     found_->image_to_field = image_to_field_through_aim(found);
     carried_for_ = 0;
-    on_detail_for_ = 0;
-    found_centre_field_ = apply_homography(found_->image_to_field, view_centre());
+    through_detail_ = false;
 }
 
-Eigen::Vector2d PulseSearch::view_centre() const { return {width_ / 2.0, height_ / 2.0}; }
-
+// The aim the place was found at, where the carried map now puts it on the
+// field against where it was then: the page's aim stays at the frame's centre.
 bool PulseSearch::near_found() const {
-    const std::optional<Point2> at = apply_homography(found_->image_to_field, view_centre());
-    return options_.detail_carry_modules > 0 && at && found_centre_field_ &&
-           (*at - *found_centre_field_).norm() <= options_.detail_carry_modules;
+    const std::optional<Carry> c = carry(found_->aim_image);
+    return options_.detail_carry_modules > 0 && c && c->travel <= options_.detail_carry_modules;
 }
 
 std::optional<PulseSearch::Carry> PulseSearch::carry(const Eigen::Vector2d& aim) const {

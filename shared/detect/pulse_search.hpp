@@ -63,7 +63,7 @@ struct PulseSearchOptions {
     bool affine_retry = true;
     // A frame still not registered is aligned again on the frames' detail
     // (RegistrationOptions::detail). The frames so aligned are kept, and a
-    // place is carried through them only while the view's centre has come
+    // place is carried through them only while the aim it was found at has come
     // at most detail_carry_modules over the field since the place was last
     // found or confirmed: content the grey levels could not align (a tiled
     // board's repeats, a glare) may be aligned a little off, frame after
@@ -183,9 +183,8 @@ private:
     std::vector<double> fit_shape(const PulseCourse& course) const;
     std::vector<GreyView> field_alone_images(PulseDemodulator& demodulator, bool fitted);
     void keep_found(const Detection& found);
-    Eigen::Vector2d view_centre() const;
-    // Whether the view's centre is within detail_carry_modules of where it
-    // was on the field when the place carried was found.
+    // Whether the aim has come at most detail_carry_modules over the field
+    // since the place carried was found.
     bool near_found() const;
 
     PulseSearchOptions options_;
@@ -207,8 +206,7 @@ private:
     FrameRegistration last_registration_;
     std::optional<Detection> found_;  // the last search's, carried to the newest frame
     int carried_for_ = 0;             // frames since it was found
-    int on_detail_for_ = 0;           // of them registered on the frames' detail
-    std::optional<Point2> found_centre_field_;  // the view's centre on the field when it was found
+    bool through_detail_ = false;     // one of them registered on the frames' detail
     std::vector<std::uint8_t> alone_pixels_[2];  // field_alone_images', reused
     std::vector<std::vector<std::uint8_t>> warped_;  // the kept frames laid onto the newest, reused
 };
