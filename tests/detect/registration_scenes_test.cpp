@@ -13,6 +13,7 @@
 #include "shared/detect/frame_registration.hpp"
 #include "shared/detect/pulse_search.hpp"
 #include "tests/bench/scenario.hpp"
+#include "tests/detect/photo.hpp"
 #include "tests/sim/camera.hpp"
 #include "tests/sim/screen_content.hpp"
 
