@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "shared/detect/content_leakage.hpp"
+
 namespace umf {
 
 PulseDemodulator::PulseDemodulator(double forget) : forget_(std::clamp(forget, 0.0, 0.99)) {}
@@ -50,12 +52,19 @@ double PulseDemodulator::opacity_spread() const {
     return std::sqrt(std::max(0.0, sum_aa_ / weight_ - mean * mean));
 }
 
-GreyView PulseDemodulator::field_image(SlopeScale scale) {
-    // Least squares per pixel: slope = (W Σ aI - Σa ΣI) / (W Σa² - (Σa)²).
+// Least squares per pixel: slope = (W Σ aI - Σa ΣI) / (W Σa² - (Σa)²), the
+// two factors k and m of slope = k Σ aI - m Σ I; none before two opacities.
+std::optional<std::pair<double, double>> PulseDemodulator::slope_terms() const {
     const double det = weight_ * sum_aa_ - sum_a_ * sum_a_;
-    if (frames_ < 2 || !(det > 1e-12 * weight_ * weight_)) return {};
+    if (frames_ < 2 || !(det > 1e-12 * weight_ * weight_)) return std::nullopt;
+    return std::pair{weight_ / det, sum_a_ / det};
+}
+
+GreyView PulseDemodulator::field_image(SlopeScale scale) {
+    const auto terms = slope_terms();
+    if (!terms) return {};
     // The two products nearly cancel: their difference in double.
-    double k = weight_ / det / 2, m = sum_a_ / det / 2;
+    double k = terms->first / 2, m = terms->second / 2;
     if (scale == SlopeScale::spread) {
         double magnitude = 0;
         for (std::size_t i = 0; i < sum_i_.size(); ++i) magnitude += std::abs(k * sum_ai_[i] - m * sum_i_[i]);
@@ -69,6 +78,27 @@ GreyView PulseDemodulator::field_image(SlopeScale scale) {
         const double half_slope = k * sum_ai_[i] - m * sum_i_[i];
         image_[i] = static_cast<std::uint8_t>(std::clamp(127.5 + half_slope, 0.0, 255.0) + 0.5);  // rounded
     }
+    return {image_.data(), width_, height_, width_};
+}
+
+GreyView PulseDemodulator::content_free_field_image(int tile) {
+    const auto terms = slope_terms();
+    if (!terms) return {};
+    const auto [k, m] = *terms;
+    std::vector<float> slope(sum_i_.size()), mean(sum_i_.size());
+    for (std::size_t i = 0; i < slope.size(); ++i) {
+        slope[i] = static_cast<float>(k * sum_ai_[i] - m * sum_i_[i]);
+        mean[i] = static_cast<float>(sum_i_[i] / weight_);
+    }
+    remove_content_leakage(slope, mean, width_, height_, tile);
+    double magnitude = 0;
+    for (const float v : slope) magnitude += std::abs(v);
+    magnitude /= static_cast<double>(slope.size());
+    if (!(magnitude > 0)) return {};
+    const double scale = kSpreadLevels / magnitude;
+    image_.resize(slope.size());
+    for (std::size_t i = 0; i < image_.size(); ++i)
+        image_[i] = static_cast<std::uint8_t>(std::clamp(127.5 + scale * slope[i], 0.0, 255.0) + 0.5);
     return {image_.data(), width_, height_, width_};
 }
 

@@ -21,6 +21,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "shared/detect/image.hpp"
@@ -57,6 +59,12 @@ public:
     static constexpr double kSpreadLevels = 48;
     GreyView field_image(SlopeScale scale = SlopeScale::opacity);
 
+    // The slope as field_image gives it at SlopeScale::spread, with what
+    // the content leaks into it over a moving view taken out
+    // (content_leakage.hpp, tiles `tile` pixels a side). A view of the same
+    // buffer as field_image's.
+    GreyView content_free_field_image(int tile);
+
     // What each pixel would be at opacity 1, the field alone: each frame's
     // line I = C + a (F - C) followed out to a = 1, where the content C is
     // gone. The values given to add are taken for opacities scaled linearly
@@ -66,6 +74,8 @@ public:
     GreyView full_opacity_image(double opacity_at_zero, double opacity_at_one);
 
 private:
+    std::optional<std::pair<double, double>> slope_terms() const;
+
     double forget_;
     int width_ = 0, height_ = 0;
     // Weighted sums over the frames: of 1, a, a^2 (scalars), of I and a I

@@ -92,6 +92,18 @@ GreyView scaled(const GreyView& view, double gain, std::vector<std::uint8_t>& bu
     return {buffer.data(), view.width, view.height, view.width};
 }
 
+// `view`'s grey levels inverted (255 - v), into `buffer`: the demodulated
+// image of the course's other sign.
+GreyView inverted(const GreyView& view, std::vector<std::uint8_t>& buffer) {
+    buffer.resize(static_cast<std::size_t>(view.width) * static_cast<std::size_t>(view.height));
+    for (int y = 0; y < view.height; ++y) {
+        const std::uint8_t* src = view.row(y);
+        std::uint8_t* dst = buffer.data() + static_cast<std::size_t>(y) * view.width;
+        for (int x = 0; x < view.width; ++x) dst[x] = static_cast<std::uint8_t>(255 - src[x]);
+    }
+    return {buffer.data(), view.width, view.height, view.width};
+}
+
 }  // namespace
 
 PulseSearch::PulseSearch(PulseSearchOptions options) : options_(std::move(options)) {
@@ -301,6 +313,18 @@ std::vector<GreyView> PulseSearch::field_alone_images(PulseDemodulator& demodula
     return out;
 }
 
+// The slope with the content's leakage taken out, and its inverse: views
+// of content_free_pixels_, valid until the next search; empty views where
+// the demodulator has no slope.
+std::array<GreyView, 2> PulseSearch::content_free_images(PulseDemodulator& demodulator) {
+    const int tile = std::max(8, static_cast<int>(std::lround(options_.content_free_tile * width_)));
+    const GreyView free = demodulator.content_free_field_image(tile);
+    if (!free.data) return {};
+    content_free_pixels_[0].assign(free.data, free.data + static_cast<std::size_t>(free.width) * free.height);
+    const GreyView kept{content_free_pixels_[0].data(), free.width, free.height, free.width};
+    return {kept, inverted(kept, content_free_pixels_[1])};
+}
+
 PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vector2d& aim) {
     PulseSearchResult out;
     added_since_search_ = 0;
@@ -354,13 +378,11 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
     // field alone followed before the slope was searched placed one frame
     // of the tuning set's blank page wrong); where none holds the field,
     // the slope's search says why.
-    std::vector<std::uint8_t> inverse_pixels(field.data, field.data + static_cast<std::size_t>(field.width) * field.height);
-    for (auto& v : inverse_pixels) v = static_cast<std::uint8_t>(255 - v);
-    const GreyView inverse{inverse_pixels.data(), field.width, field.height, field.width};
-    const std::span<const SearchPlan> plans(options_.plans);
+    std::vector<std::uint8_t> inverse_pixels;
+    const GreyView inverse = inverted(field, inverse_pixels);
     bool followed = false;
-    auto look_in = [&](std::span<const GreyView> images) {
-        if (found_ && options_.follow_carried)
+    auto look_in = [&](std::span<const GreyView> images, std::span<const SearchPlan> plans, bool follow = true) {
+        if (follow && found_ && options_.follow_carried)
             for (const GreyView& image : images) {
                 out.detection = detector.follow(image, aim, found_->image_to_field);
                 if ((followed = out.detection.found)) return;
@@ -371,11 +393,19 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
             if (out.detection.found) return;
         }
     };
-    look_in(std::array{field, inverse});
+    look_in(std::array{field, inverse}, options_.plans);
     if (!out.detection.found) {
         const Detection slope_failure = out.detection;
         const std::vector<GreyView> alone = field_alone_images(demodulator, out.fitted);
-        if (!alone.empty()) look_in(alone);
+        if (!alone.empty()) look_in(alone, options_.plans);
+        if (!out.detection.found && options_.content_free_tile > 0) {
+            const std::array<GreyView, 2> content_free = content_free_images(demodulator);
+            // Searched, not followed: a carried place confirmed there, frame
+            // after frame, crept off on the tuning set's noisy web page (26
+            // frames wrong, up to 2 modules; umf_pulse_benchmark --noise 6
+            // --jpeg-quality 40).
+            if (content_free[0].data) look_in(content_free, options_.content_free_plans, false);
+        }
         if (!out.detection.found) out.detection = slope_failure;
     }
     last_found_ = out.detection.found;

@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -112,6 +113,15 @@ struct PulseSearchOptions {
     // first right frame came at 11, not 19, and 8 more right (umf_pulse_benchmark
     // --no-field-alone).
     bool field_alone = true;
+    // Where those hold no field, the slope with the content's leakage taken
+    // out (PulseDemodulator::content_free_field_image), in tiles of this
+    // share of the frame's width; 0 leaves it out. Over a moving view the
+    // content's edges stay in the slope (tests/detect/content_leakage_scenes_test.cpp).
+    double content_free_tile = 0.375;
+    // What the detector runs there: the demodulated image's plans and,
+    // first, the lattice at half size (search_plan.hpp's part 3), which
+    // reads the modules the content's edges left in a tile's corners.
+    std::vector<SearchPlan> content_free_plans = {spread_first(), search_part(3), search_part(2), search_part(5)};
     // What the detector runs on a demodulated image: the first scan of a
     // video's frame, then the scan three pixels across and the image
     // smoothed (search_plan.hpp's parts 2 and 5): the demodulated image's
@@ -182,6 +192,7 @@ private:
     };
     std::vector<double> fit_shape(const PulseCourse& course) const;
     std::vector<GreyView> field_alone_images(PulseDemodulator& demodulator, bool fitted);
+    std::array<GreyView, 2> content_free_images(PulseDemodulator& demodulator);
     void keep_found(const Detection& found);
     // Whether the aim has come at most detail_carry_modules over the field
     // since the place carried was found.
@@ -208,6 +219,7 @@ private:
     int carried_for_ = 0;             // frames since it was found
     bool through_detail_ = false;     // one of them registered on the frames' detail
     std::vector<std::uint8_t> alone_pixels_[2];  // field_alone_images', reused
+    std::vector<std::uint8_t> content_free_pixels_[2];  // the content-free slope and its inverse, reused
     std::vector<std::vector<std::uint8_t>> warped_;  // the kept frames laid onto the newest, reused
 };
 

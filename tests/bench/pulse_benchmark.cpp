@@ -137,6 +137,7 @@ PulseSearchOptions pulse_options(const PulseBenchmarkOptions& o, double fps) {
     p.detail_retry = o.detail_retry;
     if (o.detail_carry_modules) p.detail_carry_modules = *o.detail_carry_modules;
     p.field_alone = o.field_alone;
+    if (!o.content_free) p.content_free_tile = 0;
     if (o.max_share) p.registration.max_share = *o.max_share;
     if (!o.announced) return p;
     p.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, kPeriodS, o.min_opacity, o.max_opacity);
@@ -279,6 +280,7 @@ void run(const PulseBenchmarkOptions& o) {
         std::printf("A place carried through registrations on the frames' detail while the view has come at most %g modules.\n",
                     *o.detail_carry_modules);
     if (!o.field_alone) std::printf("The field alone not looked for.\n");
+    if (!o.content_free) std::printf("The slope without the content's leakage not looked in.\n");
     for (const cv::Size res : o.resolutions) {
         std::cerr << "making " << res.width << " x " << res.height << " videos\n";
         const std::vector<Video> videos = o.heldout ? heldout_videos(o, field, res) : tuning_videos(o, field, res);

@@ -53,6 +53,8 @@ Usage: umf_pulse_benchmark [options]
                          PulseSearchOptions::detail_carry_modules (default: the library's)
   --no-field-alone       the field alone not looked for where the slope image fails
                          (PulseSearchOptions::field_alone off)
+  --no-content-free      the slope with the content's leakage taken out not looked
+                         in where the others fail (PulseSearchOptions::content_free_tile 0)
   --no-follow            a place carried not looked for where it is said to be before each search
                          (PulseSearchOptions::follow_carried off)
   --videos a,b           only these videos (screen kinds, or held-out contents; the tuning set's spreadsheet
@@ -144,6 +146,8 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
             if (!(*o.detail_carry_modules >= 0)) throw std::invalid_argument("--detail-carry-modules: 0 or more");
         } else if (a == "--no-field-alone") {
             o.field_alone = false;
+        } else if (a == "--no-content-free") {
+            o.content_free = false;
         } else if (a == "--no-follow") {
             o.follow_carried = false;
         } else if (a == "--no-levelling") {

@@ -35,6 +35,7 @@ struct PulseBenchmarkOptions {
     bool detail_retry = true;
     std::optional<double> detail_carry_modules;
     bool field_alone = true;
+    bool content_free = true;
     std::optional<double> max_share;
     std::vector<std::string> videos;  // empty: all
     std::string log;
