@@ -117,35 +117,50 @@ function elementAtScreenPoint(screenX, screenY, zoom, maxText) {
     return s.length > max ? s.slice(0, max) : s;
   };
   const dpr = window.devicePixelRatio || 1;
-  let x;
-  let y;
+  // Viewport (CSS pixels) to screen pixels and back: the viewport's origin
+  // on the screen and the CSS pixel's size there.
+  let originX;
+  let originY;
+  let scale;
   if (typeof window.mozInnerScreenX === "number") {
     // Firefox: the viewport's origin on the screen, in CSS pixels.
-    x = screenX / dpr - window.mozInnerScreenX;
-    y = screenY / dpr - window.mozInnerScreenY;
+    originX = window.mozInnerScreenX * dpr;
+    originY = window.mozInnerScreenY * dpr;
+    scale = dpr;
   } else {
     // Chromium: window geometry in screen DIPs, the viewport in CSS pixels.
-    const scale = dpr / (zoom || 1);
+    const dip = dpr / (zoom || 1);
     const border = Math.max(0, (window.outerWidth - window.innerWidth * zoom) / 2);
     const top = Math.max(0, window.outerHeight - window.innerHeight * zoom - border);
-    x = (screenX / scale - window.screenX - border) / zoom;
-    y = (screenY / scale - window.screenY - top) / zoom;
+    originX = (window.screenX + border) * dip;
+    originY = (window.screenY + top) * dip;
+    scale = dip * zoom;
   }
+  const x = (screenX - originX) / scale;
+  const y = (screenY - originY) / scale;
+  // Where an element lies on the screen, so the provider may give this
+  // answer again to an aim inside it that the page answers too late.
+  const onScreen = (e) => {
+    const r = e.getBoundingClientRect();
+    return { screen_rect: [originX + r.left * scale, originY + r.top * scale, r.width * scale, r.height * scale] };
+  };
   const base = { x, y, page: location.href, title: clipText(document.title, 512) };
   if (x < 0 || y < 0 || x >= window.innerWidth || y >= window.innerHeight) return Object.assign(base, { kind: "outside" });
   const element = document.elementFromPoint(x, y);
   for (let e = element; e && e !== document.documentElement; e = e.parentElement) {
     const tag = e.tagName;
-    if (tag === "A" && e.href) return Object.assign(base, { kind: "link", url: String(e.href), text: clipText(e.innerText || e.title, maxText) });
-    if (tag === "IMG") return Object.assign(base, { kind: "image", url: e.currentSrc || e.src, text: clipText(e.alt, maxText) });
+    if (tag === "A" && e.href)
+      return Object.assign(base, onScreen(e), { kind: "link", url: String(e.href), text: clipText(e.innerText || e.title, maxText) });
+    if (tag === "IMG") return Object.assign(base, onScreen(e), { kind: "image", url: e.currentSrc || e.src, text: clipText(e.alt, maxText) });
     if (tag === "VIDEO" || tag === "AUDIO")
-      return Object.assign(base, { kind: tag === "VIDEO" ? "video" : "audio", url: e.currentSrc || e.src, time: e.currentTime || 0 });
+      return Object.assign(base, onScreen(e), { kind: tag === "VIDEO" ? "video" : "audio", url: e.currentSrc || e.src, time: e.currentTime || 0 });
   }
   // The passage under the point: its block's first and last words.
   let block = element;
   while (block && block !== document.body && getComputedStyle(block).display.startsWith("inline")) block = block.parentElement;
   const words = clipText(block ? block.innerText : "", 4000).split(" ").filter((w) => w);
-  return Object.assign(base, { kind: "text", start: words.slice(0, 5).join(" "), end: words.length > 10 ? words.slice(-5).join(" ") : "" });
+  return Object.assign(base, block ? onScreen(block) : {},
+                       { kind: "text", start: words.slice(0, 5).join(" "), end: words.length > 10 ? words.slice(-5).join(" ") : "" });
 }
 
 async function elementAt(question) {

@@ -32,7 +32,8 @@ bool is_browser_window(const WindowInfo& window) {
 
 BrowserResolver::BrowserResolver(std::shared_ptr<const Desktop> desktop, WindowFilter filter,
                                  std::shared_ptr<BrowserLink> link, std::ostream* hints, BrowserResolverOptions options)
-    : desktop_(std::move(desktop)), filter_(std::move(filter)), link_(std::move(link)), hints_(hints), options_(options) {
+    : desktop_(std::move(desktop)), filter_(std::move(filter)), link_(std::move(link)), hints_(hints), options_(options),
+      memory_(options.aim_memory) {
     if (!desktop_ || !link_) throw std::invalid_argument("BrowserResolver: no desktop or no browser link");
 }
 
@@ -97,7 +98,8 @@ std::optional<Resolved> BrowserResolver::resolve(const ScreenPoint& point, Purpo
     // screen point into a place in the page either: the page, never a wrong link.
     if (match->window.bounds.empty()) return content_of_element(nlohmann::json(), tab);
     // What lies at the point, from the page; the page itself when it does
-    // not answer in time (an aim waits little: it only wants a title).
+    // not answer in time (an aim waits little: it only wants a title, and
+    // takes the last answer where that still covers the point).
     const nlohmann::json question{{"type", "element_at"},
                                   {"window", match->window.id},
                                   {"tab", tab.id},
@@ -106,7 +108,13 @@ std::optional<Resolved> BrowserResolver::resolve(const ScreenPoint& point, Purpo
     const auto answer = link_->ask(match->connection, question,
                                    purpose == Purpose::grab ? options_.grab_timeout : options_.aim_timeout);
     const auto element = answer ? answer->find("element") : nlohmann::json::const_iterator();
-    const nlohmann::json found = answer && element != answer->end() ? *element : nlohmann::json();
+    nlohmann::json found = answer && element != answer->end() ? *element : nlohmann::json();
+    if (answer) {
+        memory_.remember(*match, found);
+    } else if (purpose == Purpose::preview) {
+        // Late: what the page said a moment ago of the element still under the point.
+        if (auto kept = memory_.recall(*match, point.root_x, point.root_y)) found = std::move(*kept);
+    }
     Resolved resolved = content_of_element(found, tab);
     if (purpose == Purpose::grab && found.is_object() && found.value("kind", "") == "image" &&
         resolved.title.rfind("Image: ", 0) == 0)

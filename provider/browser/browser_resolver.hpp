@@ -12,6 +12,7 @@
 #include <ostream>
 
 #include "provider/browser/browser_link.hpp"
+#include "provider/browser/element_memory.hpp"
 #include "provider/content/resolver.hpp"
 #include "provider/desktop/desktop.hpp"
 
@@ -24,6 +25,9 @@ struct BrowserResolverOptions {
     // How long the page may take to say what is at the point.
     std::chrono::milliseconds grab_timeout{1000};
     std::chrono::milliseconds aim_timeout{40};
+    // How long an aim that the page answers late may be given the element
+    // the page last said covers the point (element_memory.hpp).
+    std::chrono::milliseconds aim_memory{3000};
     std::chrono::milliseconds open_timeout{3000};
     // An image's bytes, fetched by the browser with the page's cookies; a
     // larger one, or one not fetched in time, is given as its URL.
@@ -55,6 +59,7 @@ private:
     std::ostream* hints_;
     BrowserResolverOptions options_;
     mutable std::atomic<bool> hinted_{false};
+    mutable ElementMemory memory_;
 };
 
 }  // namespace umf::provider

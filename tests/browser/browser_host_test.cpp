@@ -8,6 +8,7 @@
 
 #include <atomic>
 #include <cstring>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -181,63 +182,149 @@ TEST_F(BrowserHost, TakesNoSocketFromAFolderOthersMayEnter) {
     EXPECT_TRUE(wait_until([&] { return !link.browsers().empty(); }, 10s)) << log();
 }
 
-// A browser that reports no bounds (as on Wayland) cannot place the point in
-// its page: the page is given, and the page is not even asked. The browser
-// here is the test speaking the host's protocol on the link; the window is an
-// xterm titled as the browser's would be.
-TEST_F(BrowserHost, AWindowWithoutBoundsGivesItsPageNotAGuess) {
-    for (const char* program : {"Xvfb", "xterm"})
-        if (!find_program(program)) GTEST_SKIP() << program << " is not installed";
-    auto server = start_xvfb(dir.path / "xvfb.log", "800x600x24");
-    const auto env = environment_with({{"DISPLAY", server.display}});
-    auto desktop = std::make_shared<const X11Desktop>(server.display);
-    Process::Options o = logged_in(dir.path, env, "xterm.log");
-    Process xterm({"xterm", "-T", "Fake page - Chromium", "-geometry", "80x24+10+10", "-e", "sleep", "60"}, o);
-    std::optional<WindowInfo> window;
-    ASSERT_TRUE(wait_until([&] { return (window = desktop->window_at(100, 100, {})).has_value() && window->pid > 0; }, 20s));
-    auto link = std::make_shared<BrowserLink>();
-    link->listen(runtime / "umf" / "browser-47995.sock");
-    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
-    const sockaddr_un addr = unix_address(link->path());
-    ASSERT_EQ(::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
-    const std::string lines =
-        json{{"type", "hello"}, {"browser", "chromium"}, {"pid", window->pid}}.dump() + "\n" +
-        json{{"type", "windows"},
-             {"windows", {{{"id", 1}, {"tab", {{"id", 2}, {"url", "https://example.org/page"}, {"title", "Fake page"}}}}}}}
-            .dump() +
-        "\n";
-    ASSERT_EQ(::write(fd, lines.data(), lines.size()), static_cast<ssize_t>(lines.size()));
-    ASSERT_TRUE(wait_until([&] { return !link->browsers().empty() && !link->browsers()[0].windows.empty(); }, 10s));
-    // Were the page asked, it would answer with a link.
-    std::atomic<int> asked{0};
-    std::thread browser([&] {
-        std::string got;
-        char c;
-        while (::read(fd, &c, 1) == 1) {
-            if (c != '\n') {
-                got += c;
-                continue;
+// A browser on the link, played by the test: it speaks the host's protocol
+// for an xterm titled as a browser's window would be, on a throwaway X
+// server, and answers the provider's questions with `answer` (nullopt: it
+// stays silent).
+class FakeBrowser {
+    XServer server_;  // first made, last gone: the desktop's connection needs it
+
+public:
+    using Answer = std::function<std::optional<json>(const json& question)>;
+
+    FakeBrowser(const TempDir& dir, const fs::path& socket, const json& windows, Answer answer)
+        : server_(start_xvfb(dir.path / "xvfb.log", "800x600x24")) {
+        const auto env = environment_with({{"DISPLAY", server_.display}});
+        desktop = std::make_shared<const X11Desktop>(server_.display);
+        xterm_ = std::make_unique<Process>(
+            std::vector<std::string>{"xterm", "-T", "Fake page - Chromium", "-geometry", "80x24+10+10", "-e", "sleep",
+                                     "60"},
+            logged_in(dir.path, env, "xterm.log"));
+        if (!wait_until([&] { return (window = desktop->window_at(100, 100, {})).has_value() && window->pid > 0; }, 20s))
+            throw std::runtime_error("the xterm showed no window");
+        link = std::make_shared<BrowserLink>();
+        link->listen(socket);
+        fd_ = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+        const sockaddr_un addr = unix_address(link->path());
+        if (::connect(fd_, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0)
+            throw std::runtime_error("cannot connect to the link");
+        json report = windows;
+        if (report.is_null()) report = json::array({window_report(window->rect)});
+        write_line({{"type", "hello"}, {"browser", "chromium"}, {"pid", window->pid}});
+        write_line({{"type", "windows"}, {"windows", report}});
+        if (!wait_until([&] { return !link->browsers().empty() && !link->browsers()[0].windows.empty(); }, 10s))
+            throw std::runtime_error("the link never listed the window");
+        reader_ = std::thread([this, answer = std::move(answer)] {
+            std::string got;
+            char c;
+            while (::read(fd_, &c, 1) == 1) {
+                if (c != '\n') {
+                    got += c;
+                    continue;
+                }
+                const json q = json::parse(got);
+                got.clear();
+                ++asked;
+                if (auto a = answer(q)) {
+                    (*a)["type"] = "answer";
+                    (*a)["req"] = q["req"];
+                    write_line(*a);
+                }
             }
-            const json q = json::parse(got);
-            got.clear();
-            ++asked;
-            const std::string answer = json{{"type", "answer"}, {"req", q["req"]},
-                                            {"element", {{"kind", "link"}, {"url", "https://example.org/wrong"}}}}
-                                           .dump() +
-                                       "\n";
-            [[maybe_unused]] auto n = ::write(fd, answer.data(), answer.size());
-        }
+        });
+    }
+    ~FakeBrowser() {
+        ::shutdown(fd_, SHUT_RDWR);
+        if (reader_.joinable()) reader_.join();
+        ::close(fd_);
+    }
+
+    // The page's window as the extension reports it: the xterm's bounds.
+    static json window_report(const WindowRect& r) {
+        return {{"id", 1},
+                {"left", r.x},
+                {"top", r.y},
+                {"width", r.width},
+                {"height", r.height},
+                {"tab", {{"id", 2}, {"url", "https://example.org/page"}, {"title", "Fake page"}}}};
+    }
+
+    std::shared_ptr<const X11Desktop> desktop;
+    std::optional<WindowInfo> window;
+    std::shared_ptr<BrowserLink> link;
+    std::atomic<int> asked{0};
+
+private:
+    void write_line(const json& message) {
+        const std::string line = message.dump() + "\n";
+        [[maybe_unused]] auto n = ::write(fd_, line.data(), line.size());
+    }
+
+    std::unique_ptr<Process> xterm_;
+    int fd_ = -1;
+    std::thread reader_;
+};
+
+bool lacks_fake_browser_programs(std::string* missing) {
+    for (const char* program : {"Xvfb", "xterm"})
+        if (!find_program(program)) return *missing = program, true;
+    return false;
+}
+
+// A browser that reports no bounds (as on Wayland) cannot place the point in
+// its page: the page is given, and the page is not even asked.
+TEST_F(BrowserHost, AWindowWithoutBoundsGivesItsPageNotAGuess) {
+    std::string missing;
+    if (lacks_fake_browser_programs(&missing)) GTEST_SKIP() << missing << " is not installed";
+    const json unbounded = json::array(
+        {{{"id", 1}, {"tab", {{"id", 2}, {"url", "https://example.org/page"}, {"title", "Fake page"}}}}});
+    // Were the page asked, it would answer with a link.
+    FakeBrowser browser(dir, runtime / "umf" / "browser-47995.sock", unbounded, [](const json&) -> std::optional<json> {
+        return json{{"element", {{"kind", "link"}, {"url", "https://example.org/wrong"}}}};
     });
-    const BrowserResolver resolver(desktop, {}, link);
+    const BrowserResolver resolver(browser.desktop, {}, browser.link);
     const auto resolved = resolver.resolve(ScreenPoint{0, 100, 100, 100, 100}, Purpose::grab);
     ASSERT_TRUE(resolved);
     EXPECT_EQ(resolved->url, "https://example.org/page");
     EXPECT_EQ(resolved->title, "Page: Fake page");
-    EXPECT_EQ(asked.load(), 0) << resolved->url << " " << resolved->title;
-    ::shutdown(fd, SHUT_RDWR);
-    browser.join();
-    ::close(fd);
-    desktop.reset();
+    EXPECT_EQ(browser.asked.load(), 0) << resolved->url << " " << resolved->title;
+}
+
+// A busy page that answers an aim too late: inside the link it last named,
+// the aim keeps the link (the phone's title does not flick to the page);
+// outside it, or for a grab, the page is what is known.
+TEST_F(BrowserHost, ALateAnswerKeepsTheLinkStillUnderTheAim) {
+    std::string missing;
+    if (lacks_fake_browser_programs(&missing)) GTEST_SKIP() << missing << " is not installed";
+    // Only the first question is answered: a link covering x 80..200, y 90..130.
+    auto questions = std::make_shared<std::atomic<int>>(0);
+    FakeBrowser browser(dir, runtime / "umf" / "browser-47994.sock", nullptr,
+                        [questions](const json& q) -> std::optional<json> {
+        if ((*questions)++ > 0 || q.value("type", "") != "element_at") return std::nullopt;
+        return json{{"element",
+                     {{"kind", "link"},
+                      {"url", "https://example.org/notes"},
+                      {"text", "Release notes"},
+                      {"screen_rect", {80, 90, 120, 40}}}}};
+    });
+    BrowserResolverOptions options;
+    options.aim_timeout = 500ms;  // long enough for the first answer on a loaded machine
+    options.grab_timeout = 500ms;
+    const BrowserResolver resolver(browser.desktop, {}, browser.link, nullptr, options);
+    const auto at = [](double x, double y) { return ScreenPoint{0, x, y, x, y}; };
+    const auto first = resolver.resolve(at(100, 100), Purpose::preview);
+    ASSERT_TRUE(first);
+    EXPECT_EQ(first->url, "https://example.org/notes");
+    const auto late = resolver.resolve(at(150, 120), Purpose::preview);
+    ASSERT_TRUE(late);
+    EXPECT_EQ(late->url, "https://example.org/notes") << late->title;
+    const auto outside = resolver.resolve(at(100, 200), Purpose::preview);
+    ASSERT_TRUE(outside);
+    EXPECT_EQ(outside->title, "Page: Fake page");
+    const auto grab = resolver.resolve(at(100, 100), Purpose::grab);
+    ASSERT_TRUE(grab);
+    EXPECT_EQ(grab->title, "Page: Fake page") << "a grab takes only what the page says now";
+    EXPECT_EQ(browser.asked.load(), 4);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // aims at a page's link, image, video and passage, a URL put as a tab there,
 // hostile pages, a private window, and no companion at all.
 #ifdef UMF_PROVIDER_TESTS
+#include "provider/browser/element_memory.hpp"
 #include "tests/browser/browser_bench.hpp"
 
 namespace umf::provider::browser_test {
@@ -43,6 +44,23 @@ TEST_P(BrowserCompanion, GrabsAndAimsTakeTheLinkImageVideoAndPassageUnderThePoin
             EXPECT_EQ(resolved->url, c.url) << c.what << (purpose == Purpose::grab ? " grab" : " aim");
         }
     }
+    // The page says where the link lies on the screen, so that a late aim
+    // inside it keeps it (element_memory.hpp).
+    const ScreenPoint centre = point_on(window, kLink);
+    const BrowserWindow shown = *reported(page);
+    const auto answer = link->ask(link->browsers().at(0).connection,
+                                  {{"type", "element_at"}, {"window", shown.id}, {"tab", shown.tab.id},
+                                   {"screen_x", centre.root_x}, {"screen_y", centre.root_y}},
+                                  5s);
+    ASSERT_TRUE(answer);
+    const auto rect = element_screen_rect(answer->value("element", nlohmann::json()));
+    ASSERT_TRUE(rect) << answer->dump();
+    EXPECT_NEAR(rect->x, window.rect.x + kLink.left, 4) << answer->dump();
+    EXPECT_TRUE(rect->contains(centre.root_x, centre.root_y)) << answer->dump();
+    // Firefox's viewport ends a few pixels above its window's bottom edge.
+    EXPECT_NEAR(rect->y, window.rect.y + window.rect.height - kLink.bottom - kLink.height, 8) << answer->dump();
+    EXPECT_NEAR(rect->width, kLink.width, 4) << answer->dump();
+    EXPECT_NEAR(rect->height, kLink.height, 4) << answer->dump();
     // Off the page (the browser's toolbar): the page itself.
     const auto toolbar = resolver->resolve(ScreenPoint{0, window.rect.x + 300.0, window.rect.y + 10.0,
                                                        window.rect.x + 300.0, window.rect.y + 10.0},

@@ -45,12 +45,18 @@ try {
     new MutationObserver(() => window.umfSawTitle(title.textContent)).observe(title, { childList: true, subtree: true,
                                                                                        characterData: true });
   });
-  await page.waitForFunction(() => document.body.dataset.state === 'locked' &&
-                                    document.getElementById('target-title').textContent.startsWith('Link: '),
-                             null, { timeout: 45000 });
-  await page.waitForTimeout(300);  // the ring settled on the last aim
-  await page.screenshot({ path: path.join(args.out, 'phone-browser-link.jpg'), type: 'jpeg', quality: 80 });
-  const title = await page.textContent('#target-title');
+  // The picture is taken when the lock has named the link for 300 ms (the
+  // ring settled on the last aim); a title that changed in between is
+  // waited for again, a few times at most.
+  let title = '';
+  for (let attempt = 0; attempt < 3 && !title.startsWith('Link: '); ++attempt) {
+    await page.waitForFunction(() => document.body.dataset.state === 'locked' &&
+                                      document.getElementById('target-title').textContent.startsWith('Link: '),
+                               null, { timeout: 45000 });
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: path.join(args.out, 'phone-browser-link.jpg'), type: 'jpeg', quality: 80 });
+    title = await page.textContent('#target-title');
+  }
   await page.click('#grab');
   await page.waitForSelector('#result[data-kind="url"]', { timeout: 20000 });
   const url = await page.getAttribute('#result', 'data-url');
