@@ -12,22 +12,28 @@ namespace {
 
 std::size_t at(int x, int y, int width) { return static_cast<std::size_t>(y) * width + x; }
 
-// The Laplacian (4-neighbour) and the central gradients of a plane.
+// The Laplacian (4-neighbour) of a plane, and its central gradients where asked.
 struct Derivatives {
     std::vector<float> dx, dy, laplacian;
 };
 
-Derivatives derivatives(const std::vector<float>& p, int width, int height) {
-    Derivatives d{std::vector<float>(p.size()), std::vector<float>(p.size()), std::vector<float>(p.size())};
+Derivatives derivatives(const std::vector<float>& p, int width, int height, bool gradients) {
+    Derivatives d;
+    d.laplacian.resize(p.size());
+    if (gradients) {
+        d.dx.resize(p.size());
+        d.dy.resize(p.size());
+    }
     for (int y = 0; y < height; ++y) {
         const int up = std::max(0, y - 1), down = std::min(height - 1, y + 1);
         for (int x = 0; x < width; ++x) {
             const int left = std::max(0, x - 1), right = std::min(width - 1, x + 1);
             const float c = p[at(x, y, width)], l = p[at(left, y, width)], r = p[at(right, y, width)];
             const float u = p[at(x, up, width)], w = p[at(x, down, width)];
+            d.laplacian[at(x, y, width)] = l + r + u + w - 4 * c;
+            if (!gradients) continue;
             d.dx[at(x, y, width)] = (r - l) / 2;
             d.dy[at(x, y, width)] = (w - u) / 2;
-            d.laplacian[at(x, y, width)] = l + r + u + w - 4 * c;
         }
     }
     return d;
@@ -70,8 +76,9 @@ void remove_content_leakage(std::vector<float>& slope, const std::vector<float>&
     if (tile < 8) throw std::invalid_argument("content leakage: a tile must be at least 8 pixels a side");
     // The content changed a little: its level, a shift (the gradients), a
     // blur at the pixel's scale and one at a few pixels' (the Laplacians).
-    const Derivatives fine = derivatives(gaussian_blurred(mean, width, height, 0.7), width, height);
-    const std::vector<float> coarse = derivatives(gaussian_blurred(mean, width, height, 2.0), width, height).laplacian;
+    const Derivatives fine = derivatives(gaussian_blurred(mean, width, height, 0.7), width, height, true);
+    const std::vector<float> coarse =
+        derivatives(gaussian_blurred(mean, width, height, 2.0), width, height, false).laplacian;
     const std::array<const std::vector<float>*, 5> basis = {&mean, &fine.dx, &fine.dy, &fine.laplacian, &coarse};
     constexpr int k = static_cast<int>(basis.size()) + 1;  // and a constant
     using Row = Eigen::Matrix<double, k, 1>;
