@@ -22,6 +22,7 @@ Usage: umf_pulse_benchmark [options]
   --opacities MIN,MAX    the pulse's opacities (default 0.01,0.04), sine, every 1.5 s
   --frames N             frames per video (default 150)
   --resolutions WxH,...  (default 640x480)
+  --kept-frames N        the frames the pulse search keeps and demodulates together (default 24)
   --not-announced        the pulse search is not told the pulse's period, waveform and opacities
   --frame-ms MS          the tracker's search held to MS a frame, as the page holds it (TrackerOptions::frame_ms
                          with its spread search; default 2); 0: every search on every frame without a lock
@@ -106,6 +107,8 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
         } else if (a == "--frame-ms") {
             o.frame_ms = std::stod(value());
             if (!(o.frame_ms >= 0)) throw std::invalid_argument("--frame-ms: 0 or more");
+        } else if (a == "--kept-frames") {
+            o.kept_frames = std::stoi(value());
         } else if (a == "--not-announced") {
             o.announced = false;
         } else if (a == "--max-motion-change") {

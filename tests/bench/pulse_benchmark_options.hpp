@@ -37,6 +37,7 @@ struct PulseBenchmarkOptions {
     bool field_alone = true;
     bool content_free = true;
     std::optional<double> max_share;
+    std::optional<int> kept_frames;  // PulseSearchOptions::frames
     std::vector<std::string> videos;  // empty: all
     std::string log;
     std::uint64_t seed = 1;
