@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "shared/detect/pulse_search.hpp"
 #include "tests/bench/methods.hpp"
 #include "tests/sim/sequence.hpp"
 
@@ -109,6 +110,11 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
             if (!(o.frame_ms >= 0)) throw std::invalid_argument("--frame-ms: 0 or more");
         } else if (a == "--kept-frames") {
             o.kept_frames = std::stoi(value());
+            // Fewer than the search waits for, it would never search: the
+            // table would show the tracker alone under the pulse search's name.
+            if (*o.kept_frames < PulseSearchOptions{}.min_frames)
+                throw std::invalid_argument("--kept-frames: at least " +
+                                            std::to_string(PulseSearchOptions{}.min_frames));
         } else if (a == "--not-announced") {
             o.announced = false;
         } else if (a == "--max-motion-change") {
