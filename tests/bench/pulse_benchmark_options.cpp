@@ -39,6 +39,9 @@ Usage: umf_pulse_benchmark [options]
   --swing-speed K        the tuning set's hand swinging K times as fast (an integer; default 1)
   --noise S              the tuning set's sensor noise, S grey levels (default: 2 to 3 a frame)
   --jpeg-quality Q       the tuning set's frames encoded at JPEG quality Q (default 80)
+  --plain-optics         the tuning set's frames without the smear, the screen's stripes and the lamp that
+                         some frames have at random (each frame's defocus still its own, 0.5 to 1.5 px)
+  --steady-optics        as --plain-optics, and every frame defocused by the same 1 px
   --gain                 the frames registered with the exposure's gain as well as a grey-level offset
                          (RegistrationOptions::fit_gain)
   --no-levelling         the frames laid onto the newest not levelled to its exposure before demodulating
@@ -159,6 +162,10 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
             o.content_free = false;
         } else if (a == "--no-follow") {
             o.follow_carried = false;
+        } else if (a == "--plain-optics") {
+            o.plain_optics = true;
+        } else if (a == "--steady-optics") {
+            o.steady_optics = true;
         } else if (a == "--no-levelling") {
             o.level_exposure = false;
         } else if (a == "--videos") {
