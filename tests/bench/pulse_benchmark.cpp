@@ -73,7 +73,7 @@ std::vector<Video> tuning_videos(const PulseBenchmarkOptions& o, const Field& fi
         }
         rs.resize(static_cast<std::size_t>(o.frames));
         for (FrameRecipe& r : rs) {
-            if (o.steady_optics || o.plain_optics) {
+            if (o.optics != PulseBenchmarkOptions::Optics::drawn) {
                 // No smear, stripes or lamp on any frame; the defocus each
                 // frame's own (plain), or the same 1 pixel on every frame
                 // (steady): whether what changes from frame to frame in
@@ -81,7 +81,7 @@ std::vector<Video> tuning_videos(const PulseBenchmarkOptions& o, const Field& fi
                 r.degradation.motion_blur_px = 0;
                 r.degradation.subpixels = false;
                 r.degradation.glare = 0;
-                if (o.steady_optics) r.degradation.defocus_sigma_px = 1.0;
+                if (o.optics == PulseBenchmarkOptions::Optics::steady) r.degradation.defocus_sigma_px = 1.0;
             }
             r.degradation.exposure *= exposure_drift(r.index, o.exposure_drift, o.seed * 31 + static_cast<std::uint64_t>(kind));
             if (o.noise) r.degradation.noise_sigma = *o.noise;
@@ -281,10 +281,10 @@ void run(const PulseBenchmarkOptions& o) {
     if (o.jpeg_quality && !o.heldout) std::printf("JPEG quality %d.\n", *o.jpeg_quality);
     if (o.fit_gain) std::printf("Registered with the exposure's gain as well as an offset.\n");
     if (!o.level_exposure) std::printf("Not levelled to one exposure before demodulating.\n");
-    if (o.steady_optics)
-        std::printf("Steady optics: no smear, stripes or lamp, every frame defocused by 1 px (tuning set).\n");
-    else if (o.plain_optics)
-        std::printf("Plain optics: no smear, stripes or lamp, each frame's own defocus (tuning set).\n");
+    if (o.optics == PulseBenchmarkOptions::Optics::steady && !o.heldout)
+        std::printf("Steady optics: no smear, stripes or lamp, every frame defocused by 1 px.\n");
+    else if (o.optics == PulseBenchmarkOptions::Optics::plain && !o.heldout)
+        std::printf("Plain optics: no smear, stripes or lamp, each frame's own defocus.\n");
     if (!o.follow_carried) std::printf("A place carried not followed before a search.\n");
     if (o.carry_frames) std::printf("A place carried at most %d frames.\n", *o.carry_frames);
     if (o.max_share) std::printf("Registered at up to %.3g of the unaligned residual.\n", *o.max_share);

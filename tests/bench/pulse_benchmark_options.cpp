@@ -163,9 +163,9 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
         } else if (a == "--no-follow") {
             o.follow_carried = false;
         } else if (a == "--plain-optics") {
-            o.plain_optics = true;
+            o.optics = PulseBenchmarkOptions::Optics::plain;
         } else if (a == "--steady-optics") {
-            o.steady_optics = true;
+            o.optics = PulseBenchmarkOptions::Optics::steady;
         } else if (a == "--no-levelling") {
             o.level_exposure = false;
         } else if (a == "--videos") {

@@ -28,10 +28,11 @@ struct PulseBenchmarkOptions {
     std::optional<int> jpeg_quality;
     bool fit_gain = false;
     bool level_exposure = true;
-    // Tuning set: no smear, stripes or lamp on any frame (plain), and the
-    // defocus the same on every frame too (steady).
-    bool steady_optics = false;
-    bool plain_optics = false;
+    // The tuning set's optics: each frame's own draw; no smear, stripes or
+    // lamp on any frame (plain); and the defocus the same on every frame
+    // too (steady).
+    enum class Optics { drawn, plain, steady };
+    Optics optics = Optics::drawn;
     bool follow_carried = true;
     std::optional<int> carry_frames;
     bool affine_coarse = false;
