@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "shared/detect/field_shift.hpp"
 #include "shared/detect/homography.hpp"
 #include "shared/detect/pulse_course.hpp"
 #include "shared/detect/pulse_demodulator.hpp"
@@ -408,6 +409,11 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         }
         if (!out.detection.found) out.detection = slope_failure;
     }
+    if (out.detection.found && !holds_in_newest(out.detection, detector.field())) {
+        out.detection.found = false;
+        out.detection.failure = "the newest frame's field lies elsewhere";
+        followed = false;
+    }
     last_found_ = out.detection.found;
     if (followed) {
         // The follow's place at the aim is kept; where its map's shape
@@ -422,6 +428,16 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         keep_found(out.detection);
     }
     return out;
+}
+
+bool PulseSearch::holds_in_newest(const Detection& place, const Field& field) const {
+    if (!options_.check_newest || kept_.empty()) return true;
+    const FieldShift f = field_shift(kept_.back().pyramid.level(0), field, place.image_to_field);
+    const bool elsewhere = f.measured && f.best_t >= options_.elsewhere_t &&
+                           f.best_t >= options_.elsewhere_over_content * f.content_t &&
+                           f.place_t < options_.place_share * f.best_t &&
+                           f.shift.norm() >= options_.elsewhere_modules * f.module_px;
+    return !elsewhere;
 }
 
 void PulseSearch::found_elsewhere(const Detection& found) {

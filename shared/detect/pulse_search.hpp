@@ -82,11 +82,14 @@ struct PulseSearchOptions {
     // Once found, the field is carried from frame to frame through their
     // registration (the screen moves in the view as its content does), for
     // at most this many frames without a search that finds it again (or
-    // confirms it: follow_carried). On the tuning set's pulsing videos a
-    // place carried 60 frames was off by at most 0.16 module, and 25 lost
-    // 71 frames right that 60 and 100 keep (umf_pulse_benchmark
-    // --carry-frames N).
-    int carry_frames = 60;
+    // confirms it: follow_carried). Each registration is a little off, and
+    // the errors add up: on the tuning set's videos on a second seed
+    // (umf_pulse_benchmark --seed 2 --log), places carried 18-32 frames
+    // were 0.5-0.8 module off in 25 frames and within half a module in 5;
+    // on the first seed and with either optics option, no place carried
+    // more than 17 frames was right or wrong (60 was chosen when fewer
+    // places were confirmed by a follow).
+    int carry_frames = 17;
     // A place carried is looked for where it is said to be in each
     // demodulated image (Detector::follow) before the image is searched.
     bool follow_carried = true;
@@ -130,6 +133,24 @@ struct PulseSearchOptions {
     // the content's contrast, or not there at all; the other fallbacks would
     // cost an image without it some 50 ms each time.
     std::vector<SearchPlan> plans = {spread_first(), search_part(2), search_part(5)};
+    // Each place the search gives (found, followed or carried) checked in
+    // the newest frame alone (field_shift.hpp): the demodulated image shows
+    // the field where the older frames, laid onto the newest, put it, and
+    // a registration a pixel or two off puts it there, not where the newest
+    // frame's own field is. Refused where that frame's field lies clearly
+    // elsewhere: the best shift at least elsewhere_modules away, its
+    // evidence at least elsewhere_t and elsewhere_over_content times what
+    // the content alone gives (FieldShift::content_t), and the place's under
+    // place_share of it. Chosen on the tuning set's videos on two seeds and
+    // with both optics options (umf_pulse_benchmark --no-newest-check
+    // --log): of the 19 frames placed wrong by a place carried at most 17
+    // frames, 12 refused, and one right frame (0.43 module off) refused; a
+    // best shift's evidence of 20-26 came from a photo's content alone.
+    bool check_newest = true;
+    double elsewhere_modules = 0.4;
+    double elsewhere_t = 30;
+    double elsewhere_over_content = 3;
+    double place_share = 0.7;
 };
 
 struct PulseSearchResult {
@@ -172,6 +193,9 @@ public:
     // set); empty when nothing has been found, a frame since could not be
     // registered, or it was found more than carry_frames frames ago.
     std::optional<Detection> carried(const Eigen::Vector2d& aim) const;
+    // Whether the newest frame's own field does not lie clearly elsewhere
+    // than `place` puts it (PulseSearchOptions::check_newest).
+    bool holds_in_newest(const Detection& place, const Field& field) const;
     // A place found in the newest frame some other way (a tracker's lock on
     // it alone): carried from here on in place of the last search's, which
     // has been carried further.

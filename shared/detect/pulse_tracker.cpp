@@ -36,7 +36,10 @@ PulseTrackResult PulseTracker::update(const GreyView& frame, const Eigen::Vector
             out.share = r.share;
             if (r.detection.found) found = std::move(r.detection);
         }
-        if (!found) found = pulse_.carried(aim);
+        if (!found) {
+            found = pulse_.carried(aim);
+            if (found && !pulse_.holds_in_newest(*found, detector_->field())) found.reset();
+        }
         if (found) {
             out.demodulated = true;
             out.track.state = TrackState::locked;

@@ -15,6 +15,9 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <Eigen/Dense>
+
+#include "shared/detect/field_shift.hpp"
 #include "shared/detect/pulse_tracker.hpp"
 #include "shared/overlay/pulse_shape.hpp"
 #include "tests/bench/heldout_run.hpp"
@@ -141,6 +144,7 @@ PulseSearchOptions pulse_options(const PulseBenchmarkOptions& o, double fps) {
     p.registration.fit_gain = o.fit_gain;
     p.level_exposure = o.level_exposure;
     p.follow_carried = o.follow_carried;
+    p.check_newest = o.check_newest;
     if (o.carry_frames) p.carry_frames = *o.carry_frames;
     p.registration.affine_coarse = o.affine_coarse;
     p.affine_retry = o.affine_retry;
@@ -220,6 +224,27 @@ double registration_error(const Eigen::Matrix3d& registered, const cv::Matx33d& 
     return std::hypot(t[0] / t[2] - r.x() / r.z(), t[1] / t[2] - r.y() / r.z());
 }
 
+// A pulse place checked in its frame alone (field_shift.hpp), as the log
+// writes it: the shift the frame's own field shows (pixels), its evidence
+// there, at the place and from the content alone, the module's size
+// (pixels), and the place's true error at the aim (pixels,
+// through the map's local derivative), which the shift should match.
+void log_field_shift(std::ostream& log, const Detector& detector, const Frame& frame, const Detection& place,
+                     const sim::FieldPlacement& placement, const Eigen::Vector2d& aim) {
+    const FieldShift fs = field_shift(grey_view(frame), detector.field(), place.image_to_field);
+    const Eigen::Matrix3d& m = place.image_to_field;
+    auto uv = [&](double x, double y) { return (m * Eigen::Vector3d(x, y, 1)).hnormalized().eval(); };
+    Eigen::Matrix2d jac;
+    jac.col(0) = uv(aim.x() + 1, aim.y()) - uv(aim.x(), aim.y());
+    jac.col(1) = uv(aim.x(), aim.y() + 1) - uv(aim.x(), aim.y());
+    // The frame's centre in the simulator's pixels is half a pixel on from the detector's aim.
+    const cv::Point2d truth = sim::screen_to_field(placement, frame.centre_screen_px);
+    const Eigen::Vector2d off =
+        jac.inverse() * (uv(aim.x(), aim.y()) - Eigen::Vector2d(truth.x, truth.y)) - Eigen::Vector2d(0.5, 0.5);
+    log << fs.shift.x() << "\t" << fs.shift.y() << "\t" << fs.best_t << "\t" << fs.place_t << "\t" << fs.content_t
+        << "\t" << fs.module_px << "\t" << off.x() << "\t" << off.y();
+}
+
 Tally run_pulse(const Detector& detector, const PulseBenchmarkOptions& o, const Video& v, const std::vector<Frame>& frames,
                 std::ostream* log) {
     Tally t;
@@ -242,6 +267,9 @@ Tally run_pulse(const Detector& detector, const PulseBenchmarkOptions& o, const 
             *log << "\t";
             const Eigen::Vector2d aim(frames[i].grey.cols / 2.0, frames[i].grey.rows / 2.0);
             if (const auto c = tracker.pulse().carry(aim)) *log << c->frames << "\t" << c->travel;
+            *log << "\t";
+            if (r.track.state == TrackState::locked && r.demodulated && frames[i].centre_on_screen)
+                log_field_shift(*log, detector, frames[i], r.track.detection, v.placement, aim);
             *log << "\n";
         }
     }

@@ -62,6 +62,8 @@ Usage: umf_pulse_benchmark [options]
                          in where the others fail (PulseSearchOptions::content_free_tile 0)
   --no-follow            a place carried not looked for where it is said to be before each search
                          (PulseSearchOptions::follow_carried off)
+  --no-newest-check      a place the pulse search gives not checked in the newest frame alone
+                         (PulseSearchOptions::check_newest off)
   --videos a,b           only these videos (screen kinds, or held-out contents; the tuning set's spreadsheet
                          only when named)
   --log FILE             one line per frame of the pulse search's videos: video, frame, state, where the
@@ -70,7 +72,10 @@ Usage: umf_pulse_benchmark [options]
                          unmoved, overlap, whether aligned on the frames' detail, and (tuning set) how far the
                          registration put the frame's centre from the true motion's, pixels; then the place
                          carried: frames since it was found or confirmed, and the modules the aim has come over
-                         the field since
+                         the field since; and where the pulse search gave the place, its check in the frame
+                         alone (field_shift.hpp): the shift the frame's own field shows (x, y pixels), the
+                         evidence there, at the place and from the content alone (FieldShift), the module's
+                         size in pixels, and the place's true error at the aim (x, y pixels)
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --help                 this text
@@ -162,6 +167,8 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
             o.content_free = false;
         } else if (a == "--no-follow") {
             o.follow_carried = false;
+        } else if (a == "--no-newest-check") {
+            o.check_newest = false;
         } else if (a == "--plain-optics") {
             o.optics = PulseBenchmarkOptions::Optics::plain;
         } else if (a == "--steady-optics") {

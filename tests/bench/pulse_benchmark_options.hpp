@@ -34,6 +34,7 @@ struct PulseBenchmarkOptions {
     enum class Optics { drawn, plain, steady };
     Optics optics = Optics::drawn;
     bool follow_carried = true;
+    bool check_newest = true;
     std::optional<int> carry_frames;
     bool affine_coarse = false;
     bool affine_retry = true;
