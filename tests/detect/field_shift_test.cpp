@@ -46,7 +46,7 @@ TEST_P(FieldShiftOnBusyScreens, FindsHowFarAPlaceIsOffInOneFaintFrame) {
     EXPECT_LT(right.shift.norm(), 1.0) << right.shift.transpose();
     EXPECT_GT(right.place_t, 20);
     EXPECT_GT(right.place_t, 0.8 * right.best_t);
-    for (const Eigen::Vector2d off : {Eigen::Vector2d(4, -3), Eigen::Vector2d(-2, 5), Eigen::Vector2d(5, 0)}) {
+    for (const Eigen::Vector2d& off : {Eigen::Vector2d(4, -3), Eigen::Vector2d(-2, 5), Eigen::Vector2d(5, 0)}) {
         const FieldShift s = field_shift(p.view(), f, shifted(truth, off));
         ASSERT_TRUE(s.measured);
         EXPECT_LT((s.shift - off).norm(), 1.0) << "off " << off.transpose() << ", measured " << s.shift.transpose();
