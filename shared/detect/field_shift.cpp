@@ -3,7 +3,10 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <vector>
+
+#include "shared/detect/homography.hpp"
 
 namespace umf {
 
@@ -107,11 +110,8 @@ double shifted_t(const std::vector<DrawnEdge>& edges, const ClippedGradients& g,
 
 // A module's side (pixels) at an image point under the map.
 double module_px_at(const Eigen::Matrix3d& image_to_field, const Eigen::Vector2d& at) {
-    auto uv = [&](double x, double y) { return (image_to_field * Eigen::Vector3d(x, y, 1)).hnormalized().eval(); };
-    Eigen::Matrix2d jac;
-    jac.col(0) = uv(at.x() + 1, at.y()) - uv(at.x(), at.y());
-    jac.col(1) = uv(at.x(), at.y() + 1) - uv(at.x(), at.y());
-    const double det = std::abs(jac.determinant());
+    const std::optional<Eigen::Matrix2d> d = homography_derivative(image_to_field, at);
+    const double det = d ? std::abs(d->determinant()) : 0;
     return det > 0 && std::isfinite(det) ? 1 / std::sqrt(det) : 0;
 }
 

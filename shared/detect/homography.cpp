@@ -107,6 +107,14 @@ std::optional<Point2> apply_homography(const Eigen::Matrix3d& h, const Point2& p
     return Point2(q.x() / q.z(), q.y() / q.z());
 }
 
+std::optional<Eigen::Matrix2d> homography_derivative(const Eigen::Matrix3d& h, const Point2& at) {
+    const Eigen::Vector3d q = h * Eigen::Vector3d(at.x(), at.y(), 1.0);
+    if (std::abs(q.z()) < 1e-12) return std::nullopt;
+    // d(q.xy / q.z) = (H_xy - (q.xy / q.z) H_z) / q.z, column by column.
+    const Eigen::Vector2d p = q.head<2>() / q.z();
+    return ((h.topLeftCorner<2, 2>() - p * h.block<1, 2>(2, 0)) / q.z()).eval();
+}
+
 double shape_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, const Point2& at, double reach) {
     const auto pa = apply_homography(a, at), pb = apply_homography(b, at);
     if (!pa || !pb) return std::numeric_limits<double>::infinity();

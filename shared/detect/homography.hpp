@@ -32,6 +32,10 @@ std::optional<Eigen::Matrix3d> fit_homography_to_lines(const std::vector<Point2>
 // Nothing when the point maps to infinity.
 std::optional<Point2> apply_homography(const Eigen::Matrix3d& h, const Point2& p);
 
+// The map's derivative at a point (column j: how the image of `at` moves per
+// unit along coordinate j there); nothing when the point maps to infinity.
+std::optional<Eigen::Matrix2d> homography_derivative(const Eigen::Matrix3d& h, const Point2& at);
+
 // How far apart two maps put the points of a square ring `reach` around `at`
 // (its corners and edge middles) once both are moved to agree at `at`: how
 // much their shapes differ there, in the maps' units (infinity where either

@@ -18,6 +18,7 @@
 #include <Eigen/Dense>
 
 #include "shared/detect/field_shift.hpp"
+#include "shared/detect/homography.hpp"
 #include "shared/detect/pulse_tracker.hpp"
 #include "shared/overlay/pulse_shape.hpp"
 #include "tests/bench/heldout_run.hpp"
@@ -232,15 +233,12 @@ double registration_error(const Eigen::Matrix3d& registered, const cv::Matx33d& 
 void log_field_shift(std::ostream& log, const Detector& detector, const Frame& frame, const Detection& place,
                      const sim::FieldPlacement& placement, const Eigen::Vector2d& aim) {
     const FieldShift fs = field_shift(grey_view(frame), detector.field(), place.image_to_field);
-    const Eigen::Matrix3d& m = place.image_to_field;
-    auto uv = [&](double x, double y) { return (m * Eigen::Vector3d(x, y, 1)).hnormalized().eval(); };
-    Eigen::Matrix2d jac;
-    jac.col(0) = uv(aim.x() + 1, aim.y()) - uv(aim.x(), aim.y());
-    jac.col(1) = uv(aim.x(), aim.y() + 1) - uv(aim.x(), aim.y());
+    const std::optional<Eigen::Matrix2d> d = homography_derivative(place.image_to_field, aim);
+    const std::optional<Point2> at = apply_homography(place.image_to_field, aim);
+    if (!d || !at || std::abs(d->determinant()) < 1e-12) return;
     // The frame's centre in the simulator's pixels is half a pixel on from the detector's aim.
     const cv::Point2d truth = sim::screen_to_field(placement, frame.centre_screen_px);
-    const Eigen::Vector2d off =
-        jac.inverse() * (uv(aim.x(), aim.y()) - Eigen::Vector2d(truth.x, truth.y)) - Eigen::Vector2d(0.5, 0.5);
+    const Eigen::Vector2d off = d->inverse() * (*at - Eigen::Vector2d(truth.x, truth.y)) - Eigen::Vector2d(0.5, 0.5);
     log << fs.shift.x() << "\t" << fs.shift.y() << "\t" << fs.best_t << "\t" << fs.place_t << "\t" << fs.content_t
         << "\t" << fs.module_px << "\t" << off.x() << "\t" << off.y();
 }

@@ -55,6 +55,23 @@ TEST(Homography, RecoversAnExactMapping) {
     EXPECT_LT((*apply_homography(*h4, from[12]) - to[12]).norm(), 1e-6);
 }
 
+TEST(Homography, DerivativeIsHowThePointMovesThere) {
+    const Eigen::Matrix3d h = some_perspective();
+    const Point2 at(300, 200);
+    const auto d = homography_derivative(h, at);
+    ASSERT_TRUE(d.has_value());
+    constexpr double kStep = 1e-4;
+    for (int j = 0; j < 2; ++j) {
+        const Point2 along = at + kStep * Point2::Unit(j);
+        const Eigen::Vector2d numeric = (*apply_homography(h, along) - *apply_homography(h, at)) / kStep;
+        EXPECT_LT((d->col(j) - numeric).norm(), 1e-4 * numeric.norm()) << "column " << j;
+    }
+    // A point on the horizon goes to infinity.
+    Eigen::Matrix3d flat = Eigen::Matrix3d::Identity();
+    flat(2, 0) = -1;
+    EXPECT_FALSE(homography_derivative(flat, Point2(1, 5)).has_value());
+}
+
 TEST(Homography, RefusesTooFewOrDegeneratePoints) {
     std::vector<Point2> three{{0, 0}, {1, 0}, {0, 1}};
     EXPECT_FALSE(fit_homography(three, three));
