@@ -71,7 +71,7 @@ std::vector<DrawnEdge> drawn_edges(const DrawnField& drawn, int colors, int marg
         level[static_cast<std::size_t>(c)] = static_cast<float>(c) * scale - 0.5f;
     // Only between two pixels on the field: its border is not an edge of its own.
     auto change = [&](std::int8_t from, std::int8_t to) {
-        if (from < 0 || to < 0 || from == to) return 0.0f;
+        if (from < 0 || to < 0) return 0.0f;
         return level[static_cast<std::size_t>(to)] - level[static_cast<std::size_t>(from)];
     };
     std::vector<DrawnEdge> edges;
@@ -95,13 +95,13 @@ std::vector<DrawnEdge> drawn_edges(const DrawnField& drawn, int colors, int marg
 // Both of a pixel side by side, so that a shift's sum reads each edge
 // pixel's pair at once; whole grey levels, and the clip is whole too.
 struct ClippedGradients {
-    int width = 0, height = 0;
+    int width = 0;
     std::vector<std::array<std::int16_t, 2>> d;  // x, y
 };
 
 ClippedGradients clipped_gradients(const GreyView& frame, float clip_medians) {
     const int w = frame.width, h = frame.height;
-    ClippedGradients g{w, h, std::vector<std::array<std::int16_t, 2>>(static_cast<std::size_t>(w) * h, {0, 0})};
+    ClippedGradients g{w, std::vector<std::array<std::int16_t, 2>>(static_cast<std::size_t>(w) * h, {0, 0})};
     std::vector<int> sample;
     for (int y = 1; y + 1 < h; y += 3)
         for (int x = 1; x + 1 < w; x += 3) sample.push_back(std::abs(frame.at(x + 1, y) - frame.at(x - 1, y)));
