@@ -334,6 +334,19 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     if (pass.plan.near_aim_first && (scans & kFirstScan) && steps.empty()) {
         const char* failure = search_near_aim(im, aim, prior, vanishing, pass, out);
         if (!failure || failure == kAimAtInfinity || pass.plan.near_aim_alone) return failure;
+        const int half_min = options_.whole_frame_half_min_side;
+        if (pass.plan.whole_frame_halved && half_min > 0 && std::min(im.width, im.height) / 2 >= half_min) {
+            // The half-size frame's own first scan, its part around the aim
+            // searched already; a lattice there leaves the frame's own size's
+            // to a later part.
+            const SearchPlan plan = pass.plan;
+            const bool lattice_searched = pass.lattice_searched;
+            pass.plan.near_aim_first = false;
+            failure = search_resized(im, 0.5, Eigen::Vector2d::Zero(), aim, prior, pass, out, kFirstScan, 0);
+            pass.plan = plan;
+            pass.lattice_searched = lattice_searched;
+            return failure;
+        }
     }
     if (pass.out_of_time()) return not_searched;
     const EdgelScan* scan = &scan_step([&] { return find_edgels(im, edgel_options); });

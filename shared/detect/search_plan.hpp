@@ -65,6 +65,9 @@ struct SearchPlan {
     // With near_aim_first: the first scan on that part alone, not on the
     // whole frame (a frame whose time a held search gives to the round).
     bool near_aim_alone = false;
+    // With near_aim_first: the first scan of the whole frame at half size
+    // where the frame is large (DetectorOptions::whole_frame_half_min_side).
+    bool whole_frame_halved = false;
 };
 
 // A search held to a time limit (a tracker's spread search with
@@ -239,6 +242,7 @@ constexpr SearchPlan spread_first() {
     p.second_pass = false;
     p.lattice_first_if_small = true;
     p.near_aim_first = true;
+    p.whole_frame_halved = true;
     return p;
 }
 

@@ -2,7 +2,8 @@
 // frame around the aim, half its width and height, searched on its own
 // before the whole frame. Where the field fills the middle of the view it is
 // found there, at the same place, for a fraction of the pixels; where the
-// middle holds too little of it, the whole frame's search still finds it.
+// middle holds too little of it, the whole frame's search still finds it,
+// in a tracker's first scan at half size where the frame is large.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "shared/detect/detector.hpp"
+#include "shared/detect/search_plan.hpp"
 #include "shared/detect/tracker.hpp"
 #include "tests/detect/photo.hpp"
 
@@ -20,6 +22,12 @@ using namespace umf;
 DetectorOptions never_near_aim() {
     DetectorOptions o;
     o.near_aim_part = 0;
+    return o;
+}
+
+DetectorOptions never_halved() {
+    DetectorOptions o;
+    o.whole_frame_half_min_side = 0;
     return o;
 }
 
@@ -61,6 +69,24 @@ TEST_F(NearAim, ANearScreensLargeModulesAreLeftToTheWholeFrame) {
     EXPECT_FALSE(near.from_near_aim);
     EXPECT_LT((near.aim_field - whole.aim_field).norm(), 1e-9) << "the whole frame's own search";
     EXPECT_GT(near.pixels_visited, whole.pixels_visited) << "the middle was scanned first";
+}
+
+TEST_F(NearAim, ALargeFramesWholeFrameIsSearchedAtHalfSizeInATrackersFirstScan) {
+    const Detector own_size(field_, never_halved());
+    for (const cv::Size resolution : {cv::Size(1280, 720), cv::Size(640, 480)}) {
+        const test::Photo near_screen =
+            test::photograph_field(field_, 0.3, 10, 5, 20, 90, sim::ScreenKind::document, resolution);
+        const Eigen::Vector2d aim(resolution.width / 2.0, resolution.height / 2.0);
+        const Detection d = detector_.detect(near_screen.view(), aim, nullptr, spread_first());
+        const Detection own = own_size.detect(near_screen.view(), aim, nullptr, spread_first());
+        ASSERT_TRUE(d.found) << resolution << " " << d.failure;
+        ASSERT_TRUE(own.found) << resolution << " " << own.failure;
+        EXPECT_FALSE(d.from_near_aim) << resolution;
+        EXPECT_EQ(own.size_scale, 1) << resolution;
+        EXPECT_LT((d.aim_field - own.aim_field).norm(), 0.1) << resolution << ", modules";
+        // 720 rows keep 360 at half size, 480 would keep only 240.
+        EXPECT_EQ(d.size_scale, resolution.height == 720 ? 0.5 : 1) << resolution;
+    }
 }
 
 TEST_F(NearAim, ATrackersFirstLockComesFromTheMiddle) {

@@ -1,4 +1,4 @@
-// A simulated 640 x 480 phone photo of a 1920 x 1080 screen showing a field
+// A simulated phone photo (640 x 480 unless asked) of a 1920 x 1080 screen showing a field
 // at 30 px modules from the top-left corner, for the detector's tests.
 #pragma once
 
@@ -37,11 +37,12 @@ struct PhotoCase {
 
 // opacity 0 shows the screen without the field.
 inline Photo photograph_field(const Field& shown, double opacity, double pitch, double yaw, double roll,
-                              double distance, sim::ScreenKind kind = sim::ScreenKind::blank) {
+                              double distance, sim::ScreenKind kind = sim::ScreenKind::blank,
+                              cv::Size resolution = {640, 480}) {
     Photo p;
     cv::Mat screen = sim::make_screen(kind, {1920, 1080}, 5);
     cv::Mat mixed = opacity > 0 ? sim::mix_field(screen, shown, p.placement, opacity) : screen;
-    p.camera.resolution = {640, 480};
+    p.camera.resolution = resolution;
     p.pose.distance_mm = distance;
     p.pose.pitch_deg = pitch;
     p.pose.yaw_deg = yaw;
