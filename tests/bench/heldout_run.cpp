@@ -78,7 +78,7 @@ public:
             const double module = placements_.back().module_px;
             methods_.push_back(std::make_unique<Methods>(field_, s.geometry.pixels, placements_.back(),
                                                          static_cast<int>(std::lround(module)), kHeldoutRadiusModules,
-                                                         opt.tracking));
+                                                         opt.tracking, opt.detecting));
         }
         const int n = static_cast<int>(heldout_screens().size() * sim::kAllHeldoutContents.size());
         screens_.resize(static_cast<std::size_t>(n));
@@ -203,6 +203,7 @@ private:
                                   {"realtime_slowdown", opt_.realtime},
                                   {"frame_share", opt_.frame_share},
                                   {"hold_first_scan", opt_.tracking.hold_first_scan},
+                                  {"whole_frame_half_min_side", opt_.detecting.whole_frame_half_min_side},
                               {"first_scan_times", opt_.tracking.first_scan_times}};
     }
 

@@ -33,6 +33,7 @@ struct HeldoutOptions {
     std::string shown_field;               // on the screen, when another than `field`
     std::string command;
     TrackerOptions tracking;  // the trackers' (umf video)
+    DetectorOptions detecting;  // the detector's (umf and umf video)
     double realtime = 0;      // umf video's device slowdown in real time (frame_clock.hpp); 0: offline
     double frame_share = 0;   // in real time, the share of a frame's time the spread search fits in (0: its budget)
     // Effects of the second camera model left out of every frame, to see

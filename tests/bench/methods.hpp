@@ -99,12 +99,13 @@ public:
     // The field at `placement` on a screen of `screen` pixels, the ArUco
     // board with cells of `board_cell_px`; a located point counts as right
     // within `radius_modules` of the truth.
-    // `tracking`: the trackers' options (umf video).
+    // `tracking`: the trackers' options (umf video); `detecting`: the
+    // detector's (umf and umf video).
     Methods(const Field& field, cv::Size screen, sim::FieldPlacement placement, int board_cell_px, double radius_modules,
-            TrackerOptions tracking = {})
+            TrackerOptions tracking = {}, DetectorOptions detecting = {})
         : placement_(placement),
           radius_(radius_modules),
-          detector_(field),
+          detector_(field, detecting),
           tracking_(tracking),
           aruco_(screen, board_cell_px) {}
 

@@ -84,6 +84,8 @@ Usage: umf_benchmark [options]
                          around the aim (TrackerOptions::hold_first_scan)
   --first-scan-times X   --hold-first-scan, its time X times the spread search's (TrackerOptions::
                          first_scan_times; default 2, the device's whole time between two frames)
+  --whole-frame-half-min-side N  a tracker's first scan of the whole frame at half size where that keeps
+                         N rows (DetectorOptions::whole_frame_half_min_side; default 360; 0: never)
   --realtime SLOWDOWN    "umf video" in real time on a device SLOWDOWN times slower than this machine: the
                          frames arrive at the video's rate (25 a second; held-out 30) and one that arrives
                          while the tracker is still on an earlier frame is dropped, counted as not found
@@ -122,6 +124,7 @@ struct Options {
     double realtime = 0;      // umf video's device slowdown in real time (frame_clock.hpp); 0: offline
     double frame_share = 0;   // in real time, the share of a frame's time the spread search fits in (0: its budget)
     TrackerOptions tracking;
+    DetectorOptions detecting;
 };
 
 std::vector<std::string> split(const std::string& list) {
@@ -225,6 +228,8 @@ Options parse(int argc, char** argv) {
             o.tracking.first_scan_times = non_negative_number(value(), a);
             if (!(o.tracking.first_scan_times > 0)) throw std::invalid_argument("--first-scan-times must be > 0");
             o.tracking.hold_first_scan = true;
+        } else if (a == "--whole-frame-half-min-side") {
+            o.detecting.whole_frame_half_min_side = positive_int(value(), a, 0);
         } else if (a == "--realtime") {
             o.realtime = non_negative_number(value(), a);
         } else if (a == "--field") {
@@ -385,6 +390,7 @@ nlohmann::json settings_json(const Options& opt, const Scene& scene, const Metho
                               {"realtime_slowdown", opt.realtime},
                               {"frame_share", opt.frame_share},
                               {"hold_first_scan", opt.tracking.hold_first_scan},
+                              {"whole_frame_half_min_side", opt.detecting.whole_frame_half_min_side},
                               {"first_scan_times", opt.tracking.first_scan_times}};
     return s;
 }
@@ -396,7 +402,7 @@ public:
         : opt_(opt), field_(bench_field(opt.field)),
           shown_(opt.shown_field.empty() ? field_ : bench_field(opt.shown_field)),
           methods_(field_, scene_.screen.pixels, sim::FieldPlacement{{0, 0}, scene_.module_px}, 30, opt.radius,
-                   opt.tracking) {
+                   opt.tracking, opt.detecting) {
         report_.success_radius_modules = opt.radius;
         report_.command = command;
         report_.started = now_text();
@@ -570,6 +576,7 @@ int run_heldout_set(const Options& opt, const std::string& command) {
     h.command = command;
     h.without = opt.without;
     h.tracking = opt.tracking;
+    h.detecting = opt.detecting;
     h.realtime = opt.realtime;
     h.frame_share = opt.frame_share;
     return run_heldout(h);
