@@ -328,10 +328,12 @@ private:
                                 const VanishingOptions& vanishing, Pass& pass, Detection& out) const;
     // search over a scan's field-like edgels alone, then, when that fails,
     // over all of them, then over those not on thin lines
-    // (field_edgels.hpp; SearchPlan::edgel_sets names those searched).
+    // (field_edgels.hpp; SearchPlan::edgel_sets names those searched). The
+    // sets in `searched_sets` (searched before in this pass) are counted as
+    // steps and not searched again; those searched are added to it.
     const char* search_edgel_sets(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                   const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
-                                  Detection& out) const;
+                                  Detection& out, unsigned& searched_sets) const;
     // Steps 2 to 8 on one scan's edgels; the failure, or null when found.
     const char* search(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                        const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,

@@ -162,6 +162,7 @@ Detection Detector::detect_plans(const GreyView& im, const Eigen::Vector2d& aim,
         pass.first_pair = pass.end_pair;
         pass.end_pair = std::numeric_limits<int>::max();
         pass.search = 0;
+        pass.cache.forget_searched_sets();
         const char* again = search_plans(im, aim, prior, plans, pass, out);
         if (!again || again == kAimAtInfinity) failure = again;
     }
@@ -314,13 +315,17 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     // the ones after it, not searched.
     const char* const not_searched = "no grid homography";
     if (pass.nothing_left() || scans == 0) return not_searched;
-    auto searched = [&](unsigned scan_bit, const EdgelScan& scan) {
-        return (scans & scan_bit) ? search_edgel_sets(im, aim, prior, vanishing, scan, pass, out) : not_searched;
-    };
     // Each step's whole scan, made once in this call: a later part, or the
     // second pass, starts from where an earlier one left off.
     std::deque<EdgelScan>& steps = pass.cache.scans(im);
     std::size_t step = 0;
+    auto searched = [&](unsigned scan_bit, const EdgelScan& scan) {
+        if (!(scans & scan_bit)) return not_searched;
+        unsigned sets = pass.cache.searched_sets(im, step - 1);
+        const char* failure = search_edgel_sets(im, aim, prior, vanishing, scan, pass, out, sets);
+        pass.cache.searched_sets(im, step - 1) = sets;
+        return failure;
+    };
     auto scan_step = [&](const auto& make) -> const EdgelScan& {
         if (step >= steps.size()) {
             auto t = StageClock::now();
@@ -409,8 +414,9 @@ const char* Detector::search_near_aim(const GreyView& im, const Eigen::Vector2d&
     out.times.edgels_ms += ms_since(t);
     out.pixels_visited += near.pixels_visited;
     const Resizing in_part(1, around->origin, prior);
-    const char* failure =
-        search_edgel_sets(around->view, in_part.resized(aim), in_part.resized_prior(), vanishing, near, pass, out);
+    unsigned searched_sets = 0;
+    const char* failure = search_edgel_sets(around->view, in_part.resized(aim), in_part.resized_prior(), vanishing,
+                                            near, pass, out, searched_sets);
     if (!failure) {
         in_part.carry_back(out, aim);
         out.from_near_aim = true;
@@ -420,8 +426,15 @@ const char* Detector::search_near_aim(const GreyView& im, const Eigen::Vector2d&
 
 const char* Detector::search_edgel_sets(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                         const VanishingOptions& vanishing, const EdgelScan& scan, Pass& pass,
-                                        Detection& out) const {
-    const unsigned sets = pass.plan.edgel_sets;
+                                        Detection& out, unsigned& searched_sets) const {
+    // A set of the plan's: its step taken, and run unless searched before.
+    auto take = [&](unsigned set) {
+        if (!(pass.plan.edgel_sets & set)) return false;
+        if (searched_sets & set) return pass.take_step(false);
+        if (!pass.take_step()) return false;
+        searched_sets |= set;
+        return true;
+    };
     // The same scan with fewer edgels (its pixels are counted already),
     // searched when that leaves out enough of the others to matter.
     auto subset = [&](std::vector<Edgel> edgels) {
@@ -448,16 +461,16 @@ const char* Detector::search_edgel_sets(const GreyView& im, const Eigen::Vector2
     // much as the right one (single frames with the field at 640 x 480,
     // median: tuning set 1.74 ms with all edgels first, 1.62 this way;
     // held-out set 5.2 and 2.1).
-    if ((sets & kFieldLikeEdgels) && pass.take_step()) {
+    if (take(kFieldLikeEdgels)) {
         auto t = StageClock::now();
         const EdgelScan field_like = subset(edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels)));
         out.times.edgels_ms += ms_since(t);
         if (worth_a_search(field_like) && searched(field_like)) return failure;
     }
-    if ((sets & kAllEdgels) && pass.take_step() && searched(scan)) return failure;
+    if (take(kAllEdgels) && searched(scan)) return failure;
     // A faint field under strong content: the edges less those of thin
     // lines (a spreadsheet's rules).
-    if (options_.thin_line_px <= 0 || !(sets & kOffThinLineEdgels) || !pass.take_step()) return failure;
+    if (options_.thin_line_px <= 0 || !take(kOffThinLineEdgels)) return failure;
     auto t = StageClock::now();
     const EdgelScan off_lines = subset(edgels_off_thin_lines(scan.edgels, options_.thin_line_px));
     out.times.edgels_ms += ms_since(t);

@@ -38,11 +38,20 @@ public:
     // The scans of `image` made so far in this call, each step's whole scan
     // (the first, then each rescan added to it), in the order they were made;
     // a deque, so that a step stays where it is while later ones are added.
-    std::deque<EdgelScan>& scans(const GreyView& image) {
-        for (auto& s : scans_)
-            if (same(s->image, image)) return s->steps;
-        scans_.push_back(std::make_unique<Scans>(Scans{image, {}}));
-        return scans_.back()->steps;
+    std::deque<EdgelScan>& scans(const GreyView& image) { return scans_of(image).steps; }
+    // The edgel sets (search_plan.hpp's kAllEdgels, ...) of `image`'s scan
+    // at `step` searched so far in this pass over the call's plans: a later
+    // part that names the same scan again (at 1280 x 720 the round's half
+    // size first scan, which a tracker's first scan has searched) counts
+    // their steps without searching them again.
+    unsigned& searched_sets(const GreyView& image, std::size_t step) {
+        std::vector<unsigned>& sets = scans_of(image).searched_sets;
+        if (sets.size() <= step) sets.resize(step + 1, 0u);
+        return sets[step];
+    }
+    // A new pass over the plans searches every scan again.
+    void forget_searched_sets() {
+        for (auto& s : scans_) s->searched_sets.clear();
     }
 
 private:
@@ -58,7 +67,15 @@ private:
     struct Scans {
         GreyView image;
         std::deque<EdgelScan> steps;
+        std::vector<unsigned> searched_sets;
     };
+    Scans& scans_of(const GreyView& image) {
+        for (auto& s : scans_)
+            if (same(s->image, image)) return *s;
+        scans_.push_back(std::make_unique<Scans>(Scans{image, {}, {}}));
+        return *scans_.back();
+    }
+
     std::vector<std::unique_ptr<Image>> images_;
     std::vector<std::unique_ptr<Scans>> scans_;
 };

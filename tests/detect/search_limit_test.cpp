@@ -175,4 +175,30 @@ TEST_F(SearchLimitOnAScreen, TheFirstScanHeldToItsOwnTimeRunsWholeWhereTheRoundH
     EXPECT_EQ(own.steps_run, 0) << "no time for the round";
 }
 
+// The round's half size first scan (part 0) where a large frame's first
+// scan has searched the whole frame at half size already
+// (SearchPlan::whole_frame_halved): its steps are counted, so that a held
+// search's round keeps its place, and none is run again. At 640 x 480 the
+// first scan stays at the frame's own size and part 0 runs.
+TEST_F(SearchLimitOnAScreen, ALargeFramesRoundDoesNotSearchItsHalvedFirstScanAgain) {
+    const std::vector<SearchPlan> with_part_0 = {spread_first(), search_piece(search_part(0), 0),
+                                                 search_piece(search_part(0), 1)};
+    for (const cv::Size resolution : {cv::Size(1280, 720), cv::Size(640, 480)}) {
+        const bool large = resolution.width == 1280;
+        SCOPED_TRACE(large ? "1280 x 720" : "640 x 480");
+        photo_ = test::photograph_field(field_, 0, 10, 5, 20, 300, sim::ScreenKind::document, resolution);
+        const Detection first_scan = detect({spread_first()});
+        SearchLimit limit;
+        limit.ms = kAllTheTime;
+        const Detection d = detect(with_part_0, &limit);
+        EXPECT_FALSE(d.found);
+        EXPECT_EQ(limit.plans_done, 2) << "both pieces of part 0 taken";
+        EXPECT_EQ(limit.steps_run, large ? 0 : 3) << "its three edgel sets' searches";
+        if (large)
+            EXPECT_EQ(d.grids_read, first_scan.grids_read);
+        else
+            EXPECT_GT(d.grids_read, first_scan.grids_read);
+    }
+}
+
 }  // namespace
