@@ -77,7 +77,9 @@ GreyView derived(const GreyView& source, SearchCache::Derived kind, SearchCache&
 }  // namespace
 
 Detection Detector::detect(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior) const {
-    static constexpr FullSearch kPlans = full_search(), kPlansNearPrior = full_search(kPartOrderNearPrior);
+    // Near a prior the frame's own size goes first (kPartOrderNearPrior), its
+    // whole frame's first scan too.
+    static constexpr FullSearch kPlans = full_search(), kPlansNearPrior = full_search(kPartOrderNearPrior, false);
     return detect(im, aim, prior, std::span<const SearchPlan>(prior ? kPlansNearPrior : kPlans));
 }
 

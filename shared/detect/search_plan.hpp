@@ -1,6 +1,7 @@
 // Which of a frame's searches Detector::detect runs. A photo on its own gets
 // all of them (full_search): the first scan at the frame's own size (the
-// part around the aim first, then the whole frame), then,
+// part around the aim first, then the whole frame, at half size where the
+// frame is large), then,
 // while nothing is found, the other parts in the order that finds a field
 // soonest for their cost (the rescans, the smaller sizes, the lattice,
 // double size and the frame smoothed), and a second pass over the grid-line
@@ -175,13 +176,17 @@ constexpr SearchPlan search_piece(SearchPlan part, int piece) {
 inline constexpr std::array<int, kSearchParts> kPartOrder = {8, 1, 3, 0, 2, 10, 4, 9, 5, 6, 7, 11};
 
 // A photo's search: the first scan, then the parts in order while nothing
-// is found (Detector::detect over the plans).
+// is found (Detector::detect over the plans). Its first scan searches a
+// large frame's whole frame at half size (SearchPlan::whole_frame_halved)
+// unless `whole_frame_halved` is false.
 using FullSearch = std::array<SearchPlan, kSearchParts + 1>;
-constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kPartOrder) {
+constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kPartOrder,
+                                 bool whole_frame_halved = true) {
     FullSearch plans{};
     plans[0] = first_scan_only();
     plans[0].lattice_first_if_small = true;
     plans[0].near_aim_first = true;
+    plans[0].whole_frame_halved = whole_frame_halved;
     for (std::size_t k = 0; k < order.size(); ++k) plans[k + 1] = search_part(order[k]);
     return plans;
 }

@@ -71,21 +71,33 @@ TEST_F(NearAim, ANearScreensLargeModulesAreLeftToTheWholeFrame) {
     EXPECT_GT(near.pixels_visited, whole.pixels_visited) << "the middle was scanned first";
 }
 
-TEST_F(NearAim, ALargeFramesWholeFrameIsSearchedAtHalfSizeInATrackersFirstScan) {
+// A tracker's first scan and a photo's; near a prior (a tracker that lost
+// its lock) the frame's own size first, as the other parts there.
+TEST_F(NearAim, ALargeFramesWholeFrameIsSearchedAtHalfSizeInTheFirstScan) {
     const Detector own_size(field_, never_halved());
     for (const cv::Size resolution : {cv::Size(1280, 720), cv::Size(640, 480)}) {
         const test::Photo near_screen =
             test::photograph_field(field_, 0.3, 10, 5, 20, 90, sim::ScreenKind::document, resolution);
         const Eigen::Vector2d aim(resolution.width / 2.0, resolution.height / 2.0);
         const Detection d = detector_.detect(near_screen.view(), aim, nullptr, spread_first());
+        const Detection photo = detector_.detect(near_screen.view(), aim);
         const Detection own = own_size.detect(near_screen.view(), aim, nullptr, spread_first());
         ASSERT_TRUE(d.found) << resolution << " " << d.failure;
+        ASSERT_TRUE(photo.found) << resolution << " " << photo.failure;
         ASSERT_TRUE(own.found) << resolution << " " << own.failure;
         EXPECT_FALSE(d.from_near_aim) << resolution;
         EXPECT_EQ(own.size_scale, 1) << resolution;
         EXPECT_LT((d.aim_field - own.aim_field).norm(), 0.1) << resolution << ", modules";
+        EXPECT_LT((photo.aim_field - own.aim_field).norm(), 0.1) << resolution << ", modules";
         // 720 rows keep 360 at half size, 480 would keep only 240.
-        EXPECT_EQ(d.size_scale, resolution.height == 720 ? 0.5 : 1) << resolution;
+        const double halved = resolution.height == 720 ? 0.5 : 1;
+        EXPECT_EQ(d.size_scale, halved) << resolution;
+        EXPECT_EQ(photo.size_scale, halved) << resolution;
+        DetectionPrior prior;
+        prior.image_to_field = own.image_to_field;
+        const Detection near_prior = detector_.detect(near_screen.view(), aim, &prior);
+        ASSERT_TRUE(near_prior.found) << resolution << " " << near_prior.failure;
+        EXPECT_EQ(near_prior.size_scale, 1) << resolution;
     }
 }
 
