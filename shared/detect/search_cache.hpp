@@ -41,9 +41,9 @@ public:
     std::deque<EdgelScan>& scans(const GreyView& image) { return scans_of(image).steps; }
     // The edgel sets (search_plan.hpp's kAllEdgels, ...) of `image`'s scan
     // at `step` searched so far in this pass over the call's plans: a later
-    // part that names the same scan again (at 1280 x 720 the round's half
-    // size first scan, which a tracker's first scan has searched) counts
-    // their steps without searching them again.
+    // part that names the same scan again (at 1280 x 720 part 0, the half
+    // size's first scan, after a first scan that searched the whole frame
+    // at half size) counts their steps without searching them again.
     unsigned& searched_sets(const GreyView& image, std::size_t step) {
         std::vector<unsigned>& sets = scans_of(image).searched_sets;
         if (sets.size() <= step) sets.resize(step + 1, 0u);
