@@ -164,7 +164,7 @@ Detection Detector::detect_plans(const GreyView& im, const Eigen::Vector2d& aim,
         pass.first_pair = pass.end_pair;
         pass.end_pair = std::numeric_limits<int>::max();
         pass.search = 0;
-        pass.cache.forget_searched_sets();
+        pass.cache.start_pass();
         const char* again = search_plans(im, aim, prior, plans, pass, out);
         if (!again || again == kAimAtInfinity) failure = again;
     }
@@ -338,7 +338,8 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
         return steps[step++];
     };
     EdgelOptions edgel_options = options_.edgels;
-    if (pass.plan.near_aim_first && (scans & kFirstScan) && steps.empty()) {
+    if (pass.plan.near_aim_first && (scans & kFirstScan) && !pass.cache.near_aim_searched(im)) {
+        pass.cache.near_aim_searched(im) = true;
         const char* failure = search_near_aim(im, aim, prior, vanishing, pass, out);
         if (!failure || failure == kAimAtInfinity || pass.plan.near_aim_alone) return failure;
         const int half_min = options_.whole_frame_half_min_side;

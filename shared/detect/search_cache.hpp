@@ -49,9 +49,18 @@ public:
         if (sets.size() <= step) sets.resize(step + 1, 0u);
         return sets[step];
     }
+    // Whether the part of `image` around the aim (SearchPlan::near_aim_first)
+    // was searched in this pass. The second pass takes up each search's
+    // labellings by its number in the pass, so it must run the searches the
+    // first one ran in the same order: whether the own size's scans were made
+    // yet does not say that, as the first pass's later parts made them.
+    bool& near_aim_searched(const GreyView& image) { return scans_of(image).near_aim_searched; }
     // A new pass over the plans searches every scan again.
-    void forget_searched_sets() {
-        for (auto& s : scans_) s->searched_sets.clear();
+    void start_pass() {
+        for (auto& s : scans_) {
+            s->searched_sets.clear();
+            s->near_aim_searched = false;
+        }
     }
 
 private:
@@ -68,11 +77,12 @@ private:
         GreyView image;
         std::deque<EdgelScan> steps;
         std::vector<unsigned> searched_sets;
+        bool near_aim_searched = false;
     };
     Scans& scans_of(const GreyView& image) {
         for (auto& s : scans_)
             if (same(s->image, image)) return *s;
-        scans_.push_back(std::make_unique<Scans>(Scans{image, {}, {}}));
+        scans_.push_back(std::make_unique<Scans>(Scans{image, {}, {}, false}));
         return *scans_.back();
     }
 
