@@ -246,13 +246,15 @@ TEST_F(BackgroundBlurCompose, TheFieldIsFoundFainterOnABlurredBusyScreen) {
         };
         std::cout << "[ opacity  ] " << sim::to_string(kind) << ": found from " << from(lowest[0])
                   << " without blur, from " << from(lowest[1]) << " at blur 1\n";
-        // Never more than one step of the scan above the unblurred screen's:
-        // on a web page the detector reaches 0.04 without blur, 0.05 with it.
+        // Never more than two steps of the scan above the unblurred screen's:
+        // on a web page the detector reaches 0.03 without blur, 0.05 with it
+        // (0.04 without blur until a photo's second pass searched the part
+        // around the aim again, 2026-12-06).
         const auto step = [&](double a) {
             return a == kNever ? static_cast<long>(opacities.size())
                                : std::find(opacities.begin(), opacities.end(), a) - opacities.begin();
         };
-        EXPECT_LE(step(lowest[1]), step(lowest[0]) + 1) << sim::to_string(kind);
+        EXPECT_LE(step(lowest[1]), step(lowest[0]) + 2) << sim::to_string(kind);
         fainter += lowest[1] < lowest[0];
     }
     // On most busy screens strictly fainter.
