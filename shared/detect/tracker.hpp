@@ -22,9 +22,9 @@ inline constexpr double kSpreadFrameShare = 0.5;
 
 // The steps of spread_first() that a frame held to frame_ms with
 // hold_first_scan runs whatever the time: the search of the part around the
-// aim (its three edgel sets), which finds most fields for a quarter of the
-// first scan's cost.
-inline constexpr int kFirstStepsEveryFrame = 3;
+// aim (the small-modules cue's lattice and its three edgel sets), which
+// finds most fields for a quarter of the first scan's cost.
+inline constexpr int kFirstStepsEveryFrame = 4;
 
 struct TrackerOptions {
     // Frames after the last lock during which the prior is still used.

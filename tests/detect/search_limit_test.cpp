@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "shared/detect/detector.hpp"
+#include "shared/detect/tracker.hpp"
 #include "shared/field/field_io.hpp"
 #include "tests/detect/photo.hpp"
 
@@ -113,7 +114,7 @@ TEST_F(SearchLimitOnAScreen, TakenUpWhereItStoppedTheRoundRunsEveryStepOnce) {
 // a call, each call taking them up where the last one stopped, each once;
 // a call with the part around the aim alone owes its step to the round.
 TEST_F(SearchLimitOnAScreen, TheFirstScanHeldTooRunsAroundTheAimThenAStepACall) {
-    constexpr int kAroundTheAim = 3;  // the part around the aim's edgel sets
+    constexpr int kAroundTheAim = kFirstStepsEveryFrame;  // the part around the aim: its lattice cue and edgel sets
     SearchLimit all;
     all.ms = kAllTheTime;
     all.first_min_steps = kAroundTheAim;
@@ -157,7 +158,7 @@ TEST_F(SearchLimitOnAScreen, TheFirstScanHeldTooRunsAroundTheAimThenAStepACall) 
 // tracker's whole time between two camera frames) where the round has none:
 // the whole first scan runs, and the step owed is its own, not the round's.
 TEST_F(SearchLimitOnAScreen, TheFirstScanHeldToItsOwnTimeRunsWholeWhereTheRoundHasNone) {
-    constexpr int kAroundTheAim = 3;
+    constexpr int kAroundTheAim = kFirstStepsEveryFrame;
     SearchLimit all;
     all.ms = kAllTheTime;
     all.first_min_steps = kAroundTheAim;
