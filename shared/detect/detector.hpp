@@ -326,6 +326,15 @@ private:
     // coordinates.
     const char* search_near_aim(const GreyView& image, const Eigen::Vector2d& aim, const DetectionPrior* prior,
                                 const VanishingOptions& vanishing, Pass& pass, Detection& out) const;
+    // SearchPlan::lattice_first_if_small: the lattice around the aim before
+    // the grids of `edgels` are read, where they say the modules are small
+    // and the lattice has not run in this pass. Counted as a step whether or
+    // not it runs, so that a frame taking up the first scan where the last
+    // one stopped counts the same steps. The failure when that ends the
+    // search (null: found), nothing when the search goes on.
+    std::optional<const char*> lattice_if_small(const GreyView& image, const Eigen::Vector2d& aim,
+                                                const DetectionPrior* prior, const std::vector<Edgel>& edgels,
+                                                Pass& pass, Detection& out) const;
     // search over a scan's field-like edgels alone, then, when that fails,
     // over all of them, then over those not on thin lines
     // (field_edgels.hpp; SearchPlan::edgel_sets names those searched). The

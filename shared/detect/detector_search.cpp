@@ -358,17 +358,7 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     }
     if (pass.out_of_time()) return not_searched;
     const EdgelScan* scan = &scan_step([&] { return find_edgels(im, edgel_options); });
-    // Counted as a step whether or not it runs, so that a frame taking up
-    // the first scan where the last one stopped counts the same steps.
-    if (pass.plan.lattice_first_if_small && pass.first() && options_.lattice_enabled &&
-        pass.take_step(!pass.lattice_searched && modules_look_small(scan->edgels))) {
-        // A far screen: its grid lines would not be found, and the content's
-        // would each be read in vain first (tuning set, single frames of the
-        // tiny category at 640 x 480: 6.2 ms median).
-        pass.lattice_searched = true;
-        const char* failure = search_lattice(im, aim, prior, out);
-        if (!failure || failure == kAimAtInfinity) return failure;
-    }
+    if (const auto ended = lattice_if_small(im, aim, prior, scan->edgels, pass, out)) return *ended;
     const char* failure = searched(kFirstScan, *scan);
     if ((scans & ~kFirstScan) == 0) return failure;
     if (failure && options_.rescan && scan->noise_sigma >= kNoisyImage && edgel_options.across < 3 &&
@@ -420,12 +410,7 @@ const char* Detector::search_near_aim(const GreyView& im, const Eigen::Vector2d&
     // whole frame's do: a far screen goes to the lattice before the part's
     // grids, the content's, are read in vain (tuning set, 640 x 480, a
     // photo of the tiny category: 1.81 ms median instead of 2.76).
-    if (pass.plan.lattice_first_if_small && pass.first() && options_.lattice_enabled &&
-        pass.take_step(!pass.lattice_searched && modules_look_small(near.edgels))) {
-        pass.lattice_searched = true;
-        const char* failure = search_lattice(im, aim, prior, out);
-        if (!failure || failure == kAimAtInfinity) return failure;
-    }
+    if (const auto ended = lattice_if_small(im, aim, prior, near.edgels, pass, out)) return *ended;
     const Resizing in_part(1, around->origin, prior);
     unsigned searched_sets = 0;
     const char* failure = search_edgel_sets(around->view, in_part.resized(aim), in_part.resized_prior(), vanishing,
@@ -435,6 +420,21 @@ const char* Detector::search_near_aim(const GreyView& im, const Eigen::Vector2d&
         out.from_near_aim = true;
     }
     return failure;
+}
+
+std::optional<const char*> Detector::lattice_if_small(const GreyView& im, const Eigen::Vector2d& aim,
+                                                      const DetectionPrior* prior, const std::vector<Edgel>& edgels,
+                                                      Pass& pass, Detection& out) const {
+    if (!(pass.plan.lattice_first_if_small && pass.first() && options_.lattice_enabled &&
+          pass.take_step(!pass.lattice_searched && modules_look_small(edgels))))
+        return std::nullopt;
+    // A far screen: its grid lines would not be found, and the content's
+    // would each be read in vain first (tuning set, single frames of the
+    // tiny category at 640 x 480: 6.2 ms median).
+    pass.lattice_searched = true;
+    const char* failure = search_lattice(im, aim, prior, out);
+    if (!failure || failure == kAimAtInfinity) return failure;
+    return std::nullopt;
 }
 
 const char* Detector::search_edgel_sets(const GreyView& im, const Eigen::Vector2d& aim, const DetectionPrior* prior,
