@@ -430,7 +430,8 @@ std::optional<const char*> Detector::lattice_if_small(const GreyView& im, const 
         return std::nullopt;
     // A far screen: its grid lines would not be found, and the content's
     // would each be read in vain first (tuning set, single frames of the
-    // tiny category at 640 x 480: 6.2 ms median).
+    // tiny category at 640 x 480: 6.2 ms median without this cue, 2.2 with
+    // it, 2026-11-30).
     pass.lattice_searched = true;
     const char* failure = search_lattice(im, aim, prior, out);
     if (!failure || failure == kAimAtInfinity) return failure;
