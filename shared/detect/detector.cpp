@@ -64,7 +64,7 @@ const char Detector::kAimAtInfinity[] = "aim point at infinity";
 const char Detector::kAnotherField[] = "another field";
 
 Detector::Detector(const Field& field, DetectorOptions options)
-    : index_(field), edges_(index_.field()), options_(std::move(options)) {}
+    : index_(field), edges_(index_.field()), brightness_(module_brightness(index_.field())), options_(std::move(options)) {}
 
 Detection Detector::detect(const GreyView& image) const {
     return detect(image, Eigen::Vector2d(image.width / 2.0, image.height / 2.0));
@@ -292,16 +292,31 @@ bool Detector::place_aim(const GreyView& im, const Eigen::Matrix3d& field_to_ima
     out.image_to_field = i2f / i2f(2, 2);
     out.aim_field = *seed;
     if (options_.aim_refit_modules <= 0) return true;
+    auto refit = refit_at_aim(im, field_to_image, *seed, aim, out);
+    if (!refit || refit->edges_fitted < options_.aim_recentre_below_share * refit->edges_found) {
+        const Eigen::Vector2d shift =
+            centring_shift(im, index_.field(), brightness_, field_to_image, *seed, options_.centring);
+        Eigen::Matrix3d centred = Eigen::Matrix3d::Identity();
+        centred.topRightCorner<2, 1>() = shift;
+        const auto again = refit_at_aim(im, field_to_image * centred, *seed - shift, aim, out);
+        if (again && (!refit || again->edges_fitted > refit->edges_fitted)) refit = again;
+    }
+    if (refit) out.aim_field = refit->aim_field;
+    return true;
+}
+
+std::optional<Detector::AimRefit> Detector::refit_at_aim(const GreyView& im, const Eigen::Matrix3d& field_to_image,
+                                                         const Eigen::Vector2d& from, const Eigen::Vector2d& aim,
+                                                         Detection& out) const {
     RefineOptions around = options_.refine;
     around.max_radius_modules = options_.aim_refit_modules;
-    const Refinement r = refine_homography(im, index_.field(), edges_, field_to_image, *seed, around, out.pixels_visited);
-    if (!r.refined) return true;
+    const Refinement r = refine_homography(im, index_.field(), edges_, field_to_image, from, around, out.pixels_visited);
+    if (!r.refined) return std::nullopt;
     const auto refitted = apply_homography(r.field_to_image.inverse(), aim);
-    // The refit searches edges within 0.4 module of the whole view's
-    // prediction; farther off, it took hold of something else.
-    if (!refitted || (*refitted - *seed).norm() > 0.4) return true;
-    out.aim_field = *refitted;
-    return true;
+    // The refit searches edges within 0.4 module of the start's prediction;
+    // farther off, it took hold of something else.
+    if (!refitted || (*refitted - from).norm() > 0.4) return std::nullopt;
+    return AimRefit{*refitted, r.edges_fitted, r.edges_found_last};
 }
 
 Eigen::Matrix3d image_to_field_through_aim(const Detection& d) {

@@ -85,7 +85,9 @@ Eigen::Matrix3d level_to_unit(int full_width, int full_height, int level) {
     return n;
 }
 
-float bilinear(const GreyView& im, double x, double y) {
+// image.hpp's bilinear in float, for points the caller keeps inside, with
+// pixel centres at whole numbers.
+float bilinear_inside(const GreyView& im, double x, double y) {
     const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
     const float fx = static_cast<float>(x - x0), fy = static_cast<float>(y - y0);
     const std::uint8_t* a = im.row(y0) + x0;
@@ -202,7 +204,7 @@ double aligned_gain(const GreyView& from, const GreyView& to, const Eigen::Matri
             const double qx = q.x() / q.z(), qy = q.y() / q.z();
             if (!(qx >= 0 && qy >= 0 && qx < to.width - 1 && qy < to.height - 1)) continue;
             t.push_back(from.at(x, y));
-            g.push_back(bilinear(to, qx, qy));
+            g.push_back(bilinear_inside(to, qx, qy));
         }
     if (t.size() < 64) return 1;
     std::vector<float> seen(t.size());
@@ -235,7 +237,7 @@ Step align_step(const std::vector<Sample>& samples, const GreyView& image, const
         if (q.z() <= 0) continue;
         const double x = q.x() / q.z(), y = q.y() / q.z();
         if (!(x >= 0 && y >= 0 && x < image.width - 1 && y < image.height - 1)) continue;
-        diff[i] = bilinear(image, x, y) - samples[i].grey;
+        diff[i] = bilinear_inside(image, x, y) - samples[i].grey;
         // Against the samples' grey levels at the other frame's exposure.
         if (gain != 1) diff[i] -= static_cast<float>((gain - 1) * samples[i].grey);
         inside[i] = 1;
@@ -377,7 +379,7 @@ GreyView warp_frame(const GreyView& frame, const Eigen::Matrix3d& homography, co
             }
             const double sx = q.x() / q.z(), sy = q.y() / q.z();
             if (sx >= 0 && sy >= 0 && sx < w - 1 && sy < h - 1)
-                dst[x] = static_cast<std::uint8_t>(bilinear(frame, sx, sy) + 0.5f);
+                dst[x] = static_cast<std::uint8_t>(bilinear_inside(frame, sx, sy) + 0.5f);
             else
                 dst[x] = keep[x];
         }

@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,20 @@ inline void sobel(const GreyView& im, int x, int y, float& gx, float& gy) {
     const std::uint8_t* c = im.row(y + 1) + x;
     gx = static_cast<float>((a[1] + 2 * b[1] + c[1]) - (a[-1] + 2 * b[-1] + c[-1]));
     gy = static_cast<float>((c[-1] + 2 * c[0] + c[1]) - (a[-1] + 2 * a[0] + a[1]));
+}
+
+// The image at (x, y), pixel centres at +0.5, interpolated between the four
+// nearest pixels; NaN where they are not all inside the image.
+inline double bilinear(const GreyView& im, double x, double y) {
+    x -= 0.5;
+    y -= 0.5;
+    // Inside, truncation is the floor (and no far-off point overflows an int).
+    if (!(x >= 0 && y >= 0 && x < im.width - 1 && y < im.height - 1)) return std::numeric_limits<double>::quiet_NaN();
+    const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
+    const double fx = x - x0, fy = y - y0;
+    const std::uint8_t* r0 = im.row(y0) + x0;
+    const std::uint8_t* r1 = im.row(y0 + 1) + x0;
+    return (r0[0] * (1 - fx) + r0[1] * fx) * (1 - fy) + (r1[0] * (1 - fx) + r1[1] * fx) * fy;
 }
 
 // The image at half its width and height, each pixel the mean of a 2 x 2

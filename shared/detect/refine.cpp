@@ -11,18 +11,6 @@ namespace umf {
 
 namespace {
 
-double bilinear(const GreyView& im, double x, double y) {
-    x -= 0.5;  // pixel centres are at +0.5
-    y -= 0.5;
-    // Inside, truncation is the floor (and no far-off point overflows an int).
-    if (!(x >= 0 && y >= 0 && x < im.width - 1 && y < im.height - 1)) return std::numeric_limits<double>::quiet_NaN();
-    const int x0 = static_cast<int>(x), y0 = static_cast<int>(y);
-    const double fx = x - x0, fy = y - y0;
-    const std::uint8_t* r0 = im.row(y0) + x0;
-    const std::uint8_t* r1 = im.row(y0 + 1) + x0;
-    return (r0[0] * (1 - fx) + r0[1] * fx) * (1 - fy) + (r1[0] * (1 - fx) + r1[1] * fx) * fy;
-}
-
 struct FoundEdge {
     Point2 at;
     Point2 across;  // the image direction it was searched along (unit)
@@ -243,6 +231,7 @@ Refinement refine_homography(const GreyView& im, const Field& f, const ModuleEdg
                 }
                 if (static_cast<int>(kf.size()) < o.min_edges) break;
                 out.edges_fitted = static_cast<int>(kf.size());
+                out.edges_found_last = static_cast<int>(from.size());
                 out.rms_px = std::sqrt(sq / kf.size());
                 // A clear fit predicts far beyond its ring (tol is a fifth of a module).
                 const double module_px = tol / o.tolerance_modules;

@@ -50,6 +50,7 @@ struct Refinement {
     int edges_searched = 0;
     int edges_found = 0;
     int edges_fitted = 0;  // inliers of the last round
+    int edges_found_last = 0;  // edges found in that round, inliers or not
     double rms_px = 0;     // of the inliers of the last round, across their edges
 };
 
