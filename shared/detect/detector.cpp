@@ -64,7 +64,10 @@ const char Detector::kAimAtInfinity[] = "aim point at infinity";
 const char Detector::kAnotherField[] = "another field";
 
 Detector::Detector(const Field& field, DetectorOptions options)
-    : index_(field), edges_(index_.field()), brightness_(module_brightness(index_.field())), options_(std::move(options)) {}
+    : index_(field),
+      edges_(index_.field()),
+      brightness_(module_brightness(index_.field())),
+      options_(std::move(options)) {}
 
 Detection Detector::detect(const GreyView& image) const {
     return detect(image, Eigen::Vector2d(image.width / 2.0, image.height / 2.0));
@@ -292,14 +295,22 @@ bool Detector::place_aim(const GreyView& im, const Eigen::Matrix3d& field_to_ima
     out.image_to_field = i2f / i2f(2, 2);
     out.aim_field = *seed;
     if (options_.aim_refit_modules <= 0) return true;
+    const auto fits_well = [&](const AimRefit& r) {
+        return r.edges_fitted >= options_.aim_recentre_below_share * r.edges_found;
+    };
     auto refit = refit_at_aim(im, field_to_image, *seed, aim, out);
-    if (!refit || refit->edges_fitted < options_.aim_recentre_below_share * refit->edges_found) {
+    if (!refit || !fits_well(*refit)) {
         const Eigen::Vector2d shift =
             centring_shift(im, index_.field(), brightness_, field_to_image, *seed, options_.centring);
         Eigen::Matrix3d centred = Eigen::Matrix3d::Identity();
         centred.topRightCorner<2, 1>() = shift;
+        // Where neither start fits well the first refit stands: two refits
+        // that fit alike can end a quarter module apart on a faint or
+        // demodulated field, and which one fits a single edge more is then
+        // down to rounding (the page's WebAssembly and the native build
+        // parted there).
         const auto again = refit_at_aim(im, field_to_image * centred, *seed - shift, aim, out);
-        if (again && (!refit || again->edges_fitted > refit->edges_fitted)) refit = again;
+        if (again && fits_well(*again) && (!refit || again->edges_fitted > refit->edges_fitted)) refit = again;
     }
     if (refit) out.aim_field = refit->aim_field;
     return true;
@@ -310,7 +321,8 @@ std::optional<Detector::AimRefit> Detector::refit_at_aim(const GreyView& im, con
                                                          Detection& out) const {
     RefineOptions around = options_.refine;
     around.max_radius_modules = options_.aim_refit_modules;
-    const Refinement r = refine_homography(im, index_.field(), edges_, field_to_image, from, around, out.pixels_visited);
+    const Refinement r =
+        refine_homography(im, index_.field(), edges_, field_to_image, from, around, out.pixels_visited);
     if (!r.refined) return std::nullopt;
     const auto refitted = apply_homography(r.field_to_image.inverse(), aim);
     // The refit searches edges within 0.4 module of the start's prediction;

@@ -64,10 +64,11 @@ struct DetectorOptions {
     // A refit around the aim that fits less than this share of the edges it
     // found may have started about half a module off (module_centring.hpp):
     // it runs again from where the module centres read the field most
-    // strongly, and the one that fits more edges places the aim. On the
-    // tuning set, 8 % of found frames fit less than 0.9; the four that
-    // ended more than half a module off fitted 0.71-0.89, and 25-40 edges
-    // where the second refit fitted 48-52.
+    // strongly, and that refit places the aim where it fits at least this
+    // share and more edges than the first. On the tuning set, 8 % of found
+    // frames fit less than 0.9; the four that ended more than half a module
+    // off fitted 0.71-0.89, and 25-40 edges, where the second refit fitted
+    // 50-52 edges, 0.93-1.0 of them.
     double aim_recentre_below_share = 0.9;
     CentringOptions centring;
     // A place is confirmed on the modules within this many of the aim first

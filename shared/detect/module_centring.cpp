@@ -21,7 +21,7 @@ struct CentreSample {
 };
 
 // Sharp module edges leave the score flat while the centres stay inside
-// their modules and falling off as they cross an edge: the middle of the
+// their modules, falling off as they cross an edge. The middle of the run of
 // scores above halfway between the lowest and the highest (linear between
 // neighbours at either end), in profile steps from its first entry.
 double plateau_middle(std::span<const double> profile) {
@@ -51,9 +51,9 @@ Eigen::Vector2d centring_shift(const GreyView& im, const Field& f, std::span<con
     const int r1 = std::min(f.height - 1, static_cast<int>(std::floor(at.y())) + radius);
     const int c0 = std::max(0, static_cast<int>(std::floor(at.x())) - radius);
     const int c1 = std::min(f.width - 1, static_cast<int>(std::floor(at.x())) + radius);
-    // The shifts tried are a module at most: each module's image point moves
-    // along the homography's derivative at its centre, which is exact enough
-    // that near and saves a division per sample.
+    // The shifts tried are a module at most, so each module's image point is
+    // moved along the homography's derivative at its centre: exact enough that
+    // close, and a division less per sample.
     std::array<CentreSample, (2 * kMaxRadius + 1) * (2 * kMaxRadius + 1)> samples;
     std::size_t n = 0;
     double mean = 0;

@@ -19,7 +19,7 @@ using umf::test::seen_at_an_angle;
 
 namespace {
 
-Eigen::Matrix3d translation(const Eigen::Vector2d& by) {
+Eigen::Matrix3d shift_by(const Eigen::Vector2d& by) {
     Eigen::Matrix3d t = Eigen::Matrix3d::Identity();
     t.topRightCorner<2, 1>() = by;
     return t;
@@ -40,17 +40,18 @@ TEST(ModuleCentring, PutsTheCentresOnTheModulesFromUpToHalfAModuleOff) {
         const cv::Mat image = render_field(f, truth, c.size, c.blur_px);
         const GreyView view{image.data, image.cols, image.rows, static_cast<std::ptrdiff_t>(image.step)};
         const Eigen::Vector2d centre(c.size.width / 2.0, c.size.height / 2.0);
-        for (const Eigen::Vector2d& off : {Eigen::Vector2d(0.45, 0), Eigen::Vector2d(0, -0.45), Eigen::Vector2d(0.3, 0.35),
-                                          Eigen::Vector2d(-0.4, -0.2), Eigen::Vector2d(0, 0)}) {
+        for (const Eigen::Vector2d& off : {Eigen::Vector2d(0.45, 0), Eigen::Vector2d(0, -0.45),
+                                           Eigen::Vector2d(0.3, 0.35), Eigen::Vector2d(-0.4, -0.2),
+                                           Eigen::Vector2d(0, 0)}) {
             SCOPED_TRACE("module px " + std::to_string(c.module_px) + ", off " + std::to_string(off.x()) + " " +
                          std::to_string(off.y()));
             // Every module centre of `start` lies `off` from the true one.
-            const Eigen::Matrix3d start = truth * translation(-off);
+            const Eigen::Matrix3d start = truth * shift_by(-off);
             ASSERT_NEAR(aim_error(truth, start, c.size), off.norm(), 1e-6);
             const Eigen::Vector2d at = *apply_homography(start.inverse(), centre);
             const Eigen::Vector2d shift = centring_shift(view, f, brightness, start, at);
             EXPECT_LT((shift - off).norm(), 0.1);
-            EXPECT_LT(aim_error(truth, start * translation(shift), c.size), 0.1);
+            EXPECT_LT(aim_error(truth, start * shift_by(shift), c.size), 0.1);
         }
     }
 }
@@ -62,7 +63,7 @@ TEST(ModuleCentring, LeavesThePlaceWhereItsModulesAreNotInTheImage) {
     const Eigen::Matrix3d truth = seen_at_an_angle(12, size);
     const cv::Mat image = render_field(f, truth, size, 1.0);
     const GreyView view{image.data, image.cols, image.rows, static_cast<std::ptrdiff_t>(image.step)};
-    const Eigen::Matrix3d start = truth * translation(Eigen::Vector2d(-0.4, 0));
+    const Eigen::Matrix3d start = truth * shift_by(Eigen::Vector2d(-0.4, 0));
     // Off the field, no point at all, and one past a million modules.
     for (const Eigen::Vector2d& at :
          {Eigen::Vector2d(-30, -30), Eigen::Vector2d(std::nan(""), 3), Eigen::Vector2d(1e12, 0)})
