@@ -296,7 +296,7 @@ bool Detector::place_aim(const GreyView& im, const Eigen::Matrix3d& field_to_ima
     out.aim_field = *seed;
     if (options_.aim_refit_modules <= 0) return true;
     const auto fits_well = [&](const AimRefit& r) {
-        return r.edges_fitted >= options_.aim_recentre_below_share * r.edges_found;
+        return r.edges_fitted >= options_.aim_refit_min_share * r.edges_found;
     };
     auto refit = refit_at_aim(im, field_to_image, *seed, aim, out);
     if (!refit || !fits_well(*refit)) {

@@ -69,7 +69,7 @@ struct DetectorOptions {
     // frames fit less than 0.9; the four that ended more than half a module
     // off fitted 0.71-0.89, and 25-40 edges, where the second refit fitted
     // 50-52 edges, 0.93-1.0 of them.
-    double aim_recentre_below_share = 0.9;
+    double aim_refit_min_share = 0.9;
     CentringOptions centring;
     // A place is confirmed on the modules within this many of the aim first
     // (0: the whole view at once), and on the whole view where they refuse it.

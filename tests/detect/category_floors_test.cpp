@@ -276,7 +276,8 @@ TEST(CategoryFloors, DimFaintFieldsAreFoundOnALatticeAtASmallerSize) {
 // at the aim: the refit around the aim, its edge searches falling between
 // each edge and its neighbour, ended 0.5-0.65 module off. It fitted less
 // than 0.9 of the edges it found, ran again from the module centring
-// (module_centring.hpp), and that refit, fitting more edges, places the aim.
+// (module_centring.hpp), and that refit, fitting 0.9 of its edges and more
+// than the first, places the aim.
 TEST(CategoryFloors, AimsReadHalfAModuleOffAreCentredAgain) {
     struct Case {
         bench::Category category;
@@ -285,7 +286,7 @@ TEST(CategoryFloors, AimsReadHalfAModuleOffAreCentredAgain) {
         cv::Size resolution;
     };
     DetectorOptions never_again;
-    never_again.aim_recentre_below_share = 0;
+    never_again.aim_refit_min_share = 0;
     int off_without = 0;
     for (const Case& c : {Case{bench::Category::near_far, 2, 0.2, {640, 480}},
                           Case{bench::Category::pixel_grid, 38, 0.2, {640, 480}},
