@@ -270,6 +270,9 @@ private:
         const char* first_search_failure = nullptr;
         // The lattice at the frame's own size ran (SearchPlan::lattice_first_if_small).
         bool lattice_searched = false;
+        // The whole frame's first scan after the part around the aim is
+        // being searched, with SearchPlan::whole_frame_field_like_alone.
+        bool field_like_alone = false;
         // The time limit (null: none) and when the call began, the steps
         // run in the call over every plan (its average step), when the last
         // one began and the dearest of the others, the plan running and its

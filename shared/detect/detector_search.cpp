@@ -350,7 +350,9 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
             const SearchPlan plan = pass.plan;
             const bool lattice_searched = pass.lattice_searched;
             pass.plan.near_aim_first = false;
+            pass.field_like_alone = plan.whole_frame_field_like_alone;
             failure = search_resized(im, 0.5, Eigen::Vector2d::Zero(), aim, prior, pass, out, kFirstScan, 0);
+            pass.field_like_alone = false;
             pass.plan = plan;
             pass.lattice_searched = lattice_searched;
             return failure;
@@ -359,7 +361,11 @@ const char* Detector::search_scans(const GreyView& im, const Eigen::Vector2d& ai
     if (pass.out_of_time()) return not_searched;
     const EdgelScan* scan = &scan_step([&] { return find_edgels(im, edgel_options); });
     if (const auto ended = lattice_if_small(im, aim, prior, scan->edgels, pass, out)) return *ended;
+    // The whole frame's first scan, at this size or (whole_frame_halved) at half.
+    const bool field_like_alone = pass.field_like_alone;
+    pass.field_like_alone = field_like_alone || (pass.plan.near_aim_first && pass.plan.whole_frame_field_like_alone);
     const char* failure = searched(kFirstScan, *scan);
+    pass.field_like_alone = field_like_alone;
     if ((scans & ~kFirstScan) == 0) return failure;
     if (failure && options_.rescan && scan->noise_sigma >= kNoisyImage && edgel_options.across < 3 &&
         !pass.nothing_left() && !pass.out_of_time()) {
@@ -475,13 +481,17 @@ const char* Detector::search_edgel_sets(const GreyView& im, const Eigen::Vector2
     // much as the right one (single frames with the field at 640 x 480,
     // median: tuning set 1.74 ms with all edgels first, 1.62 this way;
     // held-out set 5.2 and 2.1).
+    bool field_like_searched = false;
     if (take(kFieldLikeEdgels)) {
         auto t = StageClock::now();
         const EdgelScan field_like = subset(edgels_stepping_by(scan.edgels, commonest_edge_step(scan.edgels)));
         out.times.edgels_ms += ms_since(t);
-        if (worth_a_search(field_like) && searched(field_like)) return failure;
+        field_like_searched = worth_a_search(field_like);
+        if (field_like_searched && searched(field_like)) return failure;
     }
-    if (take(kAllEdgels) && searched(scan)) return failure;
+    // Its step counted either way, so a search held to a time counts the
+    // same steps on every frame.
+    if (take(kAllEdgels) && !(pass.field_like_alone && field_like_searched) && searched(scan)) return failure;
     // A faint field under strong content: the edges less those of thin
     // lines (a spreadsheet's rules).
     if (options_.thin_line_px <= 0 || !take(kOffThinLineEdgels)) return failure;

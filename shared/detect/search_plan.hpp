@@ -69,6 +69,15 @@ struct SearchPlan {
     // With near_aim_first: the first scan of the whole frame at half size
     // where the frame is large (DetectorOptions::whole_frame_half_min_side).
     bool whole_frame_halved = false;
+    // With near_aim_first: the whole frame's first scan searches its
+    // field-like edgels and not all of them after, where the field-like ones
+    // were few enough among the others to be searched apart
+    // (Detector::search_edgel_sets). All edgels' grids there are mostly the
+    // content's: on the tuning set's frames without the field at 640 x 480
+    // that search was half the first scan's time, and it found one frame
+    // with the field of 264 (docs/BENCHMARKS.md, "the whole frame's field-like
+    // edgels alone").
+    bool whole_frame_field_like_alone = false;
 };
 
 // A search held to a time limit (a tracker's spread search with
@@ -187,6 +196,7 @@ constexpr FullSearch full_search(const std::array<int, kSearchParts>& order = kP
     plans[0].lattice_first_if_small = true;
     plans[0].near_aim_first = true;
     plans[0].whole_frame_halved = whole_frame_halved;
+    plans[0].whole_frame_field_like_alone = true;
     for (std::size_t k = 0; k < order.size(); ++k) plans[k + 1] = search_part(order[k]);
     return plans;
 }
@@ -248,6 +258,7 @@ constexpr SearchPlan spread_first() {
     p.lattice_first_if_small = true;
     p.near_aim_first = true;
     p.whole_frame_halved = true;
+    p.whole_frame_field_like_alone = true;
     return p;
 }
 

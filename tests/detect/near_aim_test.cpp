@@ -3,7 +3,8 @@
 // before the whole frame. Where the field fills the middle of the view it is
 // found there, at the same place, for a fraction of the pixels; where the
 // middle holds too little of it, the whole frame's search still finds it,
-// in a tracker's first scan at half size where the frame is large.
+// in a tracker's first scan at half size where the frame is large, on its
+// field-like edgels alone where they stand apart.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -98,6 +99,38 @@ TEST_F(NearAim, ALargeFramesWholeFrameIsSearchedAtHalfSizeInTheFirstScan) {
         const Detection near_prior = detector_.detect(near_screen.view(), aim, &prior);
         ASSERT_TRUE(near_prior.found) << resolution << " " << near_prior.failure;
         EXPECT_EQ(near_prior.size_scale, 1) << resolution;
+    }
+}
+
+// The whole frame's first scan after the part around the aim: its
+// field-like edgels alone where they stand apart from the others
+// (SearchPlan::whole_frame_field_like_alone), as in every frame of a
+// tracker without a lock and in a photo's first scan. A document's lines
+// give all edgels' grids there, each read in vain.
+TEST_F(NearAim, TheWholeFramesFieldLikeEdgelsAreSearchedAlone) {
+    SearchPlan every_set = spread_first();
+    every_set.whole_frame_field_like_alone = false;
+    ASSERT_TRUE(spread_first().whole_frame_field_like_alone);
+    ASSERT_TRUE(full_search()[0].whole_frame_field_like_alone);
+    for (const cv::Size resolution : {cv::Size(640, 480), cv::Size(1280, 720)}) {
+        const Eigen::Vector2d aim(resolution.width / 2.0, resolution.height / 2.0);
+        const test::Photo bare =
+            test::photograph_field(field_, 0, 10, 5, 20, 300, sim::ScreenKind::document, resolution);
+        const Detection alone = detector_.detect(bare.view(), aim, nullptr, spread_first());
+        const Detection all = detector_.detect(bare.view(), aim, nullptr, every_set);
+        EXPECT_FALSE(alone.found) << resolution;
+        EXPECT_FALSE(all.found) << resolution;
+        EXPECT_LT(alone.grids_read, all.grids_read) << resolution;
+        // Where the middle holds too little of the field, the whole frame's
+        // field-like edgels find it.
+        const test::Photo near_screen =
+            test::photograph_field(field_, 0.3, 10, 5, 20, 90, sim::ScreenKind::document, resolution);
+        const Detection found = detector_.detect(near_screen.view(), aim, nullptr, spread_first());
+        const Detection found_all = detector_.detect(near_screen.view(), aim, nullptr, every_set);
+        ASSERT_TRUE(found.found) << resolution << " " << found.failure;
+        ASSERT_TRUE(found_all.found) << resolution << " " << found_all.failure;
+        EXPECT_FALSE(found.from_near_aim) << resolution;
+        EXPECT_LT((found.aim_field - found_all.aim_field).norm(), 1e-9) << resolution << ", modules";
     }
 }
 
