@@ -239,8 +239,10 @@ inline constexpr double kPieceCost[kSearchParts][kPiecesOfAPart] = {
 
 // What a frame of a search spread over a video's frames runs before its
 // share of the round: the first scan's first pairs over every edgel set
-// (its pieces 0 and 1). A ruled page's field is found by the edgels off
-// its rules; with them a round away, a tracker on such a page lost most of
+// (its pieces 0 and 1; the whole frame's all edgels only where its
+// field-like ones are not searched apart, whole_frame_field_like_alone). A
+// ruled page's field is found by the edgels off its rules; with them a
+// round away, a tracker on such a page lost most of
 // its frames (the tuning set's ruled video at opacity 0.1, 640 x 480: 39
 // of 40 found with every search, 14 with them in the round). A far
 // screen's small modules send it to the lattice first, as in a photo's

@@ -42,9 +42,9 @@ struct TrackerOptions {
     double still_modules = 0.25;
     // The smoothed point never trails the measured one by more than this.
     double max_lag_modules = 0.02;
-    // Every frame without a lock runs the first scan's first pairs over
-    // every edgel set and the next share of the other parts' pieces
-    // (search_plan.hpp's search_share), round after round; false: every
+    // Every frame without a lock runs the first scan's first pairs over its
+    // edgel sets (search_plan.hpp's spread_first) and the next share of the
+    // other parts' pieces (search_share), round after round; false: every
     // search on every frame without a lock, as for a photo on its own. For
     // a device that cannot search a whole frame between two camera frames
     // (docs/BENCHMARKS.md, "Detector speed in real time"); offline, where
