@@ -242,9 +242,9 @@ inline constexpr double kPieceCost[kSearchParts][kPiecesOfAPart] = {
 // (its pieces 0 and 1; the whole frame's all edgels only where its
 // field-like ones are not searched apart, whole_frame_field_like_alone). A
 // ruled page's field is found by the edgels off its rules; with them a
-// round away, a tracker on such a page lost most of
-// its frames (the tuning set's ruled video at opacity 0.1, 640 x 480: 39
-// of 40 found with every search, 14 with them in the round). A far
+// round away, a tracker on such a page lost most of its frames (the tuning
+// set's ruled video at opacity 0.1, 640 x 480: 39 of 40 found with every
+// search, 14 with them in the round). A far
 // screen's small modules send it to the lattice first, as in a photo's
 // search: the lattice's share is a round away (the held-out set's far views
 // at 640 x 480, tracked: 19 of 40 found without the cue, 31 with it). A
