@@ -70,6 +70,20 @@ GreyView FramePyramid::level(int i) const {
     return {l.pixels.data(), l.width, l.height, l.width};
 }
 
+LevelMap::LevelMap(int level) : scale_(std::ldexp(1.0, level)) {
+    const double offset = (scale_ - 1) / 2;
+    to_frame_ << scale_, 0, offset, 0, scale_, offset, 0, 0, 1;
+    from_frame_ << 1 / scale_, 0, -offset / scale_, 0, 1 / scale_, -offset / scale_, 0, 0, 1;
+}
+
+Eigen::Vector2d LevelMap::to_frame(const Eigen::Vector2d& level_point) const {
+    return level_point * scale_ + Eigen::Vector2d::Constant((scale_ - 1) / 2);
+}
+
+Eigen::Vector2d LevelMap::from_frame(const Eigen::Vector2d& frame_point) const {
+    return (frame_point - Eigen::Vector2d::Constant((scale_ - 1) / 2)) / scale_;
+}
+
 namespace {
 
 // Pixels of a level (centres at integers) to the coordinates the alignment

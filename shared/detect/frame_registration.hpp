@@ -54,6 +54,28 @@ private:
     mutable std::vector<Level> details_;  // per level; empty until detail() asks
 };
 
+// A pyramid level's pixels against the frame's own, as FramePyramid halves
+// (each pixel the mean of two by two): a level-l pixel's centre x is the
+// frame's s x + (s - 1) / 2, s = 2^l.
+class LevelMap {
+public:
+    explicit LevelMap(int level);
+    double scale() const { return scale_; }
+    // The level's pixels to the frame's, and back.
+    const Eigen::Matrix3d& to_frame() const { return to_frame_; }
+    const Eigen::Matrix3d& from_frame() const { return from_frame_; }
+    Eigen::Vector2d to_frame(const Eigen::Vector2d& level_point) const;
+    Eigen::Vector2d from_frame(const Eigen::Vector2d& frame_point) const;
+    // A homography between two frames' own pixels, between their level's.
+    Eigen::Matrix3d homography(const Eigen::Matrix3d& between_frames) const {
+        return from_frame_ * between_frames * to_frame_;
+    }
+
+private:
+    double scale_;
+    Eigen::Matrix3d to_frame_, from_frame_;
+};
+
 struct RegistrationOptions {
     // The finest level aligned (0: full size, 1: half size); the homography
     // found at half size is within a few tenths of a full-size pixel.

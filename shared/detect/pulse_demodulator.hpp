@@ -47,6 +47,7 @@ public:
     // spread of their opacities (standard deviation, weighted): a slope is
     // only as good as the opacities it spans.
     double weight() const { return weight_; }
+    int width() const { return width_; }
     double opacity_spread() const;
 
     // The slope F - C of every pixel (-255..255) as a grey image, 127.5 +

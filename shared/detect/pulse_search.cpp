@@ -93,6 +93,14 @@ GreyView scaled(const GreyView& view, double gain, std::vector<std::uint8_t>& bu
     return {buffer.data(), view.width, view.height, view.width};
 }
 
+// A detection on a pyramid level's image, in the frame's own pixels.
+Detection in_frame_pixels(Detection d, const LevelMap& level) {
+    d.image_to_field = d.image_to_field * level.from_frame();
+    d.aim_image = level.to_frame(d.aim_image);
+    d.size_scale /= level.scale();
+    return d;
+}
+
 // `view`'s grey levels inverted (255 - v), into `buffer`: the demodulated
 // image of the course's other sign.
 GreyView inverted(const GreyView& view, std::vector<std::uint8_t>& buffer) {
@@ -318,12 +326,104 @@ std::vector<GreyView> PulseSearch::field_alone_images(PulseDemodulator& demodula
 // of content_free_pixels_, valid until the next search; empty views where
 // the demodulator has no slope.
 std::array<GreyView, 2> PulseSearch::content_free_images(PulseDemodulator& demodulator) {
-    const int tile = std::max(8, static_cast<int>(std::lround(options_.content_free_tile * width_)));
+    const int width = demodulator.width();
+    const int tile = std::max(8, static_cast<int>(std::lround(options_.content_free_tile * width)));
     const GreyView free = demodulator.content_free_field_image(tile);
     if (!free.data) return {};
     content_free_pixels_[0].assign(free.data, free.data + static_cast<std::size_t>(free.width) * free.height);
     const GreyView kept{content_free_pixels_[0].data(), free.width, free.height, free.width};
     return {kept, inverted(kept, content_free_pixels_[1])};
+}
+
+bool PulseSearch::demodulate(int level, PulseDemodulator& demodulator, PulseSearchResult& out) {
+    // Every frame laid onto the newest: the content stays where it is in
+    // the newest, and the field is found there.
+    const LevelMap at_level(level);
+    const GreyView newest = kept_.back().pyramid.level(level);
+    warped_.resize(kept_.size());
+    std::vector<GreyView> views;
+    std::vector<Eigen::Matrix3d> to_newest;
+    for (const Kept& k : kept_) to_newest.push_back(at_level.homography(k.to_newest));
+    for (std::size_t i = 0; i < kept_.size(); ++i)
+        views.push_back(i + 1 == kept_.size()
+                            ? newest
+                            : warp_frame(kept_[i].pyramid.level(level), to_newest[i], newest, warped_[i]));
+    if (options_.level_exposure)
+        for (std::size_t i = 0; i + 1 < views.size(); ++i) {
+            const double gain = exposure_ratio(views[i], newest, to_newest[i]);
+            if (std::abs(gain - 1) > 1e-3) views[i] = scaled(views[i], gain, warped_[i]);
+        }
+    const PulseCourse course = find_pulse_course(views);
+    out.share = course.share;
+    if (course.level.empty() || course.share < options_.min_share) {
+        out.detection.failure = "no pulse in the frames";
+        return false;
+    }
+    std::vector<double> opacity = course.level;
+    out.fitted = false;
+    if (options_.shape) {
+        if (auto fitted = fit_shape(course); !fitted.empty()) {
+            opacity = std::move(fitted);
+            out.fitted = true;
+        }
+    }
+    for (std::size_t i = 0; i < views.size(); ++i)
+        demodulator.add(views[i], std::clamp(0.5 + 0.5 * opacity[i], 0.0, 1.0));
+    out.course = std::move(opacity);
+    return true;
+}
+
+// The course's sign is not known: the field shows in the image or in its
+// inverse, which the course of the other sign would give. A place carried
+// here is confirmed where it is said to be first: far cheaper than a
+// search, and it reads a field too faint for one. Found again, it is
+// carried on from here, the registrations' drift gone. Each pair of images
+// is followed and then searched before the next is made (the field alone
+// followed before the slope was searched placed one frame of the tuning
+// set's blank page wrong); where none holds the field, the slope's search
+// says why. `follow_only`: no search, the content-free slope not made.
+bool PulseSearch::look(const Detector& detector, const Eigen::Vector2d& aim, int level, PulseDemodulator& demodulator,
+                       PulseSearchResult& out, bool follow_only) {
+    const GreyView field = demodulator.field_image(PulseDemodulator::SlopeScale::spread);
+    if (!field.data) {
+        out.detection.failure = "no pulse in the frames";
+        return false;
+    }
+    std::vector<std::uint8_t> inverse_pixels;
+    const GreyView inverse = inverted(field, inverse_pixels);
+    bool followed = false;
+    const LevelMap at_level(level);
+    const Eigen::Vector2d level_aim = at_level.from_frame(aim);
+    auto look_in = [&](std::span<const GreyView> images, std::span<const SearchPlan> plans, bool follow = true) {
+        if (follow && found_ && options_.follow_carried)
+            for (const GreyView& image : images) {
+                out.detection = in_frame_pixels(
+                    detector.follow(image, level_aim, found_->image_to_field * at_level.to_frame()), at_level);
+                if ((followed = out.detection.found)) return;
+            }
+        if (follow_only) return;
+        for (std::size_t i = 0; i < images.size(); ++i) {
+            Detection d = in_frame_pixels(detector.detect(images[i], level_aim, nullptr, plans), at_level);
+            if (d.found || i == 0) out.detection = std::move(d);
+            if (out.detection.found) return;
+        }
+    };
+    look_in(std::array{field, inverse}, options_.plans);
+    if (!out.detection.found) {
+        const Detection slope_failure = out.detection;
+        const std::vector<GreyView> alone = field_alone_images(demodulator, out.fitted);
+        if (!alone.empty()) look_in(alone, options_.plans);
+        if (!out.detection.found && !follow_only && options_.content_free_tile > 0) {
+            const std::array<GreyView, 2> content_free = content_free_images(demodulator);
+            // Searched, not followed: a carried place confirmed there, frame
+            // after frame, crept off on the tuning set's noisy web page (26
+            // frames wrong, up to 2 modules; umf_pulse_benchmark --noise 6
+            // --jpeg-quality 40).
+            if (content_free[0].data) look_in(content_free, options_.content_free_plans, false);
+        }
+        if (!out.detection.found) out.detection = slope_failure;
+    }
+    return followed;
 }
 
 PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vector2d& aim) {
@@ -336,78 +436,20 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
         out.detection.failure = "too few frames for the pulse";
         return out;
     }
-    // Every frame laid onto the newest: the content stays where it is in
-    // the newest, and the field is found there.
-    const GreyView newest = kept_.back().pyramid.level(0);
-    warped_.resize(kept_.size());
-    std::vector<GreyView> views;
-    for (std::size_t i = 0; i < kept_.size(); ++i)
-        views.push_back(i + 1 == kept_.size() ? newest
-                                              : warp_frame(kept_[i].pyramid.level(0), kept_[i].to_newest, newest, warped_[i]));
-    if (options_.level_exposure)
-        for (std::size_t i = 0; i + 1 < views.size(); ++i) {
-            const double gain = exposure_ratio(views[i], newest, kept_[i].to_newest);
-            if (std::abs(gain - 1) > 1e-3) views[i] = scaled(views[i], gain, warped_[i]);
-        }
-    const PulseCourse course = find_pulse_course(views);
-    out.share = course.share;
-    if (course.level.empty() || course.share < options_.min_share) {
-        out.detection.failure = "no pulse in the frames";
-        return out;
-    }
-    std::vector<double> level = course.level;
-    if (options_.shape) {
-        if (auto fitted = fit_shape(course); !fitted.empty()) {
-            level = std::move(fitted);
-            out.fitted = true;
-        }
-    }
-    PulseDemodulator demodulator;
-    for (std::size_t i = 0; i < views.size(); ++i) demodulator.add(views[i], std::clamp(0.5 + 0.5 * level[i], 0.0, 1.0));
-    out.course = std::move(level);
-    const GreyView field = demodulator.field_image(PulseDemodulator::SlopeScale::spread);
-    if (!field.data) {
-        out.detection.failure = "no pulse in the frames";
-        return out;
-    }
-    // The course's sign is not known: the field shows in the image or in
-    // its inverse, which the course of the other sign would give. A place
-    // carried here is confirmed where it is said to be first: far cheaper
-    // than a search, and it reads a field too faint for one. Found again, it
-    // is carried on from here, the registrations' drift gone. Each pair of
-    // images is followed and then searched before the next is made (the
-    // field alone followed before the slope was searched placed one frame
-    // of the tuning set's blank page wrong); where none holds the field,
-    // the slope's search says why.
-    std::vector<std::uint8_t> inverse_pixels;
-    const GreyView inverse = inverted(field, inverse_pixels);
+    // A place carried is followed at the smaller level first; where it is
+    // not confirmed there, everything runs at the frames' own size.
     bool followed = false;
-    auto look_in = [&](std::span<const GreyView> images, std::span<const SearchPlan> plans, bool follow = true) {
-        if (follow && found_ && options_.follow_carried)
-            for (const GreyView& image : images) {
-                out.detection = detector.follow(image, aim, found_->image_to_field);
-                if ((followed = out.detection.found)) return;
-            }
-        for (std::size_t i = 0; i < images.size(); ++i) {
-            Detection d = detector.detect(images[i], aim, nullptr, plans);
-            if (d.found || i == 0) out.detection = std::move(d);
-            if (out.detection.found) return;
-        }
-    };
-    look_in(std::array{field, inverse}, options_.plans);
-    if (!out.detection.found) {
-        const Detection slope_failure = out.detection;
-        const std::vector<GreyView> alone = field_alone_images(demodulator, out.fitted);
-        if (!alone.empty()) look_in(alone, options_.plans);
-        if (!out.detection.found && options_.content_free_tile > 0) {
-            const std::array<GreyView, 2> content_free = content_free_images(demodulator);
-            // Searched, not followed: a carried place confirmed there, frame
-            // after frame, crept off on the tuning set's noisy web page (26
-            // frames wrong, up to 2 modules; umf_pulse_benchmark --noise 6
-            // --jpeg-quality 40).
-            if (content_free[0].data) look_in(content_free, options_.content_free_plans, false);
-        }
-        if (!out.detection.found) out.detection = slope_failure;
+    if (const int level = std::min(options_.demodulation_level, kept_.back().pyramid.levels() - 1);
+        level > 0 && found_ && options_.follow_carried) {
+        PulseDemodulator demodulator;
+        if (demodulate(level, demodulator, out)) followed = look(detector, aim, level, demodulator, out, true);
+    }
+    if (!followed) {
+        out.detection = Detection{};
+        out.detection.aim_image = aim;
+        PulseDemodulator demodulator;
+        if (!demodulate(0, demodulator, out)) return out;
+        followed = look(detector, aim, 0, demodulator, out, false);
     }
     if (out.detection.found && !holds_in_newest(out.detection, detector.field())) {
         out.detection.found = false;

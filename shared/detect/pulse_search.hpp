@@ -133,6 +133,12 @@ struct PulseSearchOptions {
     // the content's contrast, or not there at all; the other fallbacks would
     // cost an image without it some 50 ms each time.
     std::vector<SearchPlan> plans = {spread_first(), search_part(2), search_part(5)};
+    // A place carried is first followed in the frames demodulated at this
+    // level of their pyramid (0: not; 1: half size, a quarter of the pixels
+    // laid onto the newest, each the mean of four); only where it is not
+    // confirmed there are they demodulated at their own size and searched.
+    // A follow needs far fewer pixels than a search.
+    int demodulation_level = 1;
     // Each place the search gives (found, followed or carried) checked in
     // the newest frame alone (field_shift.hpp): the demodulated image shows
     // the field where the older frames, laid onto the newest, put it, and
@@ -217,6 +223,13 @@ private:
     std::vector<double> fit_shape(const PulseCourse& course) const;
     std::vector<GreyView> field_alone_images(PulseDemodulator& demodulator, bool fitted);
     std::array<GreyView, 2> content_free_images(PulseDemodulator& demodulator);
+    // The kept frames laid onto the newest at pyramid level `level` and
+    // demodulated into `demodulator`; false where no pulse is in them.
+    bool demodulate(int level, PulseDemodulator& demodulator, PulseSearchResult& out);
+    // The field looked for in the demodulated images; whether a follow of
+    // the place carried found it.
+    bool look(const Detector& detector, const Eigen::Vector2d& aim, int level, PulseDemodulator& demodulator,
+              PulseSearchResult& out, bool follow_only);
     void keep_found(const Detection& found);
     // Whether the aim has come at most detail_carry_modules over the field
     // since the place carried was found.

@@ -154,6 +154,7 @@ PulseSearchOptions pulse_options(const PulseBenchmarkOptions& o, double fps) {
     p.field_alone = o.field_alone;
     if (!o.content_free) p.content_free_tile = 0;
     if (o.kept_frames) p.frames = *o.kept_frames;
+    if (o.demodulation_level) p.demodulation_level = *o.demodulation_level;
     if (o.max_share) p.registration.max_share = *o.max_share;
     if (!o.announced) return p;
     p.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, kPeriodS, o.min_opacity, o.max_opacity);

@@ -24,6 +24,9 @@ Usage: umf_pulse_benchmark [options]
   --frames N             frames per video (default 150)
   --resolutions WxH,...  (default 640x480)
   --kept-frames N        the frames the pulse search keeps and demodulates together (default 24)
+  --demodulation-level L a place carried followed first in the frames demodulated at level L of their pyramid:
+                         0 not, 1 half size, 2 a quarter (PulseSearchOptions::demodulation_level; default: the
+                         library's)
   --not-announced        the pulse search is not told the pulse's period, waveform and opacities
   --frame-ms MS          the tracker's search held to MS a frame, as the page holds it (TrackerOptions::frame_ms
                          with its spread search; default 2); 0: every search on every frame without a lock
@@ -123,6 +126,10 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
             if (*o.kept_frames < PulseSearchOptions{}.min_frames)
                 throw std::invalid_argument("--kept-frames: at least " +
                                             std::to_string(PulseSearchOptions{}.min_frames));
+        } else if (a == "--demodulation-level") {
+            o.demodulation_level = std::stoi(value());
+            if (*o.demodulation_level < 0 || *o.demodulation_level > 2)
+                throw std::invalid_argument("--demodulation-level: 0, 1 or 2");
         } else if (a == "--not-announced") {
             o.announced = false;
         } else if (a == "--max-motion-change") {

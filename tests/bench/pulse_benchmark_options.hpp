@@ -44,6 +44,7 @@ struct PulseBenchmarkOptions {
     bool content_free = true;
     std::optional<double> max_share;
     std::optional<int> kept_frames;  // PulseSearchOptions::frames
+    std::optional<int> demodulation_level;  // PulseSearchOptions::demodulation_level
     std::vector<std::string> videos;  // empty: all
     std::string log;
     std::uint64_t seed = 1;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -154,6 +155,38 @@ TEST(FrameRegistration, WarpKeepsTheOtherFramesPixelsWhereNothingMapsFromTheFram
     EXPECT_EQ(warped.at(40, 10), 10);   // the frame's pixel from x = 20
     EXPECT_EQ(warped.at(19, 10), 240);
     EXPECT_EQ(warped.at(20, 10), 10);
+}
+
+// A ramp's pyramid: each level's pixel holds the ramp's value where the
+// level map puts its centre in the frame, half a pixel or more off with the
+// centres taken for the same.
+TEST(FrameRegistration, LevelMapPutsALevelsPixelsWhereThePyramidTookThem) {
+    const int w = 64, h = 48;
+    std::vector<std::uint8_t> ramp(static_cast<std::size_t>(w * h));
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) ramp[static_cast<std::size_t>(y * w + x)] = static_cast<std::uint8_t>(2 * x + y);
+    const FramePyramid pyramid(view_of(ramp, w, h), 16);
+    ASSERT_EQ(pyramid.levels(), 3);
+    for (int level = 1; level < 3; ++level) {
+        const LevelMap map(level);
+        const GreyView v = pyramid.level(level);
+        for (int y = 1; y + 1 < v.height; ++y)
+            for (int x = 1; x + 1 < v.width; ++x) {
+                const Eigen::Vector2d at = map.to_frame(Eigen::Vector2d(x, y));
+                // Each level's means rounded: half a level more each level down.
+                EXPECT_NEAR(v.at(x, y), 2 * at.x() + at.y(), 0.5 * level) << "level " << level << " at " << x << ", " << y;
+                EXPECT_LT((map.from_frame(at) - Eigen::Vector2d(x, y)).norm(), 1e-12);
+            }
+    }
+    // A motion between frames, at a level: 6 px along x is 3 at half size.
+    Eigen::Matrix3d motion = Eigen::Matrix3d::Identity();
+    motion(0, 0) = 1.1;
+    motion(0, 2) = 6;
+    const LevelMap half(1);
+    const Eigen::Vector2d p(20, 30);
+    const Eigen::Vector3d q = half.homography(motion) * half.from_frame(p).homogeneous();
+    const Eigen::Vector3d r = motion * p.homogeneous();
+    EXPECT_LT((q.hnormalized() - half.from_frame(r.hnormalized())).norm(), 1e-12);
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "shared/detect/detector.hpp"
+#include "shared/detect/homography.hpp"
 #include "shared/detect/pulse_course.hpp"
 #include "shared/detect/pulse_demodulator.hpp"
 #include "shared/detect/pulse_search.hpp"
@@ -282,6 +283,17 @@ Detection moved_along_u(const Detection& d, double modules) {
     return out;
 }
 
+// The place carried moved two modules along u, then film frame `frame`
+// added and searched.
+PulseSearchResult search_with_place_moved(PulseSearch& search, const Detector& detector, HandHeldFilm& film, int frame,
+                                          const Eigen::Vector2d& aim) {
+    const std::optional<Detection> carried = search.carried(aim);
+    EXPECT_TRUE(carried.has_value()) << "nothing carried before frame " << frame;
+    if (carried) search.found_elsewhere(moved_along_u(*carried, 2));
+    search.add(film.frame(frame));
+    return search.search(detector, aim);
+}
+
 // A place found at the frame's centre: its map takes the centre a fifth of
 // a module away from where the module edges there put it.
 Detection found_at_centre(const Eigen::Vector2d& aim_field) {
@@ -394,15 +406,53 @@ TEST(PulseSearch, ConfirmsACarriedPlaceWhereItIsSaidToBe) {
         EXPECT_EQ(again.detection.from_prior, follow);
         EXPECT_LT(off_truth(again.detection), 0.1);
 
-        const std::optional<Detection> carried = search.carried(aim);
-        ASSERT_TRUE(carried.has_value());
-        search.found_elsewhere(moved_along_u(*carried, 2));
-        search.add(film.frame(20));
-        const PulseSearchResult searched = search.search(detector, aim);
+        const PulseSearchResult searched = search_with_place_moved(search, detector, film, 20, aim);
         ASSERT_TRUE(searched.detection.found) << searched.detection.failure;
         EXPECT_FALSE(searched.detection.from_prior) << "the place two modules off confirmed";
         EXPECT_LT(off_truth(searched.detection), 0.1);
     }
+}
+
+// Once a place is found, it is followed in the frames demodulated at half
+// size first (PulseSearchOptions::demodulation_level), and given in the
+// frame's own pixels, as close to the truth as at the frames' own size; a
+// place that is not confirmed there is searched for at their own size.
+TEST(PulseSearch, FollowsAPlaceAtHalfSizeFirst) {
+    const Field f = test::shipped_field("b4-64x36.json");
+    const Detector detector(f);
+    const Eigen::Vector2d aim(320, 240);
+    HandHeldFilm film(f);
+    PulseSearchOptions options;
+    options.demodulation_level = 1;
+    PulseSearch search(options);
+    for (int i = 0; i < 19; ++i) search.add(film.frame(i));
+    const auto off_truth = [&](const Detection& d) {
+        const cv::Point2d truth = film.truth();
+        return std::hypot(d.aim_field.x() - truth.x, d.aim_field.y() - truth.y);
+    };
+    const PulseSearchResult first = search.search(detector, aim);
+    ASSERT_TRUE(first.detection.found) << first.detection.failure;
+    EXPECT_EQ(first.detection.size_scale, 1) << "nothing found before: searched at the frames' own size";
+
+    for (int i = 19; i < 23; ++i) {
+        search.add(film.frame(i));
+        const PulseSearchResult followed = search.search(detector, aim);
+        ASSERT_TRUE(followed.detection.found) << "frame " << i << ": " << followed.detection.failure;
+        EXPECT_TRUE(followed.detection.from_prior) << "frame " << i;
+        EXPECT_EQ(followed.detection.size_scale, 0.5) << "frame " << i;
+        EXPECT_LT((followed.detection.aim_image - aim).norm(), 1e-9) << "frame " << i;
+        EXPECT_LT(off_truth(followed.detection), 0.05) << "frame " << i;
+        // The map too, in the frame's own pixels: it takes the aim to the place.
+        const std::optional<Point2> at = apply_homography(followed.detection.image_to_field, aim);
+        ASSERT_TRUE(at.has_value());
+        EXPECT_LT((*at - followed.detection.aim_field).norm(), 0.1) << "frame " << i;
+    }
+
+    const PulseSearchResult searched = search_with_place_moved(search, detector, film, 23, aim);
+    ASSERT_TRUE(searched.detection.found) << searched.detection.failure;
+    EXPECT_FALSE(searched.detection.from_prior) << "the place two modules off confirmed";
+    EXPECT_GE(searched.detection.size_scale, 1) << "searched at the frames' own size";
+    EXPECT_LT(off_truth(searched.detection), 0.05);
 }
 
 // A place is carried from where the module edges around the aim put it,
