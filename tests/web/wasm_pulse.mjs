@@ -8,7 +8,9 @@
 // Must agree frame by frame with the native PulseTracker: the state and
 // whether the place was demodulated; the aim point within a quarter of a
 // module (the refit on a demodulated image follows the float rounding, which
-// differs between the two builds: a tenth of a module apart at most here).
+// differs between the two builds: 0.24 module apart at most here, frames
+// 28-33, since a carried place is followed at half size first; a tenth
+// before; both builds within 0.3 module of the truth there).
 // Must lock on the demodulated pulse within the frames, and every place
 // locked must be within half a module of the truth. Prints the median ms of
 // an update, native and wasm, and the wasm's again with the tracker's search
