@@ -4,8 +4,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
-#include <stdexcept>
 
 #include "shared/detect/field_shift.hpp"
 #include "shared/detect/homography.hpp"
@@ -41,18 +39,6 @@ double lag_one_correlation(const std::vector<double>& course) {
         if (i + 1 < course.size()) along += (course[i] - mean) * (course[i + 1] - mean);
     }
     return all > 0 ? along / all : 0;
-}
-
-// How far apart (pixels) two homographies put a corner of a w x h frame.
-double corner_distance(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b, int w, int h) {
-    double most = 0;
-    for (const double x : {0.0, w - 1.0})
-        for (const double y : {0.0, h - 1.0}) {
-            const auto p = apply_homography(a, Point2(x, y)), q = apply_homography(b, Point2(x, y));
-            if (!p || !q) return std::numeric_limits<double>::infinity();
-            most = std::max(most, (*p - *q).norm());
-        }
-    return most;
 }
 
 // The median ratio of `frame`'s grey levels to `reference`'s over the pixels
@@ -122,118 +108,13 @@ PulseSearch::PulseSearch(PulseSearchOptions options) : options_(std::move(option
 
 void PulseSearch::clear() {
     kept_.clear();
+    stray_.reset();
     motion_.reset();
     earlier_motion_.reset();
     found_.reset();
     added_since_search_ = 0;
     last_found_ = false;
     width_ = height_ = 0;
-}
-
-void PulseSearch::add(const GreyView& frame, std::optional<double> time_s) {
-    if (auto problem = describe_invalid(frame); !problem.empty()) throw std::invalid_argument("pulse search: " + problem);
-    if (frame.width != width_ || frame.height != height_) {
-        clear();
-        width_ = frame.width;
-        height_ = frame.height;
-    }
-    if (time_s && !std::isfinite(*time_s)) time_s.reset();
-    // A clock that stands or runs back (a page's timestamps from another
-    // source after a restart) cannot place the pulse: the frames kept
-    // before it are dropped.
-    if (!kept_.empty() && time_s && kept_.back().time_s && !(*time_s > *kept_.back().time_s)) {
-        kept_.clear();
-        found_.reset();
-    }
-    Kept next{FramePyramid(frame), Eigen::Matrix3d::Identity(), time_s};
-    last_registration_ = {};
-    if (!kept_.empty()) {
-        const FrameRegistration r = register_next(next.pyramid);
-        last_registration_ = r;
-        if (r.registered) {
-            // The first registration after a start has no motion to be
-            // checked against (max_motion_change): the frames are kept, but
-            // a place is not carried through an alignment that may have
-            // slid a line of text or a module along.
-            const bool checked = motion_.has_value();
-            earlier_motion_ = motion_;
-            motion_ = r.homography;
-            for (Kept& k : kept_) k.to_newest = r.homography * k.to_newest;
-            if (found_) found_->image_to_field = found_->image_to_field * r.homography.inverse();
-            // Nor through one aligned on the frames' detail alone: content
-            // the grey levels could not align (a tiled board's repeats, a
-            // glare) may be aligned a little off, frame after frame.
-            through_detail_ = through_detail_ || r.on_detail;
-            if (++carried_for_ > options_.carry_frames || !checked || (through_detail_ && !near_found()))
-                found_.reset();
-        } else {
-            // Frames that cannot be laid onto this one are of no use with it.
-            kept_.clear();
-            found_.reset();
-            ++unregistered_;
-        }
-    }
-    if (kept_.empty()) {
-        // No motion to start the next frame's registration from.
-        motion_.reset();
-        earlier_motion_.reset();
-    }
-    if (static_cast<int>(kept_.size()) >= options_.frames) kept_.pop_front();
-    kept_.push_back(std::move(next));
-    ++added_since_search_;
-}
-
-FrameRegistration PulseSearch::register_next(const FramePyramid& next) const {
-    const FramePyramid& last = kept_.back().pyramid;
-    const Eigen::Matrix3d identity = Eigen::Matrix3d::Identity();
-    // From where the view stands: made once, whichever guess needs it.
-    std::optional<FrameRegistration> standing;
-    // From `guess`, else from where the view stands (a view that stops or
-    // turns back); a motion too far from the guess is taken for none.
-    auto checked = [&](FrameRegistration r, const Eigen::Matrix3d& guess) {
-        if (r.registered && !guess.isIdentity() &&
-            corner_distance(r.homography, guess, width_, height_) > options_.max_motion_change * width_)
-            r.registered = false;
-        return r;
-    };
-    auto attempt = [&](const Eigen::Matrix3d& guess) {
-        FrameRegistration r = register_frames(last, next, guess, options_.registration);
-        if (!r.registered && !guess.isIdentity()) {
-            if (!standing) standing = register_frames(last, next, identity, options_.registration);
-            r = *standing;
-        }
-        r = checked(r, guess);
-        // Lines of text can draw the whole homography a line along at the
-        // coarsest level: aligned again with an affine change there.
-        if (!r.registered && options_.affine_retry && !options_.registration.affine_coarse) {
-            RegistrationOptions affine = options_.registration;
-            affine.affine_coarse = true;
-            FrameRegistration a = checked(register_frames(last, next, guess, affine), guess);
-            if (a.registered) r = a;
-        }
-        if (!r.registered && options_.detail_retry && !options_.registration.detail) {
-            RegistrationOptions detail = options_.registration;
-            detail.detail = true;
-            FrameRegistration d = checked(register_frames(last, next, guess, detail), guess);
-            if (d.registered) r = d;
-        }
-        return r;
-    };
-    // The last motion is the likeliest next one; a hand speeding up or
-    // slowing down goes on changing its motion as it did, so that change
-    // carried on is tried too where it differs, and the alignment leaving
-    // the smaller residual kept.
-    const Eigen::Matrix3d last_motion = motion_.value_or(identity);
-    FrameRegistration best = attempt(last_motion);
-    if (motion_ && earlier_motion_) {
-        Eigen::Matrix3d carried_on = *motion_ * earlier_motion_->inverse() * *motion_;
-        carried_on /= carried_on(2, 2);
-        if (corner_distance(carried_on, last_motion, width_, height_) > kSameGuessPx) {
-            FrameRegistration r = attempt(carried_on);
-            if (r.registered && (!best.registered || r.residual < best.residual)) best = r;
-        }
-    }
-    return best;
 }
 
 bool PulseSearch::due() const {
@@ -270,8 +151,9 @@ std::vector<double> PulseSearch::fit_shape(const PulseCourse& found) const {
         if (!(rate > 0)) continue;
         for (int p = 0; p < kPhases; ++p) {
             for (Eigen::Index i = 0; i < n; ++i) {
-                const double t = timed ? *kept_[static_cast<std::size_t>(i)].time_s - *kept_.front().time_s
-                                       : static_cast<double>(i) / rate;
+                const Kept& k = kept_[static_cast<std::size_t>(i)];
+                const double t = timed ? *k.time_s - *kept_.front().time_s
+                                       : static_cast<double>(k.number - kept_.front().number) / rate;
                 const double phase = t / shape.period_s + static_cast<double>(p) / kPhases;
                 trial(i) = shape.waveform(phase - std::floor(phase));
             }
@@ -474,7 +356,8 @@ PulseSearchResult PulseSearch::search(const Detector& detector, const Eigen::Vec
 
 bool PulseSearch::holds_in_newest(const Detection& place, const Field& field) const {
     if (!options_.check_newest || kept_.empty()) return true;
-    const FieldShift f = field_shift(kept_.back().pyramid.level(0), field, place.image_to_field);
+    const FramePyramid& newest = stray_ ? stray_->pyramid : kept_.back().pyramid;
+    const FieldShift f = field_shift(newest.level(0), field, place.image_to_field);
     const bool elsewhere = f.measured && f.best_t >= options_.elsewhere_t &&
                            f.best_t >= options_.elsewhere_over_content * f.content_t &&
                            f.place_t < options_.place_share * f.best_t &&
@@ -484,6 +367,8 @@ bool PulseSearch::holds_in_newest(const Detection& place, const Field& field) co
 
 void PulseSearch::found_elsewhere(const Detection& found) {
     if (!found.found || kept_.empty()) return;
+    // Found in a frame set aside: the frames kept start over from it.
+    if (stray_) start_over_from_stray();
     keep_found(found);
 }
 
@@ -507,14 +392,14 @@ bool PulseSearch::near_found() const {
 }
 
 std::optional<PulseSearch::Carry> PulseSearch::carry(const Eigen::Vector2d& aim) const {
-    if (!found_) return std::nullopt;
+    if (!found_ || stray_) return std::nullopt;
     const std::optional<Point2> at = apply_homography(found_->image_to_field, aim);
     if (!at) return std::nullopt;
     return Carry{carried_for_, (*at - found_->aim_field).norm()};
 }
 
 std::optional<Detection> PulseSearch::carried(const Eigen::Vector2d& aim) const {
-    if (!found_) return std::nullopt;
+    if (!found_ || stray_) return std::nullopt;
     const std::optional<Point2> at = apply_homography(found_->image_to_field, aim);
     if (!at) return std::nullopt;
     Detection d = *found_;

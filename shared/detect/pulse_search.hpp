@@ -7,8 +7,9 @@
 // waveform), that shape at the rate and phase that explain most of the
 // frames' variation over time, otherwise the frames' leading course
 // (pulse_course.hpp); the detector reads the demodulated image, in the newest frame's
-// place. A frame that cannot be registered onto the one before it (a cut, a
-// view turned away) starts the frames kept over.
+// place. A frame that cannot be registered onto the one before it is set
+// aside; where the next cannot be laid across it either (a cut, a view
+// turned away), the frames kept start over.
 #pragma once
 
 #include <Eigen/Core>
@@ -177,15 +178,20 @@ public:
     explicit PulseSearch(PulseSearchOptions options = {});
 
     // Copies the frame and registers it onto the last; one of another size
-    // than those kept, or one that cannot be registered, starts over.
+    // than those kept starts over. One that cannot be registered is set
+    // aside: the next frame is laid onto the frames kept across it (a frame
+    // smeared by the hand, or one whose alignment left too much unexplained),
+    // and only where that fails too do the frames kept start over from it.
     // `time_s`: when the frame was taken, seconds on any clock; without it
     // the frames are taken to come at one of options.frame_rates.
     void add(const GreyView& frame, std::optional<double> time_s = std::nullopt);
     void clear();
-    int frames() const { return static_cast<int>(kept_.size()); }
+    // The frames the newest lies among: 1 while it is set aside.
+    int frames() const { return stray_ ? 1 : static_cast<int>(kept_.size()); }
     // The homography taking the last frame but one to the last: how the
-    // screen moved in the view; empty when the last frame started over.
-    const std::optional<Eigen::Matrix3d>& motion() const { return motion_; }
+    // screen moved in the view; empty when the last frame started over or
+    // was set aside.
+    std::optional<Eigen::Matrix3d> motion() const { return stray_ ? std::nullopt : motion_; }
     // How many frames could not be registered onto the one before them.
     int registration_losses() const { return unregistered_; }
     // How the last frame was laid onto the one before it (not registered:
@@ -222,6 +228,7 @@ private:
         FramePyramid pyramid;
         Eigen::Matrix3d to_newest;  // its points to the newest frame's
         std::optional<double> time_s;
+        long number = 0;  // of frames added before it: a frame set aside leaves a gap
     };
     std::vector<double> fit_shape(const PulseCourse& course) const;
     std::vector<GreyView> field_alone_images(PulseDemodulator& demodulator, bool fitted);
@@ -244,8 +251,14 @@ private:
     int unregistered_ = 0;
     bool last_found_ = false;
     std::deque<Kept> kept_;
-    // The frame's registration onto the last kept one (kept_ not empty).
-    FrameRegistration register_next(const FramePyramid& next) const;
+    std::optional<Kept> stray_;  // the newest, not registered onto kept_'s newest
+    bool stray_in_step_ = false; // its alignment refused but within the hand's motion
+    long added_ = 0;             // frames added since the start
+    // The frame's registration onto the last kept one (kept_ not empty),
+    // `gap` frames on from it.
+    FrameRegistration register_next(const FramePyramid& next, int gap) const;
+    // The frame set aside starts the frames kept over.
+    void start_over_from_stray();
     // Guesses closer than this at every corner are taken for one.
     static constexpr double kSameGuessPx = 0.5;
     // Where a follow's map is compared with the carried one: this share of

@@ -155,6 +155,48 @@ TEST(PulseDemodulator, ForgetsOldFramesAndStartsOverAtAnotherSize) {
     EXPECT_THROW(demodulator.add(GreyView{}, 0.1), std::invalid_argument);
 }
 
+// Small frames of a page of soft-edged blocks (8 px, blurred twice over 7
+// px, as a camera's frame is soft), wider than the view, shot `left` pixels
+// along it.
+class SlidingPage {
+public:
+    static constexpr int kWidth = 160, kHeight = 120, kPageWidth = 400;
+    SlidingPage() : page_(kPageWidth * kHeight), frame_(kWidth * kHeight) {
+        std::mt19937 rng(11);
+        std::uniform_int_distribution<int> grey(30, 225);
+        std::vector<int> blocks((kPageWidth / 8 + 1) * (kHeight / 8 + 1));
+        for (int& b : blocks) b = grey(rng);
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kPageWidth; ++x) page_[y * kPageWidth + x] = blocks[(y / 8) * (kPageWidth / 8 + 1) + x / 8];
+        for (const bool across : {true, false}) {
+            std::vector<double> blurred(page_.size());
+            for (int y = 0; y < kHeight; ++y)
+                for (int x = 0; x < kPageWidth; ++x) {
+                    double sum = 0;
+                    int n = 0;
+                    for (int d = -3; d <= 3; ++d) {
+                        const int u = across ? x + d : x, v = across ? y : y + d;
+                        if (u < 0 || v < 0 || u >= kPageWidth || v >= kHeight) continue;
+                        sum += page_[v * kPageWidth + u];
+                        ++n;
+                    }
+                    blurred[y * kPageWidth + x] = sum / n;
+                }
+            page_ = std::move(blurred);
+        }
+    }
+    GreyView shoot(int left) {
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x)
+                frame_[y * kWidth + x] = static_cast<std::uint8_t>(std::lround(page_[y * kPageWidth + x + left]));
+        return view_of(frame_, kWidth, kHeight);
+    }
+
+private:
+    std::vector<double> page_;
+    std::vector<std::uint8_t> frame_;
+};
+
 // The registration's motion check (PulseSearchOptions::max_motion_change) on
 // small frames of a textured page: a hand's swing that speeds up by a little
 // each frame stays registered, and so does one that speeds up by more than
@@ -162,39 +204,8 @@ TEST(PulseDemodulator, ForgetsOldFramesAndStartsOverAtAnotherSize) {
 // still that jumps by 11 pixels in one frame (on a blank page, a
 // registration a few modules off) is refused.
 TEST(PulseSearch, ASwingStaysRegisteredAndAStillViewThatJumpsDoesNot) {
-    // A page of soft-edged blocks (8 px, blurred twice over 7 px, as a
-    // camera's frame is soft), wider than the view.
-    const int width = 160, height = 120, page_width = 400;
-    std::mt19937 rng(11);
-    std::uniform_int_distribution<int> grey(30, 225);
-    std::vector<int> blocks((page_width / 8 + 1) * (height / 8 + 1));
-    for (int& b : blocks) b = grey(rng);
-    std::vector<double> page(page_width * height);
-    for (int y = 0; y < height; ++y)
-        for (int x = 0; x < page_width; ++x) page[y * page_width + x] = blocks[(y / 8) * (page_width / 8 + 1) + x / 8];
-    for (const bool across : {true, false}) {
-        std::vector<double> blurred(page.size());
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < page_width; ++x) {
-                double sum = 0;
-                int n = 0;
-                for (int d = -3; d <= 3; ++d) {
-                    const int u = across ? x + d : x, v = across ? y : y + d;
-                    if (u < 0 || v < 0 || u >= page_width || v >= height) continue;
-                    sum += page[v * page_width + u];
-                    ++n;
-                }
-                blurred[y * page_width + x] = sum / n;
-            }
-        page = std::move(blurred);
-    }
-    std::vector<std::uint8_t> frame(width * height);
-    auto shoot = [&](int left) {
-        for (int y = 0; y < height; ++y)
-            for (int x = 0; x < width; ++x)
-                frame[y * width + x] = static_cast<std::uint8_t>(std::lround(page[y * page_width + x + left]));
-        return view_of(frame, width, height);
-    };
+    SlidingPage page;
+    auto shoot = [&](int left) { return page.shoot(left); };
     // Steps of 4, 5, 7 and 10 pixels: each changes by at most 3 pixels, less
     // than 3 % of the width (4.8).
     PulseSearch swing{PulseSearchOptions{}};
@@ -215,6 +226,77 @@ TEST(PulseSearch, ASwingStaysRegisteredAndAStillViewThatJumpsDoesNot) {
     EXPECT_EQ(still.registration_losses(), 0);
     still.add(shoot(112));
     EXPECT_EQ(still.registration_losses(), 1) << "a jump of 11 pixels after a still view";
+}
+
+// A frame that cannot be laid onto the last is set aside, and the next is
+// laid onto the frames kept across it: they are kept and the motion goes
+// on. A place carried comes through where the frame set aside was refused
+// with its alignment in step with the hand (a frame smeared flat), not
+// where it was aligned far off. Two such frames in a row are a cut: the
+// frames kept start over from the first of them.
+TEST(PulseSearch, StepsAcrossAFrameThatCannotBeRegistered) {
+    SlidingPage page;
+    const Eigen::Vector2d aim(80, 60);
+    // A place at the aim: field units of a tenth of a pixel.
+    Detection place;
+    place.found = true;
+    place.aim_image = aim;
+    place.aim_field = {50, 30};
+    place.image_to_field << 0.1, 0, 42, 0, 0.1, 24, 0, 0, 1;
+
+    // A hand moving the view a pixel a frame.
+    PulseSearch search{PulseSearchOptions{}};
+    for (const int left : {0, 1, 2, 3}) search.add(page.shoot(left));
+    search.found_elsewhere(place);
+    search.add(page.shoot(4));
+    ASSERT_TRUE(search.carried(aim).has_value());
+    // The next frame in its place, smeared by the hand across 15 pixels:
+    // aligned in step with the hand, and refused for all it leaves
+    // unexplained.
+    const GreyView next = page.shoot(5);
+    std::vector<std::uint8_t> smeared(next.data, next.data + SlidingPage::kWidth * SlidingPage::kHeight);
+    for (int y = 0; y < SlidingPage::kHeight; ++y)
+        for (int x = 0; x < SlidingPage::kWidth; ++x) {
+            int sum = 0, n = 0;
+            for (int u = std::max(0, x - 7); u <= std::min(SlidingPage::kWidth - 1, x + 7); ++u, ++n)
+                sum += next.at(u, y);
+            smeared[y * SlidingPage::kWidth + x] = static_cast<std::uint8_t>((sum + n / 2) / n);
+        }
+    search.add(view_of(smeared, SlidingPage::kWidth, SlidingPage::kHeight));
+    EXPECT_EQ(search.registration_losses(), 1);
+    EXPECT_EQ(search.frames(), 1) << "the newest lies among no frames kept";
+    EXPECT_FALSE(search.motion().has_value());
+    EXPECT_FALSE(search.carried(aim).has_value()) << "not said of a frame set aside";
+    search.add(page.shoot(6));
+    EXPECT_EQ(search.registration_losses(), 1);
+    EXPECT_EQ(search.frames(), 6) << "laid across the frame set aside onto the five kept";
+    ASSERT_TRUE(search.motion().has_value());
+    EXPECT_NEAR((*search.motion())(0, 2), -1, 0.1) << "one frame's motion, as before";
+    const std::optional<Detection> across = search.carried(aim);
+    ASSERT_TRUE(across.has_value()) << "carried across the frame set aside";
+    EXPECT_NEAR(across->aim_field.x(), 50 + 0.3, 0.02) << "the view came 3 px along since the place was found";
+    EXPECT_NEAR(across->aim_field.y(), 30, 0.02);
+    ASSERT_TRUE(search.carry(aim).has_value());
+    EXPECT_EQ(search.carry(aim)->frames, 3) << "the frame set aside counts";
+
+    // A frame of another part of the page (a registration far off): the
+    // frames kept go on across it, the place is not carried.
+    search.add(page.shoot(200));
+    search.add(page.shoot(8));
+    EXPECT_EQ(search.registration_losses(), 2);
+    EXPECT_EQ(search.frames(), 7);
+    EXPECT_FALSE(search.carried(aim).has_value()) << "not carried across a frame out of step with the hand";
+
+    // A cut to another part of the page, held: the first frame after it is
+    // set aside, the second starts the frames kept over from it.
+    search.found_elsewhere(place);
+    search.add(page.shoot(200));
+    search.add(page.shoot(201));
+    EXPECT_EQ(search.registration_losses(), 3);
+    EXPECT_EQ(search.frames(), 2);
+    EXPECT_FALSE(search.carried(aim).has_value()) << "not carried across a cut";
+    ASSERT_TRUE(search.motion().has_value());
+    EXPECT_NEAR((*search.motion())(0, 2), -1, 0.1);
 }
 
 // PulseSearch's every step on small frames of a checkerboard pulsing over
