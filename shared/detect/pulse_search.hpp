@@ -195,8 +195,10 @@ public:
     // How many frames could not be registered onto the one before them.
     int registration_losses() const { return unregistered_; }
     // How the last frame was laid onto the one before it (not registered:
-    // the first frame, or one that started over).
+    // the first frame, or one that started over or was set aside), and how
+    // many frames back that one is (2 across a frame set aside).
     const FrameRegistration& last_registration() const { return last_registration_; }
+    int last_registration_span() const { return last_span_; }
 
     // Whether a search is worth its cost now: enough frames kept, and
     // search_every more since a search that found nothing.
@@ -268,6 +270,7 @@ private:
     std::optional<Eigen::Matrix3d> motion_;          // the last frame's, the next frame's first guess
     std::optional<Eigen::Matrix3d> earlier_motion_;  // the one before it
     FrameRegistration last_registration_;
+    int last_span_ = 1;
     std::optional<Detection> found_;  // the last search's, carried to the newest frame
     int carried_for_ = 0;             // frames since it was found
     bool through_detail_ = false;     // one of them registered on the frames' detail

@@ -48,6 +48,7 @@ void PulseSearch::add(const GreyView& frame, std::optional<double> time_s) {
     }
     Kept next{FramePyramid(frame), Eigen::Matrix3d::Identity(), time_s, added_++};
     last_registration_ = {};
+    last_span_ = 1;
     if (!kept_.empty()) {
         // Across the frame set aside, if any: the view has come twice as far.
         const int gap = stray_ ? 2 : 1;
@@ -61,6 +62,7 @@ void PulseSearch::add(const GreyView& frame, std::optional<double> time_s) {
             came = 1;
         }
         last_registration_ = r;
+        last_span_ = came;
         if (!r.registered) {
             // Set aside for the next frame to be laid across. Whether it
             // was refused with its alignment in step with the hand: a frame

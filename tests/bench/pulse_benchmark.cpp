@@ -261,8 +261,10 @@ Tally run_pulse(const Detector& detector, const PulseBenchmarkOptions& o, const 
             const FrameRegistration& g = tracker.pulse().last_registration();
             *log << "\t" << r.share << "\t" << r.ms << "\t" << g.registered << "\t" << g.residual << "\t"
                  << g.unmoved_residual << "\t" << g.overlap << "\t" << g.on_detail << "\t";
-            if (i > 0 && !v.screen_to_image.empty())
-                *log << registration_error(g.homography, v.screen_to_image[i - 1], v.screen_to_image[i], frames[i].grey.size());
+            const std::size_t span = static_cast<std::size_t>(tracker.pulse().last_registration_span());
+            if (i >= span && !v.screen_to_image.empty())
+                *log << registration_error(g.homography, v.screen_to_image[i - span], v.screen_to_image[i],
+                                           frames[i].grey.size());
             *log << "\t";
             const Eigen::Vector2d aim(frames[i].grey.cols / 2.0, frames[i].grey.rows / 2.0);
             if (const auto c = tracker.pulse().carry(aim)) *log << c->frames << "\t" << c->travel;

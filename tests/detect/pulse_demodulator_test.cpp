@@ -270,6 +270,7 @@ TEST(PulseSearch, StepsAcrossAFrameThatCannotBeRegistered) {
     search.add(page.shoot(6));
     EXPECT_EQ(search.registration_losses(), 1);
     EXPECT_EQ(search.frames(), 6) << "laid across the frame set aside onto the five kept";
+    EXPECT_EQ(search.last_registration_span(), 2);
     ASSERT_TRUE(search.motion().has_value());
     EXPECT_NEAR((*search.motion())(0, 2), -1, 0.1) << "one frame's motion, as before";
     const std::optional<Detection> across = search.carried(aim);
