@@ -261,6 +261,9 @@ private:
     FrameRegistration register_next(const FramePyramid& next, int gap) const;
     // The frame set aside starts the frames kept over.
     void start_over_from_stray();
+    // Whether `motion` keeps within max_motion_change of `guess`, `gap`
+    // frames on (the hand has had as many frames to change it).
+    bool in_step(const Eigen::Matrix3d& motion, const Eigen::Matrix3d& guess, int gap) const;
     // Guesses closer than this at every corner are taken for one.
     static constexpr double kSameGuessPx = 0.5;
     // Where a follow's map is compared with the carried one: this share of

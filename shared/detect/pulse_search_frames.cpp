@@ -68,9 +68,8 @@ void PulseSearch::add(const GreyView& frame, std::optional<double> time_s) {
             // was refused with its alignment in step with the hand: a frame
             // smeared by the hand differs from the last in its grey levels,
             // not in where it lies.
-            stray_in_step_ = motion_ && r.homography.allFinite() && r.overlap >= options_.registration.min_overlap &&
-                             corner_distance(r.homography, *motion_, width_, height_) <=
-                                 options_.max_motion_change * width_;
+            stray_in_step_ = motion_ && r.homography.allFinite() &&
+                             r.overlap >= options_.registration.min_overlap && in_step(r.homography, *motion_, 1);
             stray_ = std::move(next);
             ++unregistered_;
             ++added_since_search_;
@@ -110,6 +109,10 @@ void PulseSearch::add(const GreyView& frame, std::optional<double> time_s) {
     ++added_since_search_;
 }
 
+bool PulseSearch::in_step(const Eigen::Matrix3d& motion, const Eigen::Matrix3d& guess, int gap) const {
+    return corner_distance(motion, guess, width_, height_) <= gap * options_.max_motion_change * width_;
+}
+
 void PulseSearch::start_over_from_stray() {
     kept_.clear();
     found_.reset();
@@ -129,9 +132,7 @@ FrameRegistration PulseSearch::register_next(const FramePyramid& next, int gap) 
     // turns back); a motion too far from the guess is taken for none (across
     // a frame set aside, the hand has had as many frames to change it).
     auto checked = [&](FrameRegistration r, const Eigen::Matrix3d& guess) {
-        if (r.registered && !guess.isIdentity() &&
-            corner_distance(r.homography, guess, width_, height_) > gap * options_.max_motion_change * width_)
-            r.registered = false;
+        if (r.registered && !guess.isIdentity() && !in_step(r.homography, guess, gap)) r.registered = false;
         return r;
     };
     auto attempt = [&](const Eigen::Matrix3d& guess) {
