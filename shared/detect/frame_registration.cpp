@@ -316,7 +316,8 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
         throw std::invalid_argument("register_frames: the frames differ in size");
     const int w = from.width(), h = from.height();
     const Eigen::Matrix3d full_to_unit = level_to_unit(w, h, 0);
-    Eigen::Matrix3d warp = full_to_unit * guess * full_to_unit.inverse();
+    const Eigen::Matrix3d guess_warp = full_to_unit * guess * full_to_unit.inverse();
+    Eigen::Matrix3d warp = guess_warp;
     const int coarsest = std::min(from.levels(), to.levels()) - 1;
     const int finest = std::clamp(options.finest_level, 0, coarsest);
     const double aspect = static_cast<double>(h) / w;
@@ -366,6 +367,7 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     result.homography /= result.homography(2, 2);
     result.residual = last.spread;
     result.unmoved_residual = unmoved.spread;
+    result.guess_residual = align_step(samples, image(to, finest), guess_warp, finest_to_unit.inverse(), gain).spread;
     result.overlap = last.overlap;
     result.gain = gain;
     result.on_detail = detail;

@@ -127,6 +127,7 @@ struct FrameRegistration {
     Eigen::Matrix3d homography = Eigen::Matrix3d::Identity();
     double residual = 0;  // the robust spread of the grey-level difference, levels
     double unmoved_residual = 0;  // the same between the frames as they lie
+    double guess_residual = 0;    // the same where the guess lays them
     double overlap = 0;   // the share of samples inside `to`
     double gain = 1;      // of `to`'s grey levels over `from`'s
     bool on_detail = false;  // aligned on the frames' detail (RegistrationOptions::detail)

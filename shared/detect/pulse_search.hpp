@@ -56,6 +56,19 @@ struct PulseSearchOptions {
     // content with little but the faint field to align on (a blank page)
     // can be aligned a few modules off.
     double max_motion_change = 0.03;
+    // Unless the frames show it: the registration from the motion guessed
+    // leaves at most this share of the grey levels' spread that the guess
+    // does (FrameRegistration::guess_residual; 0: never), departs from it by
+    // at most kOutOfStepReach times the change allowed, and comes to the
+    // same place from where the view stands (kSameAlignmentPx). A hand that
+    // speeds up leaves its last motion behind: on the tuning set swung twice
+    // as fast the check refused alignments within a pixel of the true motion
+    // and the places carried through them were lost (umf_pulse_benchmark
+    // --swing-speed 2 --out-of-step-share 0: 529 / 1 right / wrong, 622 / 1
+    // at 0.5). On a blank page where an alignment ends hangs on where it
+    // began: without the last two tests 6 of its frames were placed wrong
+    // at that swing, with them 1, through an alignment in step (0 before).
+    double out_of_step_share = 0.5;
     // A frame not registered (or refused by the motion check) is aligned
     // again with the coarsest level an affine change
     // (RegistrationOptions::affine_coarse): the tuning set's document slid
@@ -266,6 +279,12 @@ private:
     bool in_step(const Eigen::Matrix3d& motion, const Eigen::Matrix3d& guess, int gap) const;
     // Guesses closer than this at every corner are taken for one.
     static constexpr double kSameGuessPx = 0.5;
+    // Two alignments of a frame from different starts that put every corner
+    // within this of each other are taken for one.
+    static constexpr double kSameAlignmentPx = 1.5;
+    // How many times max_motion_change a registration the frames show may
+    // depart from the motion guessed (out_of_step_share).
+    static constexpr int kOutOfStepReach = 3;
     // Where a follow's map is compared with the carried one: this share of
     // the frame's width around the aim (max_follow_shape_change).
     static constexpr double kShapeReach = 0.1;

@@ -130,30 +130,53 @@ FrameRegistration PulseSearch::register_next(const FramePyramid& next, int gap) 
     std::optional<FrameRegistration> standing;
     // From `guess`, else from where the view stands (a view that stops or
     // turns back); a motion too far from the guess is taken for none (across
-    // a frame set aside, the hand has had as many frames to change it).
-    auto checked = [&](FrameRegistration r, const Eigen::Matrix3d& guess) {
-        if (r.registered && !guess.isIdentity() && !in_step(r.homography, guess, gap)) r.registered = false;
+    // a frame set aside, the hand has had as many frames to change it),
+    // unless the frames say where they lie: the alignment from the guess
+    // is within kOutOfStepReach times the change allowed, leaves far less
+    // unexplained than the guess does, and the alignment from where the view
+    // stands comes to the same place (on a page with little to align on,
+    // where an alignment ends hangs on where it began).
+    auto checked = [&](FrameRegistration r, const Eigen::Matrix3d& guess, const RegistrationOptions& options,
+                       bool from_guess) {
+        if (!r.registered || guess.isIdentity() || in_step(r.homography, guess, gap)) return r;
+        r.registered = false;
+        if (!from_guess || !in_step(r.homography, guess, kOutOfStepReach * gap) ||
+            !(r.residual <= options_.out_of_step_share * r.guess_residual))
+            return r;
+        // From where the view stands with the same options: the first
+        // attempt's, made once, or a retry's own.
+        FrameRegistration from_standing;
+        if (&options == &options_.registration) {
+            if (!standing) standing = register_frames(last, next, identity, options);
+            from_standing = *standing;
+        } else {
+            from_standing = register_frames(last, next, identity, options);
+        }
+        r.registered = from_standing.registered &&
+                       corner_distance(from_standing.homography, r.homography, width_, height_) <= kSameAlignmentPx;
         return r;
     };
     auto attempt = [&](const Eigen::Matrix3d& guess) {
         FrameRegistration r = register_frames(last, next, guess, options_.registration);
+        bool from_guess = true;
         if (!r.registered && !guess.isIdentity()) {
             if (!standing) standing = register_frames(last, next, identity, options_.registration);
             r = *standing;
+            from_guess = false;
         }
-        r = checked(r, guess);
+        r = checked(r, guess, options_.registration, from_guess);
         // Lines of text can draw the whole homography a line along at the
         // coarsest level: aligned again with an affine change there.
         if (!r.registered && options_.affine_retry && !options_.registration.affine_coarse) {
             RegistrationOptions affine = options_.registration;
             affine.affine_coarse = true;
-            FrameRegistration a = checked(register_frames(last, next, guess, affine), guess);
+            FrameRegistration a = checked(register_frames(last, next, guess, affine), guess, affine, true);
             if (a.registered) r = a;
         }
         if (!r.registered && options_.detail_retry && !options_.registration.detail) {
             RegistrationOptions detail = options_.registration;
             detail.detail = true;
-            FrameRegistration d = checked(register_frames(last, next, guess, detail), guess);
+            FrameRegistration d = checked(register_frames(last, next, guess, detail), guess, detail, true);
             if (d.registered) r = d;
         }
         return r;

@@ -156,6 +156,7 @@ PulseSearchOptions pulse_options(const PulseBenchmarkOptions& o, double fps) {
     if (o.kept_frames) p.frames = *o.kept_frames;
     if (o.demodulation_level) p.demodulation_level = *o.demodulation_level;
     if (o.max_share) p.registration.max_share = *o.max_share;
+    if (o.out_of_step_share) p.out_of_step_share = *o.out_of_step_share;
     if (!o.announced) return p;
     p.shape = overlay::announced_pulse_shape(overlay::Waveform::sine, kPeriodS, o.min_opacity, o.max_opacity);
     p.frame_rates = {fps};
@@ -260,7 +261,8 @@ Tally run_pulse(const Detector& detector, const PulseBenchmarkOptions& o, const 
                                  frames[i].centre_screen_px) / v.placement.module_px;
             const FrameRegistration& g = tracker.pulse().last_registration();
             *log << "\t" << r.share << "\t" << r.ms << "\t" << g.registered << "\t" << g.residual << "\t"
-                 << g.unmoved_residual << "\t" << g.overlap << "\t" << g.on_detail << "\t";
+                 << g.unmoved_residual << "\t" << g.overlap << "\t" << g.on_detail << "\t" << g.guess_residual
+                 << "\t";
             const std::size_t span = static_cast<std::size_t>(tracker.pulse().last_registration_span());
             if (i >= span && !v.screen_to_image.empty())
                 *log << registration_error(g.homography, v.screen_to_image[i - span], v.screen_to_image[i],

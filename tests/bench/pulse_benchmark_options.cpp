@@ -51,6 +51,7 @@ Usage: umf_pulse_benchmark [options]
                          (PulseSearchOptions::level_exposure off)
   --carry-frames N       PulseSearchOptions::carry_frames (default: the library's)
   --max-share X          RegistrationOptions::max_share (default: the library's)
+  --out-of-step-share X  PulseSearchOptions::out_of_step_share (default: the library's)
   --affine-coarse        every registration's coarsest level an affine change
                          (RegistrationOptions::affine_coarse on)
   --no-affine-retry      no registration tried again with an affine coarsest level
@@ -72,13 +73,14 @@ Usage: umf_pulse_benchmark [options]
   --log FILE             one line per frame of the pulse search's videos: video, frame, state, where the
                          place came from, its error in modules, the share the pulse explained where searched,
                          ms, and the frame's registration onto the last: registered, residual, the residual
-                         unmoved, overlap, whether aligned on the frames' detail, and (tuning set) how far the
-                         registration put the frame's centre from the true motion's, pixels; then the place
-                         carried: frames since it was found or confirmed, and the modules the aim has come over
-                         the field since; and where the pulse search gave the place, its check in the frame
-                         alone (field_shift.hpp): the shift the frame's own field shows (x, y pixels), the
-                         evidence there, at the place and from the content alone (FieldShift), the module's
-                         size in pixels, and the place's true error at the aim (x, y pixels)
+                         unmoved, overlap, whether aligned on the frames' detail, the residual where the
+                         motion guessed laid the frames, and (tuning set) how far the registration put the
+                         frame's centre from the true motion's, pixels; then the place carried: frames since
+                         it was found or confirmed, and the modules the aim has come over the field since; and
+                         where the pulse search gave the place, its check in the frame alone (field_shift.hpp):
+                         the shift the frame's own field shows (x, y pixels), the evidence there, at the place
+                         and from the content alone (FieldShift), the module's size in pixels, and the place's
+                         true error at the aim (x, y pixels)
   --seed N               scenario seed (default 1)
   --threads N            threads making frames (default: all cores)
   --help                 this text
@@ -159,6 +161,10 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
             if (*o.carry_frames < 0) throw std::invalid_argument("--carry-frames: 0 or more");
         } else if (a == "--max-share") {
             o.max_share = std::stod(value());
+        } else if (a == "--out-of-step-share") {
+            o.out_of_step_share = std::stod(value());
+            if (!(*o.out_of_step_share >= 0 && *o.out_of_step_share <= 1))
+                throw std::invalid_argument("--out-of-step-share: 0 to 1");
         } else if (a == "--affine-coarse") {
             o.affine_coarse = true;
         } else if (a == "--no-affine-retry") {

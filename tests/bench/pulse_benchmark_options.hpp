@@ -43,6 +43,7 @@ struct PulseBenchmarkOptions {
     bool field_alone = true;
     bool content_free = true;
     std::optional<double> max_share;
+    std::optional<double> out_of_step_share;
     std::optional<int> kept_frames;  // PulseSearchOptions::frames
     std::optional<int> demodulation_level;  // PulseSearchOptions::demodulation_level
     std::vector<std::string> videos;  // empty: all

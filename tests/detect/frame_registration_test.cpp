@@ -124,6 +124,12 @@ TEST(FrameRegistration, StartsFromTheGuessForALargerMotion) {
         register_frames(FramePyramid(from), FramePyramid(to), motion(60, -45, 5, 1.05, 0, w, h));
     ASSERT_TRUE(guessed.registered);
     EXPECT_LT(farthest_apart(guessed.homography, truth, w, h), 0.3);
+    // Where the guess laid the frames, a few pixels off, the spread is far
+    // more than aligned, and less than unmoved.
+    EXPECT_GT(guessed.guess_residual, 2 * guessed.residual);
+    EXPECT_LT(guessed.guess_residual, guessed.unmoved_residual);
+    const FrameRegistration unguessed = register_frames(FramePyramid(from), FramePyramid(to));
+    EXPECT_EQ(unguessed.guess_residual, unguessed.unmoved_residual) << "from where the view stands";
 }
 
 TEST(FrameRegistration, SaysWhenTheFramesShowDifferentScenes) {
