@@ -239,9 +239,10 @@ double aligned_gain(const GreyView& from, const GreyView& to, const Eigen::Matri
 }
 
 // One Gauss-Newton step of the samples against `image` through `h`, with
-// the samples' grey levels scaled by `gain` (the other frame's exposure).
+// the samples' grey levels scaled by `gain` (the other frame's exposure);
+// `spread_only`: the spread and overlap there, no step.
 Step align_step(const std::vector<Sample>& samples, const GreyView& image, const Eigen::Matrix3d& h,
-                const Eigen::Matrix3d& unit_to_level, double gain, bool affine = false) {
+                const Eigen::Matrix3d& unit_to_level, double gain, bool affine = false, bool spread_only = false) {
     std::vector<float> diff(samples.size());
     std::vector<char> inside(samples.size(), 0);
     std::vector<float> seen;
@@ -264,6 +265,7 @@ Step align_step(const std::vector<Sample>& samples, const GreyView& image, const
     const float offset = robust.offset;
     const double huber = robust.huber;
     step.spread = robust.spread;
+    if (spread_only) return step;
     Eigen::Matrix<double, 8, 8> normal = Eigen::Matrix<double, 8, 8>::Zero();
     Eigen::Matrix<double, 8, 1> rhs = Eigen::Matrix<double, 8, 1>::Zero();
     for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -361,17 +363,19 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     // its edges at other phases), so the alignment is judged by how much it
     // explains as well as by what it leaves.
     last = align_step(samples, image(to, finest), warp, finest_to_unit.inverse(), gain);
-    const Step unmoved =
-        align_step(samples, image(to, finest), Eigen::Matrix3d::Identity(), finest_to_unit.inverse(), gain);
+    auto spread_at = [&](const Eigen::Matrix3d& h) {
+        return align_step(samples, image(to, finest), h, finest_to_unit.inverse(), gain, false, true).spread;
+    };
     result.homography = full_to_unit.inverse() * warp * full_to_unit;
     result.homography /= result.homography(2, 2);
     result.residual = last.spread;
-    result.unmoved_residual = unmoved.spread;
-    result.guess_residual = align_step(samples, image(to, finest), guess_warp, finest_to_unit.inverse(), gain).spread;
+    result.unmoved_residual = spread_at(Eigen::Matrix3d::Identity());
+    result.guess_residual = guess.isIdentity() ? result.unmoved_residual : spread_at(guess_warp);
     result.overlap = last.overlap;
     result.gain = gain;
     result.on_detail = detail;
-    const bool explained = last.spread <= options.max_residual || last.spread <= options.max_share * unmoved.spread;
+    const bool explained =
+        last.spread <= options.max_residual || last.spread <= options.max_share * result.unmoved_residual;
     result.registered = last.solved && result.homography.allFinite() && explained && last.overlap >= options.min_overlap;
     return result;
 }
