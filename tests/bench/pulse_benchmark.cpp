@@ -28,10 +28,19 @@
 #include "tests/bench/pulse_benchmark_options.hpp"
 #include "tests/bench/scenario.hpp"
 #include "tests/sim/field_mix.hpp"
+#include "tests/sim/phone_processing.hpp"
 #include "tests/sim/sequence.hpp"
 
 namespace umf::bench {
 namespace {
+
+// A grey frame through a phone's local tone mapping (sim::local_tone_map).
+cv::Mat locally_tone_mapped(const cv::Mat& grey, double strength) {
+    cv::Mat bgr, out;
+    cv::cvtColor(grey, bgr, cv::COLOR_GRAY2BGR);
+    cv::cvtColor(sim::local_tone_map(bgr, strength), out, cv::COLOR_BGR2GRAY);
+    return out;
+}
 
 constexpr double kPeriodS = 1.5;
 constexpr double kRadiusModules = 0.5;
@@ -100,6 +109,8 @@ std::vector<Video> tuning_videos(const PulseBenchmarkOptions& o, const Field& fi
             const double a = faint(o, pulsing_opacity(rs[at].index));
             v.field[at] = shoot(scene, rs[at], sim::mix_field(screen, field, placement, a), res);
             v.bare[at] = shoot(scene, rs[at], screen, res);
+            if (o.local_tone > 0)
+                for (Frame* f : {&v.field[at], &v.bare[at]}) f->grey = locally_tone_mapped(f->grey, o.local_tone);
             if (o.readout_s > 0) {
                 // The last frame moves on as from the one before it.
                 const bool last = at + 1 == rs.size();
@@ -310,6 +321,7 @@ void run(const PulseBenchmarkOptions& o) {
     if (o.swing_speed > 1 && !o.heldout) std::printf("The hand swinging %d times as fast.\n", o.swing_speed);
     if (o.noise && !o.heldout) std::printf("Sensor noise of %.3g grey levels.\n", *o.noise);
     if (o.jpeg_quality && !o.heldout) std::printf("JPEG quality %d.\n", *o.jpeg_quality);
+    if (o.local_tone > 0 && !o.heldout) std::printf("Local tone mapping of strength %.3g.\n", o.local_tone);
     if (o.fit_gain) std::printf("Registered with the exposure's gain as well as an offset.\n");
     if (!o.level_exposure) std::printf("Not levelled to one exposure before demodulating.\n");
     if (o.optics == PulseBenchmarkOptions::Optics::steady && !o.heldout)

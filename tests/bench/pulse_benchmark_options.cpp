@@ -42,6 +42,9 @@ Usage: umf_pulse_benchmark [options]
   --swing-speed K        the tuning set's hand swinging K times as fast (an integer; default 1)
   --noise S              the tuning set's sensor noise, S grey levels (default: 2 to 3 a frame)
   --jpeg-quality Q       the tuning set's frames encoded at JPEG quality Q (default 80)
+  --local-tone S         the tuning set's frames through a phone's local tone mapping of strength S (0 to 1; each
+                         pixel scaled by the frame's mean over the mean around it, to the power S; default 0), as
+                         the held-out set's camera does at 0 to 0.5
   --plain-optics         the tuning set's frames without the smear, the screen's stripes and the lamp that
                          some frames have at random (each frame's defocus still its own, 0.5 to 1.5 px)
   --steady-optics        as --plain-optics, and every frame defocused by the same 1 px
@@ -148,6 +151,9 @@ PulseBenchmarkOptions parse_pulse_options(int argc, char** argv) {
         } else if (a == "--swing-speed") {
             o.swing_speed = std::stoi(value());
             if (o.swing_speed < 1 || o.swing_speed > 8) throw std::invalid_argument("--swing-speed: 1 to 8");
+        } else if (a == "--local-tone") {
+            o.local_tone = std::stod(value());
+            if (!(o.local_tone >= 0 && o.local_tone <= 1)) throw std::invalid_argument("--local-tone: 0 to 1");
         } else if (a == "--noise") {
             o.noise = std::stod(value());
             if (!(*o.noise >= 0 && *o.noise <= 30)) throw std::invalid_argument("--noise: 0 to 30 grey levels");

@@ -26,6 +26,8 @@ struct PulseBenchmarkOptions {
     int swing_speed = 1;
     std::optional<double> noise;
     std::optional<int> jpeg_quality;
+    // A phone's local tone mapping on the tuning set's frames (sim::local_tone_map's strength; 0: none).
+    double local_tone = 0;
     bool fit_gain = false;
     bool level_exposure = true;
     // The tuning set's optics: each frame's own draw; no smear, stripes or
