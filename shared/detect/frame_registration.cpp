@@ -238,11 +238,14 @@ double aligned_gain(const GreyView& from, const GreyView& to, const Eigen::Matri
     return gain >= 1 / 1.5 && gain <= 1.5 ? gain : 1;
 }
 
+// What align_step fits: a homography's eight parameters, an affine
+// change's six, or nothing (the spread and overlap alone).
+enum class StepFit { homography, affine, none };
+
 // One Gauss-Newton step of the samples against `image` through `h`, with
-// the samples' grey levels scaled by `gain` (the other frame's exposure);
-// `spread_only`: the spread and overlap there, no step.
+// the samples' grey levels scaled by `gain` (the other frame's exposure).
 Step align_step(const std::vector<Sample>& samples, const GreyView& image, const Eigen::Matrix3d& h,
-                const Eigen::Matrix3d& unit_to_level, double gain, bool affine = false, bool spread_only = false) {
+                const Eigen::Matrix3d& unit_to_level, double gain, StepFit fit = StepFit::homography) {
     std::vector<float> diff(samples.size());
     std::vector<char> inside(samples.size(), 0);
     std::vector<float> seen;
@@ -265,7 +268,7 @@ Step align_step(const std::vector<Sample>& samples, const GreyView& image, const
     const float offset = robust.offset;
     const double huber = robust.huber;
     step.spread = robust.spread;
-    if (spread_only) return step;
+    if (fit == StepFit::none) return step;
     Eigen::Matrix<double, 8, 8> normal = Eigen::Matrix<double, 8, 8>::Zero();
     Eigen::Matrix<double, 8, 1> rhs = Eigen::Matrix<double, 8, 1>::Zero();
     for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -278,7 +281,7 @@ Step align_step(const std::vector<Sample>& samples, const GreyView& image, const
         rhs += w * e * j;
     }
     normal = normal.selfadjointView<Eigen::Lower>();
-    if (affine) {
+    if (fit == StepFit::affine) {
         const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> solver(normal.topLeftCorner<6, 6>());
         if (solver.info() != Eigen::Success) return step;
         step.update.head<6>() = solver.solve(rhs.head<6>());
@@ -331,9 +334,10 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     auto image = [&](const FramePyramid& p, int level) { return detail ? p.detail(level) : p.level(level); };
     auto align = [&](int level, double gain) {
         const Eigen::Matrix3d unit_to_level = level_to_unit(w, h, level).inverse();
-        const bool affine = options.affine_coarse && level == coarsest && coarsest > finest;
+        const StepFit fit = options.affine_coarse && level == coarsest && coarsest > finest ? StepFit::affine
+                                                                                            : StepFit::homography;
         for (int it = 0; it < options.iterations; ++it) {
-            last = align_step(samples, image(to, level), warp, unit_to_level, gain, affine);
+            last = align_step(samples, image(to, level), warp, unit_to_level, gain, fit);
             if (!last.solved) break;
             const Eigen::Matrix3d inverse_step = as_matrix(last.update).inverse();
             warp = warp * inverse_step;
@@ -364,7 +368,7 @@ FrameRegistration register_frames(const FramePyramid& from, const FramePyramid& 
     // explains as well as by what it leaves.
     last = align_step(samples, image(to, finest), warp, finest_to_unit.inverse(), gain);
     auto spread_at = [&](const Eigen::Matrix3d& h) {
-        return align_step(samples, image(to, finest), h, finest_to_unit.inverse(), gain, false, true).spread;
+        return align_step(samples, image(to, finest), h, finest_to_unit.inverse(), gain, StepFit::none).spread;
     };
     result.homography = full_to_unit.inverse() * warp * full_to_unit;
     result.homography /= result.homography(2, 2);
